@@ -1,0 +1,77 @@
+#pragma once
+/// Bounding volume hierarchy: the node layout and the primitive order, shared by the builders
+/// (bvh_build.h) and the traversals (bvh_traverse.h). Nodes are 32 bytes: float bounds rounded
+/// outward (they contain the double primitives they bound) and one index: the first child of an
+/// inner node (its sibling follows it) or the first entry of prim_ids of a leaf.
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "rayproof/vec3.h"
+
+namespace rayproof {
+
+/// Axis-aligned bounds in float; an empty box has lo = +inf, hi = -inf.
+struct BvhBox {
+  float lo[3] = {std::numeric_limits<float>::infinity(), std::numeric_limits<float>::infinity(),
+                 std::numeric_limits<float>::infinity()};
+  float hi[3] = {-std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity(),
+                 -std::numeric_limits<float>::infinity()};
+
+  void extend(const BvhBox& b) {
+    for (int k = 0; k < 3; ++k) lo[k] = std::fmin(lo[k], b.lo[k]), hi[k] = std::fmax(hi[k], b.hi[k]);
+  }
+  /// Grows the box to contain a double point: float bounds rounded down / up, never inward.
+  void extend(const Vec3<double>& p) {
+    for (int k = 0; k < 3; ++k) {
+      float l = static_cast<float>(p[k]), h = l;
+      if (double(l) > p[k]) l = std::nextafter(l, -std::numeric_limits<float>::infinity());
+      if (double(h) < p[k]) h = std::nextafter(h, std::numeric_limits<float>::infinity());
+      lo[k] = std::fmin(lo[k], l), hi[k] = std::fmax(hi[k], h);
+    }
+  }
+  [[nodiscard]] bool empty() const { return !(lo[0] <= hi[0] && lo[1] <= hi[1] && lo[2] <= hi[2]); }
+  [[nodiscard]] float half_area() const {
+    if (empty()) return 0.0f;
+    const float dx = hi[0] - lo[0], dy = hi[1] - lo[1], dz = hi[2] - lo[2];
+    return dx * dy + dy * dz + dz * dx;
+  }
+  [[nodiscard]] int longest_axis() const {
+    const float dx = hi[0] - lo[0], dy = hi[1] - lo[1], dz = hi[2] - lo[2];
+    return dx >= dy ? (dx >= dz ? 0 : 2) : (dy >= dz ? 1 : 2);
+  }
+};
+
+struct BvhNode {
+  BvhBox box;
+  std::uint32_t index = 0;  ///< inner: first child (the second is index + 1); leaf: first prim_ids entry
+  std::uint32_t count = 0;  ///< 0 for an inner node, else the number of primitives in the leaf
+  [[nodiscard]] bool is_leaf() const { return count != 0; }
+};
+static_assert(sizeof(BvhNode) == 32);
+
+struct Bvh {
+  std::vector<BvhNode> nodes;           ///< nodes[0] is the root (absent for an empty BVH)
+  std::vector<std::uint32_t> prim_ids;  ///< primitive indices, leaf by leaf
+
+  [[nodiscard]] bool empty() const { return nodes.empty(); }
+  [[nodiscard]] std::size_t bytes() const {
+    return nodes.size() * sizeof(BvhNode) + prim_ids.size() * sizeof(std::uint32_t);
+  }
+  /// Depth of the deepest leaf (root = 1); traversal stacks must hold that many entries.
+  [[nodiscard]] int depth() const {
+    if (nodes.empty()) return 0;
+    int best = 0;
+    std::vector<std::pair<std::uint32_t, int>> stack{{0u, 1}};
+    while (!stack.empty()) {
+      const auto [n, d] = stack.back();
+      stack.pop_back();
+      if (d > best) best = d;
+      if (!nodes[n].is_leaf()) stack.push_back({nodes[n].index, d + 1}), stack.push_back({nodes[n].index + 1, d + 1});
+    }
+    return best;
+  }
+};
+
+}  // namespace rayproof

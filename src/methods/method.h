@@ -1,0 +1,56 @@
+#pragma once
+/// The method registry: every way rayproof can answer a case (float, double, exact, robust,
+/// certified, alternatives) under one name, so classify, verify, report and fuzz pick them up
+/// without knowing them.
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "io/case_file.h"
+
+namespace rayproof {
+
+/// The precision a method is judged in: float methods see float-rounded inputs and their t error
+/// is counted in float ulps (CASES.md).
+enum class Precision { float32, float64 };
+
+struct Method {
+  std::string name;
+  std::string summary;
+  Precision precision = Precision::float64;
+  /// Kinds the method answers; others are skipped by verify and report (classify says `error`).
+  std::vector<io::Kind> kinds;
+  /// Answers one case. Must not throw on any input; for float32 methods the caller has already
+  /// rounded the inputs (io::round_to_float).
+  std::function<io::CaseResult(const io::Case&)> classify;
+  /// Optional: how many cases so far needed an exact fallback (certified tier).
+  std::function<std::uint64_t()> fallbacks;
+
+  [[nodiscard]] bool supports(io::Kind k) const;
+  /// Runs the method as a user would: rounds to float first for float32 methods.
+  [[nodiscard]] io::CaseResult run(const io::Case& c) const;
+};
+
+class MethodRegistry {
+ public:
+  void add(Method m);
+  [[nodiscard]] const Method* find(const std::string& name) const;
+  [[nodiscard]] const std::vector<Method>& all() const { return methods_; }
+  [[nodiscard]] std::string names() const;  ///< comma-separated, for messages
+
+ private:
+  std::vector<Method> methods_;
+};
+
+/// Registers the dependency-free methods: float, double and the per-kind alternatives.
+void register_fast_methods(MethodRegistry& reg);
+
+/// Registers the robust methods (robust, robust-double) and the triangle alternatives (mt-double,
+/// baldwin-weber, plucker): floating point only, no exact arithmetic.
+void register_robust_methods(MethodRegistry& reg);
+
+/// Which classes carry T and T2, per kind (CASES.md), to turn a kernel result into a CaseResult.
+[[nodiscard]] io::CaseResult make_result(io::Kind kind, Contact c, double t, double t2);
+
+}  // namespace rayproof

@@ -1,0 +1,59 @@
+/// The robust methods: the best-known floating-point method per kind, no exact arithmetic
+/// (watertight triangles, stable quadrics, conservative slabs, FMA planes and disks), and the
+/// triangle alternatives the report places beside them.
+#include "methods/method.h"
+#include "methods/primitive_of.h"
+#include "rayproof/box_conservative.h"
+#include "rayproof/disk_fma.h"
+#include "rayproof/plane_fma.h"
+#include "rayproof/quadric_stable.h"
+#include "rayproof/triangle_baldwin_weber.h"
+#include "rayproof/triangle_moller_trumbore.h"
+#include "rayproof/triangle_plucker.h"
+#include "rayproof/triangle_watertight.h"
+
+namespace rayproof {
+
+namespace {
+
+template <class H>
+io::CaseResult result_of(const io::Case& c, const H& h) {
+  return make_result(c.kind, h.contact, double(h.t), double(h.t2));
+}
+
+template <class T>
+io::CaseResult robust(const io::Case& c) {
+  const auto ray = ray_of<T>(c);
+  switch (c.kind) {
+    case io::Kind::plane: return result_of(c, intersect_fma(ray, plane_of<T>(c)));
+    case io::Kind::sphere: return result_of(c, intersect_stable(ray, sphere_of<T>(c)));
+    case io::Kind::ellipsoid: return result_of(c, intersect_stable(ray, ellipsoid_of<T>(c)));
+    case io::Kind::triangle: return result_of(c, intersect_watertight(ray, triangle_of<T>(c)));
+    case io::Kind::box: return result_of(c, intersect_conservative(ray, box_of<T>(c)));
+    case io::Kind::disk: return result_of(c, intersect_fma(ray, disk_of<T>(c)));
+  }
+  return {Contact::error};
+}
+
+}  // namespace
+
+void register_robust_methods(MethodRegistry& reg) {
+  const std::vector<io::Kind> all(io::kAllKinds.begin(), io::kAllKinds.end());
+  const std::vector<io::Kind> tri{io::Kind::triangle};
+  reg.add({"robust",
+           "float inputs and arithmetic: watertight triangles (Woop et al. 2013), stable quadrics (RT Gems 7), "
+           "conservative slabs (Ize 2013), FMA planes and disks",
+           Precision::float32, all, robust<float>, {}});
+  reg.add({"robust-double", "the robust kernels in double", Precision::float64, all, robust<double>, {}});
+  reg.add({"mt-double", "Möller–Trumbore computed in double on float inputs", Precision::float32, tri,
+           [](const io::Case& c) { return result_of(c, intersect_moller_trumbore(ray_of<double>(c), triangle_of<double>(c))); },
+           {}});
+  reg.add({"baldwin-weber", "Baldwin & Weber 2016 precomputed transform, float", Precision::float32, tri,
+           [](const io::Case& c) { return result_of(c, intersect_baldwin_weber(ray_of<float>(c), triangle_of<float>(c))); },
+           {}});
+  reg.add({"plucker", "Plücker edge tests as in Embree's robust mode, float", Precision::float32, tri,
+           [](const io::Case& c) { return result_of(c, intersect_plucker(ray_of<float>(c), triangle_of<float>(c))); },
+           {}});
+}
+
+}  // namespace rayproof

@@ -1,0 +1,87 @@
+#include "io/case_file.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+
+using namespace rayproof;
+using namespace rayproof::io;
+
+TEST(CaseFile, FormatsDoublesAsPythonRepr) {
+  EXPECT_EQ(format_double(2.0), "2.0");
+  EXPECT_EQ(format_double(-0.0), "-0.0");
+  EXPECT_EQ(format_double(1.105572809000084), "1.105572809000084");
+  EXPECT_EQ(format_double(1e-05), "1e-05");
+  EXPECT_EQ(format_double(0.0001), "0.0001");
+  EXPECT_EQ(format_double(1.5e16), "1.5e+16");
+  EXPECT_EQ(format_double(1e16), "1e+16");
+  EXPECT_EQ(format_double(1176821039104.0), "1176821039104.0");
+  EXPECT_EQ(format_double(-4.161487926136363e-06), "-4.161487926136363e-06");
+  EXPECT_EQ(format_double(5e-324), "5e-324");
+  EXPECT_EQ(format_double(INFINITY), "inf");
+}
+
+TEST(CaseFile, EveryExpectedValueRoundTripsThroughTheFormatter) {
+  std::ifstream in(std::string(RAYPROOF_DATA_DIR) + "/sample.expected");
+  ASSERT_TRUE(in);
+  std::string line;
+  int n = 0;
+  while (std::getline(in, line)) {
+    const auto r = parse_result(line);
+    ASSERT_TRUE(r) << line;
+    EXPECT_EQ(format_result(*r), line);
+    ++n;
+  }
+  EXPECT_EQ(n, 602);
+}
+
+TEST(CaseFile, ParsesKindsNumbersAndFamilies) {
+  std::istringstream in(
+      "# comment\n\n# family tri_edge\ntriangle 0 0 0 1 1 1 2 2 2 3 7 -1 0 9 -4  # tail\n"
+      "sphere 0x1.8p+1 -1.5e-3 inf nan 0 1 0 0 5 1\n");
+  const auto e = read_cases(in);
+  ASSERT_EQ(e.size(), 2u);
+  const auto& t = std::get<Case>(e[0]);
+  EXPECT_EQ(t.kind, Kind::triangle);
+  EXPECT_EQ(t.family, "tri_edge");
+  EXPECT_EQ(t.line, 4u);
+  EXPECT_EQ(t.v[14], -4.0);
+  const auto& s = std::get<Case>(e[1]);
+  EXPECT_EQ(s.v[0], 3.0);
+  EXPECT_EQ(s.v[1], -1.5e-3);
+  EXPECT_TRUE(std::isinf(s.v[2]));
+  EXPECT_TRUE(std::isnan(s.v[3]));
+}
+
+TEST(CaseFile, BadLinesNameTheProblem) {
+  std::istringstream in("cube 1 2 3\nsphere 1 2 3\nplane 0 0 0 1 1 0 0 0 5 0 0 x1\nbox 0 0 0 1 1 1 0 0 0 1 1 1\n");
+  const auto e = read_cases(in);
+  ASSERT_EQ(e.size(), 4u);
+  EXPECT_NE(std::get<CaseError>(e[0]).message.find("unknown kind 'cube'"), std::string::npos);
+  EXPECT_EQ(std::get<CaseError>(e[1]).line, 2u);
+  EXPECT_NE(std::get<CaseError>(e[1]).message.find("needs 10 numbers, got 3"), std::string::npos);
+  EXPECT_NE(std::get<CaseError>(e[2]).message.find("field 12 'x1' is not a number"), std::string::npos);
+  EXPECT_TRUE(std::holds_alternative<Case>(e[3]));
+}
+
+TEST(CaseFile, HugeLinesAreBoundedErrors) {
+  std::string s = "plane " + std::string(200000, '1') + "\nsphere 0 0 0 1 0 0 5 0 0 1\n";
+  std::istringstream in(s);
+  const auto e = read_cases(in, 1000);
+  ASSERT_EQ(e.size(), 2u);
+  EXPECT_NE(std::get<CaseError>(e[0]).message.find("longer than"), std::string::npos);
+  EXPECT_TRUE(std::holds_alternative<Case>(e[1]));
+}
+
+TEST(CaseFile, FormatCaseReadsBackExactly) {
+  Case c;
+  c.kind = Kind::disk;
+  for (int i = 0; i < 13; ++i) c.v[i] = std::ldexp(1.0 + i / 7.0, i * 40 - 300);
+  std::string fam;
+  const auto back = parse_case_line(format_case(c), 1, fam);
+  ASSERT_TRUE(back && std::holds_alternative<Case>(*back));
+  EXPECT_EQ(std::get<Case>(*back).v, c.v);
+  EXPECT_EQ(round_to_float(c).v[0], double(float(c.v[0])));
+}
