@@ -1,0 +1,137 @@
+/// rayproof report: the main job. Generates every case family, runs every method, compares with
+/// exact, times all methods side by side, and writes report.md, report.csv, error_vs_time.svg.
+#include <CLI/CLI.hpp>
+#include <fmt/core.h>
+
+#include <chrono>
+#include <fstream>
+#include <memory>
+
+#include "cli/commands.h"
+#include "cli/input.h"
+#include "cli/registry.h"
+#include "gen/families.h"
+#include "report/report.h"
+
+namespace rayproof::cli {
+
+namespace {
+struct ReportOptions {
+  std::size_t count = 2000;
+  std::uint64_t seed = 1;
+  std::string out = "report";
+  std::vector<std::string> methods;
+  std::vector<std::string> families;
+  std::string input;
+};
+
+std::string cpu_model() {
+  std::ifstream in("/proc/cpuinfo");
+  std::string line;
+  while (std::getline(in, line))
+    if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
+  return "unknown CPU";
+}
+
+int run_report(const ReportOptions& opt) {
+  const auto start = std::chrono::steady_clock::now();
+  auto progress = [&](const std::string& msg) {
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    fmt::print(stderr, "[{:6.1f}s] {}\n", s, msg);
+  };
+  const MethodRegistry& reg = all_methods();
+  std::vector<const Method*> methods;
+  if (opt.methods.empty()) {
+    for (const auto& m : reg.all()) methods.push_back(&m);
+  } else {
+    for (const auto& name : opt.methods) {
+      const Method* m = reg.find(name);
+      if (!m) {
+        fmt::print(stderr, "rayproof report: unknown method '{}' (known: {})\n", name, reg.names());
+        return 2;
+      }
+      methods.push_back(m);
+    }
+  }
+
+  std::vector<io::Case> cases;
+  std::vector<std::string> notes;
+  if (!opt.input.empty()) {
+    CaseInput in = read_case_input(opt.input);
+    if (!in.error.empty() && in.entries.empty()) {
+      fmt::print(stderr, "rayproof report: {}\n", in.error);
+      return 2;
+    }
+    for (const auto& e : in.entries)
+      if (const auto* c = std::get_if<io::Case>(&e)) cases.push_back(*c);
+    notes.push_back(fmt::format("cases: {} from `{}`", cases.size(), opt.input));
+  } else {
+    std::vector<const gen::Family*> fams;
+    if (opt.families.empty()) {
+      for (const auto& f : gen::families()) fams.push_back(&f);
+    } else {
+      for (const auto& name : opt.families) {
+        const gen::Family* f = gen::find_family(name);
+        if (!f) {
+          fmt::print(stderr, "rayproof report: unknown family '{}' (see `rayproof gen --list`)\n", name);
+          return 2;
+        }
+        fams.push_back(f);
+      }
+    }
+    progress(fmt::format("generating {} families x {} cases (seed {})", fams.size(), opt.count, opt.seed));
+    // Half the cases are built in float (exact contacts stay exact for float methods), half in double.
+    for (const gen::Family* f : fams) {
+      for (auto p : {gen::Precision::float32, gen::Precision::float64}) {
+        const std::size_t n = p == gen::Precision::float32 ? opt.count / 2 : opt.count - opt.count / 2;
+        auto part = gen::generate(*f, n, opt.seed, p);
+        cases.insert(cases.end(), part.begin(), part.end());
+      }
+    }
+    notes.push_back(fmt::format("cases: {} families x {} (half built in float precision, half in double), seed {}; "
+                                "reproduce with `rayproof gen FAMILY --count {} --seed {} --precision float|double`",
+                                fams.size(), opt.count, opt.seed, opt.count / 2, opt.seed));
+  }
+  if (cases.empty()) {
+    fmt::print(stderr, "rayproof report: no cases\n");
+    return 2;
+  }
+  notes.push_back(fmt::format("methods: {}", [&] {
+    std::string s;
+    for (const Method* m : methods) s += (s.empty() ? "" : ", ") + m->name;
+    return s;
+  }()));
+  notes.push_back(fmt::format("machine: {}, one thread", cpu_model()));
+
+  auto rep = report::build_report(cases, methods, progress);
+  rep.notes = notes;
+  const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  rep.notes.push_back(fmt::format("run time of the whole report: {:.1f} s", secs));
+  if (auto err = report::write_report(rep, opt.out); !err.empty()) {
+    fmt::print(stderr, "rayproof report: {}\n", err);
+    return 2;
+  }
+  progress(fmt::format("wrote {0}/report.md, {0}/report.csv, {0}/error_vs_time.svg", opt.out));
+  fmt::print("{:<16} {:>10} {:>12} {:>12} {:>10}\n", "method", "ns/case", "class err %", "max ulps", "fallback %");
+  for (const auto& p : rep.points)
+    fmt::print("{:<16} {:>10.1f} {:>12.4f} {:>12} {:>10.3f}\n", p.method, p.ns_per_case, 100 * p.class_error_rate,
+               p.max_ulps == std::numeric_limits<std::uint64_t>::max() ? std::string("NaN t") : std::to_string(p.max_ulps),
+               100 * p.fallback_rate);
+  return 0;
+}
+}  // namespace
+
+Run add_report(CLI::App& app) {
+  auto opt = std::make_shared<ReportOptions>();
+  auto* sub = app.add_subcommand("report", "Error against run time of every method on every case family (the main job)");
+  sub->add_option("--count", opt->count, "Cases per family")->check(CLI::Range(std::size_t{2}, std::size_t{1000000}))
+      ->capture_default_str();
+  sub->add_option("--seed", opt->seed, "Seed of the case families")->capture_default_str();
+  sub->add_option("--out", opt->out, "Output directory")->capture_default_str();
+  sub->add_option("--methods", opt->methods, "Methods (default: all registered)")->delimiter(',')->allow_extra_args(false);
+  sub->add_option("--families", opt->families, "Families (default: all)")->delimiter(',')->allow_extra_args(false);
+  sub->add_option("--input", opt->input, "Use the cases of this file instead of generated families");
+  return [opt] { return run_report(*opt); };
+}
+
+}  // namespace rayproof::cli

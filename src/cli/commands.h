@@ -1,0 +1,21 @@
+#pragma once
+/// The subcommands of the rayproof tool. Each `add_*` registers its options on the CLI11 app and
+/// returns the function to run when that subcommand was chosen (its exit status).
+#include <functional>
+
+namespace CLI { class App; }
+
+namespace rayproof::cli {
+
+using Run = std::function<int()>;
+
+Run add_classify(CLI::App& app);
+Run add_gen(CLI::App& app);
+Run add_verify(CLI::App& app);
+Run add_report(CLI::App& app);
+Run add_fuzz(CLI::App& app);
+Run add_cast(CLI::App& app);
+Run add_render(CLI::App& app);
+Run add_bench(CLI::App& app);
+
+}  // namespace rayproof::cli

@@ -1,0 +1,217 @@
+#include "report/report.h"
+
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <set>
+
+#include "report/timing.h"
+#include "verify/exact.h"
+
+namespace rayproof::report {
+
+namespace {
+
+std::string ulp_text(std::uint64_t u) {
+  if (u == std::numeric_limits<std::uint64_t>::max()) return "NaN t";
+  if (u >= 1000000) return fmt::format("{:.2g}", double(u));
+  return std::to_string(u);
+}
+
+}  // namespace
+
+Report build_report(const std::vector<io::Case>& given, const std::vector<const Method*>& methods,
+                    const std::function<void(const std::string&)>& progress) {
+  // A family that spans several kinds (invalid input) is reported once per kind: rows are per kind.
+  std::map<std::string, std::set<io::Kind>> kinds_of;
+  for (const auto& c : given) kinds_of[verify::group_of(c)].insert(c.kind);
+  std::vector<io::Case> cases = given;
+  for (auto& c : cases)
+    if (kinds_of[verify::group_of(c)].size() > 1) c.family = verify::group_of(c) + "_" + std::string(io::to_string(c.kind));
+  Report rep;
+  rep.title = "rayproof: error against run time";
+  progress(fmt::format("exact answers for {} cases (twice where float rounding changes the input)", cases.size()));
+  const verify::ExactAnswers exact = verify::exact_answers(cases);
+  progress("comparing every method with exact");
+  const verify::Comparison cmp = verify::compare(cases, exact, methods, 0);
+
+  std::map<std::string, std::vector<io::Case>> by_group;
+  for (const auto& c : cases) by_group[verify::group_of(c)].push_back(c);
+
+  std::size_t done = 0;
+  for (const auto& g : cmp.groups) {
+    const auto& gc = by_group[g];
+    progress(fmt::format("timing [{}/{}] {} ({} cases)", ++done, cmp.groups.size(), g, gc.size()));
+    std::vector<io::Case> rounded;
+    for (const auto& c : gc) rounded.push_back(io::round_to_float(c));
+    for (const Method* m : methods) {
+      if (!m->supports(gc.front().kind)) continue;
+      Row row;
+      row.method = m->name;
+      row.group = g;
+      row.kind = gc.front().kind;
+      row.precision = m->precision;
+      row.stats = cmp.stats.at({m->name, g});
+      row.ns_per_case = ns_per_case(*m, m->precision == Precision::float32 ? rounded : gc);
+      rep.rows.push_back(std::move(row));
+    }
+  }
+
+  for (const Method* m : methods) {
+    Point p;
+    p.method = m->name;
+    double weighted = 0;
+    std::size_t n = 0;
+    verify::Stats total;
+    for (const auto& r : rep.rows) {
+      if (r.method != m->name) continue;
+      weighted += r.ns_per_case * double(r.stats.cases);
+      n += r.stats.cases;
+      total.merge(r.stats);
+    }
+    if (n == 0) continue;
+    p.ns_per_case = weighted / double(n);
+    p.class_error_rate = total.class_error_rate();
+    p.max_ulps = total.ulp_quantile(1.0);
+    p.fallback_rate = double(total.fallbacks) / double(n);
+    rep.points.push_back(p);
+  }
+  std::vector<double> time, err;
+  for (const auto& p : rep.points) time.push_back(p.ns_per_case), err.push_back(p.class_error_rate);
+  const auto front = pareto_front(time, err);
+  for (std::size_t i = 0; i < rep.points.size(); ++i) rep.points[i].pareto = front[i];
+  return rep;
+}
+
+std::string to_csv(const Report& r) {
+  std::string s =
+      "method,family,kind,precision,cases,class_errors,false_hit,false_miss,wrong_hit_class,wrong_class,"
+      "ulp_median,ulp_p99,ulp_max,ns_per_case,fallbacks\n";
+  for (const auto& row : r.rows) {
+    const auto& st = row.stats;
+    s += fmt::format("{},{},{},{},{},{},{},{},{},{},{},{},{},{:.2f},{}\n", row.method, row.group, io::to_string(row.kind),
+                     row.precision == Precision::float32 ? "float" : "double", st.cases, st.class_errors(),
+                     st.false_hit, st.false_miss, st.wrong_hit_class, st.wrong_class, st.ulp_quantile(0.5),
+                     st.ulp_quantile(0.99), st.ulp_quantile(1.0), row.ns_per_case, st.fallbacks);
+  }
+  return s;
+}
+
+std::string to_markdown(const Report& r) {
+  std::string s = "# " + r.title + "\n\n";
+  for (const auto& n : r.notes) s += "- " + n + "\n";
+  s += "\nClass errors: *false hit* (exact says the ray does not touch the primitive), *false miss* "
+       "(exact says it does), *wrong hit class* (both touch, different class, e.g. `interior` for `edge`), "
+       "*other* (neither touches, different class, e.g. `miss` for `parallel`). t error in ulps of the method's "
+       "own precision, over class-correct cases. Run time: median of repeated batches, every method in this "
+       "run, through the same registry call.\n\n";
+  s += "![error against run time](error_vs_time.svg)\n\n";
+
+  s += "## Summary per method\n\n| method | ns/case | class error rate | max t error (ulps) | fallback rate | Pareto |\n"
+       "|---|---:|---:|---:|---:|:---:|\n";
+  for (const auto& p : r.points)
+    s += fmt::format("| {} | {:.1f} | {:.4f}% | {} | {:.3f}% | {} |\n", p.method, p.ns_per_case,
+                     100 * p.class_error_rate, ulp_text(p.max_ulps), 100 * p.fallback_rate, p.pareto ? "yes" : "");
+
+  for (io::Kind k : io::kAllKinds) {
+    std::vector<const Row*> rows;
+    for (const auto& row : r.rows)
+      if (row.kind == k) rows.push_back(&row);
+    if (rows.empty()) continue;
+    s += fmt::format("\n## {}\n\n", io::to_string(k));
+    // Per method over the kind.
+    std::vector<std::string> methods;
+    std::vector<std::string> groups;
+    for (const Row* row : rows) {
+      if (std::find(methods.begin(), methods.end(), row->method) == methods.end()) methods.push_back(row->method);
+      if (std::find(groups.begin(), groups.end(), row->group) == groups.end()) groups.push_back(row->group);
+    }
+    s += "| method | ns/case | cases | class errors | false hit | false miss | wrong hit class | other | "
+         "t ulps median | p99 | max | fallbacks |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+    std::map<std::string, std::pair<double, verify::Stats>> per_method;
+    for (const Row* row : rows) {
+      auto& [ns, st] = per_method[row->method];
+      ns += row->ns_per_case * double(row->stats.cases);
+      st.merge(row->stats);
+    }
+    for (const auto& m : methods) {
+      const auto& [ns, st] = per_method[m];
+      s += fmt::format("| {} | {:.1f} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", m, ns / double(st.cases),
+                       st.cases, st.class_errors(), st.false_hit, st.false_miss, st.wrong_hit_class, st.wrong_class,
+                       ulp_text(st.ulp_quantile(0.5)), ulp_text(st.ulp_quantile(0.99)), ulp_text(st.ulp_quantile(1.0)),
+                       st.fallbacks);
+    }
+    // Which method is the cheapest with no class error, overall and per family.
+    std::string cheapest_all;
+    double cheapest_all_ns = 0;
+    for (const auto& m : methods) {
+      const auto& [ns, st] = per_method[m];
+      const double per = ns / double(st.cases);
+      if (st.class_errors() == 0 && (cheapest_all.empty() || per < cheapest_all_ns)) cheapest_all = m, cheapest_all_ns = per;
+    }
+    s += "\n";
+    if (cheapest_all.empty())
+      s += fmt::format("No method made zero class errors on every {} family. ", io::to_string(k));
+    else
+      s += fmt::format("The cheapest method with no class error on every {} family ({}) is `{}` at {:.1f} ns per case. ",
+                       io::to_string(k), groups.size(), cheapest_all, cheapest_all_ns);
+    std::map<std::string, std::vector<std::string>> cheapest_for;  // method -> families
+    for (const auto& g : groups) {
+      const Row* best = nullptr;
+      for (const Row* row : rows)
+        if (row->group == g && row->stats.class_errors() == 0 && (!best || row->ns_per_case < best->ns_per_case)) best = row;
+      cheapest_for[best ? best->method : "(none)"].push_back(g);
+    }
+    s += "Family by family, the cheapest error-free method is ";
+    bool first = true;
+    for (const auto& [m, gs] : cheapest_for) {
+      std::string list;
+      for (const auto& g : gs) list += (list.empty() ? "" : ", ") + g;
+      s += fmt::format("{}`{}` on {}", first ? "" : "; ", m, list);
+      first = false;
+    }
+    s += ".\n\n";
+    // Per family detail: class errors and max ulps per method.
+    s += "| family |";
+    for (const auto& m : methods) s += " " + m + " |";
+    s += "\n|---|";
+    for (std::size_t i = 0; i < methods.size(); ++i) s += "---:|";
+    s += "\n";
+    for (const auto& g : groups) {
+      s += "| " + g + " |";
+      for (const auto& m : methods) {
+        const Row* cell = nullptr;
+        for (const Row* row : rows)
+          if (row->group == g && row->method == m) cell = row;
+        if (!cell) {
+          s += " |";
+          continue;
+        }
+        s += fmt::format(" {}/{} err, {} ulp |", cell->stats.class_errors(), cell->stats.cases,
+                         ulp_text(cell->stats.ulp_quantile(1.0)));
+      }
+      s += "\n";
+    }
+  }
+  return s;
+}
+
+std::string write_report(const Report& r, const std::string& dir) {
+  std::error_code ec;
+  std::filesystem::create_directories(dir, ec);
+  if (ec) return dir + ": cannot create directory (" + ec.message() + ")";
+  const std::pair<const char*, std::string> files[] = {
+      {"report.md", to_markdown(r)}, {"report.csv", to_csv(r)}, {"error_vs_time.svg", to_svg(r)}};
+  for (const auto& [name, text] : files) {
+    const auto path = std::filesystem::path(dir) / name;
+    std::ofstream out(path, std::ios::binary);
+    out << text;
+    if (!out) return path.string() + ": cannot write";
+  }
+  return "";
+}
+
+}  // namespace rayproof::report

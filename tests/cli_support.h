@@ -1,0 +1,52 @@
+#pragma once
+// Runs the rayproof binary in a shell and captures exit status, stdout and stderr.
+#include <sys/wait.h>
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+namespace rayproof::testing {
+
+struct RunResult {
+  int status = -1;
+  std::string out, err;
+};
+
+inline std::string slurp(const std::filesystem::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+inline std::filesystem::path scratch_dir() {
+  auto d = std::filesystem::temp_directory_path() / ("rayproof_test_" + std::to_string(::getpid()));
+  std::filesystem::create_directories(d);
+  return d;
+}
+
+inline std::filesystem::path write_file(const std::string& name, const std::string& text) {
+  auto p = scratch_dir() / name;
+  std::ofstream(p, std::ios::binary) << text;
+  return p;
+}
+
+/// Runs `rayproof ARGS` (ARGS is shell text) and captures everything.
+inline RunResult run_rayproof(const std::string& args, const std::string& stdin_text = "") {
+  const auto dir = scratch_dir();
+  const auto in = dir / "stdin.txt", out = dir / "stdout.txt", err = dir / "stderr.txt";
+  std::ofstream(in, std::ios::binary) << stdin_text;
+  const std::string cmd = std::string(RAYPROOF_BIN) + " " + args + " <" + in.string() + " >" + out.string() +
+                          " 2>" + err.string();
+  const int raw = std::system(cmd.c_str());
+  RunResult r;
+  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw);
+  r.out = slurp(out);
+  r.err = slurp(err);
+  return r;
+}
+
+}  // namespace rayproof::testing

@@ -1,0 +1,139 @@
+#include "verify/differential.h"
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <limits>
+
+#include "rayproof/float_util.h"
+#include "verify/exact.h"
+
+namespace rayproof::verify {
+
+bool touches(const io::CaseResult& r) {
+  if (r.contact == Contact::coplanar) return r.t.has_value();
+  return is_hit(r.contact);
+}
+
+Verdict judge_class(const io::CaseResult& got, const io::CaseResult& want) {
+  const bool g = touches(got), w = touches(want);
+  if (g && !w) return Verdict::false_hit;
+  if (!g && w) return Verdict::false_miss;
+  if (got.contact == want.contact) return Verdict::agree;
+  return g ? Verdict::wrong_hit_class : Verdict::wrong_class;
+}
+
+namespace {
+std::uint64_t ulps_one(const std::optional<double>& a, const std::optional<double>& b, Precision p) {
+  if (a.has_value() != b.has_value()) return std::numeric_limits<std::uint64_t>::max();
+  if (!a) return 0;
+  if (p == Precision::float32) return ulp_distance(static_cast<float>(*a), static_cast<float>(*b));
+  return ulp_distance(*a, *b);
+}
+}  // namespace
+
+std::uint64_t t_error_ulps(const io::CaseResult& got, const io::CaseResult& want, Precision p) {
+  return std::max(ulps_one(got.t, want.t, p), ulps_one(got.t2, want.t2, p));
+}
+
+std::uint64_t Stats::ulp_quantile(double q) const {
+  if (ulps.empty()) return 0;
+  std::vector<std::uint64_t> v = ulps;
+  const std::size_t k = std::min(v.size() - 1, static_cast<std::size_t>(std::ceil(q * double(v.size()))) - (q > 0 ? 1 : 0));
+  std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(k), v.end());
+  return v[k];
+}
+
+void Stats::merge(const Stats& o) {
+  cases += o.cases;
+  false_hit += o.false_hit;
+  false_miss += o.false_miss;
+  wrong_hit_class += o.wrong_hit_class;
+  wrong_class += o.wrong_class;
+  fallbacks += o.fallbacks;
+  ulps.insert(ulps.end(), o.ulps.begin(), o.ulps.end());
+}
+
+Stats Comparison::total(const std::string& method) const {
+  Stats s;
+  for (const auto& g : groups) {
+    auto it = stats.find({method, g});
+    if (it != stats.end()) s.merge(it->second);
+  }
+  return s;
+}
+
+ExactAnswers exact_answers(const std::vector<io::Case>& cases) {
+  ExactAnswers a;
+  a.as_given.reserve(cases.size());
+  a.float_rounded.reserve(cases.size());
+  for (const auto& c : cases) {
+    a.as_given.push_back(exact_classify(c));
+    const io::Case f = io::round_to_float(c);
+    const bool same = std::equal(f.v.begin(), f.v.end(), c.v.begin(), [](double x, double y) {
+      return std::bit_cast<std::uint64_t>(x) == std::bit_cast<std::uint64_t>(y);
+    });
+    a.float_rounded.push_back(same ? a.as_given.back() : exact_classify(f));
+  }
+  return a;
+}
+
+std::string group_of(const io::Case& c) { return c.family.empty() ? std::string(io::to_string(c.kind)) : c.family; }
+
+Comparison compare(const std::vector<io::Case>& cases, const ExactAnswers& exact,
+                   const std::vector<const Method*>& methods, std::size_t max_mismatches,
+                   std::uint64_t ulp_tolerance) {
+  Comparison cmp;
+  for (const auto& c : cases) {
+    const std::string g = group_of(c);
+    if (std::find(cmp.groups.begin(), cmp.groups.end(), g) == cmp.groups.end()) cmp.groups.push_back(g);
+  }
+  for (const Method* m : methods) {
+    cmp.methods.push_back(m->name);
+    const bool f32 = m->precision == Precision::float32;
+    std::size_t listed = 0;
+    for (std::size_t i = 0; i < cases.size(); ++i) {
+      const io::Case& c = cases[i];
+      if (!m->supports(c.kind)) continue;
+      const io::Case input = f32 ? io::round_to_float(c) : c;
+      const io::CaseResult& want = f32 ? exact.float_rounded[i] : exact.as_given[i];
+      const std::uint64_t before = m->fallbacks ? m->fallbacks() : 0;
+      const io::CaseResult got = m->classify(input);
+      Stats& s = cmp.stats[{m->name, group_of(c)}];
+      if (m->fallbacks) s.fallbacks += m->fallbacks() - before;
+      ++s.cases;
+      const Verdict v = judge_class(got, want);
+      std::uint64_t u = 0;
+      switch (v) {
+        case Verdict::false_hit: ++s.false_hit; break;
+        case Verdict::false_miss: ++s.false_miss; break;
+        case Verdict::wrong_hit_class: ++s.wrong_hit_class; break;
+        case Verdict::wrong_class: ++s.wrong_class; break;
+        case Verdict::agree:
+          if (want.t || got.t) {
+            u = t_error_ulps(got, want, m->precision);
+            s.ulps.push_back(u);
+          }
+          break;
+      }
+      if ((v != Verdict::agree || u > ulp_tolerance) && listed < max_mismatches) {
+        cmp.mismatches.push_back({m->name, input, got, want, v, u});
+        ++listed;
+      }
+    }
+  }
+  return cmp;
+}
+
+std::string to_string(Verdict v) {
+  switch (v) {
+    case Verdict::agree: return "agree";
+    case Verdict::false_hit: return "false-hit";
+    case Verdict::false_miss: return "false-miss";
+    case Verdict::wrong_hit_class: return "wrong-hit-class";
+    case Verdict::wrong_class: return "wrong-class";
+  }
+  return "?";
+}
+
+}  // namespace rayproof::verify

@@ -1,0 +1,74 @@
+#pragma once
+/// Differential comparison: every method against `exact`, per method x family. Float methods are
+/// judged on their float-rounded inputs (the reference is exact on those), and their t error is
+/// counted in float ulps (CASES.md, "What correct means").
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "io/case_file.h"
+#include "methods/method.h"
+
+namespace rayproof::verify {
+
+/// True when the class says the ray touches the primitive at some t >= 0 (a coplanar triangle
+/// counts when it has a range).
+[[nodiscard]] bool touches(const io::CaseResult& r);
+
+/// How a method's answer relates to the exact one.
+enum class Verdict { agree, false_hit, false_miss, wrong_hit_class, wrong_class };
+[[nodiscard]] Verdict judge_class(const io::CaseResult& got, const io::CaseResult& want);
+
+/// Largest ulp distance of T and T2 in precision p; 0 when the class carries no t.
+/// A t present on one side only counts as the maximum.
+[[nodiscard]] std::uint64_t t_error_ulps(const io::CaseResult& got, const io::CaseResult& want, Precision p);
+
+struct Stats {
+  std::size_t cases = 0;
+  std::size_t false_hit = 0, false_miss = 0, wrong_hit_class = 0, wrong_class = 0;
+  std::uint64_t fallbacks = 0;         ///< exact fallbacks (methods that count them)
+  std::vector<std::uint64_t> ulps;     ///< t error of every class-correct case that carries t
+  [[nodiscard]] std::size_t class_errors() const { return false_hit + false_miss + wrong_hit_class + wrong_class; }
+  [[nodiscard]] double class_error_rate() const { return cases ? double(class_errors()) / double(cases) : 0.0; }
+  /// q-quantile of the t errors (0 when none), nearest-rank.
+  [[nodiscard]] std::uint64_t ulp_quantile(double q) const;
+  void merge(const Stats& o);
+};
+
+struct Mismatch {
+  std::string method;
+  io::Case input;          ///< as the method saw it (float-rounded for float methods)
+  io::CaseResult got, want;
+  Verdict verdict = Verdict::agree;
+  std::uint64_t ulps = 0;
+};
+
+/// Per method x group (the `# family` name, else the kind).
+struct Comparison {
+  std::vector<std::string> methods;                                  ///< in registry order
+  std::vector<std::string> groups;                                   ///< in first-seen order
+  std::map<std::pair<std::string, std::string>, Stats> stats;        ///< (method, group)
+  std::vector<Mismatch> mismatches;  ///< the first max_mismatches of each method
+  [[nodiscard]] Stats total(const std::string& method) const;
+};
+
+/// The exact answers for a list of cases, computed once and shared by every method: [0] on the
+/// inputs as given, [1] on the float-rounded inputs.
+struct ExactAnswers {
+  std::vector<io::CaseResult> as_given, float_rounded;
+};
+[[nodiscard]] ExactAnswers exact_answers(const std::vector<io::Case>& cases);
+
+/// The group a case is reported under.
+[[nodiscard]] std::string group_of(const io::Case& c);
+
+/// Runs every method on every case it supports. A class mismatch, or a t error above
+/// `ulp_tolerance`, is listed in `mismatches` (the first max_mismatches per method).
+[[nodiscard]] Comparison compare(const std::vector<io::Case>& cases, const ExactAnswers& exact,
+                                 const std::vector<const Method*>& methods, std::size_t max_mismatches,
+                                 std::uint64_t ulp_tolerance = 1);
+
+[[nodiscard]] std::string to_string(Verdict v);
+
+}  // namespace rayproof::verify
