@@ -16,23 +16,20 @@
 
 namespace rayproof {
 
-/// The per-ray part of the test (permutation and shear), computed once per ray.
-template <class T>
+/// The per-ray part of the test (axis permutation), computed once per ray. A = the arithmetic type:
+/// float follows the paper; double on float inputs keeps the products of the sheared coordinates
+/// (mostly) exact, so rays through an edge or vertex of exactly representable data stay exact zeros.
+template <class T, class A = T>
 struct WatertightRay {
-  Vec3<T> o;
+  Vec3<A> o, d;
   int kx = 0, ky = 1, kz = 2;
-  T sx{}, sy{}, sz{};
 
-  explicit WatertightRay(const Ray<T>& ray) : o(ray.o) {
+  explicit WatertightRay(const Ray<T>& ray) : o(ray.o.template cast<A>()), d(ray.d.template cast<A>()) {
     // z: the dominant axis of d; x, y follow cyclically, swapped when d_z < 0 to keep the winding.
     kz = max_abs_axis(ray.d);
     kx = (kz + 1) % 3;
     ky = (kx + 1) % 3;
     if (ray.d[kz] < T(0)) std::swap(kx, ky);
-    // Shear constants: the ray direction maps to (0, 0, 1).
-    sx = ray.d[kx] / ray.d[kz];
-    sy = ray.d[ky] / ray.d[kz];
-    sz = T(1) / ray.d[kz];
   }
 };
 
@@ -40,10 +37,10 @@ namespace detail {
 
 /// Edge function a_x b_y - a_y b_x, in double when float gives exactly zero (float products are
 /// exact in double, so the double sign is the exact sign for the sheared float coordinates).
-template <class T>
-[[nodiscard]] inline T edge_function(T ax, T ay, T bx, T by) {
-  T e = ax * by - ay * bx;
-  if constexpr (std::is_same_v<T, float>) {
+template <class A>
+[[nodiscard]] inline A edge_function(A ax, A ay, A bx, A by) {
+  A e = ax * by - ay * bx;
+  if constexpr (std::is_same_v<A, float>) {
     if (e == 0.0f) e = static_cast<float>(double(ax) * double(by) - double(ay) * double(bx));
   }
   return e;
@@ -52,49 +49,60 @@ template <class T>
 }  // namespace detail
 
 /// The watertight test with a prepared ray, for traversal: no screening of invalid or degenerate
-/// input; `parallel` stands for det = 0 (parallel or coplanar).
-template <class T>
-[[nodiscard]] TriangleHit<T> intersect_watertight(const WatertightRay<T>& wr, const Triangle<T>& tri) {
+/// input; `parallel` stands for det = 0 (parallel to the plane, in it, or a triangle too small for
+/// the arithmetic). The shear is applied scaled by d_z (x' = d_z x - d_x z), which multiplies every
+/// edge function by d_z^2 > 0 and avoids the rounded division d_x / d_z of the paper; it is still one
+/// linear map per ray, so shared edges still see identical numbers.
+template <class T, class A>
+[[nodiscard]] TriangleHit<T> intersect_watertight(const WatertightRay<T, A>& wr, const Triangle<T>& tri) {
+  const int kx = wr.kx, ky = wr.ky, kz = wr.kz;
+  const A dx = wr.d[kx], dy = wr.d[ky], dz = wr.d[kz];
   // Vertices relative to the ray origin.
-  const Vec3<T> a = tri.p0 - wr.o, b = tri.p1 - wr.o, c = tri.p2 - wr.o;
-  // Shear and scale to the ray's space: x, y in the plane normal to the ray.
-  const T ax = a[wr.kx] - wr.sx * a[wr.kz], ay = a[wr.ky] - wr.sy * a[wr.kz];
-  const T bx = b[wr.kx] - wr.sx * b[wr.kz], by = b[wr.ky] - wr.sy * b[wr.kz];
-  const T cx = c[wr.kx] - wr.sx * c[wr.kz], cy = c[wr.ky] - wr.sy * c[wr.kz];
+  const Vec3<A> a = tri.p0.template cast<A>() - wr.o, b = tri.p1.template cast<A>() - wr.o,
+                c = tri.p2.template cast<A>() - wr.o;
+  // Shear (scaled by d_z): the ray becomes the z axis.
+  const A ax = dz * a[kx] - dx * a[kz], ay = dz * a[ky] - dy * a[kz];
+  const A bx = dz * b[kx] - dx * b[kz], by = dz * b[ky] - dy * b[kz];
+  const A cx = dz * c[kx] - dx * c[kz], cy = dz * c[ky] - dy * c[kz];
   // Edge functions: U for edge p1 p2 (weight of p0), V for p2 p0, W for p0 p1.
-  const T u = detail::edge_function(cx, cy, bx, by);
-  const T v = detail::edge_function(ax, ay, cx, cy);
-  const T w = detail::edge_function(bx, by, ax, ay);
+  const A u = detail::edge_function(cx, cy, bx, by);
+  const A v = detail::edge_function(ax, ay, cx, cy);
+  const A w = detail::edge_function(bx, by, ax, ay);
   // Mixed signs: the ray passes outside an edge.
-  if ((u < T(0) || v < T(0) || w < T(0)) && (u > T(0) || v > T(0) || w > T(0))) return {Contact::miss};
-  const T det = u + v + w;
-  // det = 0: the ray is parallel to the triangle's plane or in it (the front door tells which).
-  if (det == T(0)) return {Contact::parallel};
-  // Scaled hit distance; its sign against det's decides behind before any division.
-  const T az = wr.sz * a[wr.kz], bz = wr.sz * b[wr.kz], cz = wr.sz * c[wr.kz];
-  const T t_scaled = u * az + v * bz + w * cz;
-  const bool behind = det < T(0) ? t_scaled > T(0) : t_scaled < T(0);
-  const T inv = T(1) / det;
-  const T t = t_scaled * inv;
-  if (behind) return {Contact::behind, t, kNaN<T>, v * inv, w * inv};
-  const int zeros = (u == T(0)) + (v == T(0)) + (w == T(0));
+  if ((u < A(0) || v < A(0) || w < A(0)) && (u > A(0) || v > A(0) || w > A(0))) return {Contact::miss};
+  const A det = u + v + w;
+  if (det == A(0)) return {Contact::parallel};
+  // Scaled hit distance: t = (U a_z + V b_z + W c_z) / (det d_z); its sign decides behind before
+  // any division.
+  const A t_scaled = u * a[kz] + v * b[kz] + w * c[kz];
+  const A den = det * dz;
+  const bool behind = den < A(0) ? t_scaled > A(0) : t_scaled < A(0);
+  const T t = static_cast<T>(t_scaled / den);
+  const T b1 = static_cast<T>(v / det), b2 = static_cast<T>(w / det);
+  if (behind) return {Contact::behind, t, kNaN<T>, b1, b2};
+  const int zeros = (u == A(0)) + (v == A(0)) + (w == A(0));
   const Contact cls = zeros == 0 ? Contact::interior : (zeros == 1 ? Contact::edge : Contact::vertex);
-  return {cls, t, kNaN<T>, v * inv, w * inv};
+  return {cls, t, kNaN<T>, b1, b2};
 }
 
-/// Front door: screens invalid and degenerate input, then the watertight test; det = 0 is parallel
-/// or coplanar by the sign of (o - p0) . n.
-template <class T>
+/// Front door: screens invalid and degenerate input, decides parallel / coplanar by the plane
+/// equation (d . n = 0: the sign of (o - p0) . n), then the watertight test; a det = 0 that the
+/// plane equation does not confirm is a miss (the paper's "no hit").
+template <class T, class A = T>
 [[nodiscard]] TriangleHit<T> intersect_watertight(const Ray<T>& ray, const Triangle<T>& tri) {
   if (!ray.valid() || !triangle_finite(tri)) return {Contact::invalid};
-  const Vec3<T> n = cross(tri.p1 - tri.p0, tri.p2 - tri.p0);
+  // Plane equation in the arithmetic type.
+  const Ray<A> ra{ray.o.template cast<A>(), ray.d.template cast<A>()};
+  const Triangle<A> ta{tri.p0.template cast<A>(), tri.p1.template cast<A>(), tri.p2.template cast<A>()};
+  const Vec3<A> n = cross(ta.p1 - ta.p0, ta.p2 - ta.p0);
   if (is_zero(n)) return {Contact::degenerate};
-  const TriangleHit<T> h = intersect_watertight(WatertightRay<T>(ray), tri);
-  if (h.contact == Contact::parallel) {
-    if (dot(ray.o - tri.p0, n) != T(0)) return {Contact::parallel};
-    return coplanar_range(ray, tri, n);
+  if (dot(ra.d, n) == A(0)) {
+    if (dot(ra.o - ta.p0, n) != A(0)) return {Contact::parallel};
+    const TriangleHit<A> c = coplanar_range(ra, ta, n);
+    return {c.contact, static_cast<T>(c.t), static_cast<T>(c.t2), static_cast<T>(c.b1), static_cast<T>(c.b2)};
   }
-  return h;
+  const TriangleHit<T> h = intersect_watertight(WatertightRay<T, A>(ray), tri);
+  return h.contact == Contact::parallel ? TriangleHit<T>{Contact::miss} : h;
 }
 
 }  // namespace rayproof

@@ -28,7 +28,7 @@ io::CaseResult robust(const io::Case& c) {
     case io::Kind::plane: return result_of(c, intersect_fma(ray, plane_of<T>(c)));
     case io::Kind::sphere: return result_of(c, intersect_stable(ray, sphere_of<T>(c)));
     case io::Kind::ellipsoid: return result_of(c, intersect_stable(ray, ellipsoid_of<T>(c)));
-    case io::Kind::triangle: return result_of(c, intersect_watertight(ray, triangle_of<T>(c)));
+    case io::Kind::triangle: return result_of(c, intersect_watertight<T, double>(ray, triangle_of<T>(c)));
     case io::Kind::box: return result_of(c, intersect_conservative(ray, box_of<T>(c)));
     case io::Kind::disk: return result_of(c, intersect_fma(ray, disk_of<T>(c)));
   }
@@ -45,6 +45,10 @@ void register_robust_methods(MethodRegistry& reg) {
            "conservative slabs (Ize 2013), FMA planes and disks",
            Precision::float32, all, robust<float>, {}});
   reg.add({"robust-double", "the robust kernels in double", Precision::float64, all, robust<double>, {}});
+  reg.add({"watertight-float", "Woop, Benthin & Wald 2013 entirely in float (robust runs it in double)",
+           Precision::float32, tri,
+           [](const io::Case& c) { return result_of(c, intersect_watertight<float, float>(ray_of<float>(c), triangle_of<float>(c))); },
+           {}});
   reg.add({"mt-double", "Möller–Trumbore computed in double on float inputs", Precision::float32, tri,
            [](const io::Case& c) { return result_of(c, intersect_moller_trumbore(ray_of<double>(c), triangle_of<double>(c))); },
            {}});
