@@ -54,6 +54,7 @@ static_assert(sizeof(BvhNode) == 32);
 struct Bvh {
   std::vector<BvhNode> nodes;           ///< nodes[0] is the root (absent for an empty BVH)
   std::vector<std::uint32_t> prim_ids;  ///< primitive indices, leaf by leaf
+  int max_depth = 0;                    ///< depth(), stored by the builders for the traversal stacks
 
   [[nodiscard]] bool empty() const { return nodes.empty(); }
   [[nodiscard]] std::size_t bytes() const {

@@ -1,0 +1,116 @@
+/// rayproof cast SCENE RAYS [--method M] [--query closest|any|all]: one result line per ray.
+///   closest: `CLASS T PRIM` or `miss - -`;  any: `hit` or `miss`;
+///   all: every crossing `CLASS T PRIM ...` sorted by t, or `miss - -`.
+/// A ray line is `ox oy oz dx dy dz` (# comments); a bad line is named on stderr and answered
+/// `error - -`; a ray with a NaN or infinite component or d = 0 is `invalid - -`.
+#include <CLI/CLI.hpp>
+#include <fmt/core.h>
+
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include "cli/commands.h"
+#include "cli/input.h"
+#include "cli/registry.h"
+#include "cli/scene_input.h"
+#include "mesh/reader_util.h"
+
+namespace rayproof::cli {
+
+namespace {
+struct CastOptions {
+  std::string scene, rays, method = "double", query = "closest", builder = "sah";
+  int threads = 0;
+  double tmin = 0, tmax = std::numeric_limits<double>::infinity();
+};
+
+std::string format_hit(const scene::PrimHit& h) {
+  if (h.prim == scene::PrimHit::kNoPrim) return std::string(to_string(h.contact)) + " - -";
+  return fmt::format("{} {} {}", to_string(h.contact), io::format_double(h.t), h.prim);
+}
+
+int run_cast(const CastOptions& opt) {
+  const auto loaded = load_scene_for_cli("cast", opt.scene, opt.method, opt.builder);
+  if (!loaded) return 2;
+  Input in = open_input(opt.rays);
+  if (!in.stream) {
+    fmt::print(stderr, "rayproof cast: {}\n", in.error);
+    return 2;
+  }
+  std::vector<Ray<double>> rays;
+  std::vector<std::string> errors;  // per ray line: empty, or the message
+  try {
+    mesh::detail::LineReader lines(*in.stream, opt.rays, '#');
+    std::vector<std::string_view> t;
+    while (lines.next(t)) {
+      if (t.empty()) continue;
+      double v[6] = {};
+      std::string err;
+      if (t.size() != 6) err = fmt::format("expected 6 numbers (ox oy oz dx dy dz), got {} fields", t.size());
+      for (std::size_t k = 0; k < t.size() && k < 6 && err.empty(); ++k)
+        if (!mesh::detail::parse_double(t[k], v[k])) err = fmt::format("'{}' is not a number", t[k]);
+      if (!err.empty()) err = fmt::format("{}:{}: {}", opt.rays, lines.line(), err);
+      rays.push_back({{v[0], v[1], v[2]}, {v[3], v[4], v[5]}});
+      errors.push_back(err);
+    }
+  } catch (const mesh::MeshError& e) {
+    fmt::print(stderr, "rayproof cast: {}\n", e.what());
+    return 2;
+  }
+  const auto& accel = *loaded->accel;
+  const auto& m = loaded->method;
+  const scene::QueryRange q{opt.tmin, opt.tmax};
+  std::string out;
+  int bad = 0;
+  std::vector<scene::PrimHit> hits;
+  std::vector<std::uint8_t> any;
+  if (opt.query == "closest") hits.resize(rays.size()), accel.closest_batch(rays, hits, m, opt.threads, q);
+  if (opt.query == "any") any.resize(rays.size()), accel.any_batch(rays, any, m, opt.threads, q);
+  for (std::size_t i = 0; i < rays.size(); ++i) {
+    if (!errors[i].empty()) {
+      fmt::print(stderr, "rayproof cast: {}\n", errors[i]);
+      out += "error - -\n";
+      ++bad;
+      continue;
+    }
+    if (!rays[i].valid()) {
+      out += "invalid - -\n";
+    } else if (opt.query == "closest") {
+      out += format_hit(hits[i]) + "\n";
+    } else if (opt.query == "any") {
+      out += any[i] ? "hit\n" : "miss\n";
+    } else {
+      const auto all = accel.all(rays[i], m, q);
+      if (all.empty()) out += "miss - -";
+      for (std::size_t k = 0; k < all.size(); ++k) out += (k ? " " : "") + format_hit(all[k]);
+      out += "\n";
+    }
+    if (out.size() > (1 << 16)) std::fwrite(out.data(), 1, out.size(), stdout), out.clear();
+  }
+  std::fwrite(out.data(), 1, out.size(), stdout);
+  if (bad) fmt::print(stderr, "rayproof cast: {} line(s) could not be read\n", bad);
+  return bad ? 1 : 0;
+}
+}  // namespace
+
+Run add_cast(CLI::App& app) {
+  auto opt = std::make_shared<CastOptions>();
+  auto* sub = app.add_subcommand("cast", "Cast rays into a scene or mesh: one result line per ray");
+  sub->add_option("scene", opt->scene, "Mesh file (.off .obj .ply .stl), scene JSON, or 'default'")->required();
+  sub->add_option("rays", opt->rays, "Ray file (ox oy oz dx dy dz per line), or - for standard input")->required();
+  sub->add_option("--method,-m", opt->method, "Method (compiled: float, double, cramer-*, watertight*; or any registry method)")
+      ->capture_default_str();
+  sub->add_option("--query,-q", opt->query, "closest, any or all")
+      ->check(CLI::IsMember({"closest", "any", "all"}))
+      ->capture_default_str();
+  sub->add_option("--builder", opt->builder, "BVH builder: sah or median")
+      ->check(CLI::IsMember({"sah", "median"}))
+      ->capture_default_str();
+  sub->add_option("--threads,-j", opt->threads, "Threads (0: all)")->capture_default_str();
+  sub->add_option("--tmin", opt->tmin, "Smallest t counted")->capture_default_str();
+  sub->add_option("--tmax", opt->tmax, "Largest t counted");
+  return [opt] { return run_cast(*opt); };
+}
+
+}  // namespace rayproof::cli

@@ -1,0 +1,39 @@
+#pragma once
+/// Loading a scene, its BVH and the method for the scene commands (cast, render, bench), with one
+/// clear message on failure.
+#include <fmt/core.h>
+
+#include <memory>
+#include <optional>
+#include <string>
+
+#include "cli/registry.h"
+#include "scene/accel.h"
+
+namespace rayproof::cli {
+
+struct LoadedScene {
+  std::unique_ptr<scene::Scene> scene;
+  std::unique_ptr<scene::Accel> accel;
+  scene::SceneMethod method;
+};
+
+/// `path` is a mesh file, a scene JSON, or "default" (the built-in scene). Prints
+/// "rayproof CMD: message" and returns nothing on failure.
+inline std::optional<LoadedScene> load_scene_for_cli(const char* cmd, const std::string& path, const std::string& method,
+                                                     const std::string& builder) {
+  try {
+    LoadedScene l;
+    l.method = scene::find_scene_method(method, all_methods());
+    l.scene = std::make_unique<scene::Scene>(path == "default" ? scene::default_scene() : scene::load_scene(path));
+    BvhBuildOptions opt;
+    opt.builder = builder == "median" ? BvhBuilder::median : BvhBuilder::sah;
+    l.accel = std::make_unique<scene::Accel>(*l.scene, opt);
+    return l;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "rayproof {}: {}\n", cmd, e.what());
+    return std::nullopt;
+  }
+}
+
+}  // namespace rayproof::cli

@@ -1,0 +1,175 @@
+// Scene queries: BVH construction, the per-method kernels behind one dispatch, and TBB batches.
+#include "scene/accel.h"
+
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <chrono>
+
+#include "scene/kernels.h"
+
+namespace rayproof::scene {
+namespace {
+
+using detail::Crossing;
+using detail::TriAlgo;
+
+struct FastName {
+  const char* name;
+  FastKernel kernel;
+  BvhTraversal traversal;
+};
+// Möller–Trumbore and Cramer are the worked problems' kernels with the textbook slab test;
+// watertight (Woop et al.) keeps its guarantee only with conservative traversal (Ize).
+constexpr FastName kFast[] = {
+    {"float", FastKernel::mt_float, BvhTraversal::standard},
+    {"double", FastKernel::mt_double, BvhTraversal::standard},
+    {"cramer-float", FastKernel::cramer_float, BvhTraversal::standard},
+    {"cramer-double", FastKernel::cramer_double, BvhTraversal::standard},
+    {"watertight-float", FastKernel::watertight_float, BvhTraversal::conservative},
+    {"watertight", FastKernel::watertight_double, BvhTraversal::conservative},
+};
+
+/// Runs `f(kernel)` with the kernel type the method names.
+template <class F>
+decltype(auto) with_kernel(const Scene& s, const SceneMethod& m, F&& f) {
+  switch (m.fast) {
+    case FastKernel::mt_float: { detail::CompiledKernel<float, TriAlgo::moller_trumbore> k{s, {}, {}}; return f(k); }
+    case FastKernel::mt_double: { detail::CompiledKernel<double, TriAlgo::moller_trumbore> k{s, {}, {}}; return f(k); }
+    case FastKernel::cramer_float: { detail::CompiledKernel<float, TriAlgo::cramer> k{s, {}, {}}; return f(k); }
+    case FastKernel::cramer_double: { detail::CompiledKernel<double, TriAlgo::cramer> k{s, {}, {}}; return f(k); }
+    case FastKernel::watertight_float: { detail::CompiledKernel<float, TriAlgo::watertight> k{s, {}, {}}; return f(k); }
+    case FastKernel::watertight_double: { detail::CompiledKernel<double, TriAlgo::watertight> k{s, {}, {}}; return f(k); }
+    case FastKernel::none: break;
+  }
+  detail::GenericKernel k{s, *m.generic};
+  return f(k);
+}
+
+template <class K>
+PrimHit closest_with(const Bvh& bvh, K& k, const Ray<double>& r, BvhTraversal mode, QueryRange q) {
+  if (!r.valid()) return {Contact::invalid};
+  k.prepare(r);
+  PrimHit best;
+  double tmax = q.tmax;
+  bvh_traverse(bvh, r, q.tmin, tmax, mode, BvhQuery::closest, [&](std::uint32_t id) {
+    Crossing c[2];
+    const int n = k.crossings(id, c);
+    for (int i = 0; i < n; ++i)
+      if (c[i].t >= q.tmin && (c[i].t < tmax || (c[i].t == tmax && id < best.prim))) {
+        tmax = c[i].t;
+        best = {c[i].contact, c[i].t, id};
+      }
+    return false;
+  });
+  return best;
+}
+
+template <class K>
+bool any_with(const Bvh& bvh, K& k, const Ray<double>& r, BvhTraversal mode, QueryRange q) {
+  if (!r.valid()) return false;
+  k.prepare(r);
+  bool hit = false;
+  bvh_traverse(bvh, r, q.tmin, q.tmax, mode, BvhQuery::any, [&](std::uint32_t id) {
+    Crossing c[2];
+    const int n = k.crossings(id, c);
+    for (int i = 0; i < n; ++i)
+      if (c[i].t >= q.tmin && c[i].t <= q.tmax) return hit = true;
+    return false;
+  });
+  return hit;
+}
+
+}  // namespace
+
+SceneMethod find_scene_method(const std::string& name, const MethodRegistry& reg) {
+  for (const auto& f : kFast)
+    if (name == f.name) return {name, f.kernel, nullptr, f.traversal};
+  if (const Method* m = reg.find(name)) return {name, FastKernel::none, m, BvhTraversal::conservative};
+  std::string known;
+  for (const auto& f : kFast) known += std::string(known.empty() ? "" : ", ") + f.name;
+  throw SceneError("unknown method '" + name + "' (compiled: " + known + "; or any of: " + reg.names() + ")");
+}
+
+std::vector<std::string> fast_scene_method_names() {
+  std::vector<std::string> out;
+  for (const auto& f : kFast) out.emplace_back(f.name);
+  return out;
+}
+
+Accel::Accel(const Scene& s, const BvhBuildOptions& opt) : scene_(s) {
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<BvhBox> boxes;
+  std::vector<Vec3<float>> centers;
+  s.primitive_bounds(boxes, centers);
+  bvh_ = build_bvh(boxes, centers, opt);
+  build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+double Accel::bytes_per_primitive() const {
+  const std::size_t n = std::max<std::size_t>(1, scene_.size());
+  return double(bvh_.bytes() + scene_.triangle_bytes()) / double(n);
+}
+
+PrimHit Accel::closest(const Ray<double>& r, const SceneMethod& m, QueryRange q) const {
+  return with_kernel(scene_, m, [&](auto& k) { return closest_with(bvh_, k, r, m.traversal, q); });
+}
+
+bool Accel::any(const Ray<double>& r, const SceneMethod& m, QueryRange q) const {
+  return with_kernel(scene_, m, [&](auto& k) { return any_with(bvh_, k, r, m.traversal, q); });
+}
+
+std::vector<PrimHit> Accel::all(const Ray<double>& r, const SceneMethod& m, QueryRange q) const {
+  std::vector<PrimHit> out;
+  if (!r.valid()) return out;
+  with_kernel(scene_, m, [&](auto& k) {
+    k.prepare(r);
+    bvh_traverse(bvh_, r, q.tmin, q.tmax, m.traversal, BvhQuery::all, [&](std::uint32_t id) {
+      Crossing c[2];
+      const int n = k.crossings(id, c);
+      for (int i = 0; i < n; ++i)
+        if (c[i].t >= q.tmin && c[i].t <= q.tmax) out.push_back({c[i].contact, c[i].t, id});
+      return false;
+    });
+    return 0;
+  });
+  std::sort(out.begin(), out.end(), [](const PrimHit& a, const PrimHit& b) { return a.t < b.t || (a.t == b.t && a.prim < b.prim); });
+  return out;
+}
+
+namespace {
+template <class Body>
+void parallel_rays(std::size_t n, int threads, Body&& body) {
+  const int t = threads > 0 ? threads : tbb::this_task_arena::max_concurrency();
+  tbb::task_arena arena(t);
+  arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 256), [&](const tbb::blocked_range<std::size_t>& r) {
+      body(r.begin(), r.end());
+    });
+  });
+}
+}  // namespace
+
+void Accel::closest_batch(std::span<const Ray<double>> rays, std::span<PrimHit> out, const SceneMethod& m, int threads,
+                          QueryRange q) const {
+  parallel_rays(rays.size(), threads, [&](std::size_t b, std::size_t e) {
+    with_kernel(scene_, m, [&](auto& k) {
+      for (std::size_t i = b; i < e; ++i) out[i] = closest_with(bvh_, k, rays[i], m.traversal, q);
+      return 0;
+    });
+  });
+}
+
+void Accel::any_batch(std::span<const Ray<double>> rays, std::span<std::uint8_t> out, const SceneMethod& m,
+                      int threads, QueryRange q) const {
+  parallel_rays(rays.size(), threads, [&](std::size_t b, std::size_t e) {
+    with_kernel(scene_, m, [&](auto& k) {
+      for (std::size_t i = b; i < e; ++i) out[i] = any_with(bvh_, k, rays[i], m.traversal, q);
+      return 0;
+    });
+  });
+}
+
+}  // namespace rayproof::scene

@@ -1,0 +1,85 @@
+// CGAL AABB_tree competitors: first_intersection with Epick (filtered predicates, inexact
+// constructions) and Epeck (exact constructions; not thread-safe, so one thread).
+#include <CGAL/AABB_traits.h>
+#include <CGAL/AABB_tree.h>
+#include <CGAL/AABB_triangle_primitive.h>
+#include <CGAL/Exact_predicates_exact_constructions_kernel.h>
+#include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <chrono>
+
+#include "scene/compare/competitors.h"
+
+namespace rayproof::scene::compare {
+
+#ifdef RAYPROOF_HAVE_EMBREE
+Competitor make_embree(const Scene& s, bool robust);
+#endif
+
+namespace {
+
+template <class K>
+struct CgalTree {
+  using Tri = typename K::Triangle_3;
+  using Iterator = typename std::vector<Tri>::const_iterator;
+  using Primitive = CGAL::AABB_triangle_primitive<K, Iterator>;
+  using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, Primitive>>;
+  std::vector<Tri> tris;
+  Tree tree;
+};
+
+template <class K>
+Competitor make_cgal(const Scene& s, const char* name, bool threaded, std::size_t max_rays) {
+  const auto start = std::chrono::steady_clock::now();
+  auto t = std::make_shared<CgalTree<K>>();
+  using P = typename K::Point_3;
+  auto pt = [](const Vec3<double>& v) { return P(v.x, v.y, v.z); };
+  t->tris.reserve(s.mesh.triangles.size());
+  for (std::size_t i = 0; i < s.mesh.triangles.size(); ++i) {
+    const auto tri = s.triangle(std::uint32_t(i));
+    t->tris.emplace_back(pt(tri.p0), pt(tri.p1), pt(tri.p2));
+  }
+  // Degenerate triangles make CGAL's ray/triangle test assert: drop them (counted as not hit).
+  t->tris.erase(std::remove_if(t->tris.begin(), t->tris.end(), [](const auto& x) { return x.is_degenerate(); }),
+                t->tris.end());
+  t->tree.rebuild(t->tris.cbegin(), t->tris.cend());
+  t->tree.build();
+  Competitor c;
+  c.name = name;
+  c.build_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  c.threaded = threaded;
+  c.max_rays = max_rays;
+  c.closest = [t, threaded, pt](std::span<const Ray<double>> rays, std::span<std::uint8_t> out, int threads) {
+    auto body = [&](std::size_t b, std::size_t e) {
+      for (std::size_t i = b; i < e; ++i) {
+        const typename K::Ray_3 ray(pt(rays[i].o), typename K::Vector_3(rays[i].d.x, rays[i].d.y, rays[i].d.z));
+        out[i] = t->tree.first_intersection(ray) ? 1 : 0;
+      }
+    };
+    if (!threaded) return body(0, rays.size());
+    tbb::task_arena arena(threads > 0 ? threads : tbb::this_task_arena::max_concurrency());
+    arena.execute([&] {
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rays.size(), 256),
+                        [&](const auto& r) { body(r.begin(), r.end()); });
+    });
+  };
+  return c;
+}
+
+}  // namespace
+
+std::vector<Competitor> make_competitors(const Scene& s) {
+  std::vector<Competitor> out;
+#ifdef RAYPROOF_HAVE_EMBREE
+  out.push_back(make_embree(s, false));
+  out.push_back(make_embree(s, true));
+#endif
+  out.push_back(make_cgal<CGAL::Epick>(s, "cgal-epick", true, 0));
+  out.push_back(make_cgal<CGAL::Epeck>(s, "cgal-epeck", false, 2000));
+  return out;
+}
+
+}  // namespace rayproof::scene::compare

@@ -1,0 +1,31 @@
+#pragma once
+/// Other ray tracers on the same scene and rays, for `rayproof bench`: Embree 3 (rtcIntersect1,
+/// default and RTC_SCENE_FLAG_ROBUST; when built with Embree) and CGAL's AABB_tree
+/// first_intersection (Epick; Epeck, exact constructions, on a subset). Triangles only. CGAL and
+/// Embree stay inside this target; callers see only rays in, hit flags out.
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "scene/scene.h"
+
+namespace rayproof::scene::compare {
+
+struct Competitor {
+  std::string name;
+  double build_s = 0;
+  double bytes_per_tri = -1;  ///< -1: not known
+  bool threaded = true;       ///< false: runs on one thread whatever is asked (Epeck is not thread-safe)
+  std::size_t max_rays = 0;   ///< 0: all; else the caller passes at most this many rays (slow methods)
+  /// Closest hit of each ray (t >= 0): out[i] = 1 for a hit.
+  std::function<void(std::span<const Ray<double>>, std::span<std::uint8_t>, int threads)> closest;
+};
+
+[[nodiscard]] bool have_embree();
+/// Embree default and robust, then CGAL Epick and Epeck (each built on construction).
+[[nodiscard]] std::vector<Competitor> make_competitors(const Scene& s);
+
+}  // namespace rayproof::scene::compare

@@ -1,0 +1,124 @@
+#pragma once
+/// Per-primitive kernels for the scene traversal (internal to rayproof_scene). A kernel is
+/// prepared once per ray, then lists the crossings (at most 2) of one primitive.
+#include <optional>
+#include <type_traits>
+
+#include "methods/primitive_of.h"
+#include "rayproof/triangle.h"
+#include "rayproof/triangle_watertight.h"
+#include "scene/accel.h"
+
+namespace rayproof::scene::detail {
+
+struct Crossing {
+  Contact contact;
+  double t;
+};
+
+/// The crossings a primitive's class carries, from its class and T, T2 (CASES.md): a quadric or
+/// box hit crosses twice, inside crosses at the exit, tangent and graze once.
+inline int crossings_of(Contact c, double t, double t2, Crossing out[2]) {
+  switch (c) {
+    case Contact::interior: case Contact::edge: case Contact::vertex: case Contact::tangent:
+    case Contact::graze: case Contact::rim:
+      out[0] = {c, t};
+      return 1;
+    case Contact::coplanar:  // a triangle touched along a segment: the first touch
+      if (t != t) return 0;
+      out[0] = {c, t};
+      return 1;
+    case Contact::hit:
+      out[0] = {c, t};
+      if (t2 == t2 && t2 != t) return out[1] = {c, t2}, 2;
+      return 1;
+    case Contact::inside:
+      out[0] = {c, t2};
+      return 1;
+    default:
+      return 0;
+  }
+}
+
+enum class TriAlgo { moller_trumbore, cramer, watertight };
+
+template <class T, TriAlgo A>
+struct CompiledKernel {
+  const Scene& s;
+  Ray<T> ray{};
+  std::optional<WatertightRay<T>> wr;
+
+  void prepare(const Ray<double>& r) {
+    ray = {r.o.template cast<T>(), r.d.template cast<T>()};
+    if constexpr (A == TriAlgo::watertight) wr.emplace(ray);
+  }
+  [[nodiscard]] Triangle<T> tri(std::uint32_t i) const {
+    const auto& t = s.mesh.triangles[i];
+    const auto& v = s.mesh.vertices;
+    return {v[t[0]].template cast<T>(), v[t[1]].template cast<T>(), v[t[2]].template cast<T>()};
+  }
+  int crossings(std::uint32_t id, Crossing out[2]) const {
+    if (id < s.mesh.triangles.size()) {
+      const Triangle<T> t = tri(id);
+      TriangleHit<T> h;
+      if constexpr (A == TriAlgo::watertight) {
+        h = intersect_watertight(*wr, t);
+        if (h.contact == Contact::parallel) h = intersect_watertight(ray, t);  // coplanar or degenerate
+      } else if constexpr (A == TriAlgo::cramer) {
+        h = intersect_cramer(ray, t);
+      } else {
+        h = intersect_moller_trumbore(ray, t);
+      }
+      return crossings_of(h.contact, double(h.t), double(h.t2), out);
+    }
+    std::uint32_t k;
+    Hit<T> h;
+    switch (s.kind_of(id, k)) {
+      case PrimKind::sphere: h = intersect(ray, Sphere<T>{s.spheres[k].center.template cast<T>(), T(s.spheres[k].radius)}); break;
+      case PrimKind::ellipsoid:
+        h = intersect(ray, Ellipsoid<T>{s.ellipsoids[k].center.template cast<T>(), s.ellipsoids[k].semi_axes.template cast<T>()});
+        break;
+      case PrimKind::disk: {
+        const auto& d = s.disks[k];
+        h = intersect(ray, Disk<T>{d.center.template cast<T>(), d.normal.template cast<T>(), T(d.radius)});
+        break;
+      }
+      case PrimKind::box: h = intersect(ray, Box<T>{s.boxes[k].lo.template cast<T>(), s.boxes[k].hi.template cast<T>()}); break;
+      case PrimKind::triangle: break;
+    }
+    return crossings_of(h.contact, double(h.t), double(h.t2), out);
+  }
+};
+
+/// Any registry method, through the case interface (io::Case in, CaseResult out).
+struct GenericKernel {
+  const Scene& s;
+  const Method& m;
+  Ray<double> ray{};
+
+  void prepare(const Ray<double>& r) { ray = r; }
+  int crossings(std::uint32_t id, Crossing out[2]) const {
+    io::Case c;
+    auto put = [&](int at, const Vec3<double>& v) { c.v[at] = v.x, c.v[at + 1] = v.y, c.v[at + 2] = v.z; };
+    put(0, ray.o), put(3, ray.d);
+    std::uint32_t k;
+    switch (s.kind_of(id, k)) {
+      case PrimKind::triangle: {
+        const Triangle<double> t = s.triangle(k);
+        c.kind = io::Kind::triangle, put(6, t.p0), put(9, t.p1), put(12, t.p2);
+        break;
+      }
+      case PrimKind::sphere: c.kind = io::Kind::sphere, put(6, s.spheres[k].center), c.v[9] = s.spheres[k].radius; break;
+      case PrimKind::ellipsoid: c.kind = io::Kind::ellipsoid, put(6, s.ellipsoids[k].center), put(9, s.ellipsoids[k].semi_axes); break;
+      case PrimKind::disk:
+        c.kind = io::Kind::disk, put(6, s.disks[k].center), put(9, s.disks[k].normal), c.v[12] = s.disks[k].radius;
+        break;
+      case PrimKind::box: c.kind = io::Kind::box, put(6, s.boxes[k].lo), put(9, s.boxes[k].hi); break;
+    }
+    if (!m.supports(c.kind)) return 0;
+    const io::CaseResult r = m.run(c);
+    return crossings_of(r.contact, r.t.value_or(kNaN<double>), r.t2.value_or(kNaN<double>), out);
+  }
+};
+
+}  // namespace rayproof::scene::detail
