@@ -1,0 +1,93 @@
+// The differential fuzz campaign: reproducible counts, findings, minimization, broken promises.
+#include "verify/fuzz_campaign.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "cli_support.h"
+#include "verify/exact.h"
+
+using namespace rayproof;
+
+namespace {
+std::vector<const gen::Family*> some_families() {
+  return {gen::find_family("tri_edge"), gen::find_family("sph_tangent_exact"), gen::find_family("box_graze"),
+          gen::find_family("plane_near_parallel")};
+}
+
+/// A method that claims exactness but rounds every t to float: a broken promise to find.
+Method sloppy_certified() {
+  MethodRegistry reg;
+  register_fast_methods(reg);
+  Method m = *reg.find("double");
+  m.name = "certified-sloppy";
+  m.classify = [](const io::Case& c) {
+    io::CaseResult r = verify::exact_classify(c);
+    if (r.t) r.t = static_cast<double>(static_cast<float>(*r.t));
+    return r;
+  };
+  return m;
+}
+}  // namespace
+
+TEST(FuzzCampaign, SameSeedSameCountsWhateverTheThreads) {
+  MethodRegistry reg;
+  register_fast_methods(reg);
+  verify::FuzzOptions opt;
+  opt.methods = {reg.find("float"), reg.find("double")};
+  opt.families = some_families();
+  opt.max_cases = 2000;
+  opt.seed = 11;
+  opt.batch = 50;
+  const auto a = verify::run_fuzz(opt);
+  opt.jobs = 2;
+  const auto b = verify::run_fuzz(opt);
+  EXPECT_EQ(a.cases, b.cases);
+  EXPECT_GE(a.cases, 2000u);
+  EXPECT_EQ(a.mismatches, b.mismatches);
+  std::size_t float_bad = 0;
+  for (const auto& [k, n] : a.mismatches)
+    if (k.first == "float") float_bad += n;
+  EXPECT_GT(float_bad, 0u) << "float must disagree somewhere on exact edges and tangents";
+  EXPECT_TRUE(a.broken_promises().empty());
+  opt.seed = 12;
+  const auto c = verify::run_fuzz(opt);
+  EXPECT_NE(a.mismatches, c.mismatches);
+}
+
+TEST(FuzzCampaign, BrokenPromiseIsReportedAndMinimized) {
+  const Method bad = sloppy_certified();
+  verify::FuzzOptions opt;
+  opt.methods = {&bad};
+  opt.families = {gen::find_family("sph_generic")};
+  opt.max_cases = 200;
+  opt.batch = 100;
+  const auto res = verify::run_fuzz(opt);
+  ASSERT_EQ(res.broken_promises(), std::vector<std::string>{"certified-sloppy"});
+  ASSERT_FALSE(res.findings.empty());
+  const auto& f = res.findings.front();
+  EXPECT_TRUE(f.minimized);
+  EXPECT_GT(f.ulps, 1u);
+  // The minimized case still disagrees, and its fields carry few significant bits.
+  int short_fields = 0;
+  for (int i = 0; i < io::field_count(f.input.kind); ++i) {
+    const double x = f.input.v[static_cast<std::size_t>(i)];
+    if (x == 0 || std::ldexp(x, 40 - std::ilogb(x)) == std::nearbyint(std::ldexp(x, 40 - std::ilogb(x)))) ++short_fields;
+  }
+  EXPECT_EQ(short_fields, io::field_count(f.input.kind));
+}
+
+TEST(FuzzCli, CampaignPrintsSummaryAndReproducer) {
+  const auto dir = rayproof::testing::scratch_dir() / "findings";
+  const auto r = rayproof::testing::run_rayproof(
+      "fuzz --cases 3000 --seed 5 --methods float,certified --families tri_vertex,disk_rim --out " + dir.string());
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("reproduce: rayproof fuzz --seed 5 --cases"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("certified        (all)"), std::string::npos) << r.out;
+  EXPECT_TRUE(std::filesystem::exists(dir / "float")) << "float findings are written";
+  EXPECT_FALSE(std::filesystem::exists(dir / "certified")) << "certified has no finding";
+  const auto again = rayproof::testing::run_rayproof(
+      "fuzz --cases 3000 --seed 5 --methods float,certified --families tri_vertex,disk_rim --jobs 2 --out " + dir.string());
+  EXPECT_EQ(again.out.substr(0, again.out.find("\n\n")), r.out.substr(0, r.out.find("\n\n")));
+}

@@ -1,0 +1,232 @@
+#include "verify/fuzz_campaign.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <mutex>
+#include <thread>
+
+#include "verify/exact.h"
+
+namespace rayproof::verify {
+
+bool promises_exactness(const std::string& method) { return method == "exact" || method.rfind("certified", 0) == 0; }
+
+bool is_mismatch(const std::string& method, Verdict v, std::uint64_t ulps) {
+  if (v != Verdict::agree) return true;
+  return promises_exactness(method) && ulps > 1;
+}
+
+std::vector<std::string> FuzzResult::broken_promises() const {
+  std::vector<std::string> out;
+  for (const auto& [key, n] : mismatches)
+    if (n > 0 && promises_exactness(key.first) && std::find(out.begin(), out.end(), key.first) == out.end())
+      out.push_back(key.first);
+  return out;
+}
+
+namespace {
+
+std::uint64_t round_seed(std::uint64_t seed, std::size_t round) {
+  // splitmix64 finalizer over (seed, round): independent, reproducible seeds per round.
+  std::uint64_t z = seed + 0x9E3779B97F4A7C15ULL * (round + 1);
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ULL;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBULL;
+  return z ^ (z >> 31);
+}
+
+struct Judged {
+  io::CaseResult got, want;
+  Verdict verdict;
+  std::uint64_t ulps;
+};
+
+Judged judge(const Method& m, const io::Case& given) {
+  const io::Case input = m.precision == Precision::float32 ? io::round_to_float(given) : given;
+  Judged j;
+  j.got = m.classify(input);
+  j.want = exact_classify(input);
+  j.verdict = judge_class(j.got, j.want);
+  j.ulps = j.verdict == Verdict::agree ? t_error_ulps(j.got, j.want, m.precision) : 0;
+  return j;
+}
+
+/// x rounded to `bits` significant bits (round to nearest), or x when that is not finite.
+double keep_bits(double x, int bits) {
+  if (x == 0 || !std::isfinite(x)) return x;
+  int e;
+  const double f = std::frexp(x, &e);  // x = f 2^e, 0.5 <= |f| < 1
+  const double r = std::ldexp(std::nearbyint(std::ldexp(f, bits)), e - bits);
+  return std::isfinite(r) ? r : x;
+}
+
+struct RoundOutput {
+  std::size_t round = 0, cases = 0;
+  std::map<std::pair<std::string, std::string>, Stats> stats;
+  std::vector<FuzzFinding> findings;
+};
+
+RoundOutput run_round(const FuzzOptions& opt, std::size_t round) {
+  RoundOutput out;
+  out.round = round;
+  const auto precision = round % 2 == 0 ? gen::Precision::float32 : gen::Precision::float64;
+  for (const gen::Family* f : opt.families) {
+    const auto cases = gen::generate(*f, opt.batch, round_seed(opt.seed, round), precision);
+    out.cases += cases.size();
+    const ExactAnswers exact = exact_answers(cases);
+    for (const Method* m : opt.methods) {
+      const bool f32 = m->precision == Precision::float32;
+      Stats& s = out.stats[{m->name, f->name}];
+      for (std::size_t i = 0; i < cases.size(); ++i) {
+        if (!m->supports(cases[i].kind)) continue;
+        const io::Case input = f32 ? io::round_to_float(cases[i]) : cases[i];
+        const io::CaseResult& want = f32 ? exact.float_rounded[i] : exact.as_given[i];
+        const std::uint64_t before = m->fallbacks ? m->fallbacks() : 0;
+        const io::CaseResult got = m->classify(input);
+        if (m->fallbacks) s.fallbacks += m->fallbacks() - before;
+        ++s.cases;
+        const Verdict v = judge_class(got, want);
+        std::uint64_t u = 0;
+        switch (v) {
+          case Verdict::false_hit: ++s.false_hit; break;
+          case Verdict::false_miss: ++s.false_miss; break;
+          case Verdict::wrong_hit_class: ++s.wrong_hit_class; break;
+          case Verdict::wrong_class: ++s.wrong_class; break;
+          case Verdict::agree:
+            if (want.t || got.t) s.ulps.push_back(u = t_error_ulps(got, want, m->precision));
+            break;
+        }
+        if (is_mismatch(m->name, v, u)) out.findings.push_back({m->name, f->name, round, input, got, want, v, u, false});
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace
+
+io::Case minimize_case(const Method& m, const io::Case& input, Verdict verdict) {
+  const int n = io::field_count(input.kind);
+  auto still = [&](const io::Case& c) {
+    const Judged j = judge(m, c);
+    return j.verdict == verdict && is_mismatch(m.name, j.verdict, j.ulps);
+  };
+  io::Case best = input;
+  // 1. A common power-of-two scale toward magnitude 1 keeps the geometry (and exact class) and
+  //    shows the case at readable magnitudes, when it still disagrees.
+  double big = 0;
+  for (int i = 0; i < n; ++i) big = std::max(big, std::fabs(best.v[static_cast<std::size_t>(i)]));
+  if (big > 0 && std::isfinite(big)) {
+    int e;
+    std::frexp(big, &e);
+    if (e != 0) {
+      io::Case scaled = best;
+      bool exact_scale = true;
+      for (int i = 0; i < n; ++i) {
+        double& x = scaled.v[static_cast<std::size_t>(i)];
+        const double y = std::ldexp(x, -e);
+        if (std::ldexp(y, e) != x) exact_scale = false;
+        x = y;
+      }
+      if (exact_scale && still(scaled)) best = scaled;
+    }
+  }
+  // 2. Fewer significant bits per field, greedily, twice over.
+  for (int pass = 0; pass < 2; ++pass) {
+    for (int i = 0; i < n; ++i) {
+      for (int bits : {1, 2, 4, 8, 12, 16, 24, 32, 40}) {
+        io::Case c = best;
+        double& x = c.v[static_cast<std::size_t>(i)];
+        const double y = keep_bits(x, bits);
+        if (y == x) break;  // already that short
+        x = y;
+        if (still(c)) {
+          best = c;
+          break;
+        }
+      }
+    }
+  }
+  return best;
+}
+
+FuzzResult run_fuzz(const FuzzOptions& opt) {
+  using clock = std::chrono::steady_clock;
+  const auto start = clock::now();
+  const std::size_t per_round = opt.batch * opt.families.size();
+  const std::size_t round_limit =
+      opt.max_cases ? (opt.max_cases + per_round - 1) / std::max<std::size_t>(per_round, 1) : SIZE_MAX;
+  std::atomic<std::size_t> next{0};
+  std::atomic<bool> stop{false};
+  std::mutex mu;
+  std::vector<RoundOutput> done;
+  std::size_t cases_done = 0;
+  std::map<std::string, std::size_t> mismatch_count;
+
+  auto worker = [&] {
+    while (!stop.load()) {
+      const std::size_t r = next.fetch_add(1);
+      if (r >= round_limit) break;
+      RoundOutput out = run_round(opt, r);
+      std::lock_guard<std::mutex> lock(mu);
+      cases_done += out.cases;
+      for (const auto& f : out.findings) ++mismatch_count[f.method];
+      done.push_back(std::move(out));
+      if (opt.seconds > 0 && std::chrono::duration<double>(clock::now() - start).count() >= opt.seconds) stop = true;
+    }
+  };
+  std::vector<std::thread> threads;
+  const int jobs = std::max(1, opt.jobs);
+  for (int j = 0; j < jobs; ++j) threads.emplace_back(worker);
+  // Progress from the calling thread while the workers run.
+  while (opt.progress) {
+    {
+      std::lock_guard<std::mutex> lock(mu);
+      if (stop.load() || next.load() >= round_limit) break;
+      FuzzProgress p;
+      p.seconds = std::chrono::duration<double>(clock::now() - start).count();
+      p.cases = cases_done;
+      for (const Method* m : opt.methods) p.mismatches.emplace_back(m->name, mismatch_count[m->name]);
+      opt.progress(p);
+    }
+    for (int i = 0; i < 10 && !stop.load() && next.load() < round_limit; ++i)
+      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  for (auto& t : threads) t.join();
+
+  // Every started round finished, and rounds are handed out in order: `done` holds rounds
+  // 0..R-1 exactly. Merge in round order so the result does not depend on thread timing.
+  std::sort(done.begin(), done.end(), [](const RoundOutput& a, const RoundOutput& b) { return a.round < b.round; });
+  FuzzResult res;
+  res.rounds = done.size();
+  std::map<std::pair<std::string, std::string>, std::size_t> kept, minimized;
+  for (auto& out : done) {
+    res.cases += out.cases;
+    for (auto& [k, s] : out.stats) res.stats[k].merge(s);
+    for (auto& f : out.findings) {
+      const auto key = std::make_pair(f.method, f.family);
+      ++res.mismatches[key];
+      if (kept[key]++ >= opt.keep_per_group) continue;
+      if (minimized[key]++ < opt.minimize_per_group) {
+        const Method* m = nullptr;
+        for (const Method* x : opt.methods)
+          if (x->name == f.method) m = x;
+        f.input = minimize_case(*m, f.input, f.verdict);
+        const Judged j = judge(*m, f.input);
+        f.got = j.got, f.want = j.want, f.ulps = j.ulps;
+        f.minimized = true;
+      }
+      res.findings.push_back(std::move(f));
+    }
+  }
+  for (const Method* m : opt.methods)
+    for (const gen::Family* f : opt.families) res.mismatches.try_emplace({m->name, f->name}, 0);
+  std::stable_sort(res.findings.begin(), res.findings.end(), [](const FuzzFinding& a, const FuzzFinding& b) {
+    return std::tie(a.method, a.family) < std::tie(b.method, b.family);
+  });
+  res.seconds = std::chrono::duration<double>(clock::now() - start).count();
+  return res;
+}
+
+}  // namespace rayproof::verify

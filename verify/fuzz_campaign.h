@@ -1,0 +1,71 @@
+#pragma once
+/// Differential fuzz campaigns: generate cases from the families round after round, run every
+/// chosen method, compare with exact, minimize what disagrees. Round r of family f always holds the
+/// same cases for the same seed, so a campaign is reproducible on any machine: a run stops only at
+/// round boundaries and says how many rounds it did.
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "gen/families.h"
+#include "methods/method.h"
+#include "verify/differential.h"
+
+namespace rayproof::verify {
+
+struct FuzzProgress {
+  double seconds = 0;
+  std::size_t cases = 0;
+  std::vector<std::pair<std::string, std::size_t>> mismatches;  ///< per method
+};
+
+struct FuzzOptions {
+  std::vector<const Method*> methods;
+  std::vector<const gen::Family*> families;
+  double seconds = 0;        ///< stop after this long (at a round boundary); 0: use max_cases
+  std::size_t max_cases = 0; ///< stop once this many cases are done (rounded up to whole rounds)
+  std::uint64_t seed = 1;
+  int jobs = 1;
+  std::size_t batch = 64;              ///< cases per family per round
+  std::size_t keep_per_group = 50;     ///< findings kept per method x family
+  std::size_t minimize_per_group = 10; ///< of those, how many are minimized
+  std::function<void(const FuzzProgress&)> progress;  ///< called about once a second
+};
+
+struct FuzzFinding {
+  std::string method, family;
+  std::size_t round = 0;
+  io::Case input;      ///< as the method saw it, minimized when `minimized`
+  io::CaseResult got, want;
+  Verdict verdict = Verdict::agree;
+  std::uint64_t ulps = 0;
+  bool minimized = false;
+};
+
+struct FuzzResult {
+  std::size_t rounds = 0, cases = 0;
+  double seconds = 0;
+  std::map<std::pair<std::string, std::string>, Stats> stats;  ///< (method, family)
+  std::map<std::pair<std::string, std::string>, std::size_t> mismatches;
+  std::vector<FuzzFinding> findings;  ///< ordered by method, family, round
+  /// Methods that broke a promise: `certified` (and `exact`) promise the exact class and t
+  /// within one ulp.
+  [[nodiscard]] std::vector<std::string> broken_promises() const;
+};
+
+/// True when a method promises exact classes and t within 1 ulp.
+[[nodiscard]] bool promises_exactness(const std::string& method);
+
+/// Does this answer count as a mismatch for the method? (class error; or t beyond 1 ulp for a
+/// method that promises exactness)
+[[nodiscard]] bool is_mismatch(const std::string& method, Verdict v, std::uint64_t ulps);
+
+[[nodiscard]] FuzzResult run_fuzz(const FuzzOptions& opt);
+
+/// Shrinks a disagreeing case while it keeps the same verdict for the method: fewer significant
+/// bits per field, magnitudes scaled toward 1 by a common power of two. Bounded work.
+[[nodiscard]] io::Case minimize_case(const Method& m, const io::Case& input, Verdict verdict);
+
+}  // namespace rayproof::verify
