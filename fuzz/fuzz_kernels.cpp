@@ -1,6 +1,7 @@
 // libFuzzer harness: raw bytes become one case of each kind; every registered method answers it.
 // Nothing may crash or trip a sanitizer, every answer is a CASES.md class, and any method that
 // promises exactness (certified) must equal exact.
+#include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>

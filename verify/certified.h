@@ -17,7 +17,7 @@ namespace rayproof::verify {
 /// Filter, then exact fallback; counts fallbacks in `fallbacks` when given.
 [[nodiscard]] io::CaseResult certified_classify(const io::Case& c, std::uint64_t* fallbacks = nullptr);
 
-/// Fallbacks taken by the registered `certified` method since the program started.
+/// Fallbacks taken by the registered `certified` method on the calling thread since it started.
 [[nodiscard]] std::uint64_t certified_fallbacks();
 
 /// Registers the `certified` method.

@@ -24,7 +24,7 @@ struct Method {
   /// Answers one case. Must not throw on any input; for float32 methods the caller has already
   /// rounded the inputs (io::round_to_float).
   std::function<io::CaseResult(const io::Case&)> classify;
-  /// Optional: how many cases so far needed an exact fallback (certified tier).
+  /// Optional: how many cases so far needed an exact fallback on the calling thread (certified tier).
   std::function<std::uint64_t()> fallbacks;
 
   [[nodiscard]] bool supports(io::Kind k) const;
