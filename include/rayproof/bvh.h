@@ -3,9 +3,13 @@
 /// (bvh_build.h) and the traversals (bvh_traverse.h). Nodes are 32 bytes: float bounds rounded
 /// outward (they contain the double primitives they bound) and one index: the first child of an
 /// inner node (its sibling follows it) or the first entry of prim_ids of a leaf.
+/// Siblings share one 64-byte cache line: the node array is 64-byte aligned and every pair starts
+/// at an even index (nodes[1] is a copy of the root, so the root's children are nodes[2], [3]).
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <new>
 #include <vector>
 
 #include "rayproof/vec3.h"
@@ -20,7 +24,8 @@ struct BvhBox {
                  -std::numeric_limits<float>::infinity()};
 
   void extend(const BvhBox& b) {
-    for (int k = 0; k < 3; ++k) lo[k] = std::fmin(lo[k], b.lo[k]), hi[k] = std::fmax(hi[k], b.hi[k]);
+    // Plain comparisons (minss / maxss), not fmin / fmax: bounds are never NaN.
+    for (int k = 0; k < 3; ++k) lo[k] = b.lo[k] < lo[k] ? b.lo[k] : lo[k], hi[k] = b.hi[k] > hi[k] ? b.hi[k] : hi[k];
   }
   /// Grows the box to contain a double point: float bounds rounded down / up, never inward.
   void extend(const Vec3<double>& p) {
@@ -51,8 +56,20 @@ struct BvhNode {
 };
 static_assert(sizeof(BvhNode) == 32);
 
+/// Allocator with a fixed alignment (a cache line for the nodes).
+template <class T, std::size_t Align>
+struct AlignedAllocator {
+  using value_type = T;
+  template <class U> struct rebind { using other = AlignedAllocator<U, Align>; };
+  AlignedAllocator() = default;
+  template <class U> AlignedAllocator(const AlignedAllocator<U, Align>&) {}
+  T* allocate(std::size_t n) { return static_cast<T*>(::operator new(n * sizeof(T), std::align_val_t(Align))); }
+  void deallocate(T* p, std::size_t) { ::operator delete(p, std::align_val_t(Align)); }
+  template <class U> bool operator==(const AlignedAllocator<U, Align>&) const { return true; }
+};
+
 struct Bvh {
-  std::vector<BvhNode> nodes;           ///< nodes[0] is the root (absent for an empty BVH)
+  std::vector<BvhNode, AlignedAllocator<BvhNode, 64>> nodes;  ///< nodes[0] is the root (absent for an empty BVH)
   std::vector<std::uint32_t> prim_ids;  ///< primitive indices, leaf by leaf
   int max_depth = 0;                    ///< depth(), stored by the builders for the traversal stacks
 

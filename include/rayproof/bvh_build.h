@@ -7,9 +7,15 @@
 ///    C = 2 + (A_l N_l + A_r N_r) / A, or a leaf when that is not cheaper than N. The traversal
 ///    cost 2 counts the two child box tests each inner node costs (bvh_traverse.h); it also keeps
 ///    leaves at 2-4 primitives, which halves the node memory of a cost of 1.
-/// Both are iterative (no recursion depth limit) and never produce an empty child.
+/// Both work in place on one array of primitive references (bounds, center, id) partitioned node by
+/// node: per node one pass for the bounds and centroid bounds, one for the bins of all three axes,
+/// one partition; no allocation per node. Both are iterative and never produce an empty child.
+/// Parallel build: the caller passes `for_each(n, f)` that may run f(0) .. f(n-1) concurrently
+/// (bvh_build.h stays dependency-free; the scene layer passes TBB). The top of the tree is built
+/// sequentially; subtrees below kParallelGrain primitives are built independently, then spliced.
 #include <algorithm>
 #include <array>
+#include <cstdint>
 #include <numeric>
 #include <span>
 
@@ -26,121 +32,197 @@ struct BvhBuildOptions {
 
 namespace detail {
 
+/// One primitive during the build: its bounds, split center and number.
+struct PrimRef {
+  BvhBox box;
+  float c[3];
+  std::uint32_t id;
+};
+
 struct BuildTask {
   std::uint32_t node, begin, end;
 };
 
-/// Finalizes `node` over prim_ids[begin, end): its bounds and, when it is a leaf, its range.
-inline void make_bounds(Bvh& bvh, std::span<const BvhBox> bounds, const BuildTask& t) {
-  BvhBox b;
-  for (std::uint32_t i = t.begin; i < t.end; ++i) b.extend(bounds[bvh.prim_ids[i]]);
-  bvh.nodes[t.node].box = b;
+struct NodeBounds {
+  BvhBox box, centers;
+};
+
+inline NodeBounds bounds_of(std::span<const PrimRef> refs) {
+  NodeBounds nb;
+  for (const PrimRef& r : refs) {
+    nb.box.extend(r.box);
+    for (int k = 0; k < 3; ++k) {
+      nb.centers.lo[k] = r.c[k] < nb.centers.lo[k] ? r.c[k] : nb.centers.lo[k];
+      nb.centers.hi[k] = r.c[k] > nb.centers.hi[k] ? r.c[k] : nb.centers.hi[k];
+    }
+  }
+  return nb;
 }
 
-/// The binned SAH split position of prim_ids[begin, end), or end when a leaf is cheaper.
-inline std::uint32_t sah_split(Bvh& bvh, std::span<const BvhBox> bounds, std::span<const Vec3<float>> centers,
-                               const BuildTask& t, std::uint32_t max_leaf) {
+/// The binned SAH split of refs (partitioned in place): the size of the left part, or refs.size()
+/// when a leaf is cheaper.
+inline std::size_t sah_split(std::span<PrimRef> refs, const NodeBounds& nb, std::uint32_t max_leaf) {
   constexpr int kBins = 16;
-  const std::uint32_t n = t.end - t.begin;
-  BvhBox cb;  // centroid bounds
-  for (std::uint32_t i = t.begin; i < t.end; ++i) {
-    const auto& c = centers[bvh.prim_ids[i]];
-    for (int k = 0; k < 3; ++k) cb.lo[k] = std::fmin(cb.lo[k], c[k]), cb.hi[k] = std::fmax(cb.hi[k], c[k]);
+  const std::size_t n = refs.size();
+  float scale[3];
+  for (int k = 0; k < 3; ++k) {
+    const float extent = nb.centers.hi[k] - nb.centers.lo[k];
+    const float s = extent > 0.0f ? kBins / extent : 0.0f;
+    scale[k] = s <= std::numeric_limits<float>::max() ? s : 0.0f;  // an overflowing scale: no bins
   }
+  auto bin_of = [&](const PrimRef& r, int k) {
+    const float x = (r.c[k] - nb.centers.lo[k]) * scale[k];  // in [0, kBins] up to rounding
+    const int b = x > 0.0f ? static_cast<int>(x) : 0;
+    return b < kBins - 1 ? b : kBins - 1;
+  };
+  // One pass bins all three axes.
+  std::array<std::array<BvhBox, kBins>, 3> bin_box;
+  std::array<std::array<std::uint32_t, kBins>, 3> bin_count{};
+  for (const PrimRef& r : refs)
+    for (int k = 0; k < 3; ++k) {
+      const int b = bin_of(r, k);
+      bin_box[k][b].extend(r.box);
+      ++bin_count[k][b];
+    }
   float best_cost = std::numeric_limits<float>::infinity();
   int best_axis = -1, best_bin = 0;
   for (int axis = 0; axis < 3; ++axis) {
-    const float extent = cb.hi[axis] - cb.lo[axis];
-    if (!(extent > 0.0f)) continue;
-    const float scale = kBins / extent;
-    std::array<BvhBox, kBins> bin_box;
-    std::array<std::uint32_t, kBins> bin_count{};
-    for (std::uint32_t i = t.begin; i < t.end; ++i) {
-      const std::uint32_t p = bvh.prim_ids[i];
-      const int b = std::min(kBins - 1, static_cast<int>((centers[p][axis] - cb.lo[axis]) * scale));
-      bin_box[b].extend(bounds[p]);
-      ++bin_count[b];
-    }
+    if (scale[axis] == 0.0f) continue;
     // Sweep from the right to get the right-side areas, then from the left for the costs.
     std::array<float, kBins> right_area{};
     std::array<std::uint32_t, kBins> right_count{};
     BvhBox acc;
     std::uint32_t cnt = 0;
     for (int b = kBins - 1; b > 0; --b) {
-      acc.extend(bin_box[b]), cnt += bin_count[b];
+      acc.extend(bin_box[axis][b]), cnt += bin_count[axis][b];
       right_area[b] = acc.half_area(), right_count[b] = cnt;
     }
     acc = BvhBox{}, cnt = 0;
     for (int b = 0; b < kBins - 1; ++b) {
-      acc.extend(bin_box[b]), cnt += bin_count[b];
+      acc.extend(bin_box[axis][b]), cnt += bin_count[axis][b];
       if (cnt == 0 || right_count[b + 1] == 0) continue;
       const float cost = acc.half_area() * cnt + right_area[b + 1] * right_count[b + 1];
       if (cost < best_cost) best_cost = cost, best_axis = axis, best_bin = b;
     }
   }
-  const float area = bvh.nodes[t.node].box.half_area();
+  const float area = nb.box.half_area();
   const float leaf_cost = static_cast<float>(n);
   const float split_cost = area > 0.0f ? 2.0f + best_cost / area : std::numeric_limits<float>::infinity();
   if (best_axis < 0 || split_cost >= leaf_cost) {
-    if (n <= 2 * max_leaf) return t.end;
-    // Forced split (coincident centroids or a poor split on a big node): by index halves.
-    return t.begin + n / 2;
+    if (n <= 2 * max_leaf) return n;
+    // Forced split (coincident centroids or a poor split on a big node): by halves.
+    return n / 2;
   }
-  const float scale = kBins / (cb.hi[best_axis] - cb.lo[best_axis]);
-  auto* first = bvh.prim_ids.data() + t.begin;
-  auto* mid = std::partition(first, bvh.prim_ids.data() + t.end, [&](std::uint32_t p) {
-    return std::min(kBins - 1, static_cast<int>((centers[p][best_axis] - cb.lo[best_axis]) * scale)) <= best_bin;
-  });
-  return static_cast<std::uint32_t>(mid - bvh.prim_ids.data());
+  const auto mid = std::partition(refs.begin(), refs.end(), [&](const PrimRef& r) { return bin_of(r, best_axis) <= best_bin; });
+  return static_cast<std::size_t>(mid - refs.begin());
 }
 
-/// Median split of prim_ids[begin, end) along the longest axis of the node's box.
-inline std::uint32_t median_split(Bvh& bvh, std::span<const Vec3<float>> centers, const BuildTask& t,
-                                  std::uint32_t max_leaf) {
-  if (t.end - t.begin <= max_leaf) return t.end;
-  const int axis = bvh.nodes[t.node].box.longest_axis();
-  const std::uint32_t mid = t.begin + (t.end - t.begin) / 2;
-  auto* ids = bvh.prim_ids.data();
-  std::nth_element(ids + t.begin, ids + mid, ids + t.end,
-                   [&](std::uint32_t a, std::uint32_t b) { return centers[a][axis] < centers[b][axis]; });
+/// Median split along the longest axis of the node's box.
+inline std::size_t median_split(std::span<PrimRef> refs, const NodeBounds& nb, std::uint32_t max_leaf) {
+  if (refs.size() <= max_leaf) return refs.size();
+  const int axis = nb.box.longest_axis();
+  const std::size_t mid = refs.size() / 2;
+  std::nth_element(refs.begin(), refs.begin() + mid, refs.end(),
+                   [&](const PrimRef& a, const PrimRef& b) { return a.c[axis] < b.c[axis]; });
   return mid;
 }
+
+/// Builds the subtree of refs[t.begin, t.end) into `nodes`, whose entry t.node is its (already
+/// allocated) root. Pairs are appended at even indices (nodes.size() must be even). Tasks of at
+/// most `defer_below` primitives other than the first are left as leaves-to-be and listed in
+/// `deferred` (0: build everything here).
+template <class Nodes>
+void build_range(Nodes& nodes, std::span<PrimRef> refs, BuildTask root, const BvhBuildOptions& opt,
+                 std::uint32_t defer_below, std::vector<BuildTask>* deferred) {
+  const std::uint32_t max_leaf = std::max<std::uint32_t>(1, opt.max_leaf);
+  std::vector<BuildTask> stack{root};
+  while (!stack.empty()) {
+    const BuildTask t = stack.back();
+    stack.pop_back();
+    if (deferred && t.end - t.begin <= defer_below && t.node != root.node) {
+      deferred->push_back(t);
+      continue;
+    }
+    const std::span<PrimRef> r = refs.subspan(t.begin, t.end - t.begin);
+    const NodeBounds nb = bounds_of(r);
+    nodes[t.node].box = nb.box;
+    const std::size_t left_n = opt.builder == BvhBuilder::sah ? sah_split(r, nb, max_leaf) : median_split(r, nb, max_leaf);
+    if (left_n == 0 || left_n == r.size()) {
+      nodes[t.node].index = t.begin;
+      nodes[t.node].count = t.end - t.begin;
+      continue;
+    }
+    const auto mid = t.begin + static_cast<std::uint32_t>(left_n);
+    const auto left = static_cast<std::uint32_t>(nodes.size());
+    nodes[t.node].index = left;
+    nodes[t.node].count = 0;
+    nodes.emplace_back();
+    nodes.emplace_back();
+    stack.push_back({left + 1, mid, t.end});
+    stack.push_back({left, t.begin, mid});
+  }
+}
+
+/// Subtrees of fewer primitives than this are built in parallel, each into its own node array.
+inline constexpr std::uint32_t kParallelGrain = 1u << 14;
+
+struct Sequential {
+  template <class F>
+  void operator()(std::size_t n, F&& f) const {
+    for (std::size_t i = 0; i < n; ++i) f(i);
+  }
+};
 
 }  // namespace detail
 
 /// Builds a BVH over primitives with the given bounds and centers (the builders' split keys:
-/// triangle centroids for meshes). Bounds must not be empty.
-[[nodiscard]] inline Bvh build_bvh(std::span<const BvhBox> bounds, std::span<const Vec3<float>> centers,
-                                   const BvhBuildOptions& opt = {}) {
+/// triangle centroids for meshes). Bounds must not be empty. `for_each(n, f)` may run f(i) for
+/// i < n concurrently (default: in order on this thread).
+template <class ForEach = detail::Sequential>
+[[nodiscard]] Bvh build_bvh(std::span<const BvhBox> bounds, std::span<const Vec3<float>> centers,
+                            const BvhBuildOptions& opt = {}, ForEach&& for_each = {}) {
+  using detail::BuildTask;
+  using detail::PrimRef;
   Bvh bvh;
   const auto n = static_cast<std::uint32_t>(bounds.size());
   if (n == 0) return bvh;
+  std::vector<PrimRef> refs(n);
+  for (std::uint32_t i = 0; i < n; ++i) refs[i] = {bounds[i], {centers[i].x, centers[i].y, centers[i].z}, i};
   const std::uint32_t max_leaf = std::max<std::uint32_t>(1, opt.max_leaf);
-  bvh.prim_ids.resize(n);
-  std::iota(bvh.prim_ids.begin(), bvh.prim_ids.end(), 0u);
-  bvh.nodes.reserve(2 * static_cast<std::size_t>(n) / std::max<std::uint32_t>(1, max_leaf / 2) + 1);
-  bvh.nodes.emplace_back();
-  std::vector<detail::BuildTask> stack{{0, 0, n}};
-  while (!stack.empty()) {
-    const detail::BuildTask t = stack.back();
-    stack.pop_back();
-    detail::make_bounds(bvh, bounds, t);
-    const std::uint32_t mid = opt.builder == BvhBuilder::sah ? detail::sah_split(bvh, bounds, centers, t, max_leaf)
-                                                             : detail::median_split(bvh, centers, t, max_leaf);
-    if (mid == t.end || mid == t.begin) {
-      bvh.nodes[t.node].index = t.begin;
-      bvh.nodes[t.node].count = t.end - t.begin;
-      continue;
+  bvh.nodes.reserve(2 * static_cast<std::size_t>(n) / std::max<std::uint32_t>(1, max_leaf / 2) + 2);
+  bvh.nodes.resize(2);  // the root, and its copy that puts the pairs at even indices
+  const bool parallel = n > 2 * detail::kParallelGrain;
+  std::vector<BuildTask> deferred;
+  detail::build_range(bvh.nodes, refs, {0, 0, n}, opt, detail::kParallelGrain, parallel ? &deferred : nullptr);
+  if (!deferred.empty()) {
+    // Each deferred subtree: local root at 0, its copy at 1, pairs from 2; spliced at an even base.
+    using Nodes = decltype(bvh.nodes);
+    std::vector<Nodes> sub(deferred.size());
+    for_each(deferred.size(), [&](std::size_t i) {
+      sub[i].resize(2);
+      detail::build_range(sub[i], refs, {0, deferred[i].begin, deferred[i].end}, opt, 0, nullptr);
+    });
+    for (std::size_t i = 0; i < deferred.size(); ++i) {
+      const auto base = static_cast<std::uint32_t>(bvh.nodes.size()) - 2;  // local index j >= 2 lands at base + j
+      BvhNode root = sub[i][0];
+      if (!root.is_leaf()) root.index += base;
+      bvh.nodes[deferred[i].node] = root;
+      for (std::size_t j = 2; j < sub[i].size(); ++j) {
+        BvhNode nd = sub[i][j];
+        if (!nd.is_leaf()) nd.index += base;
+        bvh.nodes.push_back(nd);
+      }
+      Nodes().swap(sub[i]);
     }
-    const auto left = static_cast<std::uint32_t>(bvh.nodes.size());
-    bvh.nodes[t.node].index = left;
-    bvh.nodes[t.node].count = 0;
-    bvh.nodes.emplace_back();
-    bvh.nodes.emplace_back();
-    stack.push_back({left + 1, mid, t.end});
-    stack.push_back({left, t.begin, mid});
+  }
+  if (bvh.nodes[0].is_leaf()) {
+    bvh.nodes.resize(1);
+  } else {
+    bvh.nodes[1] = bvh.nodes[0];
   }
   bvh.nodes.shrink_to_fit();
+  bvh.prim_ids.resize(n);
+  for (std::uint32_t i = 0; i < n; ++i) bvh.prim_ids[i] = refs[i].id;
   bvh.max_depth = bvh.depth();
   return bvh;
 }

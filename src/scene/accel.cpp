@@ -30,6 +30,8 @@ constexpr FastName kFast[] = {
     {"cramer-double", FastKernel::cramer_double, BvhTraversal::standard},
     {"watertight-float", FastKernel::watertight_float, BvhTraversal::conservative},
     {"watertight", FastKernel::watertight_double, BvhTraversal::conservative},
+    {"robust", FastKernel::robust, BvhTraversal::conservative},
+    {"certified", FastKernel::certified, BvhTraversal::conservative},
 };
 
 /// Runs `f(kernel)` with the kernel type the method names.
@@ -42,6 +44,8 @@ decltype(auto) with_kernel(const Scene& s, const SceneMethod& m, F&& f) {
     case FastKernel::cramer_double: { detail::CompiledKernel<double, TriAlgo::cramer> k{s, {}, {}}; return f(k); }
     case FastKernel::watertight_float: { detail::CompiledKernel<float, TriAlgo::watertight> k{s, {}, {}}; return f(k); }
     case FastKernel::watertight_double: { detail::CompiledKernel<double, TriAlgo::watertight> k{s, {}, {}}; return f(k); }
+    case FastKernel::robust: { detail::CompiledKernel<float, TriAlgo::robust> k{s, {}, {}, m.generic}; return f(k); }
+    case FastKernel::certified: { detail::CompiledKernel<double, TriAlgo::certified> k{s, {}, {}, m.generic}; return f(k); }
     case FastKernel::none: break;
   }
   detail::GenericKernel k{s, *m.generic};
@@ -85,8 +89,13 @@ bool any_with(const Bvh& bvh, K& k, const Ray<double>& r, BvhTraversal mode, Que
 }  // namespace
 
 SceneMethod find_scene_method(const std::string& name, const MethodRegistry& reg) {
-  for (const auto& f : kFast)
-    if (name == f.name) return {name, f.kernel, nullptr, f.traversal};
+  for (const auto& f : kFast) {
+    if (name != f.name) continue;
+    const bool needs_registry = f.kernel == FastKernel::robust || f.kernel == FastKernel::certified;
+    const Method* m = needs_registry ? reg.find(name) : nullptr;
+    if (needs_registry && !m) break;
+    return {name, f.kernel, m, f.traversal};
+  }
   if (const Method* m = reg.find(name)) return {name, FastKernel::none, m, BvhTraversal::conservative};
   std::string known;
   for (const auto& f : kFast) known += std::string(known.empty() ? "" : ", ") + f.name;
@@ -104,7 +113,10 @@ Accel::Accel(const Scene& s, const BvhBuildOptions& opt) : scene_(s) {
   std::vector<BvhBox> boxes;
   std::vector<Vec3<float>> centers;
   s.primitive_bounds(boxes, centers);
-  bvh_ = build_bvh(boxes, centers, opt);
+  // Subtrees in parallel on TBB's threads (the arena of the caller).
+  bvh_ = build_bvh(boxes, centers, opt, [](std::size_t n, const auto& f) {
+    tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) { f(i); });
+  });
   build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 

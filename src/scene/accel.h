@@ -31,7 +31,10 @@ struct PrimHit {
 };
 
 /// Kernels compiled into the traversal (no per-primitive dispatch through the registry).
-enum class FastKernel { none, mt_float, mt_double, cramer_float, cramer_double, watertight_float, watertight_double };
+/// robust and certified are compiled for triangles and reach the registry method (`generic`) for
+/// other kinds and, for certified, when the filter cannot decide (the exact fallback).
+enum class FastKernel { none, mt_float, mt_double, cramer_float, cramer_double, watertight_float, watertight_double,
+                        robust, certified };
 
 /// How the scene's primitives are intersected: a compiled kernel, or any registry method through
 /// its case interface (slower, used for exact, robust, certified and other methods).

@@ -5,6 +5,7 @@
 #include <type_traits>
 
 #include "methods/primitive_of.h"
+#include "rayproof/certified_triangle.h"
 #include "rayproof/triangle.h"
 #include "rayproof/triangle_watertight.h"
 #include "scene/accel.h"
@@ -40,16 +41,42 @@ inline int crossings_of(Contact c, double t, double t2, Crossing out[2]) {
   }
 }
 
-enum class TriAlgo { moller_trumbore, cramer, watertight };
+/// Möller–Trumbore's miss screen: the same arithmetic as intersect_moller_trumbore up to b1, b2
+/// and t, so a `true` here is a case the full kernel classes miss or behind (no crossing). A
+/// nonzero det, in-range barycentrics and t >= 0 (or NaN) go on to the full kernel, which adds
+/// the degenerate / coplanar / invalid screening and the class.
+template <class T>
+[[nodiscard]] inline bool mt_surely_no_crossing(const Ray<T>& ray, const Triangle<T>& tri) {
+  const Vec3<T> e1 = tri.p1 - tri.p0, e2 = tri.p2 - tri.p0;
+  const Vec3<T> s1 = cross(ray.d, e2);
+  const T det = dot(s1, e1);
+  if (det == T(0)) return false;
+  const T inv = T(1) / det;
+  const Vec3<T> s = ray.o - tri.p0;
+  const T b1 = dot(s1, s) * inv;
+  if (!(b1 >= T(0))) return true;  // classify_barycentric: b1 < 0 or NaN is a miss
+  const Vec3<T> s2 = cross(s, e1);
+  const T b2 = dot(s2, ray.d) * inv;
+  if (!(b2 >= T(0) && T(1) - b1 - b2 >= T(0))) return true;
+  return dot(s2, e2) * inv < T(0);  // behind
+}
+
+/// The robust and certified methods' triangle kernels, compiled: `robust` is the watertight test
+/// on float inputs in double arithmetic; `certified` the certified filter with the registry's
+/// exact fallback when it cannot decide.
+enum class TriAlgo { moller_trumbore, cramer, watertight, robust, certified };
 
 template <class T, TriAlgo A>
 struct CompiledKernel {
   const Scene& s;
   Ray<T> ray{};
   std::optional<WatertightRay<T>> wr;
+  const Method* fallback = nullptr;  ///< robust, certified: the registry method (other kinds, undecided)
+  Ray<double> ray_d{};
 
   void prepare(const Ray<double>& r) {
     ray = {r.o.template cast<T>(), r.d.template cast<T>()};
+    ray_d = r;
     if constexpr (A == TriAlgo::watertight) wr.emplace(ray);
   }
   [[nodiscard]] Triangle<T> tri(std::uint32_t i) const {
@@ -57,37 +84,7 @@ struct CompiledKernel {
     const auto& v = s.mesh.vertices;
     return {v[t[0]].template cast<T>(), v[t[1]].template cast<T>(), v[t[2]].template cast<T>()};
   }
-  int crossings(std::uint32_t id, Crossing out[2]) const {
-    if (id < s.mesh.triangles.size()) {
-      const Triangle<T> t = tri(id);
-      TriangleHit<T> h;
-      if constexpr (A == TriAlgo::watertight) {
-        h = intersect_watertight(*wr, t);
-        if (h.contact == Contact::parallel) h = intersect_watertight(ray, t);  // coplanar or degenerate
-      } else if constexpr (A == TriAlgo::cramer) {
-        h = intersect_cramer(ray, t);
-      } else {
-        h = intersect_moller_trumbore(ray, t);
-      }
-      return crossings_of(h.contact, double(h.t), double(h.t2), out);
-    }
-    std::uint32_t k;
-    Hit<T> h;
-    switch (s.kind_of(id, k)) {
-      case PrimKind::sphere: h = intersect(ray, Sphere<T>{s.spheres[k].center.template cast<T>(), T(s.spheres[k].radius)}); break;
-      case PrimKind::ellipsoid:
-        h = intersect(ray, Ellipsoid<T>{s.ellipsoids[k].center.template cast<T>(), s.ellipsoids[k].semi_axes.template cast<T>()});
-        break;
-      case PrimKind::disk: {
-        const auto& d = s.disks[k];
-        h = intersect(ray, Disk<T>{d.center.template cast<T>(), d.normal.template cast<T>(), T(d.radius)});
-        break;
-      }
-      case PrimKind::box: h = intersect(ray, Box<T>{s.boxes[k].lo.template cast<T>(), s.boxes[k].hi.template cast<T>()}); break;
-      case PrimKind::triangle: break;
-    }
-    return crossings_of(h.contact, double(h.t), double(h.t2), out);
-  }
+  int crossings(std::uint32_t id, Crossing out[2]) const;
 };
 
 /// Any registry method, through the case interface (io::Case in, CaseResult out).
@@ -120,5 +117,52 @@ struct GenericKernel {
     return crossings_of(r.contact, r.t.value_or(kNaN<double>), r.t2.value_or(kNaN<double>), out);
   }
 };
+
+template <class T, TriAlgo A>
+int CompiledKernel<T, A>::crossings(std::uint32_t id, Crossing out[2]) const {
+    if constexpr (A == TriAlgo::robust || A == TriAlgo::certified) {
+      if (id >= s.mesh.triangles.size()) return GenericKernel{s, *fallback, ray_d}.crossings(id, out);
+    }
+    if (id < s.mesh.triangles.size()) {
+      if constexpr (A == TriAlgo::certified) {
+        const auto h = certified::triangle(ray_d, s.triangle(id));
+        if (!h) return GenericKernel{s, *fallback, ray_d}.crossings(id, out);  // exact fallback
+        return crossings_of(h->contact, h->t, h->t2, out);
+      }
+      const Triangle<T> t = tri(id);
+      TriangleHit<T> h;
+      if constexpr (A == TriAlgo::robust) {
+        // The registry's front door itself (plane-equation screening, then the watertight test).
+        // A prepared-ray miss screen in front of it leaked: on leak rays the prepared test
+        // (WatertightRay<float, double>) says miss where the front door says vertex.
+        h = intersect_watertight<float, double>(ray, t);
+      } else if constexpr (A == TriAlgo::watertight) {
+        h = intersect_watertight(*wr, t);
+        if (h.contact == Contact::parallel) h = intersect_watertight(ray, t);  // coplanar or degenerate
+      } else if constexpr (A == TriAlgo::cramer) {
+        h = intersect_cramer(ray, t);
+      } else {
+        if (mt_surely_no_crossing(ray, t)) return 0;
+        h = intersect_moller_trumbore(ray, t);
+      }
+      return crossings_of(h.contact, double(h.t), double(h.t2), out);
+    }
+    std::uint32_t k;
+    Hit<T> h;
+    switch (s.kind_of(id, k)) {
+      case PrimKind::sphere: h = intersect(ray, Sphere<T>{s.spheres[k].center.template cast<T>(), T(s.spheres[k].radius)}); break;
+      case PrimKind::ellipsoid:
+        h = intersect(ray, Ellipsoid<T>{s.ellipsoids[k].center.template cast<T>(), s.ellipsoids[k].semi_axes.template cast<T>()});
+        break;
+      case PrimKind::disk: {
+        const auto& d = s.disks[k];
+        h = intersect(ray, Disk<T>{d.center.template cast<T>(), d.normal.template cast<T>(), T(d.radius)});
+        break;
+      }
+      case PrimKind::box: h = intersect(ray, Box<T>{s.boxes[k].lo.template cast<T>(), s.boxes[k].hi.template cast<T>()}); break;
+      case PrimKind::triangle: break;
+    }
+    return crossings_of(h.contact, double(h.t), double(h.t2), out);
+}
 
 }  // namespace rayproof::scene::detail
