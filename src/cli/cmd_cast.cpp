@@ -14,7 +14,7 @@
 #include "cli/input.h"
 #include "cli/registry.h"
 #include "cli/scene_input.h"
-#include "mesh/reader_util.h"
+#include "scene/ray_file.h"
 
 namespace rayproof::cli {
 
@@ -41,21 +41,13 @@ int run_cast(const CastOptions& opt) {
   std::vector<Ray<double>> rays;
   std::vector<std::string> errors;  // per ray line: empty, or the message
   try {
-    mesh::detail::LineReader lines(*in.stream, opt.rays, '#');
-    std::vector<std::string_view> t;
-    while (lines.next(t)) {
-      if (t.empty()) continue;
-      double v[6] = {};
-      std::string err;
-      if (t.size() != 6) err = fmt::format("expected 6 numbers (ox oy oz dx dy dz), got {} fields", t.size());
-      for (std::size_t k = 0; k < t.size() && k < 6 && err.empty(); ++k)
-        if (!mesh::detail::parse_double(t[k], v[k])) err = fmt::format("'{}' is not a number", t[k]);
-      if (!err.empty()) err = fmt::format("{}:{}: {}", opt.rays, lines.line(), err);
-      rays.push_back({{v[0], v[1], v[2]}, {v[3], v[4], v[5]}});
-      errors.push_back(err);
-    }
-  } catch (const mesh::MeshError& e) {
+    for (auto& r : scene::read_rays(*in.stream, opt.rays)) rays.push_back(r.ray), errors.push_back(std::move(r.error));
+  } catch (const scene::SceneError& e) {
     fmt::print(stderr, "rayproof cast: {}\n", e.what());
+    return 2;
+  }
+  if (rays.empty()) {
+    fmt::print(stderr, "rayproof cast: {}: no rays (expected lines 'ox oy oz dx dy dz')\n", opt.rays);
     return 2;
   }
   const auto& accel = *loaded->accel;

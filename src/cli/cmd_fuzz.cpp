@@ -1,5 +1,7 @@
 /// rayproof fuzz: a differential campaign of every chosen method against exact over the case
 /// families; mismatches are minimized and written as one-line case files per method and family.
+/// With --mesh: mesh-level property fuzzing instead (verify/mesh_fuzz.h): random closed meshes,
+/// leak rays at every vertex and edge midpoint, and crossing parity of random rays.
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
 #include <fmt/format.h>
@@ -11,7 +13,9 @@
 
 #include "cli/commands.h"
 #include "cli/registry.h"
+#include "scene/accel.h"
 #include "verify/fuzz_campaign.h"
+#include "verify/mesh_fuzz.h"
 
 namespace rayproof::cli {
 
@@ -23,9 +27,64 @@ struct FuzzCliOptions {
   std::uint64_t seed = 1;
   int jobs = 1;
   std::string out = "fuzz-findings";
+  bool mesh = false;
 };
 
+/// Methods that must never leak (and, for certified, never fail parity) in mesh mode.
+bool must_not_leak(const std::string& m) { return m == "robust" || m == "certified"; }
+
+int run_mesh_fuzz_cli(const FuzzCliOptions& o) {
+  verify::MeshFuzzOptions opt;
+  const std::vector<std::string> names =
+      o.methods.empty() ? std::vector<std::string>{"float", "double", "watertight-float", "watertight", "robust", "certified"}
+                        : o.methods;
+  for (const auto& name : names) {
+    try {
+      opt.methods.push_back(scene::find_scene_method(name, all_methods()));
+    } catch (const std::exception& e) {
+      fmt::print(stderr, "rayproof fuzz: {}\n", e.what());
+      return 2;
+    }
+  }
+  if (!o.families.empty()) {
+    fmt::print(stderr, "rayproof fuzz: --families does not apply to --mesh\n");
+    return 2;
+  }
+  opt.seconds = o.seconds;
+  opt.max_meshes = o.cases;
+  if (opt.seconds <= 0 && opt.max_meshes == 0) opt.seconds = 10;
+  opt.seed = o.seed;
+  opt.threads = o.jobs;
+  const auto res = verify::run_mesh_fuzz(opt);
+
+  fmt::print("{:<18} {:>10} {:>8} {:>11} {:>15}\n", "method", "leak rays", "leaks", "parity rays", "parity failures");
+  for (const auto& st : res.stats)
+    fmt::print("{:<18} {:>10} {:>8} {:>11} {:>15}\n", st.method, st.leak_rays, st.leaks, st.parity_rays, st.parity_failures);
+  fmt::print("\n{} meshes ({} perturbed icospheres, {} convex hulls), {} triangles in {:.1f} s; "
+             "{} parity rays with an exact edge or vertex contact set aside\n",
+             res.meshes, res.star_meshes, res.hull_meshes, res.triangles, res.seconds, res.contact_rays_set_aside);
+  fmt::print("reproduce: rayproof fuzz --mesh --seed {} --cases {}{}\n", o.seed, res.meshes,
+             o.methods.empty() ? "" : " --methods " + fmt::format("{}", fmt::join(o.methods, ",")));
+  int bad = 0;
+  for (const auto& st : res.stats) {
+    const bool broken = must_not_leak(st.method) && (st.leaks > 0 || (st.method == "certified" && st.parity_failures > 0));
+    if (!broken) continue;
+    ++bad;
+    fmt::print(stderr, "rayproof fuzz: method '{}' leaked {} times and failed parity {} times\n", st.method, st.leaks,
+               st.parity_failures);
+    for (const auto& f : res.findings)
+      if (f.method == st.method)
+        fmt::print(stderr, "  mesh {} ({}): {} ray {} {} {} {} {} {}{}\n", f.mesh,
+                   f.shape == verify::MeshShape::star ? "icosphere" : "hull", f.leak ? "leak" : "parity",
+                   io::format_double(f.ray.o.x), io::format_double(f.ray.o.y), io::format_double(f.ray.o.z),
+                   io::format_double(f.ray.d.x), io::format_double(f.ray.d.y), io::format_double(f.ray.d.z),
+                   f.leak ? "" : fmt::format(" ({} crossings)", f.crossings));
+  }
+  return bad ? 1 : 0;
+}
+
 int run_fuzz_cli(const FuzzCliOptions& o) {
+  if (o.mesh) return run_mesh_fuzz_cli(o);
   const MethodRegistry& reg = all_methods();
   verify::FuzzOptions opt;
   if (o.methods.empty()) {
@@ -128,6 +187,9 @@ Run add_fuzz(CLI::App& app) {
   sub->add_option("--seed", o->seed, "Seed")->capture_default_str();
   sub->add_option("--jobs", o->jobs, "Worker threads")->check(CLI::Range(1, 256))->capture_default_str();
   sub->add_option("--out", o->out, "Directory for the findings")->capture_default_str();
+  sub->add_flag("--mesh", o->mesh,
+                "Mesh mode: random closed meshes; leak rays at every vertex and edge midpoint and the parity of "
+                "random rays' crossings (--cases counts meshes, --jobs threads per query batch)");
   return [o] { return run_fuzz_cli(*o); };
 }
 

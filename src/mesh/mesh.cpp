@@ -16,6 +16,11 @@
 namespace rayproof::mesh {
 namespace detail {
 
+std::string quote(std::string_view tok) {
+  constexpr std::size_t kMax = 40;
+  return "'" + std::string(tok.substr(0, kMax)) + (tok.size() > kMax ? "...'" : "'");
+}
+
 void fail_line(const std::string& name, std::size_t line, const std::string& what) {
   throw MeshError(name + ":" + std::to_string(line) + ": " + what);
 }
@@ -79,15 +84,15 @@ std::string_view TokenReader::need(const char* what) {
 double TokenReader::need_double(const char* what) {
   const std::string_view t = need(what);
   double v;
-  if (!parse_double(t, v)) lines_.fail("expected " + std::string(what) + ", got '" + std::string(t) + "'");
-  if (!std::isfinite(v)) lines_.fail(std::string(what) + " is not finite: '" + std::string(t) + "'");
+  if (!parse_double(t, v)) lines_.fail("expected " + std::string(what) + ", got " + detail::quote(t));
+  if (!std::isfinite(v)) lines_.fail(std::string(what) + " is not finite: " + detail::quote(t));
   return v;
 }
 
 std::uint64_t TokenReader::need_uint(const char* what) {
   const std::string_view t = need(what);
   std::uint64_t v;
-  if (!parse_uint(t, v)) lines_.fail("expected " + std::string(what) + " (a non-negative integer), got '" + std::string(t) + "'");
+  if (!parse_uint(t, v)) lines_.fail("expected " + std::string(what) + " (a non-negative integer), got " + detail::quote(t));
   return v;
 }
 

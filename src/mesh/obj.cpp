@@ -18,8 +18,8 @@ Mesh read_obj(std::istream& in, const std::string& name) {
       if (toks.size() < 4 || toks.size() > 5) lines.fail("'v' needs 3 coordinates (and an optional w)");
       double c[3];
       for (int k = 0; k < 3; ++k) {
-        if (!detail::parse_double(toks[1 + k], c[k])) lines.fail("bad vertex coordinate '" + std::string(toks[1 + k]) + "'");
-        if (!std::isfinite(c[k])) lines.fail("vertex coordinate is not finite: '" + std::string(toks[1 + k]) + "'");
+        if (!detail::parse_double(toks[1 + k], c[k])) lines.fail("bad vertex coordinate " + detail::quote(toks[1 + k]));
+        if (!std::isfinite(c[k])) lines.fail("vertex coordinate is not finite: " + detail::quote(toks[1 + k]));
       }
       if (m.vertices.size() == 0xffffffffu) lines.fail("more than 2^32 - 1 vertices");
       m.vertices.push_back({c[0], c[1], c[2]});
@@ -31,7 +31,7 @@ Mesh read_obj(std::istream& in, const std::string& name) {
         const std::string_view ref = toks[k].substr(0, toks[k].find('/'));
         std::int64_t i;
         if (!detail::parse_int(ref, i) || i == 0)
-          lines.fail("bad face vertex '" + std::string(toks[k]) + "' (expected a non-zero integer index)");
+          lines.fail("bad face vertex " + detail::quote(toks[k]) + " (expected a non-zero integer index)");
         const std::int64_t zero_based = i > 0 ? i - 1 : nv + i;
         if (zero_based < 0 || zero_based >= nv)
           lines.fail("face vertex index " + std::to_string(i) + " out of range (" + std::to_string(nv) + " vertices so far)");

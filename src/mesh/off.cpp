@@ -13,14 +13,14 @@ Mesh read_off(std::istream& in, const std::string& name) {
   // The keyword may share its line with the counts ("OFF 8 12 0"); COFF/NOFF variants carry
   // extra per-vertex fields we do not support.
   std::string_view kw = toks[0];
-  if (kw != "OFF") lines.fail("expected 'OFF', got '" + std::string(kw) + "' (only plain OFF is supported)");
+  if (kw != "OFF") lines.fail("expected 'OFF', got " + detail::quote(kw) + " (only plain OFF is supported)");
   detail::TokenReader tr(lines);
   std::vector<std::string_view> rest(toks.begin() + 1, toks.end());
   std::size_t ri = 0;
   auto count = [&](const char* what) -> std::uint64_t {
     if (ri < rest.size()) {
       std::uint64_t v;
-      if (!detail::parse_uint(rest[ri], v)) lines.fail(std::string("expected ") + what + ", got '" + std::string(rest[ri]) + "'");
+      if (!detail::parse_uint(rest[ri], v)) lines.fail(std::string("expected ") + what + ", got " + detail::quote(rest[ri]));
       ++ri;
       return v;
     }

@@ -100,7 +100,7 @@ Mesh read_ply(std::istream& in, const std::string& name) {
       if (t[1] == "ascii") format = 0;
       else if (t[1] == "binary_little_endian") format = 1;
       else if (t[1] == "binary_big_endian") format = 2;
-      else lines.fail("unknown PLY format '" + std::string(t[1]) + "'");
+      else lines.fail("unknown PLY format " + detail::quote(t[1]));
     } else if (t[0] == "element") {
       std::uint64_t n;
       if (t.size() != 3 || !detail::parse_uint(t[2], n)) lines.fail("'element' needs a name and a count");
@@ -114,14 +114,14 @@ Mesh read_ply(std::istream& in, const std::string& name) {
         p.list = true;
         p.name = t[4];
       } else if (t.size() == 3) {
-        if (!type_of(t[1], p.type)) lines.fail("unknown property type '" + std::string(t[1]) + "'");
+        if (!type_of(t[1], p.type)) lines.fail("unknown property type " + detail::quote(t[1]));
         p.name = t[2];
       } else {
         lines.fail("malformed 'property' line");
       }
       elems.back().props.push_back(p);
     } else {
-      lines.fail("unexpected '" + std::string(t[0]) + "' in the header");
+      lines.fail("unexpected " + detail::quote(t[0]) + " in the header");
     }
   }
   if (format < 0) lines.fail("no 'format' line in the header");
@@ -135,7 +135,7 @@ Mesh read_ply(std::istream& in, const std::string& name) {
     std::uint64_t min_item = 0;
     for (const auto& p : e.props) min_item += size_of(p.list ? p.count_type : p.type);
     if (left >= 0 && min_item > 0 && e.count > (static_cast<std::uint64_t>(left) - std::min<std::uint64_t>(need, left)) / min_item)
-      detail::fail_line(name, e.line, "element '" + e.name + "' claims " + std::to_string(e.count) +
+      detail::fail_line(name, e.line, "element " + detail::quote(e.name) + " claims " + std::to_string(e.count) +
                                           " items, more than the " + std::to_string(left) + " bytes after the header can hold");
     need += e.count * min_item;
   }
@@ -174,7 +174,9 @@ Mesh read_ply(std::istream& in, const std::string& name) {
       if (list_prop < 0) detail::fail_line(name, e.line, "element 'face' has no 'vertex_indices' list");
       if (!have_vertices) detail::fail_line(name, e.line, "element 'face' comes before element 'vertex'");
     }
-    for (std::uint64_t i = 0; i < e.count; ++i) {
+    // An element without properties holds no data: its count (possibly 2^64 - 1) is not looped over.
+    const std::uint64_t items = e.props.empty() ? 0 : e.count;
+    for (std::uint64_t i = 0; i < items; ++i) {
       double c[3] = {0, 0, 0};
       for (std::size_t k = 0; k < e.props.size(); ++k) {
         const auto& p = e.props[k];

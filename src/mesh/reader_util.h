@@ -17,6 +17,10 @@ inline constexpr std::size_t kMaxLine = 1 << 20;
 /// Reservation cap: counts from headers are only trusted up to this before data confirms them.
 inline constexpr std::size_t kMaxReserve = 1 << 16;
 
+/// A token quoted for a message ('tok'), cut short after 40 bytes so that a huge token (a line can
+/// hold a megabyte) never makes a huge message.
+std::string quote(std::string_view tok);
+
 [[noreturn]] void fail_line(const std::string& name, std::size_t line, const std::string& what);
 [[noreturn]] void fail_byte(const std::string& name, std::uint64_t byte, const std::string& what);
 

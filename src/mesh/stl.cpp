@@ -86,7 +86,7 @@ Mesh read_ascii(std::istream& in, const std::string& name) {
       double c[3];
       for (int k = 0; k < 3; ++k)
         if (!detail::parse_double(t[1 + k], c[k]) || !std::isfinite(c[k]))
-          lines.fail("bad vertex coordinate '" + std::string(t[1 + k]) + "'");
+          lines.fail("bad vertex coordinate " + detail::quote(t[1 + k]));
       loop.push_back(w.add({c[0], c[1], c[2]}));
     } else if (t[0] == "endloop") {
       if (!in_loop) lines.fail("'endloop' without 'outer loop'");
@@ -101,7 +101,7 @@ Mesh read_ascii(std::istream& in, const std::string& name) {
       ended = true;
       break;
     } else {
-      lines.fail("unexpected '" + std::string(t[0]) + "' in ASCII STL");
+      lines.fail("unexpected " + detail::quote(t[0]) + " in ASCII STL");
     }
   }
   if (!ended) lines.fail("unexpected end of file, expected 'endsolid'");

@@ -27,6 +27,12 @@ namespace {
 
 using nlohmann::json;
 
+/// nlohmann's message, cut short: it quotes the last token read, which can be a megabyte long.
+std::string short_what(const std::exception& e) {
+  const std::string w = e.what();
+  return w.size() > 200 ? w.substr(0, 200) + "..." : w;
+}
+
 struct Ctx {
   const std::string& name;
   [[noreturn]] void fail(const std::string& path, const std::string& what) const {
@@ -59,6 +65,11 @@ struct Ctx {
     const json& j = o[key];
     if (!j.is_array() || j.size() != 3) fail(p, "expected [x, y, z]");
     return {num(j[0], p + "[0]"), num(j[1], p + "[1]"), num(j[2], p + "[2]")};
+  }
+  std::string str(const json& o, const char* key, const std::string& path, const std::string& def) const {
+    if (!o.contains(key)) return def;
+    if (!o[key].is_string()) fail(path + "." + key, "expected a string");
+    return o[key].get<std::string>();
   }
   int dim(const json& o, const char* key, const std::string& path, int def) const {
     if (!o.contains(key)) return def;
@@ -102,7 +113,7 @@ Transform<double> mesh_transform(const Ctx& c, const json& j, const std::string&
 Camera camera_of(const Ctx& c, const json& j) {
   const std::string p = "camera";
   c.keys(j, p, {"type", "eye", "target", "up", "fov_y_degrees", "width", "height", "half_width", "half_height"});
-  const std::string type = j.value("type", std::string("perspective"));
+  const std::string type = c.str(j, "type", p, "perspective");
   const Vec3<double> eye = c.vec(j, "eye", p), target = c.vec(j, "target", p), up = c.vec(j, "up", p, Vec3<double>{0, 1, 0});
   if (eye == target) c.fail(p, "eye equals target");
   if (is_zero(cross(up, eye - target))) c.fail(p + ".up", "parallel to the view direction");
@@ -133,7 +144,15 @@ Scene parse_scene_json(const std::string& text, const std::string& base_dir, con
   try {
     root = json::parse(text);
   } catch (const json::parse_error& e) {
-    throw SceneError(name + ": byte " + std::to_string(e.byte) + ": invalid JSON (" + e.what() + ")");
+    throw SceneError(name + ": byte " + std::to_string(e.byte) + ": invalid JSON (" + short_what(e) + ")");
+  } catch (const json::out_of_range& e) {
+    // A number beyond double's range ("1e999"): nlohmann names the token but not its offset, so
+    // the message gives the first offset where that token occurs.
+    const std::string what = short_what(e);
+    const auto a = what.find('\''), b = what.rfind('\'');
+    const std::size_t at = a < b ? text.find(what.substr(a + 1, b - a - 1)) : std::string::npos;
+    throw SceneError(name + ": byte " + std::to_string(at == std::string::npos ? 0 : at + 1) + ": number out of range (" +
+                     what + ")");
   }
   const Ctx c{name};
   c.keys(root, "(top level)", {"camera", "meshes", "spheres", "ellipsoids", "disks", "boxes", "lights"});
@@ -167,7 +186,7 @@ Scene parse_scene_json(const std::string& text, const std::string& base_dir, con
   });
   each(c, root, "lights", [&](const json& j, const std::string& p) {
     c.keys(j, p, {"type", "center", "normal", "radius", "emission"});
-    if (j.value("type", std::string("disk")) != "disk") c.fail(p + ".type", "only \"disk\" lights exist");
+    if (c.str(j, "type", p, "disk") != "disk") c.fail(p + ".type", "only \"disk\" lights exist");
     s.lights.push_back({{c.vec(j, "center", p), c.vec(j, "normal", p), c.num(j, "radius", p)},
                         c.vec(j, "emission", p, Vec3<double>{1, 1, 1})});
   });
@@ -183,6 +202,8 @@ Scene load_scene(const std::string& path) {
     } catch (const mesh::MeshError& e) {
       throw SceneError(e.what());
     }
+    // A mesh file with nothing to hit (empty, or vertices only) is more likely a mistake than a scene.
+    if (s.mesh.triangles.empty()) throw SceneError(path + ": no triangles in the file");
     return s;
   }
   std::error_code ec;

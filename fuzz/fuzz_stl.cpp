@@ -1,0 +1,6 @@
+// libFuzzer harness: arbitrary bytes as a .stl file (see mesh_reader_check.h for the properties).
+#include "fuzz/mesh_reader_check.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  return rayproof::fuzz::check_mesh_reader(data, size, rayproof::mesh::MeshFormat::stl, "fuzz.stl");
+}
