@@ -45,3 +45,59 @@ TEST(CertifiedFilter, NonFiniteIsUndecided) {
   EXPECT_FALSE(sign(inf - inf).has_value());
   EXPECT_FALSE(pin(inf).has_value());
 }
+
+// ---- Staged filters: expansions, pinning (certified_expansion.h, certified_stage.h) ----
+#include <random>
+
+#include "rayproof/certified_stage.h"
+
+TEST(CertifiedExpansion, ExactZerosAndTinySigns) {
+  // (1 + 2^-30)^2 - (1 + 2^-29) - 2^-60 = 0 exactly; double arithmetic gives -2^-60 or so.
+  const Expansion x(1.0 + 0x1p-30);
+  const Expansion z = x * x - Expansion(1.0 + 0x1p-29) - Expansion(0x1p-60);
+  EXPECT_FALSE(z.bad);
+  EXPECT_EQ(z.sign(), 0);
+  EXPECT_EQ((x * x - Expansion(1.0 + 0x1p-29)).sign(), 1);
+  // A difference of inputs 2^100 apart is kept exactly.
+  EXPECT_EQ((diff(0x1p100, -0x1p-100) - Expansion(0x1p100)).sign(), 1);
+  EXPECT_EQ((diff(0x1p100, -0x1p-100) - Expansion(0x1p100) - Expansion(0x1p-100)).sign(), 0);
+}
+
+__extension__ typedef __int128 I128;  // exact reference for products of 31-bit integers
+
+TEST(CertifiedExpansion, SignsAgreeWithIntegerArithmetic) {
+  // a b + c d - e f with 31-bit integers (exact in __int128), scaled by 2^k (sign unchanged).
+  std::mt19937_64 g(7);
+  std::uniform_int_distribution<std::int64_t> v(-(1LL << 31), 1LL << 31);
+  std::uniform_int_distribution<int> sc(-150, 150);
+  for (int i = 0; i < 20000; ++i) {
+    std::int64_t a = v(g), b = v(g), c = v(g), d = v(g), e = v(g), f = v(g);
+    if (i % 3 == 0) e = a, f = b + (i % 2);  // near and exact cancellations
+    if (i % 5 == 0) e = c, f = d, c = a, d = -b;
+    const I128 exact = I128(a) * b + I128(c) * d - I128(e) * f;
+    const int want = exact > 0 ? 1 : (exact < 0 ? -1 : 0);
+    const double s = std::ldexp(1.0, sc(g));
+    auto X = [&](std::int64_t q) { return Expansion(double(q) * s); };
+    const Expansion r = X(a) * X(b) + X(c) * X(d) - X(e) * X(f);
+    ASSERT_FALSE(r.bad);
+    ASSERT_EQ(r.sign(), want) << a << " " << b << " " << c << " " << d << " " << e << " " << f;
+  }
+}
+
+TEST(CertifiedStage, PinsAreWithinOneUlp) {
+  // Exact residual: 1/3, 2/7 and an exact quotient.
+  EXPECT_EQ(pin_quotient(Expansion(1.0), Expansion(3.0)), std::optional<double>(1.0 / 3.0));
+  EXPECT_EQ(pin_quotient(Expansion(2.0), Expansion(7.0)), std::optional<double>(2.0 / 7.0));
+  EXPECT_EQ(pin_quotient(Expansion(6.0), Expansion(-4.0)), std::optional<double>(-1.5));
+  EXPECT_EQ(pin_quotient(Expansion(0.0), Expansion(5.0)), std::optional<double>(0.0));
+  // Wide: an interval inside the rounding neighbourhood pins, a wide one does not.
+  EXPECT_EQ(pin_wide(Wide(1) / 3, 0x1p-70L), std::optional<double>(1.0 / 3.0));
+  EXPECT_FALSE(pin_wide(Wide(1) / 3, 0x1p-50L).has_value());
+  // Just below 1 (the gap below is half the gap above): still pinned to a neighbour of 1.
+  const auto p = pin_wide(1 - 0x1p-60L, 0x1p-58L);
+  ASSERT_TRUE(p.has_value());
+  EXPECT_LE(ulp_distance(*p, 1.0), 1u);
+  EXPECT_EQ(next_above(1.0), 1.0 + 0x1p-52);
+  EXPECT_EQ(next_below(1.0), 1.0 - 0x1p-53);
+  EXPECT_EQ(next_below(0.0), -std::numeric_limits<double>::denorm_min());
+}

@@ -4,10 +4,17 @@
 /// (both again intervals); the class needs entry vs exit and both vs 0 decided, and T, T2 pinned to
 /// one ulp. Undecided (nothing): entry and exit may be equal (a graze or a near miss) or a distance may
 /// be 0 without the arithmetic making it exactly 0.
+///
+/// Stages (certified_stage.h): (1) slab distances in double, each within 2^-51 of its magnitude (two
+/// roundings), the class from the intervals; T, T2 pinned for free when the slab's difference
+/// b_i - o_i is exact in double (the quotient is then correctly rounded), else in Wide; (2) exact
+/// comparisons of the fractions (b_i - o_i) / d_i with expansions (degree 2): grazes and exact ties
+/// proven without GMP; (3) the running-error-bound filter below, outside the exponent window.
 #include <algorithm>
 
 #include "rayproof/box.h"
 #include "rayproof/certified_filter.h"
+#include "rayproof/certified_stage.h"
 
 namespace rayproof::certified {
 
@@ -24,12 +31,110 @@ inline Span span_of(Bounded a) {
   return {a.v - w, a.v + w, a.v};
 }
 
+
+/// A slab distance (b - o) / d.
+struct Slab {
+  double b, o, d, t, e;  ///< bound, origin, direction, computed t, |t - exact| <= e
+};
+
+/// The slab's t within one ulp: free when b - o is exact in double, else from Wide (two roundings).
+[[nodiscard]] inline std::optional<double> pin_slab(const Slab& s) {
+  if (two_sum(s.b, -s.o).lo == 0) return s.t + 0.0;  // correctly rounded quotient of exact operands
+  if constexpr (!kFilterAvailable) return std::nullopt;
+  const Wide t = (Wide(s.b) - Wide(s.o)) / Wide(s.d);
+  return pin_wide(t, std::fabs(t) * 0x1p-61L);
+}
+
+/// Stage 1: near[i] / far[i] for the axes with d_i != 0.
+[[nodiscard]] inline std::optional<Hit<double>> box_fast(const Ray<double>& ray, const Box<double>& bx) {
+  using H = Hit<double>;
+  Slab near[3], far[3];
+  int k = 0;
+  for (int i = 0; i < 3; ++i) {
+    if (ray.d[i] == 0) continue;  // the caller checked o_i within the slab
+    const bool neg = ray.d[i] < 0;
+    const double lo = neg ? bx.hi[i] : bx.lo[i], hi = neg ? bx.lo[i] : bx.hi[i];
+    const double tn = (lo - ray.o[i]) / ray.d[i], tf = (hi - ray.o[i]) / ray.d[i];
+    if (!(std::fabs(tn) < 0x1p1020 && std::fabs(tf) < 0x1p1020)) return std::nullopt;  // overflow
+    // Two roundings (2^-51 with slack), and 2^-1000 (normal, so no slow subnormal arithmetic) for a quotient that underflows.
+    near[k] = {lo, ray.o[i], ray.d[i], tn, std::fabs(tn) * 0x1p-51 + 0x1p-1000};
+    far[k] = {hi, ray.o[i], ray.d[i], tf, std::fabs(tf) * 0x1p-51 + 0x1p-1000};
+    ++k;
+  }
+  // Entry: the largest near interval, unambiguous (every other one lies below it); exit likewise.
+  int ie = 0, ix = 0;
+  for (int j = 1; j < k; ++j) {
+    if (near[j].t > near[ie].t) ie = j;
+    if (far[j].t < far[ix].t) ix = j;
+  }
+  const Slab &en = near[ie], &ex = far[ix];
+  const double El = en.t - en.e, Eh = en.t + en.e, Xl = ex.t - ex.e, Xh = ex.t + ex.e;
+  if (El > Xh) return H{Contact::miss};
+  for (int j = 0; j < k; ++j) {
+    if (j != ie && !(near[j].t + near[j].e < El)) return std::nullopt;
+    if (j != ix && !(far[j].t - far[j].e > Xh)) return std::nullopt;
+  }
+  if (!(Eh < Xl)) return std::nullopt;  // a graze, or too close to tell
+  Contact cls;
+  if (Xh < 0) cls = Contact::behind;
+  else if (!(Xl >= 0)) return std::nullopt;
+  else if (Eh < 0) cls = Contact::inside;
+  else if (El >= 0) cls = Contact::hit;
+  else return std::nullopt;
+  const auto t0 = pin_slab(en), t1 = pin_slab(ex);
+  if (!t0 || !t1) return std::nullopt;
+  return H{cls, *t0, *t1};
+}
+
+/// Stage 2 (in_range<-300, 300>, degree 2): slab distances as exact fractions p / d, compared exactly.
+[[gnu::noinline, gnu::cold]] inline std::optional<Hit<double>> box_expansion(const Ray<double>& ray, const Box<double>& bx) {
+  using H = Hit<double>;
+  const Vec3<double>&o = ray.o, &d = ray.d, &lo = bx.lo, &hi = bx.hi;
+  if (!in_range<-300, 300>(o.x, o.y, o.z, d.x, d.y, d.z, lo.x, lo.y, lo.z, hi.x, hi.y, hi.z)) return std::nullopt;
+  struct Frac {
+    Expansion p;
+    double d;
+  };
+  // sign(p1 / d1 - p2 / d2) = sign(p1 d2 - p2 d1) sign(d1 d2).
+  auto cmp = [](const Frac& x, const Frac& y) {
+    const Expansion z = x.p * Expansion(y.d) - y.p * Expansion(x.d);
+    return std::optional<int>(z.bad ? std::nullopt : std::optional<int>(z.sign() * ((x.d < 0) != (y.d < 0) ? -1 : 1)));
+  };
+  std::optional<Frac> enter, exit;
+  for (int i = 0; i < 3; ++i) {
+    if (ray.d[i] == 0) continue;
+    const bool neg = ray.d[i] < 0;
+    Frac n{diff(neg ? bx.hi[i] : bx.lo[i], ray.o[i]), ray.d[i]}, f{diff(neg ? bx.lo[i] : bx.hi[i], ray.o[i]), ray.d[i]};
+    if (!enter) {
+      enter = n, exit = f;
+      continue;
+    }
+    const auto ce = cmp(n, *enter), cx = cmp(f, *exit);
+    if (!ce || !cx) return std::nullopt;
+    if (*ce > 0) enter = n;
+    if (*cx < 0) exit = f;
+  }
+  const auto order = cmp(*enter, *exit);
+  if (!order) return std::nullopt;
+  if (*order > 0) return H{Contact::miss};
+  const auto t0 = pin_quotient(enter->p, Expansion(enter->d)), t1 = pin_quotient(exit->p, Expansion(exit->d));
+  if (!t0 || !t1) return std::nullopt;
+  const int s_enter = enter->p.sign() * (enter->d < 0 ? -1 : 1), s_exit = exit->p.sign() * (exit->d < 0 ? -1 : 1);
+  if (s_exit < 0) return H{Contact::behind, *t0, *t1};
+  if (s_enter < 0) return H{Contact::inside, *t0, *t1};
+  return H{*order < 0 ? Contact::hit : Contact::graze, *t0, *t1};
+}
+
 }  // namespace detail
 
 [[nodiscard]] inline std::optional<Hit<double>> box(const Ray<double>& ray, const Box<double>& bx) {
   using H = Hit<double>;
   using detail::Span;
   if (!ray.valid() || !box_valid(bx)) return H{Contact::invalid};
+  for (int i = 0; i < 3; ++i)  // parallel axis: exact comparisons of doubles
+    if (ray.d[i] == 0 && (ray.o[i] < bx.lo[i] || ray.o[i] > bx.hi[i])) return H{Contact::miss};
+  if (auto h = detail::box_fast(ray, bx)) return h;
+  if (auto h = detail::box_expansion(ray, bx)) return h;
   if constexpr (!kFilterAvailable) return std::nullopt;
   constexpr Wide inf = std::numeric_limits<Wide>::infinity();
   Span enter{-inf, -inf, -inf}, exit{inf, inf, inf};

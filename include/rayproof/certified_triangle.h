@@ -5,8 +5,12 @@
 /// barycentric signs; num = (p0 - o) . n the side of t = num / den. Returns the exact class and t
 /// within one double ulp, or nothing (undecided: a sign the bound cannot tell, an exact zero the
 /// arithmetic did not produce exactly, a coplanar range, or t not pinned to one ulp). The signs are
-/// tried in double first (with an underflow term), then in Wide; t is always computed in Wide.
+/// tried in stages (certified_stage.h): (1) double with static error bounds and t pinned in Wide from
+/// a plain evaluation; (2) exact signs and t with expansions (edges, vertices, parallel rays and
+/// degenerate triangles proven without GMP); (3) the running-error-bound (midpoint-radius) filters
+/// below, in double then Wide, for inputs outside the exponent window of stages 1 and 2.
 #include "rayproof/certified_filter.h"
+#include "rayproof/certified_stage.h"
 #include "rayproof/hit.h"
 #include "rayproof/triangle_common.h"
 
@@ -57,13 +61,143 @@ template <class W>
   return pin(dot(p0 - lift(ray.o), n) / den);
 }
 
+
+/// Stage 1. With a, b, c = p_i - o (rounded), the signed volumes u0 = (d x b) . c, u1 = (d x c) . a,
+/// u2 = (d x a) . b have at most 7 roundings per path and a permanent <= 2 |d|_1 |b|_inf |c|_inf, so
+/// |error| <= gamma_7 * that <= 2^-49 |d|_1 |b|_inf |c|_inf; underflow adds at most 2^-1075 per product,
+/// amplified by |c|_inf at most: 2^-1000 (|c|_inf + 1) covers it (a normal number: subnormal
+/// arithmetic would trap into microcode). Overflow leaves den or a bound not
+/// finite: undecided. den = u0 + u1 + u2. Decides miss, and interior / behind with t pinned in Wide.
+[[nodiscard]] inline std::optional<Hit<double>> triangle_fast(const Ray<double>& ray, const Triangle<double>& tri) {
+  using H = Hit<double>;
+  const Vec3<double>& o = ray.o;
+  const Vec3<double>& d = ray.d;
+  const Vec3<double> a = tri.p0 - o, b = tri.p1 - o, c = tri.p2 - o;
+  const double u0 = dot(cross(d, b), c), u1 = dot(cross(d, c), a), u2 = dot(cross(d, a), b);
+  auto norm_inf = [](const Vec3<double>& v) { return std::fmax(std::fabs(v.x), std::fmax(std::fabs(v.y), std::fabs(v.z))); };
+  const double d1 = std::fabs(d.x) + std::fabs(d.y) + std::fabs(d.z);
+  const double ma = norm_inf(a), mb = norm_inf(b), mc = norm_inf(c), k = 0x1p-49 * d1;
+  const double e0 = k * mb * mc + 0x1p-1000 * (mc + 1), e1 = k * mc * ma + 0x1p-1000 * (ma + 1),
+               e2 = k * ma * mb + 0x1p-1000 * (mb + 1);
+  const double den = u0 + u1 + u2;
+  // Two more roundings: 2u of the magnitudes (with slack).
+  const double eden = (e0 + e1 + e2) * (1 + 0x1p-50) + 0x1p-51 * (std::fabs(u0) + std::fabs(u1) + std::fabs(u2));
+  if (!(std::fabs(den) > eden) || !(eden < 0x1p1020)) return std::nullopt;  // parallel, coplanar, ...
+  // den != 0, so n != 0: a barycentric of the opposite sign is a miss.
+  const bool neg0 = den > 0 ? u0 < -e0 : u0 > e0, neg1 = den > 0 ? u1 < -e1 : u1 > e1,
+             neg2 = den > 0 ? u2 < -e2 : u2 > e2;
+  if (neg0 || neg1 || neg2) return H{Contact::miss};
+  if (!(std::fabs(u0) > e0 && std::fabs(u1) > e1 && std::fabs(u2) > e2)) return std::nullopt;  // maybe 0
+  if constexpr (!kFilterAvailable) return std::nullopt;
+  // Interior or behind: t = ((p0 - o) . n) / (d . n), n = (p1 - p0) x (p2 - p0), plain in Wide: at most
+  // 8 roundings per path (gamma_8 = 2^-61); permanents sum_i |x_i| pn_i with pn_i = |f1_j f2_k| +
+  // |f1_k f2_j| (x = p0 - o or d), used with 2^-60 (2x slack, ample for their rounding in double).
+  const Vec3<double> f1 = tri.p1 - tri.p0, f2 = tri.p2 - tri.p0;
+  const Vec3<double> g1{std::fabs(f1.x), std::fabs(f1.y), std::fabs(f1.z)}, g2{std::fabs(f2.x), std::fabs(f2.y), std::fabs(f2.z)};
+  const Vec3<double> pn{g1.y * g2.z + g1.z * g2.y, g1.z * g2.x + g1.x * g2.z, g1.x * g2.y + g1.y * g2.x};
+  // (2^-1000 (|x|_1 + 1) covers underflow in these double products; Wide itself cannot underflow.)
+  const double a1 = std::fabs(a.x) + std::fabs(a.y) + std::fabs(a.z);
+  const Wide en = 0x1p-60 * (std::fabs(a.x) * pn.x + std::fabs(a.y) * pn.y + std::fabs(a.z) * pn.z) + 0x1p-1000 * (a1 + 1),
+             ed = 0x1p-60 * (std::fabs(d.x) * pn.x + std::fabs(d.y) * pn.y + std::fabs(d.z) * pn.z) + 0x1p-1000 * (d1 + 1);
+  const Vec3<Wide> P0 = tri.p0.cast<Wide>();
+  const Vec3<Wide> n = cross(tri.p1.cast<Wide>() - P0, tri.p2.cast<Wide>() - P0);
+  const Wide num = dot(P0 - o.cast<Wide>(), n), dn = dot(d.cast<Wide>(), n);
+  if (!(std::fabs(dn) > 2 * ed)) return std::nullopt;
+  const Wide t = num / dn;
+  // |N/D - n/d| <= (en + |t| ed) / (|d| - ed), plus the division's rounding.
+  const Wide err = (en + std::fabs(t) * ed) / (std::fabs(dn) - ed) * (1 + 0x1p-40L) + std::fabs(t) * 0x1p-63L;
+  if (!(std::fabs(t) > err)) return std::nullopt;  // t = 0 or unclear: the exact stage decides
+  const auto tt = pin_wide(t, err);
+  if (!tt) return std::nullopt;
+  return H{t < 0 ? Contact::behind : Contact::interior, *tt};
+}
+
+/// The coplanar range (stage 2, inputs in_range<-70, 120>: the comparisons below have degree 8), as
+/// the exact method clips it: edge j -> k keeps alpha + t beta >= 0 with alpha = det(e, o - p_j, n),
+/// beta = det(e, d, n); bounds -alpha / beta are exact fractions p / q (q > 0), compared by
+/// p1 q2 - p2 q1, and pinned by the exact residual.
+[[gnu::noinline, gnu::cold]] inline std::optional<Hit<double>> triangle_coplanar(const Ray<double>& ray,
+                                                                                const Triangle<double>& tri,
+                                                                                const ExpVec3& n) {
+  using H = Hit<double>;
+  const Vec3<double>&o = ray.o, &dd = ray.d, &p0 = tri.p0, &p1 = tri.p1, &p2 = tri.p2;
+  if (!in_range<-70, 120>(o.x, o.y, o.z, dd.x, dd.y, dd.z, p0.x, p0.y, p0.z, p1.x, p1.y, p1.z, p2.x, p2.y, p2.z))
+    return std::nullopt;
+  struct Frac {
+    Expansion p, q;  // q > 0
+  };
+  bool bad = false;  // a comparison ran out of room: its sign is unknown
+  auto less = [&bad](const Frac& a, const Frac& b) {
+    const Expansion z = a.p * b.q - b.p * a.q;
+    bad = bad || z.bad;
+    return z.sign() < 0;
+  };
+  const Vec3<double>* p[3] = {&tri.p0, &tri.p1, &tri.p2};
+  const ExpVec3 d = exact3(ray.d);
+  Frac lo{Expansion(), Expansion(1.0)};
+  std::optional<Frac> hi;
+  for (int j = 0; j < 3; ++j) {
+    const ExpVec3 e = diff3(*p[(j + 1) % 3], *p[j]);
+    const Expansion alpha = dot(e, cross(diff3(ray.o, *p[j]), n)), beta = dot(e, cross(d, n));
+    if (alpha.bad || beta.bad) return std::nullopt;
+    if (beta.sign() == 0) {
+      if (alpha.sign() < 0) return H{Contact::coplanar};  // outside this edge's line: no range
+      continue;
+    }
+    const Frac bound = beta.sign() > 0 ? Frac{-alpha, beta} : Frac{alpha, -beta};
+    if (beta.sign() > 0) {
+      if (less(lo, bound)) lo = bound;
+    } else if (!hi || less(bound, *hi)) {
+      hi = bound;
+    }
+  }
+  const bool empty = !hi || less(*hi, lo);
+  if (bad) return std::nullopt;
+  if (empty) return H{Contact::coplanar};
+  const auto t0 = pin_quotient(lo.p, lo.q), t1 = pin_quotient(hi->p, hi->q);
+  if (!t0 || !t1) return std::nullopt;
+  return H{Contact::coplanar, *t0, *t1};
+}
+
+/// Stage 2 (inputs in_range<-200, 200>, degree 3): the predicates of the exact method in expansions.
+/// Everything but a coplanar ray (a range) and a t the residual cannot pin is decided.
+[[gnu::noinline, gnu::cold]] inline std::optional<Hit<double>> triangle_expansion(const Ray<double>& ray, const Triangle<double>& tri) {
+  using H = Hit<double>;
+  const Vec3<double>&o = ray.o, &dd = ray.d, &p0 = tri.p0, &p1 = tri.p1, &p2 = tri.p2;
+  if (!in_range<-200, 200>(o.x, o.y, o.z, dd.x, dd.y, dd.z, p0.x, p0.y, p0.z, p1.x, p1.y, p1.z, p2.x, p2.y, p2.z))
+    return std::nullopt;
+  const ExpVec3 n = cross(diff3(tri.p1, tri.p0), diff3(tri.p2, tri.p0));
+  if (any_bad(n)) return std::nullopt;
+  if (is_zero(n)) return H{Contact::degenerate};
+  const ExpVec3 d = exact3(ray.d), a = diff3(tri.p0, ray.o), b = diff3(tri.p1, ray.o), c = diff3(tri.p2, ray.o);
+  const Expansion den = dot(d, n), num = dot(a, n);
+  if (den.bad || num.bad) return std::nullopt;
+  const int sd = den.sign();
+  if (sd == 0) {
+    if (num.sign() != 0) return H{Contact::parallel};
+    return triangle_coplanar(ray, tri, n);
+  }
+  const Expansion u0 = dot(d, cross(b, c)), u1 = dot(d, cross(c, a));
+  const Expansion u2 = den - u0 - u1;
+  if (u0.bad || u1.bad || u2.bad) return std::nullopt;
+  const int s0 = u0.sign() * sd, s1 = u1.sign() * sd, s2 = u2.sign() * sd;
+  if (s0 < 0 || s1 < 0 || s2 < 0) return H{Contact::miss};
+  const auto t = pin_quotient(num, den);
+  if (!t) return std::nullopt;
+  if (num.sign() * sd < 0) return H{Contact::behind, *t};
+  const int zeros = (s0 == 0) + (s1 == 0) + (s2 == 0);
+  return H{zeros == 0 ? Contact::interior : (zeros == 1 ? Contact::edge : Contact::vertex), *t};
+}
+
 }  // namespace detail
 
 [[nodiscard]] inline std::optional<Hit<double>> triangle(const Ray<double>& ray, const Triangle<double>& tri) {
   using H = Hit<double>;
   if (!ray.valid() || !triangle_finite(tri)) return H{Contact::invalid};
+  if (auto h = detail::triangle_fast(ray, tri)) return h;
+  if (auto h = detail::triangle_expansion(ray, tri)) return h;
   if constexpr (!kFilterAvailable) return std::nullopt;
-  // Signs in double first (cheap, decides generic misses), then in Wide.
+  // Stage 3: running error bounds, in double first (cheap, decides generic misses), then in Wide.
   auto cls = detail::triangle_class<double>(ray, tri);
   if (!cls) cls = detail::triangle_class<Wide>(ray, tri);
   if (!cls) return std::nullopt;

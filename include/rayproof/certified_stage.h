@@ -1,0 +1,76 @@
+#pragma once
+/// Shared pieces of the staged certified filters (certified_triangle.h, certified_quadric.h,
+/// certified_box.h, certified_planar.h). The stages, cheapest first:
+///  1. double with a *static* error bound (Shewchuk-style): a quantity evaluated by a straight-line
+///     program with at most k roundings along any path has |computed - exact| <= gamma_k P, where P is
+///     the same program on absolute values (subtractions as additions); we bound P by norms of the
+///     rounded inputs and use a constant with a factor >= 2 of slack. Underflow is covered by a tiny
+///     absolute term (2^-1075 per product, times the largest factor it can meet later), or by an
+///     in_range() check of the inputs; overflow leaves a value or its bound non-finite: undecided.
+///  2. t pinned in the x87 extended format (Wide) from a plain evaluation with the same static bounds
+///     scaled by 2^-11, or, in the exact stage, by an exact residual (pin_quotient).
+///  3. exact signs with floating-point expansions (certified_expansion.h): exact zeros (edges,
+///     vertices, tangents, rims, grazes) are proven without GMP.
+/// Whatever is left returns nothing, and the caller falls back to exact arithmetic (GMP).
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <optional>
+
+#include "rayproof/certified_expansion.h"
+#include "rayproof/certified_filter.h"
+
+namespace rayproof::certified {
+
+/// The neighbours of a finite double, from its bits (no libm call).
+[[nodiscard]] inline double next_above(double x) {
+  if (x == 0) return std::numeric_limits<double>::denorm_min();
+  const auto b = std::bit_cast<std::int64_t>(x);
+  return std::bit_cast<double>(x > 0 ? b + 1 : b - 1);
+}
+[[nodiscard]] inline double next_below(double x) { return -next_above(-x); }
+
+/// v approximates an exact value x with |x - v| <= err. Returns t = double(v) when round(x) is
+/// certainly t or a neighbour of t (the 1-ulp contract): x lies strictly between the midpoint below
+/// prev(t) and the midpoint above next(t) (both exact in Wide). The term 2^-62 |v| covers the
+/// rounding of v -+ err.
+[[nodiscard]] inline std::optional<double> pin_wide(Wide v, Wide err) {
+  const double t = static_cast<double>(v);
+  if (!(std::fabs(t) < 0x1p1020) || !(err >= 0)) return std::nullopt;
+  const Wide e = err + std::fabs(v) * 0x1p-62L;
+  // Quick accept: within |t| 2^-53 of t, which is at most the gap to either neighbour of a normal t.
+  if (std::fabs(t) > 0x1p-1000 && std::fabs(v - t) + e < std::fabs(t) * 0x1p-53L * (1 - 0x1p-60L)) return t;
+  const double p = next_below(t), n = next_above(t);
+  const Wide lo = (Wide(next_below(p)) + Wide(p)) / 2, hi = (Wide(n) + Wide(next_above(n))) / 2;
+  if (v - e > lo && v + e < hi) return t + 0.0;  // a zero is +0.0
+  return std::nullopt;
+}
+
+/// t = N / D for exact expansions (D != 0): a candidate t1 near N / D in double, checked by the exact
+/// residual R = N - t1 D: |t - t1| = |R| / |D|. Accepts t1 when that is below 1.25 times the smaller
+/// gap g next to t1 (neighbouring gaps differ by at most a factor 2, so t then lies strictly between
+/// the midpoints around prev(t1) and next(t1), and round(t) is within one ulp of t1); otherwise steps
+/// once towards t and tries again. Each two_prod(t1, D_i) must be exact: checked at run time (no
+/// product below 2^-960, none above 2^1000).
+[[nodiscard]] inline std::optional<double> pin_quotient(const Expansion& N, const Expansion& D) {
+  if (N.bad || D.bad || D.n == 0) return std::nullopt;
+  if (N.n == 0) return 0.0;
+  double t1 = N.estimate() / D.estimate();
+  for (int step = 0; step < 2; ++step) {
+    const double at = std::fabs(t1);
+    if (!(at < 0x1p1020) || t1 == 0) return std::nullopt;  // also: NaN, infinite
+    if (at * std::fabs(D.c[0]) < 0x1p-960 || at * std::fabs(D.top()) > 0x1p+1000) return std::nullopt;
+    const Expansion R = N - Expansion(t1) * D;
+    if (R.bad) return std::nullopt;
+    if (R.n == 0) return t1;  // exact quotient
+    // |R| <= |R_top| (1 + 2^-51), |D| >= |D_top| (1 - 2^-51); 2^-48 more covers this division's rounding.
+    const double dist = std::fabs(R.top()) / std::fabs(D.top()) * (1 + 0x1p-48);
+    const double gap = std::fmin(t1 - next_below(t1), next_above(t1) - t1);  // exact (Sterbenz)
+    if (dist < 1.25 * gap * (1 - 0x1p-50)) return t1;
+    t1 = (R.sign() == D.sign()) ? next_above(t1) : next_below(t1);  // t - t1 has the sign of R / D
+  }
+  return std::nullopt;
+}
+
+}  // namespace rayproof::certified
