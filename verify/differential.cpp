@@ -80,6 +80,29 @@ ExactAnswers exact_answers(const std::vector<io::Case>& cases) {
 
 std::string group_of(const io::Case& c) { return c.family.empty() ? std::string(io::to_string(c.kind)) : c.family; }
 
+Judged run_and_tally(const Method& m, const io::Case& c, const io::CaseResult& exact_as_given,
+                     const io::CaseResult& exact_float_rounded, Stats& s) {
+  const bool f32 = m.precision == Precision::float32;
+  Judged j;
+  j.input = f32 ? io::round_to_float(c) : c;
+  j.want = f32 ? exact_float_rounded : exact_as_given;
+  const std::uint64_t before = m.fallbacks ? m.fallbacks() : 0;
+  j.got = m.classify(j.input);
+  if (m.fallbacks) s.fallbacks += m.fallbacks() - before;
+  ++s.cases;
+  j.verdict = judge_class(j.got, j.want);
+  switch (j.verdict) {
+    case Verdict::false_hit: ++s.false_hit; break;
+    case Verdict::false_miss: ++s.false_miss; break;
+    case Verdict::wrong_hit_class: ++s.wrong_hit_class; break;
+    case Verdict::wrong_class: ++s.wrong_class; break;
+    case Verdict::agree:
+      if (j.want.t || j.got.t) s.ulps.push_back(j.ulps = t_error_ulps(j.got, j.want, m.precision));
+      break;
+  }
+  return j;
+}
+
 Comparison compare(const std::vector<io::Case>& cases, const ExactAnswers& exact,
                    const std::vector<const Method*>& methods, std::size_t max_mismatches,
                    std::uint64_t ulp_tolerance) {
@@ -90,34 +113,13 @@ Comparison compare(const std::vector<io::Case>& cases, const ExactAnswers& exact
   }
   for (const Method* m : methods) {
     cmp.methods.push_back(m->name);
-    const bool f32 = m->precision == Precision::float32;
     std::size_t listed = 0;
     for (std::size_t i = 0; i < cases.size(); ++i) {
       const io::Case& c = cases[i];
       if (!m->supports(c.kind)) continue;
-      const io::Case input = f32 ? io::round_to_float(c) : c;
-      const io::CaseResult& want = f32 ? exact.float_rounded[i] : exact.as_given[i];
-      const std::uint64_t before = m->fallbacks ? m->fallbacks() : 0;
-      const io::CaseResult got = m->classify(input);
-      Stats& s = cmp.stats[{m->name, group_of(c)}];
-      if (m->fallbacks) s.fallbacks += m->fallbacks() - before;
-      ++s.cases;
-      const Verdict v = judge_class(got, want);
-      std::uint64_t u = 0;
-      switch (v) {
-        case Verdict::false_hit: ++s.false_hit; break;
-        case Verdict::false_miss: ++s.false_miss; break;
-        case Verdict::wrong_hit_class: ++s.wrong_hit_class; break;
-        case Verdict::wrong_class: ++s.wrong_class; break;
-        case Verdict::agree:
-          if (want.t || got.t) {
-            u = t_error_ulps(got, want, m->precision);
-            s.ulps.push_back(u);
-          }
-          break;
-      }
-      if ((v != Verdict::agree || u > ulp_tolerance) && listed < max_mismatches) {
-        cmp.mismatches.push_back({m->name, input, got, want, v, u});
+      const Judged j = run_and_tally(*m, c, exact.as_given[i], exact.float_rounded[i], cmp.stats[{m->name, group_of(c)}]);
+      if ((j.verdict != Verdict::agree || j.ulps > ulp_tolerance) && listed < max_mismatches) {
+        cmp.mismatches.push_back({m->name, j.input, j.got, j.want, j.verdict, j.ulps});
         ++listed;
       }
     }

@@ -44,6 +44,20 @@ struct Mismatch {
   std::uint64_t ulps = 0;
 };
 
+/// One method's answer on one case, judged against exact.
+struct Judged {
+  io::Case input;  ///< as the method saw it (float-rounded for float methods)
+  io::CaseResult got, want;
+  Verdict verdict = Verdict::agree;
+  std::uint64_t ulps = 0;
+};
+
+/// Runs `m` on `c` (float-rounded first for float methods), judges the answer against the exact
+/// answer for what the method saw, and adds it to `s`: the case, its class error or t error, and
+/// the exact fallbacks it took.
+Judged run_and_tally(const Method& m, const io::Case& c, const io::CaseResult& exact_as_given,
+                     const io::CaseResult& exact_float_rounded, Stats& s);
+
 /// Per method x group (the `# family` name, else the kind).
 struct Comparison {
   std::vector<std::string> methods;                                  ///< in registry order

@@ -36,20 +36,11 @@ std::uint64_t round_seed(std::uint64_t seed, std::size_t round) {
   return z ^ (z >> 31);
 }
 
-struct Judged {
-  io::CaseResult got, want;
-  Verdict verdict;
-  std::uint64_t ulps;
-};
-
+/// The method's answer on one case against exact computed afresh (for minimization).
 Judged judge(const Method& m, const io::Case& given) {
-  const io::Case input = m.precision == Precision::float32 ? io::round_to_float(given) : given;
-  Judged j;
-  j.got = m.classify(input);
-  j.want = exact_classify(input);
-  j.verdict = judge_class(j.got, j.want);
-  j.ulps = j.verdict == Verdict::agree ? t_error_ulps(j.got, j.want, m.precision) : 0;
-  return j;
+  Stats ignored;
+  const io::CaseResult exact = exact_classify(given);
+  return run_and_tally(m, given, exact, exact_classify(io::round_to_float(given)), ignored);
 }
 
 /// x rounded to `bits` significant bits (round to nearest), or x when that is not finite.
@@ -76,28 +67,12 @@ RoundOutput run_round(const FuzzOptions& opt, std::size_t round) {
     out.cases += cases.size();
     const ExactAnswers exact = exact_answers(cases);
     for (const Method* m : opt.methods) {
-      const bool f32 = m->precision == Precision::float32;
       Stats& s = out.stats[{m->name, f->name}];
       for (std::size_t i = 0; i < cases.size(); ++i) {
         if (!m->supports(cases[i].kind)) continue;
-        const io::Case input = f32 ? io::round_to_float(cases[i]) : cases[i];
-        const io::CaseResult& want = f32 ? exact.float_rounded[i] : exact.as_given[i];
-        const std::uint64_t before = m->fallbacks ? m->fallbacks() : 0;
-        const io::CaseResult got = m->classify(input);
-        if (m->fallbacks) s.fallbacks += m->fallbacks() - before;
-        ++s.cases;
-        const Verdict v = judge_class(got, want);
-        std::uint64_t u = 0;
-        switch (v) {
-          case Verdict::false_hit: ++s.false_hit; break;
-          case Verdict::false_miss: ++s.false_miss; break;
-          case Verdict::wrong_hit_class: ++s.wrong_hit_class; break;
-          case Verdict::wrong_class: ++s.wrong_class; break;
-          case Verdict::agree:
-            if (want.t || got.t) s.ulps.push_back(u = t_error_ulps(got, want, m->precision));
-            break;
-        }
-        if (is_mismatch(m->name, v, u)) out.findings.push_back({m->name, f->name, round, input, got, want, v, u, false});
+        const Judged j = run_and_tally(*m, cases[i], exact.as_given[i], exact.float_rounded[i], s);
+        if (is_mismatch(m->name, j.verdict, j.ulps))
+          out.findings.push_back({m->name, f->name, round, j.input, j.got, j.want, j.verdict, j.ulps, false});
       }
     }
   }
