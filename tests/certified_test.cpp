@@ -176,3 +176,58 @@ TEST(Certified, AgreesWithExactOnNearDegenerateInputs) {
   EXPECT_EQ(t.bad, 0u);
   std::printf("near-degenerate: %zu cases, %zu fallbacks\n", t.cases, t.fallbacks);
 }
+
+/// Regression (fuzz_kernels, data/regressions/certified.txt): subnormal coordinates beside -5.5e303.
+/// A product in the double running-error stage underflowed to v = 0 with radius eta; the next
+/// product's radius |d.z| eta flushed to 0 as well, so u1 looked like an exact zero ("edge" for a
+/// miss). Every product / quotient of operands not exactly zero now adds an underflow term.
+TEST(Certified, RunningErrorRadiusUnderflow) {
+  using B = certified::BoundedT<double>;
+  const B x(0x1p-600);
+  const B z = x * x;  // underflows: v = 0, r > 0
+  EXPECT_EQ(z.v, 0.0);
+  EXPECT_GT(z.r, 0.0);
+  EXPECT_FALSE(certified::sign(z).has_value());
+  EXPECT_FALSE(certified::sign(z * B(0x1p-600)).has_value());  // radius must not flush to 0 either
+  EXPECT_FALSE(certified::sign(B(0x1p-600) * z).has_value());
+  EXPECT_FALSE(certified::sign(z / B(0x1p+600)).has_value());
+  EXPECT_EQ(certified::sign(B(0.0) * z), 0);  // an exact zero factor stays exact
+}
+
+TEST(Certified, AgreesWithExactOnSubnormalsBesideHugeCoordinates) {
+  const double base[15] = {1.69759663277e-313, 2.238042436e-315, 0.0,
+                           1.393066875581823e-309, 9.74564754702648e-309, 2.8480945388894844e-305,
+                           1.390650356385185e-309, 0.0, 0.0,
+                           0.0, -5.486124068813628e+303, 0.0,
+                           0.0, 0.0, 0.0};
+  EXPECT_EQ(disagreement(parse("triangle 1.69759663277e-313 2.238042436e-315 0.0 1.393066875581823e-309 "
+                               "9.74564754702648e-309 2.8480945388894844e-305 1.390650356385185e-309 0.0 0.0 "
+                               "0.0 -5.486124068813628e+303 0.0 0.0 0.0 0.0")),
+            "");
+  const int perms[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
+  const double tiny_scales[] = {0x1p-60, 0x1p-20, 0x1p-3, 1.0, 0x1p+3, 0x1p+20, 0x1p+60, 0x1p+300};
+  const double huge_values[] = {-5.486124068813628e+303, 5.486124068813628e+303, -1e300, -1.7e308, -0x1p+200, -1.0};
+  std::size_t cases = 0, bad = 0;
+  for (const auto& pm : perms)
+    for (const double ts : tiny_scales)
+      for (const double hv : huge_values)
+        for (int flip = 0; flip < 2; ++flip) {  // flip: the origin's y on the other side (a hit or edge)
+          io::Case c = parse("triangle 0 0 0 0 0 1 1 0 0 0 -1 0 0 0 0");
+          for (int p = 0; p < 5; ++p)
+            for (int k = 0; k < 3; ++k) {
+              double v = base[3 * p + k];
+              if (v != 0 && std::fabs(v) < 1e-300) v *= ts;
+              if (p == 3 && k == 1) v = hv;
+              if (flip && p == 0 && k == 1) v = -v;
+              c.v[static_cast<std::size_t>(3 * p + pm[k])] = v;
+            }
+          ++cases;
+          const std::string why = disagreement(c);
+          if (!why.empty()) {
+            ++bad;
+            ADD_FAILURE() << why;
+          }
+        }
+  EXPECT_EQ(bad, 0u);
+  std::printf("subnormal/huge mixes: %zu cases\n", cases);
+}

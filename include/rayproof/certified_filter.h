@@ -36,13 +36,23 @@ inline constexpr long double kSlack = 1.0L + 1.0L / 1099511627776.0L;
 
 /// A value with an error bound, in working type W (Wide, or double for the quick first stage): the
 /// exact quantity lies in [v - r, v + r] (up to kSlack).
-/// In double a product or quotient may underflow, so each one with nonzero operands adds the
-/// smallest subnormal to the radius (its absolute rounding error can reach half of it); in Wide
-/// that cannot happen (see above) and exact zeros keep radius 0 in both.
+/// In double a product or quotient may underflow: not only its value (absolute error up to half the
+/// smallest subnormal eta) but also each product or quotient inside its *radius* (|a| r_b, r_a r_b,
+/// u |v|, ...), which then rounds to nearest and may lose up to eta / 2 or flush to 0 (e.g. an
+/// operand that underflowed to v = 0 with r = eta, times a tiny factor: r_b |a| -> 0, and the
+/// result would claim an exact zero). kSlack covers only relative rounding, so every product,
+/// quotient or square root whose operands are not exact zeros (v = r = 0) adds kUnderflow = 3 eta:
+/// at most five roundings with underflow, eta / 2 each. Sums never underflow (a subnormal sum is
+/// exact, and for a normal sum u |v| >= half its ulp, a representable bound, is kept by rounding).
+/// In Wide none of this can happen (see above) and exact zeros keep radius 0 in both.
 template <class W>
 struct BoundedT {
   static constexpr W kU = unit_roundoff<W>;
   static constexpr W kEta = std::is_same_v<W, double> ? std::numeric_limits<W>::denorm_min() : W(0);
+  /// Absolute slack per product / quotient / square root of operands that are not exact zeros.
+  static constexpr W kUnderflow = 3 * kEta;
+  /// Not known to be exactly zero: an underflowed value (v = 0, r > 0) still counts.
+  [[nodiscard]] bool maybe_nonzero() const { return v != 0 || r != 0; }
   W v = 0;
   W r = 0;
   BoundedT() = default;
@@ -67,7 +77,9 @@ template <class W> inline BoundedT<W> operator-(BoundedT<W> a) { return {-a.v, a
 template <class W> inline BoundedT<W> operator*(BoundedT<W> a, BoundedT<W> b) {
   const W v = a.v * b.v;
   W r = std::fabs(a.v) * b.r + std::fabs(b.v) * a.r + a.r * b.r + BoundedT<W>::kU * std::fabs(v);
-  if constexpr (BoundedT<W>::kEta != W(0)) r += (a.v != 0 && b.v != 0) ? BoundedT<W>::kEta : W(0);
+  // Not just a.v, b.v != 0: with a.v = 0, r_a > 0 (an earlier underflow) |b| r_a may flush to 0 too.
+  if constexpr (BoundedT<W>::kEta != W(0))
+    r += (a.maybe_nonzero() && b.maybe_nonzero()) ? BoundedT<W>::kUnderflow : W(0);
   return {v, r};
 }
 
@@ -79,14 +91,16 @@ template <class W> inline BoundedT<W> operator/(BoundedT<W> a, BoundedT<W> b) {
   const W v = a.v / b.v;
   const W den = std::fabs(b.v) - b.r * W(kSlack);
   W r = (a.r + std::fabs(v) * b.r) / den * W(kSlack) + BoundedT<W>::kU * std::fabs(v);
-  if constexpr (BoundedT<W>::kEta != W(0)) r += a.v != 0 ? BoundedT<W>::kEta : W(0);
+  if constexpr (BoundedT<W>::kEta != W(0)) r += a.maybe_nonzero() ? BoundedT<W>::kUnderflow : W(0);
   return {v, r};
 }
 
 /// Square root of a positive quantity (a.v > a.r): |sqrt(x) - sqrt(a)| <= r_a / sqrt(a).
 template <class W> [[nodiscard]] inline BoundedT<W> sqrt(BoundedT<W> a) {
   const W v = std::sqrt(a.v);
-  return {v, a.r / v + BoundedT<W>::kU * v};
+  W r = a.r / v + BoundedT<W>::kU * v;  // r_a / v may underflow when v > 1
+  if constexpr (BoundedT<W>::kEta != W(0)) r += a.r != 0 ? BoundedT<W>::kUnderflow : W(0);
+  return {v, r};
 }
 
 /// Sign of the exact quantity: -1, 0 or +1, or nothing when the bound cannot tell. A NaN or infinite
