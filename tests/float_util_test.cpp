@@ -42,3 +42,11 @@ TEST(FloatUtil, NeighboursStepOneUlp) {
   EXPECT_EQ(ulp_distance(next_down(3.0f), 3.0f), 1u);
   EXPECT_LT(next_down(0.0), 0.0);
 }
+
+TEST(FloatUtil, UlpDistanceAcrossZeroAtExtremes) {
+  const double big = std::numeric_limits<double>::max();
+  EXPECT_EQ(ulp_distance(-big, big), 2 * static_cast<std::uint64_t>(ordered_bits(big)));
+  EXPECT_EQ(ulp_distance(big, -big), ulp_distance(-big, big));
+  EXPECT_EQ(ulp_distance(-std::numeric_limits<float>::max(), std::numeric_limits<float>::max()),
+            2 * static_cast<std::uint64_t>(ordered_bits(std::numeric_limits<float>::max())));
+}

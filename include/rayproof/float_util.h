@@ -43,7 +43,10 @@ template <class T> inline std::uint64_t ulp_distance(T a, T b) {
   if (std::isnan(a) || std::isnan(b)) return std::numeric_limits<std::uint64_t>::max();
   if (a == b) return 0;
   std::int64_t ia = ordered_bits(a), ib = ordered_bits(b);
-  return ia > ib ? static_cast<std::uint64_t>(ia - ib) : static_cast<std::uint64_t>(ib - ia);
+  // Subtract in unsigned arithmetic: the distance always fits in 64 bits, the signed difference
+  // of keys of opposite sign may not.
+  const auto ua = static_cast<std::uint64_t>(ia), ub = static_cast<std::uint64_t>(ib);
+  return ia > ib ? ua - ub : ub - ua;
 }
 
 template <class T> inline T next_up(T x) { return std::nextafter(x, std::numeric_limits<T>::infinity()); }
