@@ -34,12 +34,13 @@ inline std::filesystem::path write_file(const std::string& name, const std::stri
   return p;
 }
 
-/// Runs `rayproof ARGS` (ARGS is shell text) and captures everything.
-inline RunResult run_rayproof(const std::string& args, const std::string& stdin_text = "") {
+/// Runs `PREFIX rayproof ARGS` (shell text; PREFIX e.g. limits or `timeout`) and captures everything.
+inline RunResult run_rayproof(const std::string& args, const std::string& stdin_text = "",
+                              const std::string& prefix = "") {
   const auto dir = scratch_dir();
   const auto in = dir / "stdin.txt", out = dir / "stdout.txt", err = dir / "stderr.txt";
   std::ofstream(in, std::ios::binary) << stdin_text;
-  const std::string cmd = std::string(RAYPROOF_BIN) + " " + args + " <" + in.string() + " >" + out.string() +
+  const std::string cmd = prefix + std::string(RAYPROOF_BIN) + " " + args + " <" + in.string() + " >" + out.string() +
                           " 2>" + err.string();
   const int raw = std::system(cmd.c_str());
   RunResult r;

@@ -14,7 +14,7 @@
 #include "cli_support.h"
 
 using rayproof::testing::scratch_dir;
-using rayproof::testing::slurp;
+using rayproof::testing::run_rayproof;
 using rayproof::testing::write_file;
 using rayproof::testing::RunResult;
 
@@ -22,8 +22,6 @@ namespace {
 
 /// Like run_rayproof, with 2 GiB of address space and 60 s at most (exit 124 on timeout).
 RunResult run_limited(const std::string& args) {
-  const auto dir = scratch_dir();
-  const auto out = dir / "limited_out.txt", err = dir / "limited_err.txt";
   // AddressSanitizer reserves terabytes of shadow address space, so the address-space limit that
   // bounds memory in the normal build would stop a sanitized binary before main: skip it there
   // (ASan itself reports any allocation it cannot make).
@@ -32,14 +30,7 @@ RunResult run_limited(const std::string& args) {
 #else
   const std::string limit = "ulimit -v 2097152; ";
 #endif
-  const std::string cmd = limit + "timeout 60 " + std::string(RAYPROOF_BIN) + " " + args + " </dev/null >" +
-                          out.string() + " 2>" + err.string();
-  const int raw = std::system(cmd.c_str());
-  RunResult r;
-  r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw);
-  r.out = slurp(out);
-  r.err = slurp(err);
-  return r;
+  return run_rayproof(args, "", limit + "timeout 60 ");
 }
 
 std::string garbage(std::size_t n, unsigned seed) {

@@ -19,6 +19,8 @@
 
 namespace rayproof::gen::detail {
 
+inline bool is_float(Precision p) { return p == Precision::float32; }
+
 using i64 = std::int64_t;
 __extension__ using i128 = __int128;
 using I3 = std::array<i64, 3>;

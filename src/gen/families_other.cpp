@@ -15,7 +15,6 @@ namespace rayproof::gen::detail {
 
 namespace {
 
-bool is_float(Precision p) { return p == Precision::float32; }
 
 /// A random integer in [-2^bits, 2^bits] that is not 0.
 i64 nonzero(Rng& r, int bits) { return r.signed_range(1, i64{1} << bits); }

@@ -18,7 +18,6 @@ namespace rayproof::gen::detail {
 
 namespace {
 
-bool is_float(Precision p) { return p == Precision::float32; }
 
 /// v / gcd of its components (keeps direction and perpendicularity, shrinks the numbers).
 I3 reduced(I3 v) {

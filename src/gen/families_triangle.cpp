@@ -16,7 +16,6 @@ namespace rayproof::gen::detail {
 
 namespace {
 
-bool is_float(Precision p) { return p == Precision::float32; }
 
 using Tri = std::array<I3, 3>;
 
