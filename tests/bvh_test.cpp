@@ -6,6 +6,7 @@
 
 #include "rayproof/bvh_build.h"
 #include "rayproof/bvh_traverse.h"
+#include "rayproof/bvh_wide.h"
 #include "rayproof/triangle.h"
 
 using namespace rayproof;
@@ -157,4 +158,179 @@ TEST(Bvh, EmptyAndSingle) {
   double tmax = 1.0;
   bvh_traverse(empty, Ray<double>{{0, 0, 0}, {1, 0, 0}}, 0.0, tmax, BvhTraversal::standard, BvhQuery::closest,
                [](std::uint32_t) { ADD_FAILURE(); return false; });
+}
+
+// ---- Four-wide BVH (bvh_wide.h) ----
+
+namespace {
+/// Every query on the wide BVH against brute force and against the binary BVH, Möller–Trumbore in
+/// double as the leaf test, with tmin / tmax ranges.
+void check_wide_against_brute_force(const Soup& soup, const Bvh& bin, const Bvh4& wide, const Ray<double>& ray,
+                                    BvhTraversal mode, double tmin, double tmax0, int& hit_rays, int r) {
+  std::vector<std::pair<double, std::uint32_t>> all;
+  for (std::uint32_t i = 0; i < soup.tris.size(); ++i) {
+    const auto h = intersect_moller_trumbore(ray, soup.tris[i]);
+    if (hits(h) && h.t >= tmin && h.t <= tmax0) all.push_back({h.t, i});
+  }
+  std::sort(all.begin(), all.end());
+  auto closest = [&](auto&& traverse) {
+    double tmax = tmax0;
+    std::uint32_t best = ~0u;
+    traverse(tmax, BvhQuery::closest, [&](std::uint32_t i) {
+      const auto h = intersect_moller_trumbore(ray, soup.tris[i]);
+      if (hits(h) && h.t >= tmin && (h.t < tmax || (h.t == tmax && i < best))) tmax = h.t, best = i;
+      return false;
+    });
+    return std::pair{tmax, best};
+  };
+  auto wide_t = [&](double& tmax, BvhQuery q, auto&& leaf) { bvh4_traverse(wide, ray, tmin, tmax, mode, q, leaf); };
+  auto bin_t = [&](double& tmax, BvhQuery q, auto&& leaf) { bvh_traverse(bin, ray, tmin, tmax, mode, q, leaf); };
+  const auto [wt, wp] = closest(wide_t);
+  const auto [bt, bp] = closest(bin_t);
+  ASSERT_EQ(wt, bt) << "ray " << r;
+  ASSERT_EQ(wp, bp) << "ray " << r;
+  std::vector<std::pair<double, std::uint32_t>> got;
+  double tm = tmax0;
+  wide_t(tm, BvhQuery::all, [&](std::uint32_t i) {
+    const auto h = intersect_moller_trumbore(ray, soup.tris[i]);
+    if (hits(h) && h.t >= tmin && h.t <= tm) got.push_back({h.t, i});
+    return false;
+  });
+  std::sort(got.begin(), got.end());
+  ASSERT_EQ(got, all) << "ray " << r;
+  bool any = false;
+  wide_t(tm, BvhQuery::any, [&](std::uint32_t i) {
+    const auto h = intersect_moller_trumbore(ray, soup.tris[i]);
+    return any = hits(h) && h.t >= tmin && h.t <= tm;
+  });
+  ASSERT_EQ(any, !all.empty()) << "ray " << r;
+  if (all.empty()) {
+    ASSERT_EQ(wp, ~0u) << "ray " << r;
+  } else {
+    ++hit_rays;
+    ASSERT_EQ(wt, all.front().first) << "ray " << r;
+    const auto lowest = std::find_if(all.begin(), all.end(), [&](const auto& x) { return x.first == all.front().first; });
+    ASSERT_EQ(wp, lowest->second) << "ray " << r;
+  }
+}
+}  // namespace
+
+TEST(Bvh4, CollapseKeepsEveryPrimitiveAndNestsBounds) {
+  const Soup soup = random_soup(3000, 4);
+  for (auto [builder, leaf] : {std::pair{BvhBuilder::median, 4u}, {BvhBuilder::sah, 4u}, {BvhBuilder::median, 1u << 30}}) {
+    const Bvh4 w = collapse_bvh4(build_bvh(soup.boxes, soup.centers, {builder, leaf}), soup.boxes);
+    std::vector<int> seen(soup.tris.size(), 0);
+    int leaves = 0;
+    for (const Bvh4Node& n : w.nodes)
+      for (int i = 0; i < 4; ++i) {
+        if (!(n.valid >> i & 1)) continue;
+        const BvhBox b = n.box(i);
+        if (n.count[i]) {
+          ++leaves;
+          for (std::uint32_t j = n.child[i]; j < n.child[i] + n.count[i]; ++j) {
+            ++seen[w.prim_ids[j]];
+            for (int k = 0; k < 3; ++k) {
+              EXPECT_LE(b.lo[k], soup.boxes[w.prim_ids[j]].lo[k]);
+              EXPECT_GE(b.hi[k], soup.boxes[w.prim_ids[j]].hi[k]);
+            }
+          }
+        } else {
+          ASSERT_LT(n.child[i], w.nodes.size());
+          const Bvh4Node& c = w.nodes[n.child[i]];
+          for (int j = 0; j < 4; ++j)
+            if (c.valid >> j & 1)
+              for (int k = 0; k < 3; ++k) {
+                EXPECT_LE(b.lo[k], c.lo[k][j]);
+                EXPECT_GE(b.hi[k], c.hi[k][j]);
+              }
+        }
+      }
+    for (int s : seen) ASSERT_EQ(s, 1);
+    EXPECT_GT(leaves, 0);
+    if (leaf == 4u) {
+      EXPECT_LT(w.nodes.size(), soup.tris.size() / 3);  // mostly four-wide
+    }
+  }
+}
+
+TEST(Bvh4, QueriesAgreeWithBruteForceAndTheBinaryTree) {
+  const Soup soup = random_soup(3000, 2);
+  std::mt19937 rng(3);
+  for (BvhBuilder builder : {BvhBuilder::median, BvhBuilder::sah})
+    for (BvhTraversal mode : {BvhTraversal::standard, BvhTraversal::conservative}) {
+      const Bvh bin = build_bvh(soup.boxes, soup.centers, {builder, 4});
+      const Bvh4 wide = collapse_bvh4(build_bvh(soup.boxes, soup.centers, {builder, 4}), soup.boxes);
+      int hit_rays = 0;
+      for (int r = 0; r < 600; ++r) {
+        Ray<double> ray = random_ray(rng);
+        // Some rays take the double path: the same line with d scaled out of the float range.
+        if (r % 7 == 3) ray.d = ray.d * 0x1p-70;
+        if (r % 7 == 5) ray.d = ray.d * 0x1p+70;
+        const double s = r % 7 == 3 ? 0x1p70 : (r % 7 == 5 ? 0x1p-70 : 1.0);
+        const double tmin = (r % 3 == 0 ? 2.0 : 0.0) * s, tmax0 = r % 5 == 0 ? 8.0 * s : 1e300;
+        check_wide_against_brute_force(soup, bin, wide, ray, mode, tmin, tmax0, hit_rays, r);
+        if (HasFatalFailure()) return;
+      }
+      EXPECT_GT(hit_rays, 120);
+    }
+}
+
+TEST(Bvh4, ConservativeVisitsBoxesTouchedAtACornerByNonFloatOrigins) {
+  // Rays through a corner of a primitive's float box exactly (o + 1 * d = corner, o a double that
+  // is no float): the exact segment touches the box at one point, so conservative traversal must
+  // visit the primitive, for all hits with any tmin <= 1 <= tmax and for closest hit pruned at t = 1.
+  const Soup soup = random_soup(2000, 6);
+  const Bvh4 wide = collapse_bvh4(build_bvh(soup.boxes, soup.centers, {BvhBuilder::sah, 4}), soup.boxes);
+  std::mt19937 rng(8);
+  std::uniform_real_distribution<double> u(-1, 1);
+  int missed = 0, total = 0;
+  for (int r = 0; r < 3000; ++r) {
+    const std::uint32_t p = rng() % soup.tris.size();
+    const BvhBox& b = soup.boxes[p];
+    const Vec3<double> corner{double(rng() & 1 ? b.hi[0] : b.lo[0]), double(rng() & 1 ? b.hi[1] : b.lo[1]),
+                              double(rng() & 1 ? b.hi[2] : b.lo[2])};
+    Vec3<double> d;
+    for (int k = 0; k < 3; ++k) d[k] = std::ldexp(std::round(std::ldexp(u(rng), 40)), -40);  // 2^-40 grid: o exact
+    if (r % 4 == 0) d[r / 4 % 3] = 0.0;  // axis-parallel: origin on the slab planes of that axis
+    if (is_zero(d)) continue;
+    const Ray<double> ray{corner - d, d};
+    ASSERT_EQ(ray.o + ray.d, corner);
+    for (double tmin : {0.0, 1.0})
+      for (double tmax0 : {1.0, 1e300}) {
+        ++total;
+        bool seen = false;
+        double tm = tmax0;
+        bvh4_traverse(wide, ray, tmin, tm, BvhTraversal::conservative, BvhQuery::all, [&](std::uint32_t i) {
+          seen |= i == p;
+          return false;
+        });
+        double tc = 1.0;  // closest, with the best t so far exactly at the touch
+        bool seen_closest = false;
+        bvh4_traverse(wide, ray, tmin, tc, BvhTraversal::conservative, BvhQuery::closest, [&](std::uint32_t i) {
+          seen_closest |= i == p;
+          return false;
+        });
+        missed += !seen + !seen_closest;
+      }
+  }
+  EXPECT_GT(total, 10000);
+  EXPECT_EQ(missed, 0);
+}
+
+TEST(Bvh4, EmptyAndInvalidRays) {
+  const Bvh4 empty = collapse_bvh4(build_bvh({}, {}), {});
+  EXPECT_TRUE(empty.empty());
+  double tmax = 1.0;
+  bvh4_traverse(empty, Ray<double>{{0, 0, 0}, {1, 0, 0}}, 0.0, tmax, BvhTraversal::standard, BvhQuery::closest,
+                [](std::uint32_t) { ADD_FAILURE(); return false; });
+  // NaN and infinite rays: no crash (the double path), whatever is visited.
+  const Soup soup = random_soup(100, 9);
+  const Bvh4 w = collapse_bvh4(build_bvh(soup.boxes, soup.centers), soup.boxes);
+  const double inf = std::numeric_limits<double>::infinity(), nan = std::numeric_limits<double>::quiet_NaN();
+  for (const Ray<double>& r : {Ray<double>{{nan, 0, 0}, {1, 0, 0}}, Ray<double>{{0, 0, 0}, {inf, 0, 0}},
+                               Ray<double>{{0, 0, 0}, {0, 0, 0}}, Ray<double>{{1e308, -1e308, 0}, {1e-308, 1, 0}}})
+    for (BvhTraversal mode : {BvhTraversal::standard, BvhTraversal::conservative}) {
+      double tm = inf;
+      bvh4_traverse(w, r, 0.0, tm, mode, BvhQuery::closest, [](std::uint32_t) { return false; });
+    }
 }

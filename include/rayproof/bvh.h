@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <new>
 #include <vector>
@@ -15,6 +16,27 @@
 #include "rayproof/vec3.h"
 
 namespace rayproof {
+
+/// The float next to f towards +inf / -inf (f not NaN): integer steps on the bits, no libm call.
+inline float bvh_next_up(float f) {
+  if (f == std::numeric_limits<float>::infinity()) return f;
+  if (f == 0.0f) return std::numeric_limits<float>::denorm_min();
+  std::uint32_t u;
+  std::memcpy(&u, &f, 4);
+  u = f > 0.0f ? u + 1 : u - 1;
+  std::memcpy(&f, &u, 4);
+  return f;
+}
+inline float bvh_next_down(float f) { return -bvh_next_up(-f); }
+/// x rounded to a float towards -inf / +inf (x not NaN).
+inline float bvh_float_down(double x) {
+  const float f = static_cast<float>(x);
+  return double(f) > x ? bvh_next_down(f) : f;
+}
+inline float bvh_float_up(double x) {
+  const float f = static_cast<float>(x);
+  return double(f) < x ? bvh_next_up(f) : f;
+}
 
 /// Axis-aligned bounds in float; an empty box has lo = +inf, hi = -inf.
 struct BvhBox {
@@ -30,10 +52,9 @@ struct BvhBox {
   /// Grows the box to contain a double point: float bounds rounded down / up, never inward.
   void extend(const Vec3<double>& p) {
     for (int k = 0; k < 3; ++k) {
-      float l = static_cast<float>(p[k]), h = l;
-      if (double(l) > p[k]) l = std::nextafter(l, -std::numeric_limits<float>::infinity());
-      if (double(h) < p[k]) h = std::nextafter(h, std::numeric_limits<float>::infinity());
-      lo[k] = std::fmin(lo[k], l), hi[k] = std::fmax(hi[k], h);
+      const float l = bvh_float_down(p[k]), h = bvh_float_up(p[k]);
+      // NaN coordinates leave the box alone (as fmin / fmax did).
+      lo[k] = l < lo[k] ? l : lo[k], hi[k] = h > hi[k] ? h : hi[k];
     }
   }
   [[nodiscard]] bool empty() const { return !(lo[0] <= hi[0] && lo[1] <= hi[1] && lo[2] <= hi[2]); }

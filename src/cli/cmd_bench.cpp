@@ -25,6 +25,7 @@ struct BenchOptions {
   bool json = false;
   std::size_t triangles = 1 << 20, rays = 200000, slow_rays = 5000, leak_rays = 200000;
   std::string methods = "float,double,cramer-float,cramer-double,watertight-float,watertight,robust,certified";
+  std::string competitors = "embree,embree-robust,cgal-epick,cgal-epeck";
 };
 
 struct Row {
@@ -119,7 +120,7 @@ int run_bench(const BenchOptions& opt) {
         if (r.method == name) r.leaks = std::int64_t(lc.misses), r.leak_rays = std::int64_t(lc.rays);
     }
   }
-  for (auto& c : scene::compare::make_competitors(s)) {
+  for (auto& c : scene::compare::make_competitors(s, opt.competitors)) {
     for (const auto& [set, all_rays] : sets) {
       const std::vector<Ray<double>> rays = subset(all_rays, c.max_rays);
       std::vector<std::uint8_t> out(rays.size());
@@ -178,6 +179,8 @@ Run add_bench(CLI::App& app) {
   sub->add_option("--slow-rays", opt->slow_rays, "Rays per set for registry (non-compiled) methods")->capture_default_str();
   sub->add_option("--leak-rays", opt->leak_rays, "At most this many leak rays")->capture_default_str();
   sub->add_option("--methods", opt->methods, "Comma-separated methods")->capture_default_str();
+  sub->add_option("--competitors", opt->competitors, "Comma-separated competitors to run (none: no competitor)")
+      ->capture_default_str();
   return [opt] { return run_bench(*opt); };
 }
 

@@ -53,12 +53,12 @@ decltype(auto) with_kernel(const Scene& s, const SceneMethod& m, F&& f) {
 }
 
 template <class K>
-PrimHit closest_with(const Bvh& bvh, K& k, const Ray<double>& r, BvhTraversal mode, QueryRange q) {
+PrimHit closest_with(const Bvh4& bvh, K& k, const Ray<double>& r, BvhTraversal mode, QueryRange q) {
   if (!r.valid()) return {Contact::invalid};
   k.prepare(r);
   PrimHit best;
   double tmax = q.tmax;
-  bvh_traverse(bvh, r, q.tmin, tmax, mode, BvhQuery::closest, [&](std::uint32_t id) {
+  bvh4_traverse(bvh, k.traversal_ray(), q.tmin, tmax, mode, BvhQuery::closest, [&](std::uint32_t id) {
     Crossing c[2];
     const int n = k.crossings(id, c);
     for (int i = 0; i < n; ++i)
@@ -72,11 +72,11 @@ PrimHit closest_with(const Bvh& bvh, K& k, const Ray<double>& r, BvhTraversal mo
 }
 
 template <class K>
-bool any_with(const Bvh& bvh, K& k, const Ray<double>& r, BvhTraversal mode, QueryRange q) {
+bool any_with(const Bvh4& bvh, K& k, const Ray<double>& r, BvhTraversal mode, QueryRange q) {
   if (!r.valid()) return false;
   k.prepare(r);
   bool hit = false;
-  bvh_traverse(bvh, r, q.tmin, q.tmax, mode, BvhQuery::any, [&](std::uint32_t id) {
+  bvh4_traverse(bvh, k.traversal_ray(), q.tmin, q.tmax, mode, BvhQuery::any, [&](std::uint32_t id) {
     Crossing c[2];
     const int n = k.crossings(id, c);
     for (int i = 0; i < n; ++i)
@@ -114,9 +114,10 @@ Accel::Accel(const Scene& s, const BvhBuildOptions& opt) : scene_(s) {
   std::vector<Vec3<float>> centers;
   s.primitive_bounds(boxes, centers);
   // Subtrees in parallel on TBB's threads (the arena of the caller).
-  bvh_ = build_bvh(boxes, centers, opt, [](std::size_t n, const auto& f) {
+  Bvh bin = build_bvh(boxes, centers, opt, [](std::size_t n, const auto& f) {
     tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) { f(i); });
   });
+  bvh_ = collapse_bvh4(std::move(bin), boxes);
   build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
@@ -138,7 +139,7 @@ std::vector<PrimHit> Accel::all(const Ray<double>& r, const SceneMethod& m, Quer
   if (!r.valid()) return out;
   with_kernel(scene_, m, [&](auto& k) {
     k.prepare(r);
-    bvh_traverse(bvh_, r, q.tmin, q.tmax, m.traversal, BvhQuery::all, [&](std::uint32_t id) {
+    bvh4_traverse(bvh_, k.traversal_ray(), q.tmin, q.tmax, m.traversal, BvhQuery::all, [&](std::uint32_t id) {
       Crossing c[2];
       const int n = k.crossings(id, c);
       for (int i = 0; i < n; ++i)

@@ -11,6 +11,7 @@
 #include "methods/method.h"
 #include "rayproof/bvh_build.h"
 #include "rayproof/bvh_traverse.h"
+#include "rayproof/bvh_wide.h"
 #include "scene/scene.h"
 
 namespace rayproof::scene {
@@ -61,7 +62,8 @@ class Accel {
   Accel(const Scene& s, const BvhBuildOptions& opt = {});
 
   [[nodiscard]] const Scene& scene() const { return scene_; }
-  [[nodiscard]] const Bvh& bvh() const { return bvh_; }
+  /// The four-wide BVH the queries traverse (the SAH or median binary tree, collapsed).
+  [[nodiscard]] const Bvh4& bvh() const { return bvh_; }
   [[nodiscard]] double build_seconds() const { return build_seconds_; }
   /// BVH plus triangle data, per triangle (analytic primitives counted as triangles).
   [[nodiscard]] double bytes_per_primitive() const;
@@ -81,7 +83,7 @@ class Accel {
 
  private:
   const Scene& scene_;
-  Bvh bvh_;
+  Bvh4 bvh_;
   double build_seconds_ = 0;
 };
 

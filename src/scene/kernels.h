@@ -79,6 +79,9 @@ struct CompiledKernel {
     ray_d = r;
     if constexpr (A == TriAlgo::watertight) wr.emplace(ray);
   }
+  /// The ray the kernel intersects, in double (a float kernel's float-rounded ray): the one the
+  /// BVH traversal must not cull boxes of.
+  [[nodiscard]] Ray<double> traversal_ray() const { return {ray.o.template cast<double>(), ray.d.template cast<double>()}; }
   [[nodiscard]] Triangle<T> tri(std::uint32_t i) const {
     const auto& t = s.mesh.triangles[i];
     const auto& v = s.mesh.vertices;
@@ -94,6 +97,11 @@ struct GenericKernel {
   Ray<double> ray{};
 
   void prepare(const Ray<double>& r) { ray = r; }
+  /// Float methods are run on the float-rounded ray (CASES.md): traverse with that one.
+  [[nodiscard]] Ray<double> traversal_ray() const {
+    if (m.precision != Precision::float32) return ray;
+    return {ray.o.template cast<float>().template cast<double>(), ray.d.template cast<float>().template cast<double>()};
+  }
   int crossings(std::uint32_t id, Crossing out[2]) const {
     io::Case c;
     auto put = [&](int at, const Vec3<double>& v) { c.v[at] = v.x, c.v[at + 1] = v.y, c.v[at + 2] = v.z; };

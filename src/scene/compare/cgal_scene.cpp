@@ -71,14 +71,15 @@ Competitor make_cgal(const Scene& s, const char* name, bool threaded, std::size_
 
 }  // namespace
 
-std::vector<Competitor> make_competitors(const Scene& s) {
+std::vector<Competitor> make_competitors(const Scene& s, const std::string& names) {
+  const auto want = [&](const char* name) { return ("," + names + ",").find(std::string(",") + name + ",") != std::string::npos; };
   std::vector<Competitor> out;
 #ifdef RAYPROOF_HAVE_EMBREE
-  out.push_back(make_embree(s, false));
-  out.push_back(make_embree(s, true));
+  if (want("embree")) out.push_back(make_embree(s, false));
+  if (want("embree-robust")) out.push_back(make_embree(s, true));
 #endif
-  out.push_back(make_cgal<CGAL::Epick>(s, "cgal-epick", true, 0));
-  out.push_back(make_cgal<CGAL::Epeck>(s, "cgal-epeck", false, 2000));
+  if (want("cgal-epick")) out.push_back(make_cgal<CGAL::Epick>(s, "cgal-epick", true, 0));
+  if (want("cgal-epeck")) out.push_back(make_cgal<CGAL::Epeck>(s, "cgal-epeck", false, 2000));
   return out;
 }
 

@@ -25,7 +25,9 @@ struct Competitor {
 };
 
 [[nodiscard]] bool have_embree();
-/// Embree default and robust, then CGAL Epick and Epeck (each built on construction).
-[[nodiscard]] std::vector<Competitor> make_competitors(const Scene& s);
+/// Embree default and robust, then CGAL Epick and Epeck (each built on construction), those of
+/// them named in the comma-separated `names`.
+[[nodiscard]] std::vector<Competitor> make_competitors(const Scene& s,
+                                                       const std::string& names = "embree,embree-robust,cgal-epick,cgal-epeck");
 
 }  // namespace rayproof::scene::compare
