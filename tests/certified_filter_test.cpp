@@ -90,14 +90,49 @@ TEST(CertifiedStage, PinsAreWithinOneUlp) {
   EXPECT_EQ(pin_quotient(Expansion(2.0), Expansion(7.0)), std::optional<double>(2.0 / 7.0));
   EXPECT_EQ(pin_quotient(Expansion(6.0), Expansion(-4.0)), std::optional<double>(-1.5));
   EXPECT_EQ(pin_quotient(Expansion(0.0), Expansion(5.0)), std::optional<double>(0.0));
-  // Wide: an interval inside the rounding neighbourhood pins, a wide one does not.
-  EXPECT_EQ(pin_wide(Wide(1) / 3, 0x1p-70L), std::optional<double>(1.0 / 3.0));
-  EXPECT_FALSE(pin_wide(Wide(1) / 3, 0x1p-50L).has_value());
-  // Just below 1 (the gap below is half the gap above): still pinned to a neighbour of 1.
-  const auto p = pin_wide(1 - 0x1p-60L, 0x1p-58L);
-  ASSERT_TRUE(p.has_value());
-  EXPECT_LE(ulp_distance(*p, 1.0), 1u);
+  // Wide ratios: 1/3 pins, a bound too wide to tell does not, an exact zero numerator is the caller's.
+  EXPECT_EQ(pin_ratio(Wide(1), Wide(3), 0, 0), std::optional<double>(1.0 / 3.0));
+  EXPECT_EQ(pin_ratio(Wide(-7), Wide(2), 0, 0), std::optional<double>(-3.5));
+  EXPECT_FALSE(pin_ratio(Wide(1), Wide(3), 0x1p-50L, 0).has_value());
+  EXPECT_FALSE(pin_ratio(Wide(1), Wide(3), 0, 0x1p-50L).has_value());
+  EXPECT_FALSE(pin_ratio(Wide(0), Wide(3), 0, 0).has_value());
   EXPECT_EQ(next_above(1.0), 1.0 + 0x1p-52);
   EXPECT_EQ(next_below(1.0), 1.0 - 0x1p-53);
   EXPECT_EQ(next_below(0.0), -std::numeric_limits<double>::denorm_min());
+}
+
+/// pin_ratio against exact integer arithmetic: x = N / D with N < 2^62 and D < 2^31 (both exact in
+/// Wide), given to pin_ratio exactly and then perturbed within the error bounds it is told about. An
+/// accepted t must have x strictly between the midpoints around prev(t) and next(t) (then round(x) is
+/// t or a neighbour), checked in 128-bit integers with every midpoint scaled by 2^54 (x in [1, 2^20)).
+TEST(CertifiedStage, PinRatioAgreesWithIntegerArithmetic) {
+  std::mt19937_64 g(77);
+  using I = __int128;
+  auto scaled = [](double m) { return static_cast<I>(std::ldexp(m, 54)); };  // an even integer: m >= 1/2 is on a 2^-53 grid
+  int accepted = 0, perturbed_accepted = 0;
+  const int n = 20000;
+  for (int i = 0; i < n; ++i) {
+    const std::uint64_t D = (g() >> 33) | 1;              // < 2^31
+    const int shift = static_cast<int>(g() % 20);           // x in [2^shift, 2^(shift+1))
+    const std::uint64_t lo = D << shift, N = lo + g() % lo; // N / D in [2^shift, 2^(shift+1))
+    if (N >> 62) continue;
+    auto holds = [&](double t) {
+      const double p = next_below(t), q = next_above(t);
+      const I below = (scaled(next_below(p)) + scaled(p)) / 2, above = (scaled(q) + scaled(next_above(q))) / 2;
+      const I NN = static_cast<I>(N) << 54;
+      return below * static_cast<I>(D) < NN && NN < above * static_cast<I>(D);
+    };
+    if (const auto t = pin_ratio(Wide(N), Wide(D), 0, 0)) {
+      ++accepted;
+      ASSERT_TRUE(holds(*t)) << N << " / " << D;
+    }
+    // Told num and den are off by up to 2^-60 of their size, and given values that are off by that.
+    const Wide num = Wide(N) * (1 + 0x1p-60L * (g() % 2 ? 1 : -1)), den = Wide(D) * (1 - 0x1p-60L);
+    if (const auto t = pin_ratio(num, den, Wide(N) * 0x1p-60L, Wide(D) * 0x1p-60L)) {
+      ++perturbed_accepted;
+      ASSERT_TRUE(holds(*t)) << "perturbed " << N << " / " << D;
+    }
+  }
+  EXPECT_GT(accepted, n * 95 / 100);
+  EXPECT_GT(perturbed_accepted, n * 80 / 100);
 }

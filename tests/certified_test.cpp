@@ -12,6 +12,7 @@
 
 #include "gen/families.h"
 #include "io/case_file.h"
+#include "rayproof/certified_fma.h"
 #include "rayproof/certified_stage.h"
 #include "verify/differential.h"
 #include "verify/exact.h"
@@ -45,6 +46,18 @@ TEST(Certified, WorkedExamples) {
   EXPECT_EQ(run("sphere 0 0 0 0 0 1 0 0 5 1"), "hit 4.0 6.0");
   EXPECT_EQ(run("disk 0 0 0 0 0 1 0 0 5 0 0 1 2"), "hit 5.0 -");
   EXPECT_EQ(run("sphere 0 0 0 0 0 1 0 0 5 nan"), "invalid - -");
+}
+
+/// The double-double path runs whenever the CPU has FMA, and RAYPROOF_CERTIFIED_NO_FMA turns it off
+/// (ctest runs this suite both ways: certified_test and certified_test_x87).
+TEST(Certified, FmaPathFollowsCpuAndEnvironment) {
+  const bool off = std::getenv("RAYPROOF_CERTIFIED_NO_FMA") != nullptr;
+#if RAYPROOF_FMA_PATH == 2
+  const bool cpu = __builtin_cpu_supports("fma") != 0;
+#else
+  const bool cpu = RAYPROOF_FMA_PATH == 1;
+#endif
+  EXPECT_EQ(certified::dd::available(), cpu && !off);
 }
 
 TEST(Certified, FilterDecidesGenericCasesWithoutFallback) {

@@ -41,8 +41,9 @@ struct Slab {
 [[nodiscard]] inline std::optional<double> pin_slab(const Slab& s) {
   if (two_sum(s.b, -s.o).lo == 0) return s.t + 0.0;  // correctly rounded quotient of exact operands
   if constexpr (!kFilterAvailable) return std::nullopt;
-  const Wide t = (Wide(s.b) - Wide(s.o)) / Wide(s.d);
-  return pin_wide(t, std::fabs(t) * 0x1p-61L);
+  // b - o in Wide: one rounding (2^-64 of its magnitude); d exact.
+  const Wide num = Wide(s.b) - Wide(s.o);
+  return pin_ratio(num, Wide(s.d), std::fabs(num) * 0x1p-64L, 0);
 }
 
 /// Stage 1: near[i] / far[i] for the axes with d_i != 0.

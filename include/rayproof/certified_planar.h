@@ -56,9 +56,8 @@ struct FastCrossing {
   const Vec3<Wide> nw = n.cast<Wide>();
   const Wide dw = dot(ray.d.cast<Wide>(), nw), nm = dot(on.cast<Wide>() - ray.o.cast<Wide>(), nw);
   const Wide ed = Wide(eden) * 0x1p-11L, en = Wide(enm) * 0x1p-11L;
-  const Wide t = nm / dw;
-  const Wide err = (en + std::fabs(t) * ed) / (std::fabs(dw) - ed) * (1 + 0x1p-40L) + std::fabs(t) * 0x1p-63L;
-  const auto tt = pin_wide(t, err);
+  if (!(std::fabs(dw) > 2 * ed)) return std::nullopt;
+  const auto tt = pin_ratio(nm, dw, en, ed);
   if (!tt) return std::nullopt;
   return FastCrossing{num, den, enm, eden, *tt};
 }

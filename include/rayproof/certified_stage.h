@@ -7,8 +7,10 @@
 ///     rounded inputs and use a constant with a factor >= 2 of slack. Underflow is covered by a tiny
 ///     absolute term (2^-1075 per product, times the largest factor it can meet later), or by an
 ///     in_range() check of the inputs; overflow leaves a value or its bound non-finite: undecided.
-///  2. t pinned in the x87 extended format (Wide) from a plain evaluation with the same static bounds
-///     scaled by 2^-11, or, in the exact stage, by an exact residual (pin_quotient).
+///  2. t pinned from a plain evaluation in the x87 extended format (Wide) with the same static bounds
+///     scaled by 2^-11: a double quotient corrected and checked by its residual in Wide (pin_ratio;
+///     divisions and square roots stay in SSE), or, in the exact stage, by an exact residual
+///     (pin_quotient).
 ///  3. exact signs with floating-point expansions (certified_expansion.h): exact zeros (edges,
 ///     vertices, tangents, rims, grazes) are proven without GMP.
 /// Whatever is left returns nothing, and the caller falls back to exact arithmetic (GMP).
@@ -31,19 +33,30 @@ namespace rayproof::certified {
 }
 [[nodiscard]] inline double next_below(double x) { return -next_above(-x); }
 
-/// v approximates an exact value x with |x - v| <= err. Returns t = double(v) when round(x) is
-/// certainly t or a neighbour of t (the 1-ulp contract): x lies strictly between the midpoint below
-/// prev(t) and the midpoint above next(t) (both exact in Wide). The term 2^-62 |v| covers the
-/// rounding of v -+ err.
-[[nodiscard]] inline std::optional<double> pin_wide(Wide v, Wide err) {
-  const double t = static_cast<double>(v);
-  if (!(std::fabs(t) < 0x1p1020) || !(err >= 0)) return std::nullopt;
-  const Wide e = err + std::fabs(v) * 0x1p-62L;
-  // Quick accept: within |t| 2^-53 of t, which is at most the gap to either neighbour of a normal t.
-  if (std::fabs(t) > 0x1p-1000 && std::fabs(v - t) + e < std::fabs(t) * 0x1p-53L * (1 - 0x1p-60L)) return t;
+/// x = NUM / DEN for exact values known through Wide approximations: |NUM - num| <= en and
+/// |DEN - den| <= ed, with |den| > ed. Returns a double t with round(x) equal to t or a neighbour of
+/// t, or nothing. No x87 division: a quotient guess t1 = num * (1 / den) in double (SSE), one
+/// correction t = t1 + (num - t1 den) / den from the residual in Wide, and then the residual of t
+/// itself, R = num - t den (two Wide roundings, |error| <= 2^-63 |t den|), bounds the distance:
+/// |x - t| = |NUM - t DEN| / |DEN| <= (|R| + 2^-63 |t den| + en + |t| ed) / (|den| - ed) =: B.
+/// round(x) is t or a neighbour when x lies strictly between the midpoint below prev(t) and the
+/// midpoint above next(t), at distances down = (t - prev) + (prev - prev(prev)) / 2 and
+/// up = (next - t) + (next(next) - next) / 2 from t (exact: gaps of normal doubles are powers of two).
+/// Accepted when B < min(up, down); the comparison carries 2^-40 of slack for the rounding of B
+/// itself. A quotient outside [2^-1000, 2^1000] in magnitude (or zero) is left to the caller.
+[[nodiscard]] inline std::optional<double> pin_ratio(Wide num, Wide den, Wide en, Wide ed) {
+  const double inv = 1.0 / static_cast<double>(den);
+  const double t1 = static_cast<double>(num) * inv;
+  if (!(std::fabs(t1) < 0x1p1000 && std::fabs(t1) > 0x1p-1000)) return std::nullopt;  // also NaN
+  const double t = t1 + static_cast<double>(num - Wide(t1) * den) * inv;
+  const Wide R = num - Wide(t) * den, at = std::fabs(t), ad = std::fabs(den);
+  const Wide lhs = (std::fabs(R) + en + at * (ed + 0x1p-63L * ad)) * (1 + 0x1p-40L);
+  // Quick accept: 2^-53 |t| is at most either gap next to a normal t, and below both distances.
+  if (lhs < 0x1p-53L * at * (ad - ed) && at > 0x1p-1000) return t;
+  if (!(at > 0x1p-1000 && at < 0x1p1000)) return std::nullopt;
   const double p = next_below(t), n = next_above(t);
-  const Wide lo = (Wide(next_below(p)) + Wide(p)) / 2, hi = (Wide(n) + Wide(next_above(n))) / 2;
-  if (v - e > lo && v + e < hi) return t + 0.0;  // a zero is +0.0
+  const double down = (t - p) + (p - next_below(p)) / 2, up = (n - t) + (next_above(n) - n) / 2;
+  if (lhs < Wide(down < up ? down : up) * (ad - ed)) return t;
   return std::nullopt;
 }
 

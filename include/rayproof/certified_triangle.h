@@ -10,6 +10,7 @@
 /// degenerate triangles proven without GMP); (3) the running-error-bound (midpoint-radius) filters
 /// below, in double then Wide, for inputs outside the exponent window of stages 1 and 2.
 #include "rayproof/certified_filter.h"
+#include "rayproof/certified_fma.h"
 #include "rayproof/certified_stage.h"
 #include "rayproof/hit.h"
 #include "rayproof/triangle_common.h"
@@ -74,7 +75,11 @@ template <class W>
   const Vec3<double>& d = ray.d;
   const Vec3<double> a = tri.p0 - o, b = tri.p1 - o, c = tri.p2 - o;
   const double u0 = dot(cross(d, b), c), u1 = dot(cross(d, c), a), u2 = dot(cross(d, a), b);
-  auto norm_inf = [](const Vec3<double>& v) { return std::fmax(std::fabs(v.x), std::fmax(std::fabs(v.y), std::fabs(v.z))); };
+  // Plain comparisons, not std::fmax (a libm call without -ffast-math); the inputs are finite.
+  auto norm_inf = [](const Vec3<double>& v) {
+    const double x = std::fabs(v.x), y = std::fabs(v.y), z = std::fabs(v.z), m = x > y ? x : y;
+    return m > z ? m : z;
+  };
   const double d1 = std::fabs(d.x) + std::fabs(d.y) + std::fabs(d.z);
   const double ma = norm_inf(a), mb = norm_inf(b), mc = norm_inf(c), k = 0x1p-49 * d1;
   const double e0 = k * mb * mc + 0x1p-1000 * (mc + 1), e1 = k * mc * ma + 0x1p-1000 * (ma + 1),
@@ -88,13 +93,20 @@ template <class W>
              neg2 = den > 0 ? u2 < -e2 : u2 > e2;
   if (neg0 || neg1 || neg2) return H{Contact::miss};
   if (!(std::fabs(u0) > e0 && std::fabs(u1) > e1 && std::fabs(u2) > e2)) return std::nullopt;  // maybe 0
-  if constexpr (!kFilterAvailable) return std::nullopt;
   // Interior or behind: t = ((p0 - o) . n) / (d . n), n = (p1 - p0) x (p2 - p0), plain in Wide: at most
   // 8 roundings per path (gamma_8 = 2^-61); permanents sum_i |x_i| pn_i with pn_i = |f1_j f2_k| +
   // |f1_k f2_j| (x = p0 - o or d), used with 2^-60 (2x slack, ample for their rounding in double).
   const Vec3<double> f1 = tri.p1 - tri.p0, f2 = tri.p2 - tri.p0;
   const Vec3<double> g1{std::fabs(f1.x), std::fabs(f1.y), std::fabs(f1.z)}, g2{std::fabs(f2.x), std::fabs(f2.y), std::fabs(f2.z)};
   const Vec3<double> pn{g1.y * g2.z + g1.z * g2.y, g1.z * g2.x + g1.x * g2.z, g1.x * g2.y + g1.y * g2.x};
+#if RAYPROOF_FMA_PATH != 0
+  if (dd::available()) {  // t in double-double (certified_fma.h); its sign is that of t
+    const auto tt = dd::triangle_t(ray, tri, pn);
+    if (!tt) return std::nullopt;
+    return H{*tt < 0 ? Contact::behind : Contact::interior, *tt};
+  }
+#endif
+  if constexpr (!kFilterAvailable) return std::nullopt;
   // (2^-1000 (|x|_1 + 1) covers underflow in these double products; Wide itself cannot underflow.)
   const double a1 = std::fabs(a.x) + std::fabs(a.y) + std::fabs(a.z);
   const Wide en = 0x1p-60 * (std::fabs(a.x) * pn.x + std::fabs(a.y) * pn.y + std::fabs(a.z) * pn.z) + 0x1p-1000 * (a1 + 1),
@@ -102,14 +114,11 @@ template <class W>
   const Vec3<Wide> P0 = tri.p0.cast<Wide>();
   const Vec3<Wide> n = cross(tri.p1.cast<Wide>() - P0, tri.p2.cast<Wide>() - P0);
   const Wide num = dot(P0 - o.cast<Wide>(), n), dn = dot(d.cast<Wide>(), n);
-  if (!(std::fabs(dn) > 2 * ed)) return std::nullopt;
-  const Wide t = num / dn;
-  // |N/D - n/d| <= (en + |t| ed) / (|d| - ed), plus the division's rounding.
-  const Wide err = (en + std::fabs(t) * ed) / (std::fabs(dn) - ed) * (1 + 0x1p-40L) + std::fabs(t) * 0x1p-63L;
-  if (!(std::fabs(t) > err)) return std::nullopt;  // t = 0 or unclear: the exact stage decides
-  const auto tt = pin_wide(t, err);
+  // The sign of num (the side of t) and a den clear of zero, then t pinned by its residual.
+  if (!(std::fabs(dn) > 2 * ed) || !(std::fabs(num) > en)) return std::nullopt;  // t = 0 or unclear
+  const auto tt = pin_ratio(num, dn, en, ed);
   if (!tt) return std::nullopt;
-  return H{t < 0 ? Contact::behind : Contact::interior, *tt};
+  return H{(num < 0) != (dn < 0) ? Contact::behind : Contact::interior, *tt};
 }
 
 /// The coplanar range (stage 2, inputs in_range<-70, 120>: the comparisons below have degree 8), as

@@ -1,0 +1,161 @@
+#pragma once
+/// Double-double evaluation with hardware FMA for the certified tier's t (certified_stage.h, stage 1).
+/// The x87 extended format pins t too (certified_filter.h), but its eight-register stack spills
+/// 80-bit values to memory around every product, and a triangle's t then costs about as many
+/// instructions as the whole class decision. With FMA, a product of doubles is exact as two doubles
+/// (p = ab rounded, e = fma(a, b, -p)), so the quantities t is a quotient of can be carried with an
+/// error of order 2^-100 of their magnitude in SSE registers.
+///
+/// The build does not assume FMA (no -mfma): on x86 the functions here are compiled for the FMA
+/// target (GCC / Clang `target("fma")`) and called only when the CPU has it, checked once at run time
+/// (`available()`); elsewhere `available()` is false unless the compiler targets FMA anyway, and the
+/// callers keep the x87 path.
+#include <cmath>
+#include <cstdlib>
+#include <limits>
+#include <optional>
+
+#include "rayproof/certified_stage.h"
+#include "rayproof/float_util.h"
+#include "rayproof/ray.h"
+#include "rayproof/triangle_common.h"
+
+#if defined(__FMA__) || defined(__FP_FAST_FMA)
+#define RAYPROOF_FMA_TARGET
+#define RAYPROOF_FMA_PATH 1
+#elif defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
+#define RAYPROOF_FMA_TARGET __attribute__((target("fma")))
+#define RAYPROOF_FMA_PATH 2
+#else
+#define RAYPROOF_FMA_PATH 0
+#endif
+
+namespace rayproof::certified::dd {
+
+/// True when the functions below run on hardware FMA (a libm fma would be correct but slow) and the
+/// environment variable RAYPROOF_CERTIFIED_NO_FMA is unset (it selects the x87 path, for tests and
+/// for comparison). Read once.
+[[nodiscard]] inline bool available() {
+#if RAYPROOF_FMA_PATH == 0
+  return false;
+#else
+#if RAYPROOF_FMA_PATH == 1
+  static const bool cpu = true;
+#else
+  static const bool cpu = (__builtin_cpu_init(), __builtin_cpu_supports("fma") != 0);
+#endif
+  static const bool ok = cpu && std::getenv("RAYPROOF_CERTIFIED_NO_FMA") == nullptr;
+  return ok;
+#endif
+}
+
+#if RAYPROOF_FMA_PATH != 0
+
+/// hi + lo, not normalised (lo need not be below half an ulp of hi).
+struct DD {
+  double hi, lo;
+};
+
+/// Exact a - b as two doubles (Knuth's two-sum; no overflow assumed: an overflow shows up as a
+/// non-finite value later).
+[[gnu::always_inline]] inline DD exact_diff(double a, double b) {
+  const TwoTerm<double> s = two_sum(a, -b);
+  return {s.hi, s.lo};
+}
+
+/// One component x_j y_k - x_k y_j of the cross product of exact two-double vectors (x = xh + xl,
+/// |xl| <= u |xh|, u = 2^-53). With M = |x_j y_k| + |x_k y_j|: the high products are exact
+/// (p + pe, q + qe), p - q is exact as s.hi + s.lo, and lo gathers s.lo, pe - qe and the four cross
+/// terms xh yl, xl yh, each at most u M (1 + u), |lo| <= 5.1 u M; its six roundings cost <= 31 u^2 M,
+/// the dropped xl yl terms <= 2 u^2 M: |exact - (hi + lo)| <= 33 u^2 M.
+[[gnu::always_inline]] inline DD cross_component(double xhj, double xlj, double xhk, double xlk, double yhj,
+                                                 double ylj, double yhk, double ylk) {
+  const double p = xhj * yhk, pe = __builtin_fma(xhj, yhk, -p);
+  const double q = xhk * yhj, qe = __builtin_fma(xhk, yhj, -q);
+  const TwoTerm<double> s = two_sum(p, -q);
+  double lo = s.lo + (pe - qe);
+  lo = __builtin_fma(xhj, ylk, lo);
+  lo = __builtin_fma(xlj, yhk, lo);
+  lo = __builtin_fma(-xhk, ylj, lo);
+  lo = __builtin_fma(-xlk, yhj, lo);
+  return {s.hi, lo};
+}
+
+/// sum_i x_i n_i for two-double x (xl = 0 for an exact double) and n from cross_component (|nl_i| <=
+/// 5.1 u M_i): the three high products exact, their sum exact as NH + s1.lo + s2.lo, the rest
+/// gathered in lo (eleven roundings of terms totalling <= 9.2 u P, P = sum |x_i| M_i) and the dropped
+/// xl nl terms <= 5.1 u^2 P; with the 33 u^2 M_i of each n_i: |exact - (hi + lo)| <= 140 u^2 P.
+[[gnu::always_inline]] inline DD dot_dd(const DD x[3], const DD n[3]) {
+  const double p0 = x[0].hi * n[0].hi, p1 = x[1].hi * n[1].hi, p2 = x[2].hi * n[2].hi;
+  double lo = __builtin_fma(x[0].hi, n[0].hi, -p0) + __builtin_fma(x[1].hi, n[1].hi, -p1) +
+              __builtin_fma(x[2].hi, n[2].hi, -p2);
+  const TwoTerm<double> s1 = two_sum(p0, p1), s2 = two_sum(s1.hi, p2);
+  lo += s1.lo + s2.lo;
+  for (int i = 0; i < 3; ++i) lo = __builtin_fma(x[i].hi, n[i].lo, __builtin_fma(x[i].lo, n[i].hi, lo));
+  return {s2.hi, lo};
+}
+
+/// NUM - t DEN from NUM ~ N, DEN ~ D: rho = N.hi - t D.hi by one fma, then the low parts. Returns the
+/// value and the bound u (|rho| + |mid| + |R|) (1 + 2^-50) on its three roundings (each at most u
+/// times its rounded result).
+struct Residual {
+  double r, err;
+};
+[[gnu::always_inline]] inline Residual residual(const DD& N, const DD& D, double t) {
+  const double rho = __builtin_fma(-t, D.hi, N.hi), mid = rho + N.lo;
+  const double R = __builtin_fma(-t, D.lo, mid);
+  return {R, 0x1p-53 * (1 + 0x1p-50) * (std::fabs(rho) + std::fabs(mid) + std::fabs(R))};
+}
+
+/// x = NUM / DEN with |NUM - (N.hi + N.lo)| <= en and |DEN - (D.hi + D.lo)| <= ed: a double t with
+/// round(x) equal to t or a neighbour, or nothing (a sign in doubt, t zero or outside
+/// [2^-1000, 2^1000]). t1 = N.hi / D.hi corrected once by its residual; the residual of the result
+/// bounds |x - t| <= (|R| + err + en + |t| ed) / (|D.hi| - |D.lo| - ed), accepted below the distance
+/// from t to the midpoints around its neighbours (as pin_ratio in certified_stage.h).
+[[gnu::always_inline]] inline std::optional<double> pin_dd(const DD& N, const DD& D, double en, double ed) {
+  const double dmin = std::fabs(D.hi) - std::fabs(D.lo) - ed;
+  if (!(dmin > 0.5 * std::fabs(D.hi)) || !(std::fabs(N.hi) > 2 * (std::fabs(N.lo) + en))) return std::nullopt;
+  const double inv = 1 / D.hi, t1 = N.hi * inv;
+  if (!(std::fabs(t1) < 0x1p1000 && std::fabs(t1) > 0x1p-1000)) return std::nullopt;  // also NaN
+  const double t = t1 + residual(N, D, t1).r * inv;
+  const Residual R = residual(N, D, t);
+  const double at = std::fabs(t);
+  const double lhs = (std::fabs(R.r) + R.err + en + at * ed) * (1 + 0x1p-40);
+  if (!(at > 0x1p-1000 && at < 0x1p1000)) return std::nullopt;
+  if (lhs < 0x1p-53 * at * dmin) return t;
+  const double p = next_below(t), n = next_above(t);
+  const double down = (t - p) + (p - next_below(p)) / 2, up = (n - t) + (next_above(n) - n) / 2;
+  if (lhs < (down < up ? down : up) * dmin) return t;
+  return std::nullopt;
+}
+
+/// The triangle's t = ((p0 - o) . n) / (d . n), n = (p1 - p0) x (p2 - p0), in double-double. pn_i =
+/// |f1_j f2_k| + |f1_k f2_j| (the M_i above, from the rounded differences: slack covers their
+/// rounding) is passed in by the caller, which has it for its own bounds. Errors: 140 u^2 times
+/// sum_i |x_i| pn_i (x = p0 - o or d), used with 2^-90 (>= 3x slack), plus 2^-1000 (|x|_1 + 1) for
+/// products that underflow (an fma error term below 2^-1022 is not exact: <= 2^-1075 each, amplified
+/// by |x_i| at most).
+RAYPROOF_FMA_TARGET [[gnu::noinline]] inline std::optional<double> triangle_t(const Ray<double>& ray,
+                                                                              const Triangle<double>& tri,
+                                                                              const Vec3<double>& pn) {
+  const DD f1[3] = {exact_diff(tri.p1.x, tri.p0.x), exact_diff(tri.p1.y, tri.p0.y), exact_diff(tri.p1.z, tri.p0.z)};
+  const DD f2[3] = {exact_diff(tri.p2.x, tri.p0.x), exact_diff(tri.p2.y, tri.p0.y), exact_diff(tri.p2.z, tri.p0.z)};
+  const DD n[3] = {
+      cross_component(f1[1].hi, f1[1].lo, f1[2].hi, f1[2].lo, f2[1].hi, f2[1].lo, f2[2].hi, f2[2].lo),
+      cross_component(f1[2].hi, f1[2].lo, f1[0].hi, f1[0].lo, f2[2].hi, f2[2].lo, f2[0].hi, f2[0].lo),
+      cross_component(f1[0].hi, f1[0].lo, f1[1].hi, f1[1].lo, f2[0].hi, f2[0].lo, f2[1].hi, f2[1].lo)};
+  const DD a[3] = {exact_diff(tri.p0.x, ray.o.x), exact_diff(tri.p0.y, ray.o.y), exact_diff(tri.p0.z, ray.o.z)};
+  const DD d[3] = {{ray.d.x, 0}, {ray.d.y, 0}, {ray.d.z, 0}};
+  const DD num = dot_dd(a, n), den = dot_dd(d, n);
+  const double a1 = std::fabs(a[0].hi) + std::fabs(a[1].hi) + std::fabs(a[2].hi);
+  const double d1 = std::fabs(ray.d.x) + std::fabs(ray.d.y) + std::fabs(ray.d.z);
+  const double en = 0x1p-90 * (std::fabs(a[0].hi) * pn.x + std::fabs(a[1].hi) * pn.y + std::fabs(a[2].hi) * pn.z) +
+                    0x1p-1000 * (a1 + 1);
+  const double ed = 0x1p-90 * (std::fabs(ray.d.x) * pn.x + std::fabs(ray.d.y) * pn.y + std::fabs(ray.d.z) * pn.z) +
+                    0x1p-1000 * (d1 + 1);
+  return pin_dd(num, den, en, ed);
+}
+
+#endif
+
+}  // namespace rayproof::certified::dd
