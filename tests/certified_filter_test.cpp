@@ -90,6 +90,13 @@ TEST(CertifiedStage, PinsAreWithinOneUlp) {
   EXPECT_EQ(pin_quotient(Expansion(2.0), Expansion(7.0)), std::optional<double>(2.0 / 7.0));
   EXPECT_EQ(pin_quotient(Expansion(6.0), Expansion(-4.0)), std::optional<double>(-1.5));
   EXPECT_EQ(pin_quotient(Expansion(0.0), Expansion(5.0)), std::optional<double>(0.0));
+  // Wide: an interval inside the rounding neighbourhood pins, a wide one does not.
+  EXPECT_EQ(pin_wide(Wide(1) / 3, 0x1p-70L), std::optional<double>(1.0 / 3.0));
+  EXPECT_FALSE(pin_wide(Wide(1) / 3, 0x1p-50L).has_value());
+  // Just below 1 (the gap below is half the gap above): still pinned to a neighbour of 1.
+  const auto p = pin_wide(1 - 0x1p-60L, 0x1p-58L);
+  ASSERT_TRUE(p.has_value());
+  EXPECT_LE(ulp_distance(*p, 1.0), 1u);
   // Wide ratios: 1/3 pins, a bound too wide to tell does not, an exact zero numerator is the caller's.
   EXPECT_EQ(pin_ratio(Wide(1), Wide(3), 0, 0), std::optional<double>(1.0 / 3.0));
   EXPECT_EQ(pin_ratio(Wide(-7), Wide(2), 0, 0), std::optional<double>(-3.5));

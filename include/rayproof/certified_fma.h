@@ -156,6 +156,7 @@ RAYPROOF_FMA_TARGET [[gnu::noinline]] inline std::optional<double> triangle_t(co
   return pin_dd(num, den, en, ed);
 }
 
+
 #endif
 
 }  // namespace rayproof::certified::dd

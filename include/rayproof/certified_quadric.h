@@ -132,27 +132,20 @@ template <class W>
 }
 
 /// The two roots pinned from Wide values (red > 0, c != 0 known), sqrt(disc) = S sqrt(red) with S
-/// rounded by at most 2 ulps of Wide. No x87 division or square root: s = sqrt(red) in double (SSE),
-/// refined once in Wide, sq = s + (red - s^2) / (2 s) with 1 / (2 s) in double. With s within
-/// 2^-52 s of sqrt(red) (two roundings), red - s^2 = delta is at most 2^-50 s^2; the refinement leaves
-/// delta^2 / (8 s^3) <= 2^-103 s, the double reciprocal 2^-52 |delta| / (2 s) <= 2^-103 s, and the
-/// Wide roundings of s^2, the difference, the product and the sum 2^-64 (s^2 / (2 s) + |delta| / (2 s)
-/// + 2 sq) <= 2^-61.5 sq: |sqrt(red) - sq| <= 2^-61 sq. The error ered of red adds at most
-/// ered / sqrt(red) <= ered / (sq (1 - 2^-60)) = ered * 2 inv (1 + 2^-50). The roots q / a and c / q
-/// are pinned by pin_ratio.
+/// rounded by at most 2 ulps of Wide.
 [[nodiscard]] inline std::optional<Hit<double>> wide_roots(const Quad<Wide>& x, Wide S, Contact cls) {
   if (!(x.red > 2 * x.ered) || !(x.a > 2 * x.ea)) return std::nullopt;
-  const double s = std::sqrt(static_cast<double>(x.red));
-  if (!(s > 0x1p-1000 && s < 0x1p1000)) return std::nullopt;
-  const double inv = 0.5 / s;
-  const Wide sq = s + (x.red - Wide(s) * s) * inv;
+  const Wide sq = std::sqrt(x.red);
   const Wide root = sq * S;
-  const Wide eroot = (x.ered * (2 * inv) * (1 + 0x1p-50L) + sq * 0x1p-61L) * S * (1 + 0x1p-60L) + root * 0x1p-62L;
+  const Wide eroot = (x.ered / sq + sq * 0x1p-63L) * S * (1 + 0x1p-60L) + root * 0x1p-61L;
   const bool plus = x.b >= 0;
   const Wide q = plus ? -(x.b + root) : root - x.b;
   const Wide eq = (x.eb + eroot) * (1 + 0x1p-60L) + std::fabs(q) * 0x1p-63L;
   if (!(std::fabs(q) > 2 * eq)) return std::nullopt;
-  const auto t1 = pin_ratio(q, x.a, eq, x.ea), t2 = pin_ratio(x.c, q, x.ec, eq);
+  const Wide r1 = q / x.a, r2 = x.c / q;
+  const Wide e1 = (eq + std::fabs(r1) * x.ea) / (x.a - x.ea) * (1 + 0x1p-40L) + std::fabs(r1) * 0x1p-63L;
+  const Wide e2 = (x.ec + std::fabs(r2) * eq) / (std::fabs(q) - eq) * (1 + 0x1p-40L) + std::fabs(r2) * 0x1p-63L;
+  const auto t1 = pin_wide(r1, e1), t2 = pin_wide(r2, e2);
   if (!t1 || !t2) return std::nullopt;
   // plus: q < 0 and q / a is the lower root; otherwise q > 0 and q / a the upper one.
   return plus ? Hit<double>{cls, *t1, *t2} : Hit<double>{cls, *t2, *t1};

@@ -7,10 +7,10 @@
 ///     rounded inputs and use a constant with a factor >= 2 of slack. Underflow is covered by a tiny
 ///     absolute term (2^-1075 per product, times the largest factor it can meet later), or by an
 ///     in_range() check of the inputs; overflow leaves a value or its bound non-finite: undecided.
-///  2. t pinned from a plain evaluation in the x87 extended format (Wide) with the same static bounds
-///     scaled by 2^-11: a double quotient corrected and checked by its residual in Wide (pin_ratio;
-///     divisions and square roots stay in SSE), or, in the exact stage, by an exact residual
-///     (pin_quotient).
+///  2. t pinned from a plain evaluation with the same static bounds scaled down: for triangles in
+///     double-double with hardware FMA (certified_fma.h), else in the x87 extended format (Wide),
+///     pinned by pin_wide (quadrics) or pin_ratio (a double quotient checked by its residual in Wide:
+///     triangles, planes, disks, boxes); in the exact stage by an exact residual (pin_quotient).
 ///  3. exact signs with floating-point expansions (certified_expansion.h): exact zeros (edges,
 ///     vertices, tangents, rims, grazes) are proven without GMP.
 /// Whatever is left returns nothing, and the caller falls back to exact arithmetic (GMP).
@@ -32,6 +32,22 @@ namespace rayproof::certified {
   return std::bit_cast<double>(x > 0 ? b + 1 : b - 1);
 }
 [[nodiscard]] inline double next_below(double x) { return -next_above(-x); }
+
+/// v approximates an exact value x with |x - v| <= err. Returns t = double(v) when round(x) is
+/// certainly t or a neighbour of t (the 1-ulp contract): x lies strictly between the midpoint below
+/// prev(t) and the midpoint above next(t) (both exact in Wide). The term 2^-62 |v| covers the
+/// rounding of v -+ err.
+[[nodiscard]] inline std::optional<double> pin_wide(Wide v, Wide err) {
+  const double t = static_cast<double>(v);
+  if (!(std::fabs(t) < 0x1p1020) || !(err >= 0)) return std::nullopt;
+  const Wide e = err + std::fabs(v) * 0x1p-62L;
+  // Quick accept: within |t| 2^-53 of t, which is at most the gap to either neighbour of a normal t.
+  if (std::fabs(t) > 0x1p-1000 && std::fabs(v - t) + e < std::fabs(t) * 0x1p-53L * (1 - 0x1p-60L)) return t;
+  const double p = next_below(t), n = next_above(t);
+  const Wide lo = (Wide(next_below(p)) + Wide(p)) / 2, hi = (Wide(n) + Wide(next_above(n))) / 2;
+  if (v - e > lo && v + e < hi) return t + 0.0;  // a zero is +0.0
+  return std::nullopt;
+}
 
 /// x = NUM / DEN for exact values known through Wide approximations: |NUM - num| <= en and
 /// |DEN - den| <= ed, with |den| > ed. Returns a double t with round(x) equal to t or a neighbour of
