@@ -87,42 +87,42 @@ struct Slab {
   return H{cls, *t0, *t1};
 }
 
-/// Stage 1, every d_i != 0: the same decisions as box_fast_parallel with all three axes in straight
-/// lines (fixed-size arrays the compiler keeps in registers, selections by comparison rather than
-/// loops over a compacted list), so random rays cost few mispredicted branches.
+/// Stage 1, every d_i != 0 and every b - o exact in double (then each slab distance is a correctly
+/// rounded quotient and needs no pinning): the decisions of box_fast_parallel without data-dependent
+/// branches (random rays mispredicted about two a test there): near / far by min / max, entry and
+/// exit by max / min, and "unambiguous" as a count: exactly one near interval reaches El (the entry's
+/// own) and exactly one far interval reaches Xh. Anything else goes to box_fast_parallel.
 [[nodiscard]] inline std::optional<Hit<double>> box_fast(const Ray<double>& ray, const Box<double>& bx) {
   using H = Hit<double>;
   if (ray.d.x == 0 || ray.d.y == 0 || ray.d.z == 0) return box_fast_parallel(ray, bx);
-  double tn[3], tf[3], en[3], ef[3], bn[3], bf[3];
+  double tn[3], tf[3];
+  int inexact = 0;
   for (int i = 0; i < 3; ++i) {
-    const bool neg = ray.d[i] < 0;
-    bn[i] = neg ? bx.hi[i] : bx.lo[i], bf[i] = neg ? bx.lo[i] : bx.hi[i];
-    tn[i] = (bn[i] - ray.o[i]) / ray.d[i], tf[i] = (bf[i] - ray.o[i]) / ray.d[i];
-    // Two roundings (2^-51 with slack), and 2^-1000 for a quotient that underflows (as above).
-    en[i] = std::fabs(tn[i]) * 0x1p-51 + 0x1p-1000, ef[i] = std::fabs(tf[i]) * 0x1p-51 + 0x1p-1000;
+    inexact += (two_sum(bx.lo[i], -ray.o[i]).lo != 0) + (two_sum(bx.hi[i], -ray.o[i]).lo != 0);
+    const double ta = (bx.lo[i] - ray.o[i]) / ray.d[i], tb = (bx.hi[i] - ray.o[i]) / ray.d[i];
+    tn[i] = ta < tb ? ta : tb, tf[i] = ta < tb ? tb : ta;
   }
+  if (inexact) return box_fast_parallel(ray, bx);
+  auto max2 = [](double x, double y) { return x > y ? x : y; };
+  auto min2 = [](double x, double y) { return x < y ? x : y; };
+  const double enter = max2(max2(tn[0], tn[1]), tn[2]), exit = min2(min2(tf[0], tf[1]), tf[2]);
   const double big = std::fabs(tn[0]) + std::fabs(tn[1]) + std::fabs(tn[2]) + std::fabs(tf[0]) + std::fabs(tf[1]) +
                      std::fabs(tf[2]);
-  if (!(big < 0x1p1020)) return std::nullopt;  // overflow (or NaN: never, the inputs are finite)
-  const int ie = tn[0] >= tn[1] ? (tn[0] >= tn[2] ? 0 : 2) : (tn[1] >= tn[2] ? 1 : 2);
-  const int ix = tf[0] <= tf[1] ? (tf[0] <= tf[2] ? 0 : 2) : (tf[1] <= tf[2] ? 1 : 2);
-  const double El = tn[ie] - en[ie], Eh = tn[ie] + en[ie], Xl = tf[ix] - ef[ix], Xh = tf[ix] + ef[ix];
+  if (!(big < 0x1p1020)) return std::nullopt;  // overflow
+  // One rounding each (exact numerators): 2^-51 is ample; 2^-1000 for a quotient that underflows.
+  auto err = [](double t) { return std::fabs(t) * 0x1p-51 + 0x1p-1000; };
+  const double El = enter - err(enter), Eh = enter + err(enter), Xl = exit - err(exit), Xh = exit + err(exit);
   if (El > Xh) return H{Contact::miss};
-  // Entry and exit unambiguous: every other near interval below El, every other far one above Xh.
-  int ambiguous = 0;
-  for (int j = 0; j < 3; ++j)
-    ambiguous += (j != ie && !(tn[j] + en[j] < El)) + (j != ix && !(tf[j] - ef[j] > Xh));
-  if (ambiguous || !(Eh < Xl)) return std::nullopt;  // a tie between slabs, a graze, or too close
+  int reach = 0;
+  for (int j = 0; j < 3; ++j) reach += (tn[j] + err(tn[j]) >= El) + (tf[j] - err(tf[j]) <= Xh);
+  if (reach != 2 || !(Eh < Xl)) return std::nullopt;  // a tie between slabs, a graze, or too close
   Contact cls;
   if (Xh < 0) cls = Contact::behind;
   else if (!(Xl >= 0)) return std::nullopt;
   else if (Eh < 0) cls = Contact::inside;
   else if (El >= 0) cls = Contact::hit;
   else return std::nullopt;
-  const auto t0 = pin_slab({bn[ie], ray.o[ie], ray.d[ie], tn[ie], en[ie]});
-  const auto t1 = pin_slab({bf[ix], ray.o[ix], ray.d[ix], tf[ix], ef[ix]});
-  if (!t0 || !t1) return std::nullopt;
-  return H{cls, *t0, *t1};
+  return H{cls, enter + 0.0, exit + 0.0};  // a zero is +0.0
 }
 
 /// Stage 2 (in_range<-300, 300>, degree 2): slab distances as exact fractions p / d, compared exactly.
