@@ -185,59 +185,58 @@ struct Bvh4RayF {
 inline float round_down_f(double x) { return bvh_float_down(x); }
 inline float round_up_f(double x) { return bvh_float_up(x); }
 
-/// Whether the float box test applies to the double ray (see the header comment).
-inline bool bvh4_float_range(const Ray<double>& r) {
+/// Prepares the float box test of the double ray; false when the ray is out of the float path's
+/// range (see the header comment: NaN, |o| > 2^64, or a nonzero |d| outside [2^-64, 2^64]).
+inline bool make_bvh4_ray(const Ray<double>& r, bool conservative, double tmin, Bvh4RayF& out) {
   constexpr double hi = 18446744073709551616.0, lo = 1.0 / hi;  // 2^64, 2^-64
   for (int k = 0; k < 3; ++k) {
-    if (!(std::abs(r.o[k]) <= hi)) return false;
-    const double a = std::abs(r.d[k]);
-    if (a != 0 && !(a >= lo && a <= hi)) return false;
-  }
-  return true;
-}
-
-inline Bvh4RayF make_bvh4_ray(const Ray<double>& r, bool conservative, double tmin) {
-  Bvh4RayF out;
-  for (int k = 0; k < 3; ++k) {
-    const float inv = static_cast<float>(1.0 / r.d[k]);
-    const bool neg = std::signbit(inv);
+    const double o = r.o[k], d = r.d[k], ad = std::abs(d);
+    if (!(std::abs(o) <= hi) || (ad != 0 && !(ad >= lo && ad <= hi))) return false;
+    const double inv_d = 1.0 / d;
+    const bool neg = std::signbit(inv_d);
     // Within an axis: lo[k] at float offset 4k, hi[k] at 12 + 4k.
     out.near_off[k] = neg ? 12 + 4 * k : 4 * k;
     out.far_off[k] = neg ? 4 * k : 12 + 4 * k;
-    float on = static_cast<float>(r.o[k]), of = on;
+    float on = static_cast<float>(o), of = on;
     if (conservative) {
-      const float down = round_down_f(r.o[k]), up = round_up_f(r.o[k]);
+      const double back = on;
+      const float down = back > o ? bvh_next_down(on) : on, up = back < o ? bvh_next_up(on) : on;
       on = neg ? down : up, of = neg ? up : down;
     }
-    out.o_near[k] = _mm_set1_ps(on), out.o_far[k] = _mm_set1_ps(of), out.inv[k] = _mm_set1_ps(inv);
+    out.o_near[k] = _mm_set1_ps(on), out.o_far[k] = _mm_set1_ps(of), out.inv[k] = _mm_set1_ps(static_cast<float>(inv_d));
   }
   out.tmin = conservative ? round_down_f(tmin) : static_cast<float>(tmin);
-  return out;
+  return true;
 }
 
 /// Hit mask of the four children of `n` and their entry distances.
+/// Conservative widening is applied once to the largest near and the smallest far distance: the
+/// widening w(x) = x * (x < 0 ? 1 + 8u : 1 - 8u) - 2^-120 (and its mirror for far) is monotonic
+/// in float (rounded products by a positive constant and a rounded subtraction of a constant are
+/// monotonic), so w(max_k near_k) = max_k w(near_k): the same result as widening every axis.
 template <bool Conservative>
 inline int bvh4_test(const Bvh4Node& n, const Bvh4RayF& r, __m128 tmin, __m128 tmax, __m128& t_enter) {
   const float* f = &n.lo[0][0];
-  __m128 t0 = tmin, t1 = tmax;
-  // 1 -/+ 2 gamma(4) (float): 1 - 8u and 1 + 8u, both exact in float (u = 2^-24); the
-  // distance's own error is at most gamma(4) ~ 4u and the scaling product's rounding u more.
-  const __m128 shrink = _mm_set1_ps(1.0f - 0x1p-21f), grow = _mm_set1_ps(1.0f + 0x1p-21f);
-  const __m128 tiny = _mm_set1_ps(0x1p-120f);
+  const __m128 ninf = _mm_set1_ps(-std::numeric_limits<float>::infinity());
+  const __m128 pinf = _mm_set1_ps(std::numeric_limits<float>::infinity());
+  __m128 t0 = Conservative ? ninf : tmin, t1 = Conservative ? pinf : tmax;
   for (int k = 0; k < 3; ++k) {
-    __m128 near = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(f + r.near_off[k]), r.o_near[k]), r.inv[k]);
-    __m128 far = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(f + r.far_off[k]), r.o_far[k]), r.inv[k]);
-    if constexpr (Conservative) {
-      // near * (1 - 2pad) when near >= 0, * (1 + 2pad) when negative: towards -inf, finite stays
-      // finite, inf stays inf (no inf - inf). far the other way.
-      const __m128 near_neg = _mm_cmplt_ps(near, _mm_setzero_ps());
-      const __m128 far_neg = _mm_cmplt_ps(far, _mm_setzero_ps());
-      near = _mm_mul_ps(near, _mm_or_ps(_mm_and_ps(near_neg, grow), _mm_andnot_ps(near_neg, shrink)));
-      far = _mm_mul_ps(far, _mm_or_ps(_mm_and_ps(far_neg, shrink), _mm_andnot_ps(far_neg, grow)));
-      near = _mm_sub_ps(near, tiny), far = _mm_add_ps(far, tiny);
-    }
-    t0 = _mm_max_ps(near, t0);  // NaN near: t0
+    const __m128 near = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(f + r.near_off[k]), r.o_near[k]), r.inv[k]);
+    const __m128 far = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(f + r.far_off[k]), r.o_far[k]), r.inv[k]);
+    t0 = _mm_max_ps(near, t0);  // NaN near: t0 (the axis bounds nothing)
     t1 = _mm_min_ps(far, t1);   // NaN far: t1
+  }
+  if constexpr (Conservative) {
+    // 1 -/+ 2 gamma(4) (float): 1 - 8u and 1 + 8u, both exact in float (u = 2^-24); the
+    // distance's own error is at most gamma(4) ~ 4u and the scaling product's rounding u more.
+    // Finite stays finite, inf stays inf (no inf - inf).
+    const __m128 shrink = _mm_set1_ps(1.0f - 0x1p-21f), grow = _mm_set1_ps(1.0f + 0x1p-21f);
+    const __m128 tiny = _mm_set1_ps(0x1p-120f);
+    const __m128 t0_neg = _mm_cmplt_ps(t0, _mm_setzero_ps()), t1_neg = _mm_cmplt_ps(t1, _mm_setzero_ps());
+    t0 = _mm_sub_ps(_mm_mul_ps(t0, _mm_or_ps(_mm_and_ps(t0_neg, grow), _mm_andnot_ps(t0_neg, shrink))), tiny);
+    t1 = _mm_add_ps(_mm_mul_ps(t1, _mm_or_ps(_mm_and_ps(t1_neg, shrink), _mm_andnot_ps(t1_neg, grow))), tiny);
+    t0 = _mm_max_ps(t0, tmin);
+    t1 = _mm_min_ps(t1, tmax);
   }
   t_enter = t0;
   return _mm_movemask_ps(_mm_cmple_ps(t0, t1)) & n.valid;
@@ -262,15 +261,21 @@ struct Bvh4Entry {
   T t;
 };
 
-/// Pushes the hit children of `n` (mask) on the stack, farthest first, so the nearest is on top.
+/// Pushes the hit children of `n` (mask, two or more bits) on the stack, farthest first, so the
+/// nearest is on top; prefetches inner children's nodes.
 template <class T>
-inline void bvh4_push_sorted(const Bvh4Node& n, int mask, const T* t, Bvh4Entry<T>* stack, int& top) {
+[[gnu::always_inline]] inline void bvh4_push_sorted(const Bvh4Node& n, const Bvh4Node* nodes, int mask, const T* t,
+                                                    Bvh4Entry<T>* stack, int& top) {
   Bvh4Entry<T> e[4];
   int m = 0;
   while (mask) {
     const int i = __builtin_ctz(static_cast<unsigned>(mask));
     mask &= mask - 1;
     Bvh4Entry<T> x{n.child[i], n.count[i], t[i]};
+    if (!x.count) {
+      _mm_prefetch(reinterpret_cast<const char*>(nodes + x.ref), _MM_HINT_T0);
+      _mm_prefetch(reinterpret_cast<const char*>(nodes + x.ref) + 64, _MM_HINT_T0);
+    }
     int j = m++;
     for (; j > 0 && e[j - 1].t < x.t; --j) e[j] = e[j - 1];  // descending t
     e[j] = x;
@@ -278,7 +283,8 @@ inline void bvh4_push_sorted(const Bvh4Node& n, int mask, const T* t, Bvh4Entry<
   for (int i = 0; i < m; ++i) stack[top++] = e[i];
 }
 
-/// The traversal loop, for the float (T = float) and double (T = double) box tests.
+/// The traversal loop, for the float (T = float) and double (T = double) box tests. `leaf(j)`
+/// gets the leaf-order slot j (an index into prim_ids, or into the caller's own leaf-order data).
 template <class T, bool Conservative, BvhQuery Query, class Leaf>
 void bvh4_traverse_impl(const Bvh4& bvh, const Ray<double>& ray, double tmin, const double& tmax, Leaf& leaf) {
   using Entry = Bvh4Entry<T>;
@@ -289,7 +295,6 @@ void bvh4_traverse_impl(const Bvh4& bvh, const Ray<double>& ray, double tmin, co
   if (need > 192) heap.resize(need), stack = heap.data();
   int top = 0;
   const Bvh4Node* nodes = bvh.nodes.data();
-  const std::uint32_t* ids = bvh.prim_ids.data();
   auto tmax_t = [&]() -> T {
     if constexpr (std::is_same_v<T, float>) {
       return Conservative ? round_up_f(tmax) : static_cast<float>(tmax);
@@ -299,8 +304,21 @@ void bvh4_traverse_impl(const Bvh4& bvh, const Ray<double>& ray, double tmin, co
   };
   [[maybe_unused]] Bvh4RayF rf;
   [[maybe_unused]] __m128 tmin_v{};
-  [[maybe_unused]] const BvhRay<double> rd(ray, Conservative ? BvhTraversal::conservative : BvhTraversal::standard);
-  if constexpr (std::is_same_v<T, float>) rf = make_bvh4_ray(ray, Conservative, tmin), tmin_v = _mm_set1_ps(rf.tmin);
+  struct NoRay {};
+  [[maybe_unused]] const std::conditional_t<std::is_same_v<T, float>, NoRay, BvhRay<double>> rd = [&] {
+    if constexpr (std::is_same_v<T, float>) {
+      return NoRay{};
+    } else {
+      return BvhRay<double>(ray, Conservative ? BvhTraversal::conservative : BvhTraversal::standard);
+    }
+  }();
+  if constexpr (std::is_same_v<T, float>) {
+    if (!make_bvh4_ray(ray, Conservative, tmin, rf)) {  // out of range: the double box test
+      bvh4_traverse_impl<double, Conservative, Query>(bvh, ray, tmin, tmax, leaf);
+      return;
+    }
+    tmin_v = _mm_set1_ps(rf.tmin);
+  }
   T tmax_cur = tmax_t();
   stack[top++] = Entry{0, 0, static_cast<T>(-std::numeric_limits<T>::infinity())};
   while (top > 0) {
@@ -308,7 +326,7 @@ void bvh4_traverse_impl(const Bvh4& bvh, const Ray<double>& ray, double tmin, co
     if (Query == BvhQuery::closest && !(e.t <= tmax_cur)) continue;
     if (e.count) {
       for (std::uint32_t i = e.ref, end = e.ref + e.count; i < end; ++i)
-        if (leaf(ids[i]) && Query == BvhQuery::any) return;
+        if (leaf(i) && Query == BvhQuery::any) return;
       if constexpr (Query == BvhQuery::closest) tmax_cur = tmax_t();
       continue;
     }
@@ -328,7 +346,7 @@ void bvh4_traverse_impl(const Bvh4& bvh, const Ray<double>& ray, double tmin, co
       stack[top++] = Entry{n.child[i], n.count[i], t[i]};
       continue;
     }
-    bvh4_push_sorted(n, mask, t, stack, top);
+    bvh4_push_sorted(n, nodes, mask, t, stack, top);
   }
 }
 
@@ -343,20 +361,25 @@ void bvh4_traverse_query(const Bvh4& bvh, const Ray<double>& ray, double tmin, c
 
 }  // namespace detail
 
+/// bvh4_traverse calling `leaf(j)` with the leaf-order slot j instead of the primitive prim_ids[j]:
+/// for callers that keep their primitive data in leaf order (and may drop prim_ids).
+template <class Leaf>
+void bvh4_traverse_slots(const Bvh4& bvh, const Ray<double>& ray, double tmin, const double& tmax, BvhTraversal mode,
+                         BvhQuery query, Leaf&& leaf) {
+  if (bvh.empty()) return;
+  // The float box test, or the double one for rays out of its range (decided per ray inside).
+  if (mode == BvhTraversal::conservative) return detail::bvh4_traverse_query<float, true>(bvh, ray, tmin, tmax, query, leaf);
+  return detail::bvh4_traverse_query<float, false>(bvh, ray, tmin, tmax, query, leaf);
+}
+
 /// Visits the leaves' primitives the query needs, as bvh_traverse (bvh_traverse.h) does: `leaf(prim)`
 /// returns true to stop (any hit); for closest hit it lowers `tmax` to the best t so far. `ray` is
 /// the ray the primitive kernel intersects, in double (for a float kernel: its float-rounded ray).
 template <class Leaf>
 void bvh4_traverse(const Bvh4& bvh, const Ray<double>& ray, double tmin, const double& tmax, BvhTraversal mode,
                    BvhQuery query, Leaf&& leaf) {
-  if (bvh.empty()) return;
-  const bool fast = detail::bvh4_float_range(ray);
-  if (mode == BvhTraversal::conservative) {
-    if (fast) return detail::bvh4_traverse_query<float, true>(bvh, ray, tmin, tmax, query, leaf);
-    return detail::bvh4_traverse_query<double, true>(bvh, ray, tmin, tmax, query, leaf);
-  }
-  if (fast) return detail::bvh4_traverse_query<float, false>(bvh, ray, tmin, tmax, query, leaf);
-  return detail::bvh4_traverse_query<double, false>(bvh, ray, tmin, tmax, query, leaf);
+  const std::uint32_t* ids = bvh.prim_ids.data();
+  bvh4_traverse_slots(bvh, ray, tmin, tmax, mode, query, [&](std::uint32_t j) { return leaf(ids[j]); });
 }
 
 }  // namespace rayproof

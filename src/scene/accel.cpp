@@ -53,14 +53,16 @@ decltype(auto) with_kernel(const Scene& s, const SceneMethod& m, F&& f) {
 }
 
 template <class K>
-PrimHit closest_with(const Bvh4& bvh, K& k, const Ray<double>& r, BvhTraversal mode, QueryRange q) {
+PrimHit closest_with(const Bvh4& bvh, const LeafPrim* prims, K& k, const Ray<double>& r, BvhTraversal mode, QueryRange q) {
   if (!r.valid()) return {Contact::invalid};
   k.prepare(r);
   PrimHit best;
   double tmax = q.tmax;
-  bvh4_traverse(bvh, k.traversal_ray(), q.tmin, tmax, mode, BvhQuery::closest, [&](std::uint32_t id) {
+  bvh4_traverse_slots(bvh, k.traversal_ray(), q.tmin, tmax, mode, BvhQuery::closest, [&](std::uint32_t j) {
+    const LeafPrim& p = prims[j];
+    const std::uint32_t id = p.id;
     Crossing c[2];
-    const int n = k.crossings(id, c);
+    const int n = k.crossings(p, c);
     for (int i = 0; i < n; ++i)
       if (c[i].t >= q.tmin && (c[i].t < tmax || (c[i].t == tmax && id < best.prim))) {
         tmax = c[i].t;
@@ -72,13 +74,13 @@ PrimHit closest_with(const Bvh4& bvh, K& k, const Ray<double>& r, BvhTraversal m
 }
 
 template <class K>
-bool any_with(const Bvh4& bvh, K& k, const Ray<double>& r, BvhTraversal mode, QueryRange q) {
+bool any_with(const Bvh4& bvh, const LeafPrim* prims, K& k, const Ray<double>& r, BvhTraversal mode, QueryRange q) {
   if (!r.valid()) return false;
   k.prepare(r);
   bool hit = false;
-  bvh4_traverse(bvh, k.traversal_ray(), q.tmin, q.tmax, mode, BvhQuery::any, [&](std::uint32_t id) {
+  bvh4_traverse_slots(bvh, k.traversal_ray(), q.tmin, q.tmax, mode, BvhQuery::any, [&](std::uint32_t j) {
     Crossing c[2];
-    const int n = k.crossings(id, c);
+    const int n = k.crossings(prims[j], c);
     for (int i = 0; i < n; ++i)
       if (c[i].t >= q.tmin && c[i].t <= q.tmax) return hit = true;
     return false;
@@ -118,20 +120,30 @@ Accel::Accel(const Scene& s, const BvhBuildOptions& opt) : scene_(s) {
     tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) { f(i); });
   });
   bvh_ = collapse_bvh4(std::move(bin), boxes);
+  // prim_ids folded into leaf-order records with the triangles' vertex indices.
+  leaf_prims_.resize(bvh_.prim_ids.size());
+  const std::size_t ntri = s.mesh.triangles.size();
+  for (std::size_t j = 0; j < leaf_prims_.size(); ++j) {
+    const std::uint32_t id = bvh_.prim_ids[j];
+    LeafPrim& p = leaf_prims_[j];
+    p.id = id;
+    for (int k = 0; k < 3; ++k) p.v[k] = id < ntri ? s.mesh.triangles[id][k] : 0;
+  }
+  std::vector<std::uint32_t>().swap(bvh_.prim_ids);
   build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 double Accel::bytes_per_primitive() const {
   const std::size_t n = std::max<std::size_t>(1, scene_.size());
-  return double(bvh_.bytes() + scene_.triangle_bytes()) / double(n);
+  return double(bvh_bytes() + scene_.triangle_bytes()) / double(n);
 }
 
 PrimHit Accel::closest(const Ray<double>& r, const SceneMethod& m, QueryRange q) const {
-  return with_kernel(scene_, m, [&](auto& k) { return closest_with(bvh_, k, r, m.traversal, q); });
+  return with_kernel(scene_, m, [&](auto& k) { return closest_with(bvh_, leaf_prims_.data(), k, r, m.traversal, q); });
 }
 
 bool Accel::any(const Ray<double>& r, const SceneMethod& m, QueryRange q) const {
-  return with_kernel(scene_, m, [&](auto& k) { return any_with(bvh_, k, r, m.traversal, q); });
+  return with_kernel(scene_, m, [&](auto& k) { return any_with(bvh_, leaf_prims_.data(), k, r, m.traversal, q); });
 }
 
 std::vector<PrimHit> Accel::all(const Ray<double>& r, const SceneMethod& m, QueryRange q) const {
@@ -139,9 +151,10 @@ std::vector<PrimHit> Accel::all(const Ray<double>& r, const SceneMethod& m, Quer
   if (!r.valid()) return out;
   with_kernel(scene_, m, [&](auto& k) {
     k.prepare(r);
-    bvh4_traverse(bvh_, k.traversal_ray(), q.tmin, q.tmax, m.traversal, BvhQuery::all, [&](std::uint32_t id) {
+    bvh4_traverse_slots(bvh_, k.traversal_ray(), q.tmin, q.tmax, m.traversal, BvhQuery::all, [&](std::uint32_t j) {
+      const std::uint32_t id = leaf_prims_[j].id;
       Crossing c[2];
-      const int n = k.crossings(id, c);
+      const int n = k.crossings(leaf_prims_[j], c);
       for (int i = 0; i < n; ++i)
         if (c[i].t >= q.tmin && c[i].t <= q.tmax) out.push_back({c[i].contact, c[i].t, id});
       return false;
@@ -169,7 +182,7 @@ void Accel::closest_batch(std::span<const Ray<double>> rays, std::span<PrimHit> 
                           QueryRange q) const {
   parallel_rays(rays.size(), threads, [&](std::size_t b, std::size_t e) {
     with_kernel(scene_, m, [&](auto& k) {
-      for (std::size_t i = b; i < e; ++i) out[i] = closest_with(bvh_, k, rays[i], m.traversal, q);
+      for (std::size_t i = b; i < e; ++i) out[i] = closest_with(bvh_, leaf_prims_.data(), k, rays[i], m.traversal, q);
       return 0;
     });
   });
@@ -179,7 +192,7 @@ void Accel::any_batch(std::span<const Ray<double>> rays, std::span<std::uint8_t>
                       int threads, QueryRange q) const {
   parallel_rays(rays.size(), threads, [&](std::size_t b, std::size_t e) {
     with_kernel(scene_, m, [&](auto& k) {
-      for (std::size_t i = b; i < e; ++i) out[i] = any_with(bvh_, k, rays[i], m.traversal, q);
+      for (std::size_t i = b; i < e; ++i) out[i] = any_with(bvh_, leaf_prims_.data(), k, rays[i], m.traversal, q);
       return 0;
     });
   });

@@ -52,6 +52,14 @@ struct SceneMethod {
 /// Names with compiled kernels, for messages and the bench.
 [[nodiscard]] std::vector<std::string> fast_scene_method_names();
 
+/// A primitive in the BVH's leaf order: a triangle's vertex indices (unused for other kinds) and its
+/// global number. Leaves read these contiguously instead of prim_ids -> triangles -> vertices.
+struct LeafPrim {
+  std::uint32_t v[3];
+  std::uint32_t id;
+};
+static_assert(sizeof(LeafPrim) == 16);
+
 struct QueryRange {
   double tmin = 0;
   double tmax = std::numeric_limits<double>::infinity();
@@ -67,6 +75,10 @@ class Accel {
   [[nodiscard]] double build_seconds() const { return build_seconds_; }
   /// BVH plus triangle data, per triangle (analytic primitives counted as triangles).
   [[nodiscard]] double bytes_per_primitive() const;
+  /// Bytes of the BVH: its nodes and the leaf-order primitive records.
+  [[nodiscard]] std::size_t bvh_bytes() const { return bvh_.bytes() + leaf_prims_.size() * sizeof(LeafPrim); }
+  /// The leaf-order primitive records (slot j of the BVH's leaves).
+  [[nodiscard]] const std::vector<LeafPrim>& leaf_prims() const { return leaf_prims_; }
 
   /// Closest crossing in [tmin, tmax] (ties: the lower primitive number); `invalid` for a ray
   /// with a NaN or infinite component or d = 0.
@@ -83,7 +95,8 @@ class Accel {
 
  private:
   const Scene& scene_;
-  Bvh4 bvh_;
+  Bvh4 bvh_;  ///< nodes only: prim_ids is folded into leaf_prims_
+  std::vector<LeafPrim> leaf_prims_;
   double build_seconds_ = 0;
 };
 

@@ -88,6 +88,11 @@ struct CompiledKernel {
     return {v[t[0]].template cast<T>(), v[t[1]].template cast<T>(), v[t[2]].template cast<T>()};
   }
   int crossings(std::uint32_t id, Crossing out[2]) const;
+  /// The same from a leaf-order record: the triangle's vertices straight from its indices.
+  int crossings(const LeafPrim& p, Crossing out[2]) const;
+
+ private:
+  int triangle_crossings(const Triangle<T>& t, Crossing out[2]) const;
 };
 
 /// Any registry method, through the case interface (io::Case in, CaseResult out).
@@ -97,6 +102,7 @@ struct GenericKernel {
   Ray<double> ray{};
 
   void prepare(const Ray<double>& r) { ray = r; }
+  int crossings(const LeafPrim& p, Crossing out[2]) const { return crossings(p.id, out); }
   /// Float methods are run on the float-rounded ray (CASES.md): traverse with that one.
   [[nodiscard]] Ray<double> traversal_ray() const {
     if (m.precision != Precision::float32) return ray;
@@ -137,23 +143,7 @@ int CompiledKernel<T, A>::crossings(std::uint32_t id, Crossing out[2]) const {
         if (!h) return GenericKernel{s, *fallback, ray_d}.crossings(id, out);  // exact fallback
         return crossings_of(h->contact, h->t, h->t2, out);
       }
-      const Triangle<T> t = tri(id);
-      TriangleHit<T> h;
-      if constexpr (A == TriAlgo::robust) {
-        // The registry's front door itself (plane-equation screening, then the watertight test).
-        // A prepared-ray miss screen in front of it leaked: on leak rays the prepared test
-        // (WatertightRay<float, double>) says miss where the front door says vertex.
-        h = intersect_watertight<float, double>(ray, t);
-      } else if constexpr (A == TriAlgo::watertight) {
-        h = intersect_watertight(*wr, t);
-        if (h.contact == Contact::parallel) h = intersect_watertight(ray, t);  // coplanar or degenerate
-      } else if constexpr (A == TriAlgo::cramer) {
-        h = intersect_cramer(ray, t);
-      } else {
-        if (mt_surely_no_crossing(ray, t)) return 0;
-        h = intersect_moller_trumbore(ray, t);
-      }
-      return crossings_of(h.contact, double(h.t), double(h.t2), out);
+      return triangle_crossings(tri(id), out);
     }
     std::uint32_t k;
     Hit<T> h;
@@ -171,6 +161,39 @@ int CompiledKernel<T, A>::crossings(std::uint32_t id, Crossing out[2]) const {
       case PrimKind::triangle: break;
     }
     return crossings_of(h.contact, double(h.t), double(h.t2), out);
+}
+
+template <class T, TriAlgo A>
+int CompiledKernel<T, A>::crossings(const LeafPrim& p, Crossing out[2]) const {
+  if (p.id >= s.mesh.triangles.size()) return crossings(p.id, out);
+  const auto& v = s.mesh.vertices;
+  if constexpr (A == TriAlgo::certified) {
+    const auto h = certified::triangle(ray_d, Triangle<double>{v[p.v[0]], v[p.v[1]], v[p.v[2]]});
+    if (!h) return GenericKernel{s, *fallback, ray_d}.crossings(p.id, out);  // exact fallback
+    return crossings_of(h->contact, h->t, h->t2, out);
+  } else {
+    return triangle_crossings({v[p.v[0]].template cast<T>(), v[p.v[1]].template cast<T>(), v[p.v[2]].template cast<T>()}, out);
+  }
+}
+
+template <class T, TriAlgo A>
+int CompiledKernel<T, A>::triangle_crossings(const Triangle<T>& t, Crossing out[2]) const {
+      TriangleHit<T> h;
+      if constexpr (A == TriAlgo::robust) {
+        // The registry's front door itself (plane-equation screening, then the watertight test).
+        // A prepared-ray miss screen in front of it leaked: on leak rays the prepared test
+        // (WatertightRay<float, double>) says miss where the front door says vertex.
+        h = intersect_watertight<float, double>(ray, t);
+      } else if constexpr (A == TriAlgo::watertight) {
+        h = intersect_watertight(*wr, t);
+        if (h.contact == Contact::parallel) h = intersect_watertight(ray, t);  // coplanar or degenerate
+      } else if constexpr (A == TriAlgo::cramer) {
+        h = intersect_cramer(ray, t);
+      } else {
+        if (mt_surely_no_crossing(ray, t)) return 0;
+        h = intersect_moller_trumbore(ray, t);
+      }
+      return crossings_of(h.contact, double(h.t), double(h.t2), out);
 }
 
 }  // namespace rayproof::scene::detail

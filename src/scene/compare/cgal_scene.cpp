@@ -16,7 +16,7 @@
 namespace rayproof::scene::compare {
 
 #ifdef RAYPROOF_HAVE_EMBREE
-Competitor make_embree(const Scene& s, bool robust);
+Competitor make_embree(const Scene& s, bool robust, int build_threads);
 #endif
 
 namespace {
@@ -71,12 +71,12 @@ Competitor make_cgal(const Scene& s, const char* name, bool threaded, std::size_
 
 }  // namespace
 
-std::vector<Competitor> make_competitors(const Scene& s, const std::string& names) {
+std::vector<Competitor> make_competitors(const Scene& s, const std::string& names, int build_threads) {
   const auto want = [&](const char* name) { return ("," + names + ",").find(std::string(",") + name + ",") != std::string::npos; };
   std::vector<Competitor> out;
 #ifdef RAYPROOF_HAVE_EMBREE
-  if (want("embree")) out.push_back(make_embree(s, false));
-  if (want("embree-robust")) out.push_back(make_embree(s, true));
+  if (want("embree")) out.push_back(make_embree(s, false, build_threads));
+  if (want("embree-robust")) out.push_back(make_embree(s, true, build_threads));
 #endif
   if (want("cgal-epick")) out.push_back(make_cgal<CGAL::Epick>(s, "cgal-epick", true, 0));
   if (want("cgal-epeck")) out.push_back(make_cgal<CGAL::Epeck>(s, "cgal-epeck", false, 2000));

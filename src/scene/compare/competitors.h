@@ -26,8 +26,9 @@ struct Competitor {
 
 [[nodiscard]] bool have_embree();
 /// Embree default and robust, then CGAL Epick and Epeck (each built on construction), those of
-/// them named in the comma-separated `names`.
+/// them named in the comma-separated `names`. Embree builds on `build_threads` threads (0: all).
 [[nodiscard]] std::vector<Competitor> make_competitors(const Scene& s,
-                                                       const std::string& names = "embree,embree-robust,cgal-epick,cgal-epeck");
+                                                       const std::string& names = "embree,embree-robust,cgal-epick,cgal-epeck",
+                                                       int build_threads = 0);
 
 }  // namespace rayproof::scene::compare

@@ -34,10 +34,11 @@ struct EmbreeScene {
 };
 }  // namespace
 
-Competitor make_embree(const Scene& s, bool robust) {
+Competitor make_embree(const Scene& s, bool robust, int build_threads) {
   const auto start = std::chrono::steady_clock::now();
   auto e = std::make_shared<EmbreeScene>();
-  e->device = rtcNewDevice(nullptr);
+  const std::string config = build_threads > 0 ? "threads=" + std::to_string(build_threads) : std::string();
+  e->device = rtcNewDevice(config.empty() ? nullptr : config.c_str());
   e->scene = rtcNewScene(e->device);
   if (robust) rtcSetSceneFlags(e->scene, RTC_SCENE_FLAG_ROBUST);
   RTCGeometry g = rtcNewGeometry(e->device, RTC_GEOMETRY_TYPE_TRIANGLE);
