@@ -17,6 +17,8 @@
 
 #include "rayproof/certified_stage.h"
 #include "rayproof/float_util.h"
+#include "rayproof/hit.h"
+#include "rayproof/sphere.h"
 #include "rayproof/ray.h"
 #include "rayproof/triangle_common.h"
 
@@ -157,6 +159,98 @@ RAYPROOF_FMA_TARGET [[gnu::noinline]] inline std::optional<double> triangle_t(co
 }
 
 
+
+/// sum_i x_i y_i for doubles x and two-double y (yl = 0 allowed, then the product terms vanish):
+/// high products exact, their sum exact as hi + two lows, the rest in lo (the bounds of dot_dd apply).
+[[gnu::always_inline]] inline DD dot_d_dd(const double x[3], const DD y[3]) {
+  const double p0 = x[0] * y[0].hi, p1 = x[1] * y[1].hi, p2 = x[2] * y[2].hi;
+  double lo = __builtin_fma(x[0], y[0].hi, -p0) + __builtin_fma(x[1], y[1].hi, -p1) + __builtin_fma(x[2], y[2].hi, -p2);
+  const TwoTerm<double> s1 = two_sum(p0, p1), s2 = two_sum(s1.hi, p2);
+  lo += s1.lo + s2.lo;
+  lo = __builtin_fma(x[0], y[0].lo, __builtin_fma(x[1], y[1].lo, __builtin_fma(x[2], y[2].lo, lo)));
+  return {s2.hi, lo};
+}
+/// sum_i y_i^2 for two-double y: y_hi^2 exact, 2 y_hi y_lo into lo, y_lo^2 dropped (as in dot_dd).
+[[gnu::always_inline]] inline DD square_sum(const DD y[3]) {
+  const double p0 = y[0].hi * y[0].hi, p1 = y[1].hi * y[1].hi, p2 = y[2].hi * y[2].hi;
+  double lo = __builtin_fma(y[0].hi, y[0].hi, -p0) + __builtin_fma(y[1].hi, y[1].hi, -p1) +
+              __builtin_fma(y[2].hi, y[2].hi, -p2);
+  const TwoTerm<double> s1 = two_sum(p0, p1), s2 = two_sum(s1.hi, p2);
+  lo += s1.lo + s2.lo;
+  lo = __builtin_fma(2 * y[0].hi, y[0].lo, __builtin_fma(2 * y[1].hi, y[1].lo, __builtin_fma(2 * y[2].hi, y[2].lo, lo)));
+  return {s2.hi, lo};
+}
+/// x_j y_k - x_k y_j for doubles x and two-double y (cross_component with x exact).
+[[gnu::always_inline]] inline DD cross_d_dd(double xj, double xk, const DD& yj, const DD& yk) {
+  const double p = xj * yk.hi, pe = __builtin_fma(xj, yk.hi, -p);
+  const double q = xk * yj.hi, qe = __builtin_fma(xk, yj.hi, -q);
+  const TwoTerm<double> s = two_sum(p, -q);
+  return {s.hi, __builtin_fma(xj, yk.lo, __builtin_fma(-xk, yj.lo, s.lo + (pe - qe)))};
+}
+
+/// A certified ray / sphere test in double-double, for inputs in_range<-200, 200> (checked by the
+/// caller; every product is then >= 2^-1008 or zero, its fma error term exact, nothing overflows).
+/// With e = o - center (exact as two doubles): a t^2 + 2 b t + c = 0 with a = d.d, b = d.e,
+/// c = e.e - r^2 and disc = a r^2 - |m|^2, m = d x e (the cancellation-free form of certified_quadric.h).
+/// Error bounds (u = 2^-53), each >= 3x over the rounding count of its evaluation: a: 12 u^2 a, used
+/// as 2^-100 a; b: 21 u^2 sum |d_i e_i|, as 2^-98; c: 31 u^2 (e.e + r^2), as 2^-98; disc: m_i is
+/// within 33 u^2 M_i (M_i = |d_j e_k| + |d_k e_j|, cross_component), |m|^2 within 16 u^2 |m|^2 +
+/// 148 u^2 sum |m_i| M_i + 27 u^2 sum M_i^2, a r^2 within 30 u^2 a r^2, the difference 8 u^2 a r^2 +
+/// 26 u^2 |m|^2: used as 2^-97 (a r^2 + |m|^2 + sum |m_i| M_i + sum M_i^2). Every bound also carries
+/// 2^-1000 for the absolute error of an operation whose result is subnormal (2^-1075 each).
+/// Decides miss, inside, behind and hit with both roots pinned (sqrt(disc) of the normalised disc
+/// refined as in certified_quadric.h, |error| <= 2^-103 s + ered / sqrt(disc), used with 2^-101 s, no cancellation in
+/// q = -(b + sign(b) sqrt(disc)), roots q / a and c / q by pin_dd); returns nothing for a disc, c or
+/// b whose sign the bound cannot tell (tangents, origins on the surface: the caller's exact stages).
+RAYPROOF_FMA_TARGET [[gnu::noinline]] inline std::optional<Hit<double>> sphere(const Ray<double>& ray,
+                                                                               const Sphere<double>& sp) {
+  using H = Hit<double>;
+  const DD e[3] = {exact_diff(ray.o.x, sp.center.x), exact_diff(ray.o.y, sp.center.y), exact_diff(ray.o.z, sp.center.z)};
+  const double dv[3] = {ray.d.x, ray.d.y, ray.d.z};
+  const DD dz[3] = {{dv[0], 0}, {dv[1], 0}, {dv[2], 0}};
+  const DD a = square_sum(dz);
+  const double rh = sp.radius * sp.radius, rl = __builtin_fma(sp.radius, sp.radius, -rh);
+  const DD m[3] = {cross_d_dd(dv[1], dv[2], e[1], e[2]), cross_d_dd(dv[2], dv[0], e[2], e[0]), cross_d_dd(dv[0], dv[1], e[0], e[1])};
+  const DD mm = square_sum(m);
+  const double ar = a.hi * rh;
+  const double arl = __builtin_fma(a.lo, rh, __builtin_fma(a.hi, rl, __builtin_fma(a.hi, rh, -ar)));
+  const TwoTerm<double> rs = two_sum(ar, -mm.hi);
+  const DD red{rs.hi, rs.lo + arl - mm.lo};
+  const double D[3] = {std::fabs(ray.d.x), std::fabs(ray.d.y), std::fabs(ray.d.z)};
+  const double E[3] = {std::fabs(e[0].hi), std::fabs(e[1].hi), std::fabs(e[2].hi)};
+  const double M[3] = {D[1] * E[2] + D[2] * E[1], D[2] * E[0] + D[0] * E[2], D[0] * E[1] + D[1] * E[0]};
+  const double ered = 0x1p-97 * (std::fabs(ar) + std::fabs(mm.hi) + std::fabs(m[0].hi) * M[0] + std::fabs(m[1].hi) * M[1] +
+                                 std::fabs(m[2].hi) * M[2] + M[0] * M[0] + M[1] * M[1] + M[2] * M[2]) +
+                      0x1p-1000;
+  if (red.hi < -2 * (std::fabs(red.lo) + ered)) return H{Contact::miss};
+  if (!(red.hi > 2 * (std::fabs(red.lo) + ered)) || !(red.hi > 0x1p-900)) return std::nullopt;
+  const DD b = dot_d_dd(dv, e), ee = square_sum(e);
+  const TwoTerm<double> cs = two_sum(ee.hi, -rh);
+  const DD c{cs.hi, cs.lo + ee.lo - rl};
+  const double ea = 0x1p-100 * a.hi + 0x1p-1000, eb = 0x1p-98 * (D[0] * E[0] + D[1] * E[1] + D[2] * E[2]) + 0x1p-1000,
+               ec = 0x1p-98 * (ee.hi + rh) + 0x1p-1000;
+  const int sc = c.hi > 2 * (std::fabs(c.lo) + ec) ? 1 : (c.hi < -2 * (std::fabs(c.lo) + ec) ? -1 : 0);
+  const int sb = b.hi > 2 * (std::fabs(b.lo) + eb) ? 1 : (b.hi < -2 * (std::fabs(b.lo) + eb) ? -1 : 0);
+  if (sc == 0 || (sc > 0 && sb == 0)) return std::nullopt;
+  const Contact cls = sc < 0 ? Contact::inside : (sb > 0 ? Contact::behind : Contact::hit);
+  // sqrt(disc) = s + sl from disc normalised (exactly: rn.lo at most half an ulp of rn.hi, which the
+  // refinement's error analysis needs; red.lo itself may be a sizeable fraction of red.hi after
+  // cancellation), s = sqrt(rn.hi), the remainder rn.hi - s^2 exact by fma.
+  const TwoTerm<double> rn = two_sum(red.hi, red.lo);
+  const double s = std::sqrt(rn.hi), inv = 0.5 / s;
+  const double sl = (__builtin_fma(-s, s, rn.hi) + rn.lo) * inv;
+  const double esq = (0x1p-101 * s + ered * (2 * inv) * (1 + 0x1p-50)) * (1 + 0x1p-50) + 0x1p-1000;
+  // q = -(b + sign(b) sqrt(disc)), no cancellation; q / a and c / q.
+  const bool plus = b.hi >= 0;
+  const TwoTerm<double> qs = plus ? two_sum(b.hi, s) : two_sum(s, -b.hi);
+  const double ql = plus ? qs.lo + b.lo + sl : qs.lo + sl - b.lo;
+  const DD q = plus ? DD{-qs.hi, -ql} : DD{qs.hi, ql};
+  const double eq = (eb + esq) * (1 + 0x1p-50) + 0x1p-51 * (std::fabs(qs.lo) + std::fabs(b.lo) + std::fabs(sl));
+  const auto t1 = pin_dd(q, a, eq, ea), t2 = pin_dd(c, q, ec, eq);
+  if (!t1 || !t2) return std::nullopt;
+  // plus: q < 0 and q / a is the lower root; otherwise q > 0 and q / a the upper one.
+  return plus ? H{cls, *t1, *t2} : H{cls, *t2, *t1};
+}
 #endif
 
 }  // namespace rayproof::certified::dd

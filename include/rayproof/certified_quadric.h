@@ -14,6 +14,7 @@
 /// -2b / a) are proven and pinned without GMP; (3) the running-error-bound filter below, for inputs
 /// outside the exponent windows of stages 1 and 2.
 #include "rayproof/certified_filter.h"
+#include "rayproof/certified_fma.h"
 #include "rayproof/certified_stage.h"
 #include "rayproof/ellipsoid.h"
 #include "rayproof/sphere.h"
@@ -221,6 +222,14 @@ template <class F>
   if (!ray.valid() || !all_finite(s.center) || !std::isfinite(s.radius) || s.radius < 0) return H{Contact::invalid};
   if (s.radius == 0) return H{Contact::degenerate};
   const detail::Quad<double> x = detail::sphere_quad<double>(ray, s);
+#if RAYPROOF_FMA_PATH != 0
+  // A miss the double stage proves costs no more; everything else goes to double-double with hardware
+  // FMA first (certified_fma.h), then to the stages below for what that leaves.
+  if (x.red < -x.ered) return H{Contact::miss};
+  const Vec3<double>&o = ray.o, &dv = ray.d, &c0 = s.center;
+  if (dd::available() && in_range<-200, 200>(o.x, o.y, o.z, dv.x, dv.y, dv.z, c0.x, c0.y, c0.z, s.radius))
+    if (auto h = dd::sphere(ray, s)) return h;
+#endif
   auto wide = [&] { return std::pair{detail::sphere_wide(ray, s, x), Wide(1)}; };
   if (auto h = detail::solve_fast(x, wide)) return h;
   if (auto h = detail::sphere_exact(ray, s)) return h;
