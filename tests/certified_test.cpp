@@ -248,7 +248,7 @@ TEST(Certified, AgreesWithExactOnSubnormalsBesideHugeCoordinates) {
 /// Rays within a few thousand ulps of tangency to spheres at scales 2^-20 .. 2^40: the discriminant
 /// cancels to a tiny fraction of a r^2 (the double-double path then holds a low part that is a large
 /// fraction of its high part, which its square root must not mistake for a rounding error; this
-/// caught exactly that). Every case against exact, and most decided without GMP.
+/// caught exactly that). Every case against exact, and with FMA most decided without GMP.
 TEST(Certified, AgreesWithExactNearTangentAtEveryScale) {
   std::mt19937_64 g(23);
   std::uniform_real_distribution<double> U(-1, 1);
@@ -272,6 +272,7 @@ TEST(Certified, AgreesWithExactNearTangentAtEveryScale) {
     t.run(cs);
   }
   EXPECT_EQ(t.bad, 0u);
-  EXPECT_LT(t.fallbacks, t.cases / 20);
+  // Double-double pins nearly all of these; the x87 path's 11 extra bits leave about half to GMP.
+  if (certified::dd::available()) EXPECT_LT(t.fallbacks, t.cases / 20);
   std::printf("near-tangent: %zu cases, %zu fallbacks\n", t.cases, t.fallbacks);
 }

@@ -46,6 +46,16 @@ struct Slab {
   return pin_ratio(num, Wide(s.d), std::fabs(num) * 0x1p-64L, 0);
 }
 
+/// The class from the entry interval [El, Eh] and the exit interval [Xl, Xh] (entry before exit,
+/// decided by the caller): behind, inside or hit, or nothing when 0 falls in either interval.
+[[nodiscard]] inline std::optional<Contact> slab_class(double El, double Eh, double Xl, double Xh) {
+  if (Xh < 0) return Contact::behind;
+  if (!(Xl >= 0)) return std::nullopt;
+  if (Eh < 0) return Contact::inside;
+  if (El >= 0) return Contact::hit;
+  return std::nullopt;
+}
+
 /// Stage 1 with some d_i = 0: near[i] / far[i] for the axes with d_i != 0.
 [[gnu::noinline]] inline std::optional<Hit<double>> box_fast_parallel(const Ray<double>& ray, const Box<double>& bx) {
   using H = Hit<double>;
@@ -76,15 +86,11 @@ struct Slab {
     if (j != ix && !(far[j].t - far[j].e > Xh)) return std::nullopt;
   }
   if (!(Eh < Xl)) return std::nullopt;  // a graze, or too close to tell
-  Contact cls;
-  if (Xh < 0) cls = Contact::behind;
-  else if (!(Xl >= 0)) return std::nullopt;
-  else if (Eh < 0) cls = Contact::inside;
-  else if (El >= 0) cls = Contact::hit;
-  else return std::nullopt;
+  const auto cls = slab_class(El, Eh, Xl, Xh);
+  if (!cls) return std::nullopt;
   const auto t0 = pin_slab(en), t1 = pin_slab(ex);
   if (!t0 || !t1) return std::nullopt;
-  return H{cls, *t0, *t1};
+  return H{*cls, *t0, *t1};
 }
 
 /// Stage 1, every d_i != 0 and every b - o exact in double (then each slab distance is a correctly
@@ -116,13 +122,9 @@ struct Slab {
   int reach = 0;
   for (int j = 0; j < 3; ++j) reach += (tn[j] + err(tn[j]) >= El) + (tf[j] - err(tf[j]) <= Xh);
   if (reach != 2 || !(Eh < Xl)) return std::nullopt;  // a tie between slabs, a graze, or too close
-  Contact cls;
-  if (Xh < 0) cls = Contact::behind;
-  else if (!(Xl >= 0)) return std::nullopt;
-  else if (Eh < 0) cls = Contact::inside;
-  else if (El >= 0) cls = Contact::hit;
-  else return std::nullopt;
-  return H{cls, enter + 0.0, exit + 0.0};  // a zero is +0.0
+  const auto cls = slab_class(El, Eh, Xl, Xh);
+  if (!cls) return std::nullopt;
+  return H{*cls, enter + 0.0, exit + 0.0};  // a zero is +0.0
 }
 
 /// Stage 2 (in_range<-300, 300>, degree 2): slab distances as exact fractions p / d, compared exactly.
