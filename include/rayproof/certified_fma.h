@@ -137,7 +137,7 @@ struct Residual {
 /// sum_i |x_i| pn_i (x = p0 - o or d), used with 2^-90 (>= 3x slack), plus 2^-1000 (|x|_1 + 1) for
 /// products that underflow (an fma error term below 2^-1022 is not exact: <= 2^-1075 each, amplified
 /// by |x_i| at most).
-RAYPROOF_FMA_TARGET [[gnu::noinline]] inline std::optional<double> triangle_t(const Ray<double>& ray,
+[[gnu::noinline]] RAYPROOF_FMA_TARGET inline std::optional<double> triangle_t(const Ray<double>& ray,
                                                                               const Triangle<double>& tri,
                                                                               const Vec3<double>& pn) {
   const DD f1[3] = {exact_diff(tri.p1.x, tri.p0.x), exact_diff(tri.p1.y, tri.p0.y), exact_diff(tri.p1.z, tri.p0.z)};
@@ -202,7 +202,7 @@ RAYPROOF_FMA_TARGET [[gnu::noinline]] inline std::optional<double> triangle_t(co
 /// refined as in certified_quadric.h, |error| <= 2^-103 s + ered / sqrt(disc), used with 2^-101 s, no cancellation in
 /// q = -(b + sign(b) sqrt(disc)), roots q / a and c / q by pin_dd); returns nothing for a disc, c or
 /// b whose sign the bound cannot tell (tangents, origins on the surface: the caller's exact stages).
-RAYPROOF_FMA_TARGET [[gnu::noinline]] inline std::optional<Hit<double>> sphere(const Ray<double>& ray,
+[[gnu::noinline]] RAYPROOF_FMA_TARGET inline std::optional<Hit<double>> sphere(const Ray<double>& ray,
                                                                                const Sphere<double>& sp) {
   using H = Hit<double>;
   const DD e[3] = {exact_diff(ray.o.x, sp.center.x), exact_diff(ray.o.y, sp.center.y), exact_diff(ray.o.z, sp.center.z)};
