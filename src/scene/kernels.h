@@ -74,10 +74,17 @@ struct CompiledKernel {
   const Method* fallback = nullptr;  ///< robust, certified: the registry method (other kinds, undecided)
   Ray<double> ray_d{};
 
+  bool ray_ok = false;                                ///< robust: the float ray is valid
+  std::optional<WatertightRay<float, double>> wr_robust;  ///< robust: the front door's per-ray part
+
   void prepare(const Ray<double>& r) {
     ray = {r.o.template cast<T>(), r.d.template cast<T>()};
     ray_d = r;
     if constexpr (A == TriAlgo::watertight) wr.emplace(ray);
+    if constexpr (A == TriAlgo::robust) {
+      ray_ok = ray.valid();
+      if (ray_ok) wr_robust.emplace(ray);
+    }
   }
   /// The ray the kernel intersects, in double (a float kernel's float-rounded ray): the one the
   /// BVH traversal must not cull boxes of.
@@ -180,10 +187,22 @@ template <class T, TriAlgo A>
 int CompiledKernel<T, A>::triangle_crossings(const Triangle<T>& t, Crossing out[2]) const {
       TriangleHit<T> h;
       if constexpr (A == TriAlgo::robust) {
-        // The registry's front door itself (plane-equation screening, then the watertight test).
-        // A prepared-ray miss screen in front of it leaked: on leak rays the prepared test
-        // (WatertightRay<float, double>) says miss where the front door says vertex.
-        h = intersect_watertight<float, double>(ray, t);
+        // The registry's front door, intersect_watertight<float, double>(ray, t), step by step with
+        // its per-ray parts (ray validity, the axis permutation) computed once in prepare(): the
+        // same operations on the same values, so the same result (tests/scene_test.cpp checks it
+        // against the registry method crossing by crossing, on leak rays too). No step is skipped:
+        // an earlier prepared-ray *miss screen* (the watertight test alone first) leaked.
+        if (!ray_ok || !triangle_finite(t)) return 0;  // invalid
+        const Vec3<double> p0 = t.p0.template cast<double>(), p1 = t.p1.template cast<double>(),
+                           p2 = t.p2.template cast<double>();
+        const Vec3<double> n = cross(p1 - p0, p2 - p0);
+        if (is_zero(n)) return 0;  // degenerate
+        if (dot(ray.d.template cast<double>(), n) == 0.0) {
+          h = intersect_watertight<float, double>(ray, t);  // parallel or coplanar: the front door decides
+        } else {
+          h = intersect_watertight(*wr_robust, t);
+          if (h.contact == Contact::parallel) return 0;  // the front door's miss
+        }
       } else if constexpr (A == TriAlgo::watertight) {
         h = intersect_watertight(*wr, t);
         if (h.contact == Contact::parallel) h = intersect_watertight(ray, t);  // coplanar or degenerate
