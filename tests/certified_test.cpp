@@ -12,8 +12,10 @@
 
 #include "gen/families.h"
 #include "io/case_file.h"
+#include "methods/method.h"
 #include "rayproof/certified_fma.h"
 #include "rayproof/certified_stage.h"
+#include "rayproof/certified_triangle.h"
 #include "verify/differential.h"
 #include "verify/exact.h"
 
@@ -275,4 +277,34 @@ TEST(Certified, AgreesWithExactNearTangentAtEveryScale) {
   // Double-double pins nearly all of these; the x87 path's 11 extra bits leave about half to GMP.
   if (certified::dd::available()) EXPECT_LT(t.fallbacks, t.cases / 20);
   std::printf("near-tangent: %zu cases, %zu fallbacks\n", t.cases, t.fallbacks);
+}
+
+/// The double-double stage for triangles the double stage leaves (rays near the plane, an edge or a
+/// vertex) decides a good share of near-parallel rays on its own, and each of its answers equals the
+/// exact one (class and t within one ulp).
+TEST(Certified, DoubleDoubleTriangleStageAgreesWithExact) {
+#if RAYPROOF_FMA_PATH != 0
+  if (!certified::dd::available()) GTEST_SKIP() << "no FMA here (or RAYPROOF_CERTIFIED_NO_FMA set)";
+  const gen::Family* f = gen::find_family("tri_near_parallel");
+  ASSERT_NE(f, nullptr);
+  std::size_t left = 0, decided = 0;
+  for (const io::Case& c : gen::generate(*f, 4000, 5, gen::Precision::float64)) {
+    const Ray<double> ray{{c.v[0], c.v[1], c.v[2]}, {c.v[3], c.v[4], c.v[5]}};
+    const Triangle<double> tri{{c.v[6], c.v[7], c.v[8]}, {c.v[9], c.v[10], c.v[11]}, {c.v[12], c.v[13], c.v[14]}};
+    if (!ray.valid() || certified::detail::triangle_fast(ray, tri)) continue;
+    ++left;
+    const auto h = certified::dd::triangle_near(ray, tri);
+    if (!h) continue;
+    ++decided;
+    const io::CaseResult want = verify::exact_classify(c);
+    const io::CaseResult got = make_result(io::Kind::triangle, h->contact, h->t, h->t2);
+    ASSERT_EQ(got.contact, want.contact) << io::format_case(c);
+    ASSERT_LE(verify::t_error_ulps(got, want, Precision::float64), 1u) << io::format_case(c);
+  }
+  EXPECT_GT(left, 100u);
+  EXPECT_GT(decided, left / 10) << decided << " of " << left;
+  std::printf("double-double triangle stage: decided %zu of %zu left by the double stage\n", decided, left);
+#else
+  GTEST_SKIP() << "no FMA path on this target";
+#endif
 }

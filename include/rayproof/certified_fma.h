@@ -188,6 +188,62 @@ struct Residual {
   return {s.hi, __builtin_fma(xj, yk.lo, __builtin_fma(-xk, yj.lo, s.lo + (pe - qe)))};
 }
 
+/// The sign of x = hi + lo known within e: +1 or -1, or 0 when the bound cannot tell.
+[[gnu::always_inline]] inline int dd_sign(const DD& x, double e) {
+  const double m = (std::fabs(x.lo) + e) * (1 + 0x1p-50);
+  return x.hi > m ? 1 : (x.hi < -m ? -1 : 0);
+}
+
+/// (d x y) . z for double d and two-double y, z, and its error bound (see triangle_near).
+[[gnu::always_inline]] inline DD volume(const double d[3], const DD y[3], const DD z[3], double& err) {
+  const DD m[3] = {cross_d_dd(d[1], d[2], y[1], y[2]), cross_d_dd(d[2], d[0], y[2], y[0]), cross_d_dd(d[0], d[1], y[0], y[1])};
+  const double ad[3] = {std::fabs(d[0]), std::fabs(d[1]), std::fabs(d[2])};
+  const double ay[3] = {std::fabs(y[0].hi), std::fabs(y[1].hi), std::fabs(y[2].hi)};
+  const double az[3] = {std::fabs(z[0].hi), std::fabs(z[1].hi), std::fabs(z[2].hi)};
+  err = 0x1p-90 * (az[0] * (ad[1] * ay[2] + ad[2] * ay[1]) + az[1] * (ad[2] * ay[0] + ad[0] * ay[2]) +
+                   az[2] * (ad[0] * ay[1] + ad[1] * ay[0])) +
+        0x1p-1000 * (az[0] + az[1] + az[2] + 1);
+  return dot_dd(z, m);
+}
+
+/// The triangle's class where the double stage could not tell (a ray near an edge, a vertex or the
+/// plane), before the expansions: the signed volumes u0 = (d x b) . c, u1 = (d x c) . a,
+/// u2 = (d x a) . b of certified_triangle.h's stage 1, with a, b, c = p_i - o exact as two doubles,
+/// in double-double: m = d x b by cross_d_dd (x exact: within 33 u^2 M_i, M_i = |d_j b_k| + |d_k b_j|),
+/// u0 = m . c by dot_dd: within 140 u^2 sum_i |c_i| M_i, used as 2^-90 (>= 3x), plus 2^-1000
+/// (|c|_1 + 1) for products that underflow (as triangle_t). den = u0 + u1 + u2 adds the rounding of
+/// the low parts' sum. Decides miss (a barycentric of the other sign than den), and interior or
+/// behind with t from triangle_t when every sign is clear; returns nothing for what may be an exact
+/// zero (an edge, a vertex, a parallel or coplanar ray): the expansions decide those.
+[[gnu::noinline]] RAYPROOF_FMA_TARGET inline std::optional<Hit<double>> triangle_near(const Ray<double>& ray,
+                                                                                   const Triangle<double>& tri) {
+  using H = Hit<double>;
+  const Vec3<double>&o = ray.o, &p0 = tri.p0, &p1 = tri.p1, &p2 = tri.p2;
+  const DD a[3] = {exact_diff(p0.x, o.x), exact_diff(p0.y, o.y), exact_diff(p0.z, o.z)};
+  const DD b[3] = {exact_diff(p1.x, o.x), exact_diff(p1.y, o.y), exact_diff(p1.z, o.z)};
+  const DD c[3] = {exact_diff(p2.x, o.x), exact_diff(p2.y, o.y), exact_diff(p2.z, o.z)};
+  const double d[3] = {ray.d.x, ray.d.y, ray.d.z};
+  double e0, e1, e2;
+  const DD u0 = volume(d, b, c, e0), u1 = volume(d, c, a, e1), u2 = volume(d, a, b, e2);
+  const TwoTerm<double> s1 = two_sum(u0.hi, u1.hi), s2 = two_sum(s1.hi, u2.hi);
+  const double lo = u0.lo + u1.lo + u2.lo;
+  const DD den{s2.hi, (s1.lo + s2.lo) + lo};
+  const double eden = (e0 + e1 + e2 + 0x1p-51 * (std::fabs(u0.lo) + std::fabs(u1.lo) + std::fabs(u2.lo) + std::fabs(lo))) *
+                      (1 + 0x1p-50);
+  const int sd = dd_sign(den, eden);
+  if (sd == 0) return std::nullopt;  // parallel, coplanar or too close: the expansions
+  const int s0 = dd_sign(u0, e0) * sd, s1s = dd_sign(u1, e1) * sd, s2s = dd_sign(u2, e2) * sd;
+  if (s0 < 0 || s1s < 0 || s2s < 0) return H{Contact::miss};
+  if (s0 == 0 || s1s == 0 || s2s == 0) return std::nullopt;  // maybe an edge or a vertex
+  // Interior or behind: t as in stage 1 (pn_i = |f1_j f2_k| + |f1_k f2_j|).
+  const Vec3<double> f1 = p1 - p0, f2 = p2 - p0;
+  const Vec3<double> g1{std::fabs(f1.x), std::fabs(f1.y), std::fabs(f1.z)}, g2{std::fabs(f2.x), std::fabs(f2.y), std::fabs(f2.z)};
+  const Vec3<double> pn{g1.y * g2.z + g1.z * g2.y, g1.z * g2.x + g1.x * g2.z, g1.x * g2.y + g1.y * g2.x};
+  const auto t = triangle_t(ray, tri, pn);
+  if (!t) return std::nullopt;
+  return H{*t < 0 ? Contact::behind : Contact::interior, *t};
+}
+
 /// A certified ray / sphere test in double-double, for inputs in_range<-200, 200> (checked by the
 /// caller; every product is then >= 2^-1008 or zero, its fma error term exact, nothing overflows).
 /// With e = o - center (exact as two doubles): a t^2 + 2 b t + c = 0 with a = d.d, b = d.e,

@@ -204,6 +204,10 @@ template <class W>
   using H = Hit<double>;
   if (!ray.valid() || !triangle_finite(tri)) return H{Contact::invalid};
   if (auto h = detail::triangle_fast(ray, tri)) return h;
+#if RAYPROOF_FMA_PATH != 0
+  if (dd::available())  // near an edge, a vertex or the plane: double-double before the expansions
+    if (auto h = dd::triangle_near(ray, tri)) return h;
+#endif
   if (auto h = detail::triangle_expansion(ray, tri)) return h;
   if constexpr (!kFilterAvailable) return std::nullopt;
   // Stage 3: running error bounds, in double first (cheap, decides generic misses), then in Wide.
