@@ -3,13 +3,16 @@
 ///  - median: the worked problems' builder. Split the node across the longest axis of its box at
 ///    the median primitive centroid, so both halves hold the same count (a balanced tree).
 ///  - sah: binned surface area heuristic (Wald 2007, "On fast construction of SAH-based BVHs"):
-///    16 bins over the centroid bounds per axis, the split of least cost
-///    C = 2 + (A_l N_l + A_r N_r) / A, or a leaf when that is not cheaper than N. The traversal
-///    cost 2 counts the two child box tests each inner node costs (bvh_traverse.h); it also keeps
-///    leaves at 2-4 primitives, which halves the node memory of a cost of 1.
+///    16 bins over the centroid bounds per axis (8 below 64 primitives, 4 below 16), the split of
+///    least cost C = 2 + (A_l N_l + A_r N_r) / A, or a leaf when that is not cheaper than N. The
+///    traversal cost 2 counts the two child box tests each inner node costs (bvh_traverse.h); it
+///    also keeps leaves at 2-4 primitives, which halves the node memory of a cost of 1 (and keeps
+///    the collapsed four-wide tree of bvh_wide.h within 64 bytes per triangle with its records).
 /// Both work in place on one array of primitive references (bounds, center, id) partitioned node by
-/// node: per node one pass for the bounds and centroid bounds, one for the bins of all three axes,
-/// one partition; no allocation per node. Both are iterative and never produce an empty child.
+/// node: per SAH node one pass bins all three axes (SSE, two interleaved bin sets) and one
+/// partitions, gathering both children's bounds and centroid bounds on the way (only the root and
+/// median nodes take a separate bounds pass); no allocation per node. Both are iterative and never
+/// produce an empty child.
 /// Parallel build: the caller passes `for_each(n, f)` that may run f(0) .. f(n-1) concurrently
 /// (bvh_build.h stays dependency-free; the scene layer passes TBB). The top of the tree is built
 /// sequentially; subtrees below kParallelGrain primitives are built independently, then spliced.

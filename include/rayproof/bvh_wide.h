@@ -320,33 +320,41 @@ void bvh4_traverse_impl(const Bvh4& bvh, const Ray<double>& ray, double tmin, co
     tmin_v = _mm_set1_ps(rf.tmin);
   }
   T tmax_cur = tmax_t();
-  stack[top++] = Entry{0, 0, static_cast<T>(-std::numeric_limits<T>::infinity())};
-  while (top > 0) {
-    const Entry e = stack[--top];
-    if (Query == BvhQuery::closest && !(e.t <= tmax_cur)) continue;
+  // `e` is the child being visited (its entry already checked against tmax); a visit that ends
+  // a path pops the next child whose entry is still within tmax.
+  Entry e{0, 0, static_cast<T>(-std::numeric_limits<T>::infinity())};
+  if (Query == BvhQuery::closest && !(e.t <= tmax_cur)) return;  // NaN tmax
+  for (;;) {
     if (e.count) {
       for (std::uint32_t i = e.ref, end = e.ref + e.count; i < end; ++i)
         if (leaf(i) && Query == BvhQuery::any) return;
       if constexpr (Query == BvhQuery::closest) tmax_cur = tmax_t();
-      continue;
-    }
-    const Bvh4Node& n = nodes[e.ref];
-    alignas(16) T t[4];
-    int mask;
-    if constexpr (std::is_same_v<T, float>) {
-      __m128 te;
-      mask = bvh4_test<Conservative>(n, rf, tmin_v, _mm_set1_ps(tmax_cur), te);
-      _mm_store_ps(t, te);
     } else {
-      mask = bvh4_test_double<Conservative>(n, rd, tmin, tmax_cur, t);
+      const Bvh4Node& n = nodes[e.ref];
+      alignas(16) T t[4];
+      int mask;
+      if constexpr (std::is_same_v<T, float>) {
+        __m128 te;
+        mask = bvh4_test<Conservative>(n, rf, tmin_v, _mm_set1_ps(tmax_cur), te);
+        _mm_store_ps(t, te);
+      } else {
+        mask = bvh4_test_double<Conservative>(n, rd, tmin, tmax_cur, t);
+      }
+      if (mask) {
+        if ((mask & (mask - 1)) == 0) {  // one child: straight to it
+          const int i = __builtin_ctz(static_cast<unsigned>(mask));
+          e = Entry{n.child[i], n.count[i], t[i]};
+        } else {  // several: the farther ones on the stack, the nearest next
+          bvh4_push_sorted(n, nodes, mask, t, stack, top);
+          e = stack[--top];
+        }
+        continue;
+      }
     }
-    if (!mask) continue;
-    if ((mask & (mask - 1)) == 0) {
-      const int i = __builtin_ctz(static_cast<unsigned>(mask));
-      stack[top++] = Entry{n.child[i], n.count[i], t[i]};
-      continue;
-    }
-    bvh4_push_sorted(n, nodes, mask, t, stack, top);
+    do {
+      if (top == 0) return;
+      e = stack[--top];
+    } while (Query == BvhQuery::closest && !(e.t <= tmax_cur));
   }
 }
 

@@ -75,7 +75,7 @@ struct CompiledKernel {
   Ray<double> ray_d{};
 
   bool ray_ok = false;                                ///< robust: the float ray is valid
-  std::optional<WatertightRay<float, double>> wr_robust;  ///< robust: the front door's per-ray part
+  std::optional<WatertightRay<float, double>> wr_robust{};  ///< robust: the front door's per-ray part
 
   void prepare(const Ray<double>& r) {
     ray = {r.o.template cast<T>(), r.d.template cast<T>()};
