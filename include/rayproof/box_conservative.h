@@ -17,21 +17,8 @@ namespace rayproof {
 template <class T>
 [[nodiscard]] Hit<T> intersect_conservative(const Ray<T>& ray, const Box<T>& b) {
   if (!ray.valid() || !box_valid(b)) return {Contact::invalid};
-  T t_enter = -std::numeric_limits<T>::infinity();
-  T t_exit = std::numeric_limits<T>::infinity();
-  for (int i = 0; i < 3; ++i) {
-    // Parallel axis: inside the slab bounds nothing, outside misses (exact comparisons).
-    if (ray.d[i] == T(0)) {
-      if (ray.o[i] < b.lo[i] || ray.o[i] > b.hi[i]) return {Contact::miss};
-      continue;
-    }
-    // Slab distances (finite d_i != 0: no NaN; overflow gives a correctly signed infinity).
-    T ta = (b.lo[i] - ray.o[i]) / ray.d[i];
-    T tb = (b.hi[i] - ray.o[i]) / ray.d[i];
-    if (ta > tb) std::swap(ta, tb);
-    t_enter = std::max(t_enter, ta);
-    t_exit = std::min(t_exit, tb);
-  }
+  T t_enter, t_exit;
+  if (!slab_interval(ray, b, t_enter, t_exit)) return {Contact::miss};
   // Widen the exit outward (towards +inf) by 2 gamma(3) of its magnitude, before comparing.
   const T widened = t_exit + T(2) * gamma<T>(3) * std::abs(t_exit);
   if (t_enter > widened) return {Contact::miss};
