@@ -12,10 +12,10 @@
 /// Box tests. The ray is given in double; the traversal runs in float when the ray is within range:
 ///  - standard: the slab test on the float-rounded ray (what a float kernel intersects).
 ///  - conservative (Ize, "Robust BVH Ray Traversal", JCGT 2013): every box the exact double segment
-///    [tmin, tmax] touches passes. Per axis the origin is rounded to float in the direction that
-///    lowers the near distance and raises the far one (o rounded up for the near plane when 1/d > 0,
-///    down when 1/d < 0, and the reverse for the far plane), so the rounded distances bound the
-///    exact ones before any arithmetic error; the float distance then carries four roundings
+///    [tmin, tmax] touches passes. Per axis the origin is replaced by a float bound on the side that
+///    lowers the near distance and raises the far one (a float >= o for the near plane when 1/d > 0,
+///    <= o when 1/d < 0, and the reverse for the far plane; see make_bvh4_ray), so the rounded
+///    distances bound the exact ones before any arithmetic error; the float distance then carries four roundings
 ///    (difference, double reciprocal, float rounding of it, product): near is scaled towards -inf
 ///    and far towards +inf by 2 gamma(4) (float) and moved by an absolute 2^-120 for underflow.
 ///    tmin is rounded down and tmax up to float.
@@ -187,23 +187,48 @@ inline float round_up_f(double x) { return bvh_float_up(x); }
 
 /// Prepares the float box test of the double ray; false when the ray is out of the float path's
 /// range (see the header comment: NaN, |o| > 2^64, or a nonzero |d| outside [2^-64, 2^64]).
+/// Conservative: the origin bounds are o -/+ (|o| 2^-23 + 2^-148) computed in double, then rounded
+/// to the nearest float. That float is <= o (resp. >= o): the offset is at least one float ulp of o
+/// (ulp(o) <= |o| 2^-23 for normal floats, 2^-149 below them), and rounding to nearest moves by at
+/// most half an ulp; the double operations' own roundings (2^-53 relative) are far inside that.
 inline bool make_bvh4_ray(const Ray<double>& r, bool conservative, double tmin, Bvh4RayF& out) {
-  constexpr double hi = 18446744073709551616.0, lo = 1.0 / hi;  // 2^64, 2^-64
+  const __m128d sign = _mm_set1_pd(-0.0);
+  const __m128d oxy = _mm_loadu_pd(&r.o.x), oz = _mm_load_sd(&r.o.z);
+  const __m128d dxy = _mm_loadu_pd(&r.d.x), dz = _mm_load_sd(&r.d.z);
+  const __m128d aoxy = _mm_andnot_pd(sign, oxy), aoz = _mm_andnot_pd(sign, oz);
+  const __m128d adxy = _mm_andnot_pd(sign, dxy), adz = _mm_andnot_pd(sign, dz);
+  const __m128d hi = _mm_set1_pd(18446744073709551616.0), lo = _mm_set1_pd(1.0 / 18446744073709551616.0);
+  const __m128d zero = _mm_setzero_pd();
+  // |o| <= 2^64 (false for NaN) and (d = 0 or 2^-64 <= |d| <= 2^64), per lane.
+  auto ok = [&](__m128d ao, __m128d ad) {
+    return _mm_and_pd(_mm_cmple_pd(ao, hi), _mm_or_pd(_mm_cmpeq_pd(ad, zero), _mm_and_pd(_mm_cmpge_pd(ad, lo), _mm_cmple_pd(ad, hi))));
+  };
+  if ((_mm_movemask_pd(ok(aoxy, adxy)) & 3) != 3 || (_mm_movemask_pd(ok(aoz, adz)) & 1) != 1) return false;
+  const __m128d one = _mm_set1_pd(1.0);
+  const __m128 inv = _mm_movelh_ps(_mm_cvtpd_ps(_mm_div_pd(one, dxy)), _mm_cvtpd_ps(_mm_div_sd(one, dz)));
+  __m128 o_lo, o_hi;
+  if (conservative) {
+    const __m128d ulp = _mm_set1_pd(0x1p-23), tiny = _mm_set1_pd(0x1p-148);
+    const __m128d exy = _mm_add_pd(_mm_mul_pd(aoxy, ulp), tiny), ez = _mm_add_pd(_mm_mul_pd(aoz, ulp), tiny);
+    o_lo = _mm_movelh_ps(_mm_cvtpd_ps(_mm_sub_pd(oxy, exy)), _mm_cvtpd_ps(_mm_sub_pd(oz, ez)));
+    o_hi = _mm_movelh_ps(_mm_cvtpd_ps(_mm_add_pd(oxy, exy)), _mm_cvtpd_ps(_mm_add_pd(oz, ez)));
+  } else {
+    o_lo = o_hi = _mm_movelh_ps(_mm_cvtpd_ps(oxy), _mm_cvtpd_ps(oz));
+  }
+  // 1/d < 0 (d < 0 or d = -0): the near plane is hi, and the near distance wants the lower origin.
+  const __m128 neg = _mm_cmplt_ps(inv, _mm_setzero_ps());
+  const __m128 o_near = _mm_or_ps(_mm_and_ps(neg, o_lo), _mm_andnot_ps(neg, o_hi));
+  const __m128 o_far = _mm_or_ps(_mm_and_ps(neg, o_hi), _mm_andnot_ps(neg, o_lo));
+  const int negs = _mm_movemask_ps(neg);
+  out.o_near[0] = _mm_shuffle_ps(o_near, o_near, 0x00), out.o_far[0] = _mm_shuffle_ps(o_far, o_far, 0x00);
+  out.o_near[1] = _mm_shuffle_ps(o_near, o_near, 0x55), out.o_far[1] = _mm_shuffle_ps(o_far, o_far, 0x55);
+  out.o_near[2] = _mm_shuffle_ps(o_near, o_near, 0xaa), out.o_far[2] = _mm_shuffle_ps(o_far, o_far, 0xaa);
+  out.inv[0] = _mm_shuffle_ps(inv, inv, 0x00), out.inv[1] = _mm_shuffle_ps(inv, inv, 0x55), out.inv[2] = _mm_shuffle_ps(inv, inv, 0xaa);
   for (int k = 0; k < 3; ++k) {
-    const double o = r.o[k], d = r.d[k], ad = std::abs(d);
-    if (!(std::abs(o) <= hi) || (ad != 0 && !(ad >= lo && ad <= hi))) return false;
-    const double inv_d = 1.0 / d;
-    const bool neg = std::signbit(inv_d);
     // Within an axis: lo[k] at float offset 4k, hi[k] at 12 + 4k.
-    out.near_off[k] = neg ? 12 + 4 * k : 4 * k;
-    out.far_off[k] = neg ? 4 * k : 12 + 4 * k;
-    float on = static_cast<float>(o), of = on;
-    if (conservative) {
-      const double back = on;
-      const float down = back > o ? bvh_next_down(on) : on, up = back < o ? bvh_next_up(on) : on;
-      on = neg ? down : up, of = neg ? up : down;
-    }
-    out.o_near[k] = _mm_set1_ps(on), out.o_far[k] = _mm_set1_ps(of), out.inv[k] = _mm_set1_ps(static_cast<float>(inv_d));
+    const bool n = negs >> k & 1;
+    out.near_off[k] = n ? 12 + 4 * k : 4 * k;
+    out.far_off[k] = n ? 4 * k : 12 + 4 * k;
   }
   out.tmin = conservative ? round_down_f(tmin) : static_cast<float>(tmin);
   return true;
