@@ -85,21 +85,10 @@ int run_mesh_fuzz_cli(const FuzzCliOptions& o) {
 
 int run_fuzz_cli(const FuzzCliOptions& o) {
   if (o.mesh) return run_mesh_fuzz_cli(o);
-  const MethodRegistry& reg = all_methods();
   verify::FuzzOptions opt;
-  if (o.methods.empty()) {
-    for (const auto& m : reg.all())
-      if (m.name != "exact") opt.methods.push_back(&m);
-  } else {
-    for (const auto& name : o.methods) {
-      const Method* m = reg.find(name);
-      if (!m) {
-        fmt::print(stderr, "rayproof fuzz: unknown method '{}' (known: {})\n", name, reg.names());
-        return 2;
-      }
-      opt.methods.push_back(m);
-    }
-  }
+  auto selected = select_methods("fuzz", o.methods, false);
+  if (!selected) return 2;
+  opt.methods = std::move(*selected);
   if (o.families.empty()) {
     for (const auto& f : gen::families()) opt.families.push_back(&f);
   } else {

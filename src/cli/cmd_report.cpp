@@ -39,20 +39,9 @@ int run_report(const ReportOptions& opt) {
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     fmt::print(stderr, "[{:6.1f}s] {}\n", s, msg);
   };
-  const MethodRegistry& reg = all_methods();
-  std::vector<const Method*> methods;
-  if (opt.methods.empty()) {
-    for (const auto& m : reg.all()) methods.push_back(&m);
-  } else {
-    for (const auto& name : opt.methods) {
-      const Method* m = reg.find(name);
-      if (!m) {
-        fmt::print(stderr, "rayproof report: unknown method '{}' (known: {})\n", name, reg.names());
-        return 2;
-      }
-      methods.push_back(m);
-    }
-  }
+  const auto selected = select_methods("report", opt.methods, true);
+  if (!selected) return 2;
+  const std::vector<const Method*>& methods = *selected;
 
   std::vector<io::Case> cases;
   std::vector<std::string> notes;

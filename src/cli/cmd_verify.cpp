@@ -40,21 +40,9 @@ nlohmann::json stats_json(const verify::Stats& s) {
 }
 
 int run_verify(const VerifyOptions& opt) {
-  const MethodRegistry& reg = all_methods();
-  std::vector<const Method*> methods;
-  if (opt.methods.empty()) {
-    for (const auto& m : reg.all())
-      if (m.name != "exact") methods.push_back(&m);
-  } else {
-    for (const auto& name : opt.methods) {
-      const Method* m = reg.find(name);
-      if (!m) {
-        fmt::print(stderr, "rayproof verify: unknown method '{}' (known: {})\n", name, reg.names());
-        return 2;
-      }
-      methods.push_back(m);
-    }
-  }
+  const auto selected = select_methods("verify", opt.methods, false);
+  if (!selected) return 2;
+  const std::vector<const Method*>& methods = *selected;
   std::vector<io::Case> cases;
   int errors = 0, bad_files = 0;
   for (const std::string& file : opt.files) {

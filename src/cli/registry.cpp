@@ -1,5 +1,7 @@
 #include "cli/registry.h"
 
+#include <fmt/core.h>
+
 #include "verify/certified.h"
 #include "verify/exact.h"
 
@@ -15,6 +17,26 @@ const MethodRegistry& all_methods() {
     return r;
   }();
   return reg;
+}
+
+std::optional<std::vector<const Method*>> select_methods(std::string_view command, const std::vector<std::string>& names,
+                                                        bool with_exact) {
+  const MethodRegistry& reg = all_methods();
+  std::vector<const Method*> methods;
+  if (names.empty()) {
+    for (const auto& m : reg.all())
+      if (with_exact || m.name != "exact") methods.push_back(&m);
+    return methods;
+  }
+  for (const auto& name : names) {
+    const Method* m = reg.find(name);
+    if (!m) {
+      fmt::print(stderr, "rayproof {}: unknown method '{}' (known: {})\n", command, name, reg.names());
+      return std::nullopt;
+    }
+    methods.push_back(m);
+  }
+  return methods;
 }
 
 }  // namespace rayproof::cli
