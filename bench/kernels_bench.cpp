@@ -228,7 +228,7 @@ int main(int argc, char** argv) {
     std::printf("%-10s %-13s %-17s %9.2f %9.2f %s\n", name.substr(0, a).c_str(), name.substr(a + 1, b - a - 1).c_str(),
                 method.c_str(), t, ratio, fb.c_str());
   }
-  std::printf("\ncertified t of triangles: %s (RAYPROOF_CERTIFIED_NO_FMA=1 selects the x87 path)\n",
+  std::printf("\ncertified t of triangles and spheres: %s (RAYPROOF_CERTIFIED_NO_FMA=1 selects the x87 path)\n",
               certified::dd::available() ? "double-double with hardware FMA" : "x87 extended precision");
   benchmark::Shutdown();
   return 0;
