@@ -97,6 +97,34 @@ struct DD {
   return {s2.hi, lo};
 }
 
+/// sum_i x_i y_i for doubles x and two-double y (yl = 0 allowed, then the product terms vanish):
+/// high products exact, their sum exact as hi + two lows, the rest in lo (the bounds of dot_dd apply).
+[[gnu::always_inline]] inline DD dot_d_dd(const double x[3], const DD y[3]) {
+  const double p0 = x[0] * y[0].hi, p1 = x[1] * y[1].hi, p2 = x[2] * y[2].hi;
+  double lo = __builtin_fma(x[0], y[0].hi, -p0) + __builtin_fma(x[1], y[1].hi, -p1) + __builtin_fma(x[2], y[2].hi, -p2);
+  const TwoTerm<double> s1 = two_sum(p0, p1), s2 = two_sum(s1.hi, p2);
+  lo += s1.lo + s2.lo;
+  lo = __builtin_fma(x[0], y[0].lo, __builtin_fma(x[1], y[1].lo, __builtin_fma(x[2], y[2].lo, lo)));
+  return {s2.hi, lo};
+}
+/// sum_i y_i^2 for two-double y: y_hi^2 exact, 2 y_hi y_lo into lo, y_lo^2 dropped (as in dot_dd).
+[[gnu::always_inline]] inline DD square_sum(const DD y[3]) {
+  const double p0 = y[0].hi * y[0].hi, p1 = y[1].hi * y[1].hi, p2 = y[2].hi * y[2].hi;
+  double lo = __builtin_fma(y[0].hi, y[0].hi, -p0) + __builtin_fma(y[1].hi, y[1].hi, -p1) +
+              __builtin_fma(y[2].hi, y[2].hi, -p2);
+  const TwoTerm<double> s1 = two_sum(p0, p1), s2 = two_sum(s1.hi, p2);
+  lo += s1.lo + s2.lo;
+  lo = __builtin_fma(2 * y[0].hi, y[0].lo, __builtin_fma(2 * y[1].hi, y[1].lo, __builtin_fma(2 * y[2].hi, y[2].lo, lo)));
+  return {s2.hi, lo};
+}
+/// x_j y_k - x_k y_j for doubles x and two-double y (cross_component with x exact).
+[[gnu::always_inline]] inline DD cross_d_dd(double xj, double xk, const DD& yj, const DD& yk) {
+  const double p = xj * yk.hi, pe = __builtin_fma(xj, yk.hi, -p);
+  const double q = xk * yj.hi, qe = __builtin_fma(xk, yj.hi, -q);
+  const TwoTerm<double> s = two_sum(p, -q);
+  return {s.hi, __builtin_fma(xj, yk.lo, __builtin_fma(-xk, yj.lo, s.lo + (pe - qe)))};
+}
+
 /// NUM - t DEN from NUM ~ N, DEN ~ D: rho = N.hi - t D.hi by one fma, then the low parts. Returns the
 /// value and the bound u (|rho| + |mid| + |R|) (1 + 2^-50) on its three roundings (each at most u
 /// times its rounded result).
@@ -147,8 +175,8 @@ struct Residual {
       cross_component(f1[2].hi, f1[2].lo, f1[0].hi, f1[0].lo, f2[2].hi, f2[2].lo, f2[0].hi, f2[0].lo),
       cross_component(f1[0].hi, f1[0].lo, f1[1].hi, f1[1].lo, f2[0].hi, f2[0].lo, f2[1].hi, f2[1].lo)};
   const DD a[3] = {exact_diff(tri.p0.x, ray.o.x), exact_diff(tri.p0.y, ray.o.y), exact_diff(tri.p0.z, ray.o.z)};
-  const DD d[3] = {{ray.d.x, 0}, {ray.d.y, 0}, {ray.d.z, 0}};
-  const DD num = dot_dd(a, n), den = dot_dd(d, n);
+  const double d[3] = {ray.d.x, ray.d.y, ray.d.z};
+  const DD num = dot_dd(a, n), den = dot_d_dd(d, n);
   const double a1 = std::fabs(a[0].hi) + std::fabs(a[1].hi) + std::fabs(a[2].hi);
   const double d1 = std::fabs(ray.d.x) + std::fabs(ray.d.y) + std::fabs(ray.d.z);
   const double en = 0x1p-90 * (std::fabs(a[0].hi) * pn.x + std::fabs(a[1].hi) * pn.y + std::fabs(a[2].hi) * pn.z) +
@@ -159,34 +187,6 @@ struct Residual {
 }
 
 
-
-/// sum_i x_i y_i for doubles x and two-double y (yl = 0 allowed, then the product terms vanish):
-/// high products exact, their sum exact as hi + two lows, the rest in lo (the bounds of dot_dd apply).
-[[gnu::always_inline]] inline DD dot_d_dd(const double x[3], const DD y[3]) {
-  const double p0 = x[0] * y[0].hi, p1 = x[1] * y[1].hi, p2 = x[2] * y[2].hi;
-  double lo = __builtin_fma(x[0], y[0].hi, -p0) + __builtin_fma(x[1], y[1].hi, -p1) + __builtin_fma(x[2], y[2].hi, -p2);
-  const TwoTerm<double> s1 = two_sum(p0, p1), s2 = two_sum(s1.hi, p2);
-  lo += s1.lo + s2.lo;
-  lo = __builtin_fma(x[0], y[0].lo, __builtin_fma(x[1], y[1].lo, __builtin_fma(x[2], y[2].lo, lo)));
-  return {s2.hi, lo};
-}
-/// sum_i y_i^2 for two-double y: y_hi^2 exact, 2 y_hi y_lo into lo, y_lo^2 dropped (as in dot_dd).
-[[gnu::always_inline]] inline DD square_sum(const DD y[3]) {
-  const double p0 = y[0].hi * y[0].hi, p1 = y[1].hi * y[1].hi, p2 = y[2].hi * y[2].hi;
-  double lo = __builtin_fma(y[0].hi, y[0].hi, -p0) + __builtin_fma(y[1].hi, y[1].hi, -p1) +
-              __builtin_fma(y[2].hi, y[2].hi, -p2);
-  const TwoTerm<double> s1 = two_sum(p0, p1), s2 = two_sum(s1.hi, p2);
-  lo += s1.lo + s2.lo;
-  lo = __builtin_fma(2 * y[0].hi, y[0].lo, __builtin_fma(2 * y[1].hi, y[1].lo, __builtin_fma(2 * y[2].hi, y[2].lo, lo)));
-  return {s2.hi, lo};
-}
-/// x_j y_k - x_k y_j for doubles x and two-double y (cross_component with x exact).
-[[gnu::always_inline]] inline DD cross_d_dd(double xj, double xk, const DD& yj, const DD& yk) {
-  const double p = xj * yk.hi, pe = __builtin_fma(xj, yk.hi, -p);
-  const double q = xk * yj.hi, qe = __builtin_fma(xk, yj.hi, -q);
-  const TwoTerm<double> s = two_sum(p, -q);
-  return {s.hi, __builtin_fma(xj, yk.lo, __builtin_fma(-xk, yj.lo, s.lo + (pe - qe)))};
-}
 
 /// The sign of x = hi + lo known within e: +1 or -1, or 0 when the bound cannot tell.
 [[gnu::always_inline]] inline int dd_sign(const DD& x, double e) {
