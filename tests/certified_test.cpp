@@ -275,7 +275,9 @@ TEST(Certified, AgreesWithExactNearTangentAtEveryScale) {
   }
   EXPECT_EQ(t.bad, 0u);
   // Double-double pins nearly all of these; the x87 path's 11 extra bits leave about half to GMP.
-  if (certified::dd::available()) EXPECT_LT(t.fallbacks, t.cases / 20);
+  if (certified::dd::available()) {
+    EXPECT_LT(t.fallbacks, t.cases / 20);
+  }
   std::printf("near-tangent: %zu cases, %zu fallbacks\n", t.cases, t.fallbacks);
 }
 

@@ -153,21 +153,17 @@ struct Residual {
   const double lhs = (std::fabs(R.r) + R.err + en + at * ed) * (1 + 0x1p-40);
   if (!(at > 0x1p-1000 && at < 0x1p1000)) return std::nullopt;
   if (lhs < 0x1p-53 * at * dmin) return t;
-  const double p = next_below(t), n = next_above(t);
-  const double down = (t - p) + (p - next_below(p)) / 2, up = (n - t) + (next_above(n) - n) / 2;
-  if (lhs < (down < up ? down : up) * dmin) return t;
+  if (lhs < midpoint_reach(t) * dmin) return t;
   return std::nullopt;
 }
 
-/// The triangle's t = ((p0 - o) . n) / (d . n), n = (p1 - p0) x (p2 - p0), in double-double. pn_i =
-/// |f1_j f2_k| + |f1_k f2_j| (the M_i above, from the rounded differences: slack covers their
-/// rounding) is passed in by the caller, which has it for its own bounds. Errors: 140 u^2 times
+/// The triangle's t = ((p0 - o) . n) / (d . n), n = (p1 - p0) x (p2 - p0), in double-double. pn =
+/// cross_permanent of the rounded differences (the M_i above; slack covers their rounding). Errors: 140 u^2 times
 /// sum_i |x_i| pn_i (x = p0 - o or d), used with 2^-90 (>= 3x slack), plus 2^-1000 (|x|_1 + 1) for
 /// products that underflow (an fma error term below 2^-1022 is not exact: <= 2^-1075 each, amplified
 /// by |x_i| at most).
 [[gnu::noinline]] RAYPROOF_FMA_TARGET inline std::optional<double> triangle_t(const Ray<double>& ray,
-                                                                              const Triangle<double>& tri,
-                                                                              const Vec3<double>& pn) {
+                                                                              const Triangle<double>& tri) {
   const DD f1[3] = {exact_diff(tri.p1.x, tri.p0.x), exact_diff(tri.p1.y, tri.p0.y), exact_diff(tri.p1.z, tri.p0.z)};
   const DD f2[3] = {exact_diff(tri.p2.x, tri.p0.x), exact_diff(tri.p2.y, tri.p0.y), exact_diff(tri.p2.z, tri.p0.z)};
   const DD n[3] = {
@@ -177,6 +173,7 @@ struct Residual {
   const DD a[3] = {exact_diff(tri.p0.x, ray.o.x), exact_diff(tri.p0.y, ray.o.y), exact_diff(tri.p0.z, ray.o.z)};
   const double d[3] = {ray.d.x, ray.d.y, ray.d.z};
   const DD num = dot_dd(a, n), den = dot_d_dd(d, n);
+  const Vec3<double> pn = cross_permanent({f1[0].hi, f1[1].hi, f1[2].hi}, {f2[0].hi, f2[1].hi, f2[2].hi});
   const double a1 = std::fabs(a[0].hi) + std::fabs(a[1].hi) + std::fabs(a[2].hi);
   const double d1 = std::fabs(ray.d.x) + std::fabs(ray.d.y) + std::fabs(ray.d.z);
   const double en = 0x1p-90 * (std::fabs(a[0].hi) * pn.x + std::fabs(a[1].hi) * pn.y + std::fabs(a[2].hi) * pn.z) +
@@ -185,8 +182,6 @@ struct Residual {
                     0x1p-1000 * (d1 + 1);
   return pin_dd(num, den, en, ed);
 }
-
-
 
 /// The sign of x = hi + lo known within e: +1 or -1, or 0 when the bound cannot tell.
 [[gnu::always_inline]] inline int dd_sign(const DD& x, double e) {
@@ -197,12 +192,9 @@ struct Residual {
 /// (d x y) . z for double d and two-double y, z, and its error bound (see triangle_near).
 [[gnu::always_inline]] inline DD volume(const double d[3], const DD y[3], const DD z[3], double& err) {
   const DD m[3] = {cross_d_dd(d[1], d[2], y[1], y[2]), cross_d_dd(d[2], d[0], y[2], y[0]), cross_d_dd(d[0], d[1], y[0], y[1])};
-  const double ad[3] = {std::fabs(d[0]), std::fabs(d[1]), std::fabs(d[2])};
-  const double ay[3] = {std::fabs(y[0].hi), std::fabs(y[1].hi), std::fabs(y[2].hi)};
+  const Vec3<double> M = cross_permanent({d[0], d[1], d[2]}, {y[0].hi, y[1].hi, y[2].hi});
   const double az[3] = {std::fabs(z[0].hi), std::fabs(z[1].hi), std::fabs(z[2].hi)};
-  err = 0x1p-90 * (az[0] * (ad[1] * ay[2] + ad[2] * ay[1]) + az[1] * (ad[2] * ay[0] + ad[0] * ay[2]) +
-                   az[2] * (ad[0] * ay[1] + ad[1] * ay[0])) +
-        0x1p-1000 * (az[0] + az[1] + az[2] + 1);
+  err = 0x1p-90 * (az[0] * M.x + az[1] * M.y + az[2] * M.z) + 0x1p-1000 * (az[0] + az[1] + az[2] + 1);
   return dot_dd(z, m);
 }
 
@@ -235,11 +227,8 @@ struct Residual {
   const int s0 = dd_sign(u0, e0) * sd, s1s = dd_sign(u1, e1) * sd, s2s = dd_sign(u2, e2) * sd;
   if (s0 < 0 || s1s < 0 || s2s < 0) return H{Contact::miss};
   if (s0 == 0 || s1s == 0 || s2s == 0) return std::nullopt;  // maybe an edge or a vertex
-  // Interior or behind: t as in stage 1 (pn_i = |f1_j f2_k| + |f1_k f2_j|).
-  const Vec3<double> f1 = p1 - p0, f2 = p2 - p0;
-  const Vec3<double> g1{std::fabs(f1.x), std::fabs(f1.y), std::fabs(f1.z)}, g2{std::fabs(f2.x), std::fabs(f2.y), std::fabs(f2.z)};
-  const Vec3<double> pn{g1.y * g2.z + g1.z * g2.y, g1.z * g2.x + g1.x * g2.z, g1.x * g2.y + g1.y * g2.x};
-  const auto t = triangle_t(ray, tri, pn);
+  // Interior or behind: t as in stage 1.
+  const auto t = triangle_t(ray, tri);
   if (!t) return std::nullopt;
   return H{*t < 0 ? Contact::behind : Contact::interior, *t};
 }
@@ -274,9 +263,9 @@ struct Residual {
   const DD red{rs.hi, rs.lo + arl - mm.lo};
   const double D[3] = {std::fabs(ray.d.x), std::fabs(ray.d.y), std::fabs(ray.d.z)};
   const double E[3] = {std::fabs(e[0].hi), std::fabs(e[1].hi), std::fabs(e[2].hi)};
-  const double M[3] = {D[1] * E[2] + D[2] * E[1], D[2] * E[0] + D[0] * E[2], D[0] * E[1] + D[1] * E[0]};
-  const double ered = 0x1p-97 * (std::fabs(ar) + std::fabs(mm.hi) + std::fabs(m[0].hi) * M[0] + std::fabs(m[1].hi) * M[1] +
-                                 std::fabs(m[2].hi) * M[2] + M[0] * M[0] + M[1] * M[1] + M[2] * M[2]) +
+  const Vec3<double> M = cross_permanent(ray.d, {e[0].hi, e[1].hi, e[2].hi});
+  const double ered = 0x1p-97 * (std::fabs(ar) + std::fabs(mm.hi) + std::fabs(m[0].hi) * M.x + std::fabs(m[1].hi) * M.y +
+                                 std::fabs(m[2].hi) * M.z + M.x * M.x + M.y * M.y + M.z * M.z) +
                       0x1p-1000;
   if (red.hi < -2 * (std::fabs(red.lo) + ered)) return H{Contact::miss};
   if (!(red.hi > 2 * (std::fabs(red.lo) + ered)) || !(red.hi > 0x1p-900)) return std::nullopt;

@@ -33,6 +33,22 @@ namespace rayproof::certified {
 }
 [[nodiscard]] inline double next_below(double x) { return -next_above(-x); }
 
+/// The distance from a normal double t to the nearer of the midpoint below prev(t) and the midpoint
+/// above next(t): (t - prev) + (prev - prev(prev)) / 2 and (next - t) + (next(next) - next) / 2, exact
+/// (gaps of normal doubles are powers of two). A value closer to t than this rounds to t or a
+/// neighbour of t.
+[[nodiscard]] inline double midpoint_reach(double t) {
+  const double p = next_below(t), n = next_above(t);
+  const double down = (t - p) + (p - next_below(p)) / 2, up = (n - t) + (next_above(n) - n) / 2;
+  return down < up ? down : up;
+}
+
+/// P_i = |x_j y_k| + |x_k y_j|: the permanent bounding the rounding errors of (x cross y)_i.
+[[nodiscard]] inline Vec3<double> cross_permanent(const Vec3<double>& x, const Vec3<double>& y) {
+  const Vec3<double> ax{std::fabs(x.x), std::fabs(x.y), std::fabs(x.z)}, ay{std::fabs(y.x), std::fabs(y.y), std::fabs(y.z)};
+  return {ax.y * ay.z + ax.z * ay.y, ax.z * ay.x + ax.x * ay.z, ax.x * ay.y + ax.y * ay.x};
+}
+
 /// v approximates an exact value x with |x - v| <= err. Returns t = double(v) when round(x) is
 /// certainly t or a neighbour of t (the 1-ulp contract): x lies strictly between the midpoint below
 /// prev(t) and the midpoint above next(t) (both exact in Wide). The term 2^-62 |v| covers the
@@ -55,10 +71,8 @@ namespace rayproof::certified {
 /// correction t = t1 + (num - t1 den) / den from the residual in Wide, and then the residual of t
 /// itself, R = num - t den (two Wide roundings, |error| <= 2^-63 |t den|), bounds the distance:
 /// |x - t| = |NUM - t DEN| / |DEN| <= (|R| + 2^-63 |t den| + en + |t| ed) / (|den| - ed) =: B.
-/// round(x) is t or a neighbour when x lies strictly between the midpoint below prev(t) and the
-/// midpoint above next(t), at distances down = (t - prev) + (prev - prev(prev)) / 2 and
-/// up = (next - t) + (next(next) - next) / 2 from t (exact: gaps of normal doubles are powers of two).
-/// Accepted when B < min(up, down); the comparison carries 2^-40 of slack for the rounding of B
+/// round(x) is t or a neighbour when x lies strictly between the midpoints around prev(t) and
+/// next(t): accepted when B < midpoint_reach(t); the comparison carries 2^-40 of slack for the rounding of B
 /// itself. A quotient outside [2^-1000, 2^1000] in magnitude (or zero) is left to the caller.
 [[nodiscard]] inline std::optional<double> pin_ratio(Wide num, Wide den, Wide en, Wide ed) {
   const double inv = 1.0 / static_cast<double>(den);
@@ -70,9 +84,7 @@ namespace rayproof::certified {
   // Quick accept: 2^-53 |t| is at most either gap next to a normal t, and below both distances.
   if (lhs < 0x1p-53L * at * (ad - ed) && at > 0x1p-1000) return t;
   if (!(at > 0x1p-1000 && at < 0x1p1000)) return std::nullopt;
-  const double p = next_below(t), n = next_above(t);
-  const double down = (t - p) + (p - next_below(p)) / 2, up = (n - t) + (next_above(n) - n) / 2;
-  if (lhs < Wide(down < up ? down : up) * (ad - ed)) return t;
+  if (lhs < Wide(midpoint_reach(t)) * (ad - ed)) return t;
   return std::nullopt;
 }
 

@@ -96,17 +96,15 @@ template <class W>
   // Interior or behind: t = ((p0 - o) . n) / (d . n), n = (p1 - p0) x (p2 - p0), plain in Wide: at most
   // 8 roundings per path (gamma_8 = 2^-61); permanents sum_i |x_i| pn_i with pn_i = |f1_j f2_k| +
   // |f1_k f2_j| (x = p0 - o or d), used with 2^-60 (2x slack, ample for their rounding in double).
-  const Vec3<double> f1 = tri.p1 - tri.p0, f2 = tri.p2 - tri.p0;
-  const Vec3<double> g1{std::fabs(f1.x), std::fabs(f1.y), std::fabs(f1.z)}, g2{std::fabs(f2.x), std::fabs(f2.y), std::fabs(f2.z)};
-  const Vec3<double> pn{g1.y * g2.z + g1.z * g2.y, g1.z * g2.x + g1.x * g2.z, g1.x * g2.y + g1.y * g2.x};
 #if RAYPROOF_FMA_PATH != 0
   if (dd::available()) {  // t in double-double (certified_fma.h); its sign is that of t
-    const auto tt = dd::triangle_t(ray, tri, pn);
+    const auto tt = dd::triangle_t(ray, tri);
     if (!tt) return std::nullopt;
     return H{*tt < 0 ? Contact::behind : Contact::interior, *tt};
   }
 #endif
   if constexpr (!kFilterAvailable) return std::nullopt;
+  const Vec3<double> pn = cross_permanent(tri.p1 - tri.p0, tri.p2 - tri.p0);
   // (2^-1000 (|x|_1 + 1) covers underflow in these double products; Wide itself cannot underflow.)
   const double a1 = std::fabs(a.x) + std::fabs(a.y) + std::fabs(a.z);
   const Wide en = 0x1p-60 * (std::fabs(a.x) * pn.x + std::fabs(a.y) * pn.y + std::fabs(a.z) * pn.z) + 0x1p-1000 * (a1 + 1),
