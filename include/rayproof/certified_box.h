@@ -56,8 +56,9 @@ struct Slab {
   return std::nullopt;
 }
 
-/// Stage 1 with some d_i = 0: near[i] / far[i] for the axes with d_i != 0.
-[[gnu::noinline]] inline std::optional<Hit<double>> box_fast_parallel(const Ray<double>& ray, const Box<double>& bx) {
+/// Stage 1 in general (some d_i = 0, or a b - o that is not exact in double): near[i] / far[i] for
+/// the axes with d_i != 0, each t pinned by pin_slab.
+[[gnu::noinline]] inline std::optional<Hit<double>> box_fast_general(const Ray<double>& ray, const Box<double>& bx) {
   using H = Hit<double>;
   Slab near[3], far[3];
   int k = 0;
@@ -94,13 +95,13 @@ struct Slab {
 }
 
 /// Stage 1, every d_i != 0 and every b - o exact in double (then each slab distance is a correctly
-/// rounded quotient and needs no pinning): the decisions of box_fast_parallel without data-dependent
+/// rounded quotient and needs no pinning): the decisions of box_fast_general without data-dependent
 /// branches (random rays mispredicted about two a test there): near / far by min / max, entry and
 /// exit by max / min, and "unambiguous" as a count: exactly one near interval reaches El (the entry's
-/// own) and exactly one far interval reaches Xh. Anything else goes to box_fast_parallel.
+/// own) and exactly one far interval reaches Xh. Anything else goes to box_fast_general.
 [[nodiscard]] inline std::optional<Hit<double>> box_fast(const Ray<double>& ray, const Box<double>& bx) {
   using H = Hit<double>;
-  if (ray.d.x == 0 || ray.d.y == 0 || ray.d.z == 0) return box_fast_parallel(ray, bx);
+  if (ray.d.x == 0 || ray.d.y == 0 || ray.d.z == 0) return box_fast_general(ray, bx);
   double tn[3], tf[3];
   int inexact = 0;
   for (int i = 0; i < 3; ++i) {
@@ -108,7 +109,7 @@ struct Slab {
     const double ta = (bx.lo[i] - ray.o[i]) / ray.d[i], tb = (bx.hi[i] - ray.o[i]) / ray.d[i];
     tn[i] = ta < tb ? ta : tb, tf[i] = ta < tb ? tb : ta;
   }
-  if (inexact) return box_fast_parallel(ray, bx);
+  if (inexact) return box_fast_general(ray, bx);
   auto max2 = [](double x, double y) { return x > y ? x : y; };
   auto min2 = [](double x, double y) { return x < y ? x : y; };
   const double enter = max2(max2(tn[0], tn[1]), tn[2]), exit = min2(min2(tf[0], tf[1]), tf[2]);

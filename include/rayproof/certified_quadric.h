@@ -190,11 +190,17 @@ template <class F>
 }
 
 
+/// The exponent window in which the sphere's degree-4 quantities are exact as expansions (and as
+/// double-double, certified_fma.h): every nonzero input in [2^-200, 2^200].
+[[nodiscard]] inline bool sphere_in_window(const Ray<double>& ray, const Sphere<double>& s) {
+  const Vec3<double>&o = ray.o, &d = ray.d, &c0 = s.center;
+  return in_range<-200, 200>(o.x, o.y, o.z, d.x, d.y, d.z, c0.x, c0.y, c0.z, s.radius);
+}
+
 /// Stage 2 for spheres (in_range<-200, 200>, degree 4) and ellipsoids (checked by the caller), out of
 /// line (expansions need a large stack frame, which the fast path should not pay for).
 [[gnu::noinline, gnu::cold]] inline std::optional<Hit<double>> sphere_exact(const Ray<double>& ray, const Sphere<double>& s) {
-  const Vec3<double>&o = ray.o, &dd = ray.d, &c0 = s.center;
-  if (!in_range<-200, 200>(o.x, o.y, o.z, dd.x, dd.y, dd.z, c0.x, c0.y, c0.z, s.radius)) return std::nullopt;
+  if (!sphere_in_window(ray, s)) return std::nullopt;
   auto wide = [&] { return std::pair{sphere_wide(ray, s, sphere_quad<double>(ray, s)), Wide(1)}; };
   const ExpVec3 d = exact3(ray.d), e = diff3(ray.o, s.center);
   const Expansion r(s.radius), rr = r * r, a = dot(d, d);
@@ -226,8 +232,7 @@ template <class F>
   // A miss the double stage proves costs no more; everything else goes to double-double with hardware
   // FMA first (certified_fma.h), then to the stages below for what that leaves.
   if (x.red < -x.ered) return H{Contact::miss};
-  const Vec3<double>&o = ray.o, &dv = ray.d, &c0 = s.center;
-  if (dd::available() && in_range<-200, 200>(o.x, o.y, o.z, dv.x, dv.y, dv.z, c0.x, c0.y, c0.z, s.radius))
+  if (dd::available() && detail::sphere_in_window(ray, s))
     if (auto h = dd::sphere(ray, s)) return h;
 #endif
   auto wide = [&] { return std::pair{detail::sphere_wide(ray, s, x), Wide(1)}; };
