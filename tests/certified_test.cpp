@@ -13,6 +13,7 @@
 #include "gen/families.h"
 #include "io/case_file.h"
 #include "methods/method.h"
+#include "rayproof/certified_box.h"
 #include "rayproof/certified_fma.h"
 #include "rayproof/certified_stage.h"
 #include "rayproof/certified_triangle.h"
@@ -173,6 +174,80 @@ TEST(Certified, ExactContactsNeedNoFallback) {
   EXPECT_EQ(t.fallbacks, 0u) << "of " << t.cases;
 }
 
+/// Boxes: rays through corners, edge points and face points, and origins on faces, built from small
+/// integers scaled by 2^k (k in [-60, 60], so every b - o is exact and the slab distances tie or touch
+/// exactly), plus the same with one coordinate moved by an ulp (ties that round alike but are not
+/// exact). Stage 1's tie step (box_tie, exact fraction comparisons) decides the exact ones: no fallback.
+TEST(Certified, BoxTiesGrazesAndFaceStartsAtEveryScale) {
+  std::mt19937_64 g(41);
+  std::uniform_int_distribution<int> I(-20, 20), K(-60, 60), P(0, 2);
+  Tally exact_ties, perturbed;
+  for (int i = 0; i < 20000; ++i) {
+    const double s = std::ldexp(1.0, K(g));
+    io::Case c{io::Kind::box, {}, {}, 0};
+    double lo[3], hi[3], o[3], target[3];
+    for (int a = 0; a < 3; ++a) {
+      const int x = I(g), w = 1 + std::abs(I(g)) / 2;
+      lo[a] = s * x, hi[a] = s * (x + w), o[a] = s * (I(g) * 3);
+      const int pick = P(g);  // the target on lo, on hi, or at the middle of the slab
+      target[a] = pick == 0 ? lo[a] : (pick == 1 ? hi[a] : 0.5 * (lo[a] + hi[a]));
+    }
+    if (i % 5 == 0) o[i % 3] = (i % 2 ? lo : hi)[i % 3];  // origin on a face plane
+    bool zero = true;
+    for (int a = 0; a < 3; ++a) {
+      const double sign = i % 7 == 0 ? -1.0 : 1.0;  // some rays point away: behind
+      c.v[a] = o[a], c.v[3 + a] = sign * (target[a] - o[a]), c.v[6 + a] = lo[a], c.v[9 + a] = hi[a];
+      zero = zero && c.v[3 + a] == 0;
+    }
+    if (zero) continue;
+    exact_ties.run(c);
+    io::Case p = c;
+    const std::size_t f = g() % 12;
+    p.v[f] = (g() & 1) ? certified::next_above(p.v[f]) : certified::next_below(p.v[f]);
+    perturbed.run(p);
+  }
+  EXPECT_EQ(exact_ties.bad, 0u);
+  EXPECT_EQ(perturbed.bad, 0u);
+  EXPECT_EQ(exact_ties.fallbacks, 0u) << "of " << exact_ties.cases;
+  std::printf("box ties: %zu exact cases, %zu perturbed (%zu fallbacks)\n", exact_ties.cases, perturbed.cases,
+              perturbed.fallbacks);
+}
+
+/// frac_cmp (the box's exact comparison of slab distances p1 / d1 and p2 / d2) against 128-bit integer
+/// arithmetic, on integers below 2^53 whose quotients lie within a few ulps of each other, so the
+/// rounded products are often equal and the fma error terms decide. Then the same fractions as the
+/// entry and the exit of box rays (o = 0: entry p1 / d1 through x = lo_x, exit p2 / d2 through
+/// y = hi_y), against the exact method.
+TEST(Certified, BoxFractionComparisonIsExact) {
+  std::mt19937_64 g(43);
+  std::uniform_int_distribution<std::int64_t> B(std::int64_t(1) << 40, (std::int64_t(1) << 53) - 1);
+  std::size_t equal_products = 0, cases = 0;
+  Tally box;
+  for (int i = 0; i < 20000; ++i) {
+    const std::int64_t p1 = B(g), d1 = B(g), d2 = B(g);
+    const std::int64_t k = static_cast<std::int64_t>(g() % 5) - 2;
+    const std::int64_t p2 = static_cast<std::int64_t>(std::nearbyint(double(p1) / double(d1) * double(d2))) + k;
+    if (p2 >= (std::int64_t(1) << 53)) continue;  // not exact as a double
+    const __int128 x = __int128(p1) * d2, y = __int128(p2) * d1;
+    const int want = x > y ? 1 : (x < y ? -1 : 0);
+    const auto got = certified::detail::frac_cmp(double(p1), double(d1), double(p2), double(d2));
+    ASSERT_TRUE(got.has_value());
+    ASSERT_EQ(*got, want) << p1 << "/" << d1 << " vs " << p2 << "/" << d2;
+    const auto flipped = certified::detail::frac_cmp(-double(p1), -double(d1), double(p2), double(d2));
+    ASSERT_EQ(flipped.value_or(9), want);  // the same fraction with both signs flipped
+    equal_products += double(p1) * double(d2) == double(p2) * double(d1);
+    ++cases;
+    io::Case c{io::Kind::box, {}, {}, 0};
+    const double big = 0x1p60;
+    const double v[12] = {0, 0, 0, double(d1), double(d2), 1, double(p1), -big, -big, big, double(p2), big};
+    for (int j = 0; j < 12; ++j) c.v[j] = v[j];
+    box.run(c);
+  }
+  EXPECT_GT(equal_products, cases / 20);  // the error terms were exercised (~9% of cases)
+  EXPECT_EQ(box.bad, 0u);
+  EXPECT_EQ(box.fallbacks, 0u) << "of " << box.cases;
+}
+
 /// Near-degenerate inputs: contacts perturbed by one ulp in one coordinate, every kind. The filter
 /// may fall back, but never disagrees with exact.
 TEST(Certified, AgreesWithExactOnNearDegenerateInputs) {
@@ -293,7 +368,7 @@ TEST(Certified, DoubleDoubleTriangleStageAgreesWithExact) {
   for (const io::Case& c : gen::generate(*f, 4000, 5, gen::Precision::float64)) {
     const Ray<double> ray{{c.v[0], c.v[1], c.v[2]}, {c.v[3], c.v[4], c.v[5]}};
     const Triangle<double> tri{{c.v[6], c.v[7], c.v[8]}, {c.v[9], c.v[10], c.v[11]}, {c.v[12], c.v[13], c.v[14]}};
-    if (!ray.valid() || certified::detail::triangle_fast(ray, tri)) continue;
+    if (!ray.valid() || certified::detail::triangle_fast(ray, tri, [] { return std::optional<Hit<double>>(); })) continue;
     ++left;
     const auto h = certified::dd::triangle_near(ray, tri);
     if (!h) continue;

@@ -1,15 +1,17 @@
 #pragma once
-/// Certified ray/box filter (certified_filter.h): the slab test of the exact method with every slab
-/// distance (b_i - o_i) / d_i as an interval. The entry is the max and the exit the min of intervals
-/// (both again intervals); the class needs entry vs exit and both vs 0 decided, and T, T2 pinned to
-/// one ulp. Undecided (nothing): entry and exit may be equal (a graze or a near miss) or a distance may
-/// be 0 without the arithmetic making it exactly 0.
+/// Certified ray/box filter (certified_filter.h): the slab test of the exact method. The class needs
+/// the entry (largest near slab distance (b_i - o_i) / d_i) against the exit (smallest far one) and
+/// both against 0, and T, T2 pinned to one ulp.
 ///
-/// Stages (certified_stage.h): (1) slab distances in double, each within 2^-51 of its magnitude (two
-/// roundings), the class from the intervals; T, T2 pinned for free when the slab's difference
-/// b_i - o_i is exact in double (the quotient is then correctly rounded), else in Wide; (2) exact
-/// comparisons of the fractions (b_i - o_i) / d_i with expansions (degree 2): grazes and exact ties
-/// proven without GMP; (3) the running-error-bound filter below, outside the exponent window.
+/// Stages (certified_stage.h): (1) generic rays (every d_i != 0, every b_i - o_i exact in double,
+/// checked by two-sum): each slab distance is a correctly rounded quotient and rounding is monotone,
+/// so the rounded entry and exit are the rounded exact ones, and strict comparisons of rounded values
+/// hold exactly: no error bound at all, and T, T2 come for free. Equal or zero rounded values (grazes
+/// at corners and edges, origins on faces, slabs that round alike) are decided by exact comparisons of
+/// the fractions (frac_cmp: products, then their fma error terms). Other rays (an axis with d_i = 0, a
+/// b_i - o_i that rounds): every distance within 2^-51 of its magnitude, T, T2 pinned in Wide when
+/// inexact; (2) exact comparisons of the fractions with expansions (degree 2); (3) the
+/// running-error-bound filter, outside the exponent window. Undecided: nothing (GMP).
 #include <algorithm>
 
 #include "rayproof/box.h"
@@ -94,38 +96,27 @@ struct Slab {
   return H{*cls, *t0, *t1};
 }
 
-/// Stage 1, every d_i != 0 and every b - o exact in double (then each slab distance is a correctly
-/// rounded quotient and needs no pinning): the decisions of box_fast_general without data-dependent
-/// branches (random rays mispredicted about two a test there): near / far by min / max, entry and
-/// exit by max / min, and "unambiguous" as a count: exactly one near interval reaches El (the entry's
-/// own) and exactly one far interval reaches Xh. Anything else goes to box_fast_general.
-[[nodiscard]] inline std::optional<Hit<double>> box_fast(const Ray<double>& ray, const Box<double>& bx) {
-  using H = Hit<double>;
-  if (ray.d.x == 0 || ray.d.y == 0 || ray.d.z == 0) return box_fast_general(ray, bx);
-  double tn[3], tf[3];
-  int inexact = 0;
-  for (int i = 0; i < 3; ++i) {
-    inexact += (two_sum(bx.lo[i], -ray.o[i]).lo != 0) + (two_sum(bx.hi[i], -ray.o[i]).lo != 0);
-    const double ta = (bx.lo[i] - ray.o[i]) / ray.d[i], tb = (bx.hi[i] - ray.o[i]) / ray.d[i];
-    tn[i] = ta < tb ? ta : tb, tf[i] = ta < tb ? tb : ta;
+/// sign(p1 / d1 - p2 / d2) for doubles (d1, d2 != 0), exactly: sign(p1 d2 - p2 d1) sign(d1 d2). The
+/// rounded products decide when they differ (rounding is monotone: round(X) > round(Y) implies X > Y);
+/// when they are equal, the products' exact error terms (fma) decide. Nothing when an error term may
+/// not be exact (a product below 2^-969 that is not an exact zero) or a product overflows.
+[[nodiscard]] inline std::optional<int> frac_cmp(double p1, double d1, double p2, double d2) {
+  const double x = p1 * d2, y = p2 * d1;
+  int s;
+  if (x != y) {
+    s = x > y ? 1 : -1;
+  } else {
+    if (!(std::fabs(x) <= std::numeric_limits<double>::max())) return std::nullopt;
+    if (x == 0) {
+      if (p1 != 0 || p2 != 0) return std::nullopt;  // an underflow, not an exact zero
+      s = 0;
+    } else {
+      if (std::fabs(x) < 0x1p-969) return std::nullopt;
+      const double ex = std::fma(p1, d2, -x), ey = std::fma(p2, d1, -y);
+      s = ex > ey ? 1 : (ex < ey ? -1 : 0);
+    }
   }
-  if (inexact) return box_fast_general(ray, bx);
-  auto max2 = [](double x, double y) { return x > y ? x : y; };
-  auto min2 = [](double x, double y) { return x < y ? x : y; };
-  const double enter = max2(max2(tn[0], tn[1]), tn[2]), exit = min2(min2(tf[0], tf[1]), tf[2]);
-  const double big = std::fabs(tn[0]) + std::fabs(tn[1]) + std::fabs(tn[2]) + std::fabs(tf[0]) + std::fabs(tf[1]) +
-                     std::fabs(tf[2]);
-  if (!(big < 0x1p1020)) return std::nullopt;  // overflow
-  // One rounding each (exact numerators): 2^-51 is ample; 2^-1000 for a quotient that underflows.
-  auto err = [](double t) { return std::fabs(t) * 0x1p-51 + 0x1p-1000; };
-  const double El = enter - err(enter), Eh = enter + err(enter), Xl = exit - err(exit), Xh = exit + err(exit);
-  if (El > Xh) return H{Contact::miss};
-  int reach = 0;
-  for (int j = 0; j < 3; ++j) reach += (tn[j] + err(tn[j]) >= El) + (tf[j] - err(tf[j]) <= Xh);
-  if (reach != 2 || !(Eh < Xl)) return std::nullopt;  // a tie between slabs, a graze, or too close
-  const auto cls = slab_class(El, Eh, Xl, Xh);
-  if (!cls) return std::nullopt;
-  return H{*cls, enter + 0.0, exit + 0.0};  // a zero is +0.0
+  return (d1 < 0) != (d2 < 0) ? -s : s;
 }
 
 /// Stage 2 (in_range<-300, 300>, degree 2): slab distances as exact fractions p / d, compared exactly.
@@ -167,16 +158,11 @@ struct Slab {
   return H{*order < 0 ? Contact::hit : Contact::graze, *t0, *t1};
 }
 
-}  // namespace detail
-
-[[nodiscard]] inline std::optional<Hit<double>> box(const Ray<double>& ray, const Box<double>& bx) {
+/// Stages 1 (general), 2 and 3 (out of line: the fast path in box() covers generic rays).
+[[gnu::noinline]] inline std::optional<Hit<double>> box_rest(const Ray<double>& ray, const Box<double>& bx) {
   using H = Hit<double>;
-  using detail::Span;
-  if (!ray.valid() || !box_valid(bx)) return H{Contact::invalid};
-  for (int i = 0; i < 3; ++i)  // parallel axis: exact comparisons of doubles
-    if (ray.d[i] == 0 && (ray.o[i] < bx.lo[i] || ray.o[i] > bx.hi[i])) return H{Contact::miss};
-  if (auto h = detail::box_fast(ray, bx)) return h;
-  if (auto h = detail::box_expansion(ray, bx)) return h;
+  if (auto h = box_fast_general(ray, bx)) return h;
+  if (auto h = box_expansion(ray, bx)) return h;
   if constexpr (!kFilterAvailable) return std::nullopt;
   constexpr Wide inf = std::numeric_limits<Wide>::infinity();
   Span enter{-inf, -inf, -inf}, exit{inf, inf, inf};
@@ -187,8 +173,8 @@ struct Slab {
       continue;
     }
     // Slab distances; near is the one with the smaller value (d_i < 0 swaps them).
-    Span near = detail::span_of((Bounded(bx.lo[i]) - Bounded(ray.o[i])) / Bounded(ray.d[i]));
-    Span far = detail::span_of((Bounded(bx.hi[i]) - Bounded(ray.o[i])) / Bounded(ray.d[i]));
+    Span near = span_of((Bounded(bx.lo[i]) - Bounded(ray.o[i])) / Bounded(ray.d[i]));
+    Span far = span_of((Bounded(bx.hi[i]) - Bounded(ray.o[i])) / Bounded(ray.d[i]));
     if (ray.d[i] < 0) std::swap(near, far);
     // max / min of intervals: componentwise.
     enter = {std::max(enter.lo, near.lo), std::max(enter.hi, near.hi), std::max(enter.mid, near.mid)};
@@ -207,6 +193,72 @@ struct Slab {
   if (enter.hi < 0) return H{Contact::inside, *t0, *t1};
   if (!(enter.lo >= 0)) return std::nullopt;
   return H{enter.hi < exit.lo ? Contact::hit : Contact::graze, *t0, *t1};
+}
+
+/// Stage 1 when the rounded entry and exit are equal or zero (a graze at a corner or an edge, a ray
+/// starting on a face, two slab distances that round alike): every d_i != 0 and every numerator
+/// p = b_i - o_i exact, as box() checked. The entry is the exact largest near fraction p / d and the
+/// exit the exact smallest far one (frac_cmp), their order and signs exact; T and T2 are the
+/// correctly rounded quotients of those slabs. Whatever frac_cmp cannot decide goes to box_rest.
+[[gnu::noinline]] inline std::optional<Hit<double>> box_tie(const Ray<double>& ray, const Box<double>& bx,
+                                                           const double pn[3], const double pf[3],
+                                                           const double tn[3], const double tf[3]) {
+  using H = Hit<double>;
+  const Vec3<double>& d = ray.d;
+  int ie = 0, ix = 0;
+  for (int j = 1; j < 3; ++j) {
+    const auto ce = frac_cmp(pn[j], d[j], pn[ie], d[ie]), cx = frac_cmp(pf[j], d[j], pf[ix], d[ix]);
+    if (!ce || !cx) return box_rest(ray, bx);
+    if (*ce > 0) ie = j;
+    if (*cx < 0) ix = j;
+  }
+  const auto order = frac_cmp(pn[ie], d[ie], pf[ix], d[ix]);
+  const double t0 = tn[ie], t1 = tf[ix];
+  if (!order || !(std::fabs(t0) <= std::numeric_limits<double>::max()) ||
+      !(std::fabs(t1) <= std::numeric_limits<double>::max()))
+    return box_rest(ray, bx);
+  if (*order > 0) return H{Contact::miss};
+  auto sgn = [](double p, double di) { return p == 0 ? 0 : ((p < 0) != (di < 0) ? -1 : 1); };
+  if (sgn(pf[ix], d[ix]) < 0) return H{Contact::behind, t0 + 0.0, t1 + 0.0};
+  if (sgn(pn[ie], d[ie]) < 0) return H{Contact::inside, t0 + 0.0, t1 + 0.0};
+  return H{*order < 0 ? Contact::hit : Contact::graze, t0 + 0.0, t1 + 0.0};
+}
+
+}  // namespace detail
+
+/// Stage 1 for every d_i != 0 and every numerator b_i - o_i exact in double (generic rays): each slab
+/// distance is then a correctly rounded quotient t_i = round(x_i), and rounding is monotone, so the
+/// rounded entry max_i round(x_i) is round(max_i x_i), the rounded exit likewise, and strict
+/// inequalities between rounded values (and their signs) hold for the exact values. Only equal or zero
+/// rounded values (box_tie) and the rest (box_rest) need more. Every result is returned as a prvalue
+/// or a call (no copy of a half-written optional: that cost store-forwarding stalls).
+[[nodiscard]] inline std::optional<Hit<double>> box(const Ray<double>& ray, const Box<double>& bx) {
+  using H = Hit<double>;
+  if (!ray.valid() || !box_valid(bx)) return H{Contact::invalid};
+  const Vec3<double>&o = ray.o, &d = ray.d;
+  if (d.x == 0 || d.y == 0 || d.z == 0) {
+    for (int i = 0; i < 3; ++i)  // parallel axis: exact comparisons of doubles
+      if (d[i] == 0 && (o[i] < bx.lo[i] || o[i] > bx.hi[i])) return H{Contact::miss};
+    return detail::box_rest(ray, bx);
+  }
+  double pn[3], pf[3], tn[3], tf[3];
+  int inexact = 0;
+  for (int i = 0; i < 3; ++i) {
+    const double pa = bx.lo[i] - o[i], pb = bx.hi[i] - o[i];
+    inexact += (two_sum(bx.lo[i], -o[i]).lo != 0) + (two_sum(bx.hi[i], -o[i]).lo != 0);
+    const bool neg = d[i] < 0;
+    pn[i] = neg ? pb : pa, pf[i] = neg ? pa : pb;
+    tn[i] = pn[i] / d[i], tf[i] = pf[i] / d[i];
+  }
+  if (inexact) return detail::box_rest(ray, bx);
+  auto max2 = [](double x, double y) { return x > y ? x : y; };
+  auto min2 = [](double x, double y) { return x < y ? x : y; };
+  const double enter = max2(max2(tn[0], tn[1]), tn[2]), exit = min2(min2(tf[0], tf[1]), tf[2]);
+  if (enter > exit) return H{Contact::miss};
+  if (!(enter < exit) || enter == 0 || exit == 0 || !(std::fabs(enter) <= std::numeric_limits<double>::max()) ||
+      !(std::fabs(exit) <= std::numeric_limits<double>::max()))
+    return detail::box_tie(ray, bx, pn, pf, tn, tf);
+  return H{exit < 0 ? Contact::behind : (enter < 0 ? Contact::inside : Contact::hit), enter, exit};
 }
 
 }  // namespace rayproof::certified

@@ -158,7 +158,8 @@ using ExpVec3 = Vec3<Expansion>;
 template <int Lo, int Hi, class... D>
 [[nodiscard]] inline bool in_range(D... xs) {
   constexpr double lo = pow2(Lo), hi = pow2(Hi);
-  return (... && (xs == 0 || (std::fabs(xs) >= lo && std::fabs(xs) <= hi)));
+  // & and |, not && and ||: one branch for the whole check.
+  return (... & ((xs == 0) | ((std::fabs(xs) >= lo) & (std::fabs(xs) <= hi))));
 }
 
 }  // namespace rayproof::certified

@@ -246,9 +246,11 @@ struct Residual {
 /// Decides miss, inside, behind and hit with both roots pinned (sqrt(disc) of the normalised disc
 /// refined as in certified_quadric.h, |error| <= 2^-103 s + ered / sqrt(disc), used with 2^-101 s, no cancellation in
 /// q = -(b + sign(b) sqrt(disc)), roots q / a and c / q by pin_dd); returns nothing for a disc, c or
-/// b whose sign the bound cannot tell (tangents, origins on the surface: the caller's exact stages).
-[[gnu::noinline]] RAYPROOF_FMA_TARGET inline std::optional<Hit<double>> sphere(const Ray<double>& ray,
-                                                                               const Sphere<double>& sp) {
+/// b whose sign the bound cannot tell (tangents, origins on the surface), it returns next(): the caller's
+/// exact stages, called here so that their result is returned without a copy.
+template <class Next>
+[[gnu::noinline]] RAYPROOF_FMA_TARGET std::optional<Hit<double>> sphere(const Ray<double>& ray, const Sphere<double>& sp,
+                                                                    Next next) {
   using H = Hit<double>;
   const DD e[3] = {exact_diff(ray.o.x, sp.center.x), exact_diff(ray.o.y, sp.center.y), exact_diff(ray.o.z, sp.center.z)};
   const double dv[3] = {ray.d.x, ray.d.y, ray.d.z};
@@ -268,7 +270,7 @@ struct Residual {
                                  std::fabs(m[2].hi) * M.z + M.x * M.x + M.y * M.y + M.z * M.z) +
                       0x1p-1000;
   if (red.hi < -2 * (std::fabs(red.lo) + ered)) return H{Contact::miss};
-  if (!(red.hi > 2 * (std::fabs(red.lo) + ered)) || !(red.hi > 0x1p-900)) return std::nullopt;
+  if (!(red.hi > 2 * (std::fabs(red.lo) + ered)) || !(red.hi > 0x1p-900)) return next();
   const DD b = dot_d_dd(dv, e), ee = square_sum(e);
   const TwoTerm<double> cs = two_sum(ee.hi, -rh);
   const DD c{cs.hi, cs.lo + ee.lo - rl};
@@ -276,7 +278,7 @@ struct Residual {
                ec = 0x1p-98 * (ee.hi + rh) + 0x1p-1000;
   const int sc = c.hi > 2 * (std::fabs(c.lo) + ec) ? 1 : (c.hi < -2 * (std::fabs(c.lo) + ec) ? -1 : 0);
   const int sb = b.hi > 2 * (std::fabs(b.lo) + eb) ? 1 : (b.hi < -2 * (std::fabs(b.lo) + eb) ? -1 : 0);
-  if (sc == 0 || (sc > 0 && sb == 0)) return std::nullopt;
+  if (sc == 0 || (sc > 0 && sb == 0)) return next();
   const Contact cls = sc < 0 ? Contact::inside : (sb > 0 ? Contact::behind : Contact::hit);
   // sqrt(disc) = s + sl from disc normalised (exactly: rn.lo at most half an ulp of rn.hi, which the
   // refinement's error analysis needs; red.lo itself may be a sizeable fraction of red.hi after
@@ -292,7 +294,7 @@ struct Residual {
   const DD q = plus ? DD{-qs.hi, -ql} : DD{qs.hi, ql};
   const double eq = (eb + esq) * (1 + 0x1p-50) + 0x1p-51 * (std::fabs(qs.lo) + std::fabs(b.lo) + std::fabs(sl));
   const auto t1 = pin_dd(q, a, eq, ea), t2 = pin_dd(c, q, ec, eq);
-  if (!t1 || !t2) return std::nullopt;
+  if (!t1 || !t2) return next();
   // plus: q < 0 and q / a is the lower root; otherwise q > 0 and q / a the upper one.
   return plus ? H{cls, *t1, *t2} : H{cls, *t2, *t1};
 }

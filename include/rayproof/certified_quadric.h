@@ -221,30 +221,38 @@ template <class F>
   return solve_exact(a, b, c, a - dot(q, mul(m, m)), wide);
 }
 
-}  // namespace detail
-
-[[nodiscard]] inline std::optional<Hit<double>> sphere(const Ray<double>& ray, const Sphere<double>& s) {
-  using H = Hit<double>;
-  if (!ray.valid() || !all_finite(s.center) || !std::isfinite(s.radius) || s.radius < 0) return H{Contact::invalid};
-  if (s.radius == 0) return H{Contact::degenerate};
-  const detail::Quad<double> x = detail::sphere_quad<double>(ray, s);
-#if RAYPROOF_FMA_PATH != 0
-  // A miss the double stage proves costs no more; everything else goes to double-double with hardware
-  // FMA first (certified_fma.h), then to the stages below for what that leaves.
-  if (x.red < -x.ered) return H{Contact::miss};
-  if (dd::available() && detail::sphere_in_window(ray, s))
-    if (auto h = dd::sphere(ray, s)) return h;
-#endif
-  auto wide = [&] { return std::pair{detail::sphere_wide(ray, s, x), Wide(1)}; };
-  if (auto h = detail::solve_fast(x, wide)) return h;
-  if (auto h = detail::sphere_exact(ray, s)) return h;
+/// Stages 1 (double, then Wide), 2 (expansions) and 3 (running error bounds), out of line.
+[[gnu::noinline]] inline std::optional<Hit<double>> sphere_rest(const Ray<double>& ray, const Sphere<double>& s) {
+  const Quad<double> x = sphere_quad<double>(ray, s);
+  auto wide = [&] { return std::pair{sphere_wide(ray, s, x), Wide(1)}; };
+  if (auto h = solve_fast(x, wide)) return h;
+  if (auto h = sphere_exact(ray, s)) return h;
   if constexpr (!kFilterAvailable) return std::nullopt;
   const Vec3<Bounded> d = lift(ray.d), e = lift(ray.o) - lift(s.center);
   const Bounded r = s.radius, rr = r * r;
   const Bounded a = dot(d, d);
   // disc = a r^2 - |d x e|^2 (Lagrange's identity applied to b^2 - a c).
   const Vec3<Bounded> m = cross(d, e);
-  return detail::solve(a, dot(d, e), dot(e, e) - rr, a * rr - dot(m, m), Bounded(1.0));
+  return solve(a, dot(d, e), dot(e, e) - rr, a * rr - dot(m, m), Bounded(1.0));
+}
+
+}  // namespace detail
+
+/// Every result is a prvalue or a call's (copying a half-written optional cost store-forwarding stalls).
+[[nodiscard]] inline std::optional<Hit<double>> sphere(const Ray<double>& ray, const Sphere<double>& s) {
+  using H = Hit<double>;
+  if (!ray.valid() || !all_finite(s.center) || !std::isfinite(s.radius) || s.radius < 0) return H{Contact::invalid};
+  if (s.radius == 0) return H{Contact::degenerate};
+#if RAYPROOF_FMA_PATH != 0
+  // A miss the double stage proves costs no more; everything else goes to double-double with hardware
+  // FMA first (certified_fma.h), then to the stages of sphere_rest for what that leaves.
+  if (dd::available()) {
+    const detail::Quad<double> x = detail::sphere_quad<double>(ray, s);
+    if (x.red < -x.ered) return H{Contact::miss};
+    if (detail::sphere_in_window(ray, s)) return dd::sphere(ray, s, [&] { return detail::sphere_rest(ray, s); });
+  }
+#endif
+  return detail::sphere_rest(ray, s);
 }
 
 [[nodiscard]] inline std::optional<Hit<double>> ellipsoid(const Ray<double>& ray, const Ellipsoid<double>& el) {

@@ -62,63 +62,6 @@ template <class W>
   return pin(dot(p0 - lift(ray.o), n) / den);
 }
 
-
-/// Stage 1. With a, b, c = p_i - o (rounded), the signed volumes u0 = (d x b) . c, u1 = (d x c) . a,
-/// u2 = (d x a) . b have at most 7 roundings per path and a permanent <= 2 |d|_1 |b|_inf |c|_inf, so
-/// |error| <= gamma_7 * that <= 2^-49 |d|_1 |b|_inf |c|_inf; underflow adds at most 2^-1075 per product,
-/// amplified by |c|_inf at most: 2^-1000 (|c|_inf + 1) covers it (a normal number: subnormal
-/// arithmetic would trap into microcode). Overflow leaves den or a bound not
-/// finite: undecided. den = u0 + u1 + u2. Decides miss, and interior / behind with t pinned in Wide.
-[[nodiscard]] inline std::optional<Hit<double>> triangle_fast(const Ray<double>& ray, const Triangle<double>& tri) {
-  using H = Hit<double>;
-  const Vec3<double>& o = ray.o;
-  const Vec3<double>& d = ray.d;
-  const Vec3<double> a = tri.p0 - o, b = tri.p1 - o, c = tri.p2 - o;
-  const double u0 = dot(cross(d, b), c), u1 = dot(cross(d, c), a), u2 = dot(cross(d, a), b);
-  // Plain comparisons, not std::fmax (a libm call without -ffast-math); the inputs are finite.
-  auto norm_inf = [](const Vec3<double>& v) {
-    const double x = std::fabs(v.x), y = std::fabs(v.y), z = std::fabs(v.z), m = x > y ? x : y;
-    return m > z ? m : z;
-  };
-  const double d1 = std::fabs(d.x) + std::fabs(d.y) + std::fabs(d.z);
-  const double ma = norm_inf(a), mb = norm_inf(b), mc = norm_inf(c), k = 0x1p-49 * d1;
-  const double e0 = k * mb * mc + 0x1p-1000 * (mc + 1), e1 = k * mc * ma + 0x1p-1000 * (ma + 1),
-               e2 = k * ma * mb + 0x1p-1000 * (mb + 1);
-  const double den = u0 + u1 + u2;
-  // Two more roundings: 2u of the magnitudes (with slack).
-  const double eden = (e0 + e1 + e2) * (1 + 0x1p-50) + 0x1p-51 * (std::fabs(u0) + std::fabs(u1) + std::fabs(u2));
-  if (!(std::fabs(den) > eden) || !(eden < 0x1p1020)) return std::nullopt;  // parallel, coplanar, ...
-  // den != 0, so n != 0: a barycentric of the opposite sign is a miss.
-  const bool neg0 = den > 0 ? u0 < -e0 : u0 > e0, neg1 = den > 0 ? u1 < -e1 : u1 > e1,
-             neg2 = den > 0 ? u2 < -e2 : u2 > e2;
-  if (neg0 || neg1 || neg2) return H{Contact::miss};
-  if (!(std::fabs(u0) > e0 && std::fabs(u1) > e1 && std::fabs(u2) > e2)) return std::nullopt;  // maybe 0
-  // Interior or behind: t = ((p0 - o) . n) / (d . n), n = (p1 - p0) x (p2 - p0), plain in Wide: at most
-  // 8 roundings per path (gamma_8 = 2^-61); permanents sum_i |x_i| pn_i with pn_i = |f1_j f2_k| +
-  // |f1_k f2_j| (x = p0 - o or d), used with 2^-60 (2x slack, ample for their rounding in double).
-#if RAYPROOF_FMA_PATH != 0
-  if (dd::available()) {  // t in double-double (certified_fma.h); its sign is that of t
-    const auto tt = dd::triangle_t(ray, tri);
-    if (!tt) return std::nullopt;
-    return H{*tt < 0 ? Contact::behind : Contact::interior, *tt};
-  }
-#endif
-  if constexpr (!kFilterAvailable) return std::nullopt;
-  const Vec3<double> pn = cross_permanent(tri.p1 - tri.p0, tri.p2 - tri.p0);
-  // (2^-1000 (|x|_1 + 1) covers underflow in these double products; Wide itself cannot underflow.)
-  const double a1 = std::fabs(a.x) + std::fabs(a.y) + std::fabs(a.z);
-  const Wide en = 0x1p-60 * (std::fabs(a.x) * pn.x + std::fabs(a.y) * pn.y + std::fabs(a.z) * pn.z) + 0x1p-1000 * (a1 + 1),
-             ed = 0x1p-60 * (std::fabs(d.x) * pn.x + std::fabs(d.y) * pn.y + std::fabs(d.z) * pn.z) + 0x1p-1000 * (d1 + 1);
-  const Vec3<Wide> P0 = tri.p0.cast<Wide>();
-  const Vec3<Wide> n = cross(tri.p1.cast<Wide>() - P0, tri.p2.cast<Wide>() - P0);
-  const Wide num = dot(P0 - o.cast<Wide>(), n), dn = dot(d.cast<Wide>(), n);
-  // The sign of num (the side of t) and a den clear of zero, then t pinned by its residual.
-  if (!(std::fabs(dn) > 2 * ed) || !(std::fabs(num) > en)) return std::nullopt;  // t = 0 or unclear
-  const auto tt = pin_ratio(num, dn, en, ed);
-  if (!tt) return std::nullopt;
-  return H{(num < 0) != (dn < 0) ? Contact::behind : Contact::interior, *tt};
-}
-
 /// The coplanar range (stage 2, inputs in_range<-70, 120>: the comparisons below have degree 8), as
 /// the exact method clips it: edge j -> k keeps alpha + t beta >= 0 with alpha = det(e, o - p_j, n),
 /// beta = det(e, d, n); bounds -alpha / beta are exact fractions p / q (q > 0), compared by
@@ -196,26 +139,91 @@ template <class W>
   return H{zeros == 0 ? Contact::interior : (zeros == 1 ? Contact::edge : Contact::vertex), *t};
 }
 
-}  // namespace detail
-
-[[nodiscard]] inline std::optional<Hit<double>> triangle(const Ray<double>& ray, const Triangle<double>& tri) {
+/// The stages after the double one (out of line): double-double near an edge, a vertex or the plane,
+/// the expansions, the running error bounds.
+[[gnu::noinline]] inline std::optional<Hit<double>> triangle_rest(const Ray<double>& ray, const Triangle<double>& tri) {
   using H = Hit<double>;
-  if (!ray.valid() || !triangle_finite(tri)) return H{Contact::invalid};
-  if (auto h = detail::triangle_fast(ray, tri)) return h;
 #if RAYPROOF_FMA_PATH != 0
   if (dd::available())  // near an edge, a vertex or the plane: double-double before the expansions
     if (auto h = dd::triangle_near(ray, tri)) return h;
 #endif
-  if (auto h = detail::triangle_expansion(ray, tri)) return h;
+  if (auto h = triangle_expansion(ray, tri)) return h;
   if constexpr (!kFilterAvailable) return std::nullopt;
   // Stage 3: running error bounds, in double first (cheap, decides generic misses), then in Wide.
-  auto cls = detail::triangle_class<double>(ray, tri);
-  if (!cls) cls = detail::triangle_class<Wide>(ray, tri);
+  auto cls = triangle_class<double>(ray, tri);
+  if (!cls) cls = triangle_class<Wide>(ray, tri);
   if (!cls) return std::nullopt;
   if (*cls == Contact::degenerate || *cls == Contact::parallel || *cls == Contact::miss) return H{*cls};
-  const auto t = detail::triangle_t(ray, tri);
+  const auto t = triangle_t(ray, tri);
   if (!t) return std::nullopt;
   return H{*cls, *t};
+}
+
+/// Stage 1. With a, b, c = p_i - o (rounded), the signed volumes u0 = (d x b) . c, u1 = (d x c) . a,
+/// u2 = (d x a) . b have at most 7 roundings per path and a permanent <= 2 |d|_1 |b|_inf |c|_inf, so
+/// |error| <= gamma_7 * that <= 2^-49 |d|_1 |b|_inf |c|_inf; underflow adds at most 2^-1075 per product,
+/// amplified by |c|_inf at most: 2^-1000 (|c|_inf + 1) covers it (a normal number: subnormal
+/// arithmetic would trap into microcode). Overflow leaves den or a bound not
+/// finite: undecided. den = u0 + u1 + u2. Decides miss, and interior / behind with t pinned in Wide.
+/// What it cannot decide it hands to next() (the later stages), whose result is returned as is.
+template <class Next>
+[[nodiscard]] std::optional<Hit<double>> triangle_fast(const Ray<double>& ray, const Triangle<double>& tri, Next next) {
+  using H = Hit<double>;
+  const Vec3<double>& o = ray.o;
+  const Vec3<double>& d = ray.d;
+  const Vec3<double> a = tri.p0 - o, b = tri.p1 - o, c = tri.p2 - o;
+  const double u0 = dot(cross(d, b), c), u1 = dot(cross(d, c), a), u2 = dot(cross(d, a), b);
+  // Plain comparisons, not std::fmax (a libm call without -ffast-math); the inputs are finite.
+  auto norm_inf = [](const Vec3<double>& v) {
+    const double x = std::fabs(v.x), y = std::fabs(v.y), z = std::fabs(v.z), m = x > y ? x : y;
+    return m > z ? m : z;
+  };
+  const double d1 = std::fabs(d.x) + std::fabs(d.y) + std::fabs(d.z);
+  const double ma = norm_inf(a), mb = norm_inf(b), mc = norm_inf(c), k = 0x1p-49 * d1;
+  const double e0 = k * mb * mc + 0x1p-1000 * (mc + 1), e1 = k * mc * ma + 0x1p-1000 * (ma + 1),
+               e2 = k * ma * mb + 0x1p-1000 * (mb + 1);
+  const double den = u0 + u1 + u2;
+  // Two more roundings: 2u of the magnitudes (with slack).
+  const double eden = (e0 + e1 + e2) * (1 + 0x1p-50) + 0x1p-51 * (std::fabs(u0) + std::fabs(u1) + std::fabs(u2));
+  if (!(std::fabs(den) > eden) || !(eden < 0x1p1020)) return next();  // parallel, coplanar, ...
+  // den != 0, so n != 0: a barycentric of the opposite sign is a miss.
+  const bool neg0 = den > 0 ? u0 < -e0 : u0 > e0, neg1 = den > 0 ? u1 < -e1 : u1 > e1,
+             neg2 = den > 0 ? u2 < -e2 : u2 > e2;
+  if (neg0 || neg1 || neg2) return H{Contact::miss};
+  if (!(std::fabs(u0) > e0 && std::fabs(u1) > e1 && std::fabs(u2) > e2)) return next();  // maybe 0
+  // Interior or behind: t = ((p0 - o) . n) / (d . n), n = (p1 - p0) x (p2 - p0), plain in Wide: at most
+  // 8 roundings per path (gamma_8 = 2^-61); permanents sum_i |x_i| pn_i with pn_i = |f1_j f2_k| +
+  // |f1_k f2_j| (x = p0 - o or d), used with 2^-60 (2x slack, ample for their rounding in double).
+#if RAYPROOF_FMA_PATH != 0
+  if (dd::available()) {  // t in double-double (certified_fma.h); its sign is that of t
+    const auto tt = dd::triangle_t(ray, tri);
+    if (!tt) return next();
+    return H{*tt < 0 ? Contact::behind : Contact::interior, *tt};
+  }
+#endif
+  if constexpr (!kFilterAvailable) return next();
+  const Vec3<double> pn = cross_permanent(tri.p1 - tri.p0, tri.p2 - tri.p0);
+  // (2^-1000 (|x|_1 + 1) covers underflow in these double products; Wide itself cannot underflow.)
+  const double a1 = std::fabs(a.x) + std::fabs(a.y) + std::fabs(a.z);
+  const Wide en = 0x1p-60 * (std::fabs(a.x) * pn.x + std::fabs(a.y) * pn.y + std::fabs(a.z) * pn.z) + 0x1p-1000 * (a1 + 1),
+             ed = 0x1p-60 * (std::fabs(d.x) * pn.x + std::fabs(d.y) * pn.y + std::fabs(d.z) * pn.z) + 0x1p-1000 * (d1 + 1);
+  const Vec3<Wide> P0 = tri.p0.cast<Wide>();
+  const Vec3<Wide> n = cross(tri.p1.cast<Wide>() - P0, tri.p2.cast<Wide>() - P0);
+  const Wide num = dot(P0 - o.cast<Wide>(), n), dn = dot(d.cast<Wide>(), n);
+  // The sign of num (the side of t) and a den clear of zero, then t pinned by its residual.
+  if (!(std::fabs(dn) > 2 * ed) || !(std::fabs(num) > en)) return next();  // t = 0 or unclear
+  const auto tt = pin_ratio(num, dn, en, ed);
+  if (!tt) return next();
+  return H{(num < 0) != (dn < 0) ? Contact::behind : Contact::interior, *tt};
+}
+
+}  // namespace detail
+
+/// Every result is a prvalue or a call's (copying a half-written optional cost store-forwarding stalls).
+[[nodiscard]] inline std::optional<Hit<double>> triangle(const Ray<double>& ray, const Triangle<double>& tri) {
+  using H = Hit<double>;
+  if (!ray.valid() || !triangle_finite(tri)) return H{Contact::invalid};
+  return detail::triangle_fast(ray, tri, [&] { return detail::triangle_rest(ray, tri); });
 }
 
 }  // namespace rayproof::certified
