@@ -2,12 +2,21 @@
 /// precomputed inputs (generic hits, generic misses, edge-heavy), then a table of ratios to `robust`
 /// measured in the same run, with the certified filter's fallback rate beside it.
 /// Run: kernels_bench [google-benchmark flags], e.g. --benchmark_min_time=0.2; with
-/// --benchmark_repetitions=N the table takes the fastest repetition of each.
+/// --benchmark_repetitions=N the table takes the fastest repetition of each. Ratios come from core
+/// cycles (perf_event_open) where the kernel allows it, else from CPU time.
 #include <benchmark/benchmark.h>
 
+#if defined(__linux__)
+#include <linux/perf_event.h>
+#include <sys/syscall.h>
+#include <unistd.h>
+#endif
+
 #include <cstdio>
+#include <cstring>
 #include <functional>
 #include <map>
+#include <optional>
 #include <random>
 #include <string>
 #include <vector>
@@ -127,16 +136,61 @@ int certified_box(const BoxCase& c, std::size_t* fb) {
   return is_hit(verify::exact_classify(case_of(ray, {b.lo.x, b.lo.y, b.lo.z, b.hi.x, b.hi.y, b.hi.z}, io::Kind::box)).contact);
 }
 
+/// Core cycles spent in user space by this thread (Linux perf_event_open), or nothing where the kernel
+/// does not allow it (then the table falls back to CPU time). Cycles, unlike time, do not move with the
+/// clock frequency, which other tenants of a shared machine change from run to run.
+class Cycles {
+ public:
+  Cycles() {
+#if defined(__linux__)
+    perf_event_attr a;
+    std::memset(&a, 0, sizeof a);
+    a.size = sizeof a;
+    a.type = PERF_TYPE_HARDWARE;
+    a.config = PERF_COUNT_HW_CPU_CYCLES;
+    a.exclude_kernel = 1;
+    a.exclude_hv = 1;
+    fd_ = static_cast<int>(syscall(SYS_perf_event_open, &a, 0, -1, -1, 0));
+#endif
+  }
+  ~Cycles() {
+#if defined(__linux__)
+    if (fd_ >= 0) close(fd_);
+#endif
+  }
+  Cycles(const Cycles&) = delete;
+  Cycles& operator=(const Cycles&) = delete;
+  [[nodiscard]] std::optional<std::uint64_t> now() const {
+#if defined(__linux__)
+    std::uint64_t v = 0;
+    if (fd_ >= 0 && read(fd_, &v, sizeof v) == static_cast<ssize_t>(sizeof v)) return v;
+#endif
+    return std::nullopt;
+  }
+
+ private:
+  int fd_ = -1;
+};
+
 template <class Case, class F>
 void add(const std::string& kind, Input in, const std::string& method, const std::vector<Case>& cases, F f) {
   const std::string name = kind + "/" + name_of(in) + "/" + method;
   benchmark::RegisterBenchmark(name.c_str(), [cases, f](benchmark::State& st) {
+    const Cycles counter;
+    std::uint64_t cycles = 0;
+    bool counted = true;
     int hits = 0;
     for (auto _ : st) {
+      const auto c0 = counter.now();
       for (const auto& c : cases) hits += f(c);
       benchmark::DoNotOptimize(hits);
+      const auto c1 = counter.now();
+      if (c0 && c1) cycles += *c1 - *c0;
+      else counted = false;
     }
     st.SetItemsProcessed(static_cast<std::int64_t>(st.iterations()) * static_cast<std::int64_t>(cases.size()));
+    if (counted && st.iterations() > 0)
+      st.counters["cycles"] = double(cycles) / double(st.iterations()) / double(cases.size());
   });
 }
 
@@ -199,14 +253,18 @@ void register_all() {
 /// time: the ratios stay meaningful when other processes share the machine).
 class Collector : public benchmark::ConsoleReporter {
  public:
-  std::map<std::string, double> ns;  ///< "kind/input/method" -> ns per test
+  std::map<std::string, double> ns;      ///< "kind/input/method" -> CPU ns per test
+  std::map<std::string, double> cycles;  ///< the same in core cycles, where counted
   void ReportRuns(const std::vector<Run>& runs) override {
+    // With --benchmark_repetitions=N, the fastest repetition (the least disturbed by other processes).
+    auto keep_min = [](std::map<std::string, double>& m, const std::string& k, double v) {
+      const auto [it, fresh] = m.try_emplace(k, v);
+      if (!fresh && v < it->second) it->second = v;
+    };
     for (const auto& r : runs)
       if (r.run_type == Run::RT_Iteration && r.iterations > 0) {
-        // With --benchmark_repetitions=N, the fastest repetition (the least disturbed by other processes).
-        const double t = r.cpu_accumulated_time * 1e9 / double(r.iterations) / double(kN);
-        const auto [it, fresh] = ns.try_emplace(r.run_name.str(), t);
-        if (!fresh && t < it->second) it->second = t;
+        keep_min(ns, r.run_name.str(), r.cpu_accumulated_time * 1e9 / double(r.iterations) / double(kN));
+        if (const auto c = r.counters.find("cycles"); c != r.counters.end()) keep_min(cycles, r.run_name.str(), c->second);
       }
     ConsoleReporter::ReportRuns(runs);
   }
@@ -219,20 +277,27 @@ int main(int argc, char** argv) {
   register_all();
   Collector rep;
   benchmark::RunSpecifiedBenchmarks(&rep);
-  std::printf("\n%-10s %-13s %-17s %9s %9s %s\n", "kind", "input", "method", "cpu ns", "x robust", "fallbacks");
+  // Ratios from core cycles when every run was counted, else from CPU time.
+  const bool use_cycles = !rep.cycles.empty() && rep.cycles.size() == rep.ns.size();
+  const auto& cost = use_cycles ? rep.cycles : rep.ns;
+  std::printf("\n%-10s %-13s %-17s %9s %9s %9s %s\n", "kind", "input", "method", "cpu ns", "cycles", "x robust", "fallbacks");
   for (const auto& [name, t] : rep.ns) {
     const auto a = name.find('/'), b = name.find('/', a + 1);
     const std::string group = name.substr(0, b), method = name.substr(b + 1);
-    const auto robust = rep.ns.find(group + "/robust");
-    const double ratio = robust == rep.ns.end() ? 0.0 : t / robust->second;
+    const auto robust = cost.find(group + "/robust");
+    const auto mine = cost.find(name);
+    const double ratio = robust == cost.end() || mine == cost.end() ? 0.0 : mine->second / robust->second;
     std::string fb;
     if (method == "certified") {
       const auto& f = g_fallback[group];
       fb = std::to_string(f.first) + "/" + std::to_string(f.second);
     }
-    std::printf("%-10s %-13s %-17s %9.2f %9.2f %s\n", name.substr(0, a).c_str(), name.substr(a + 1, b - a - 1).c_str(),
-                method.c_str(), t, ratio, fb.c_str());
+    const auto cyc = rep.cycles.find(name);
+    std::printf("%-10s %-13s %-17s %9.2f %9.1f %9.2f %s\n", name.substr(0, a).c_str(), name.substr(a + 1, b - a - 1).c_str(),
+                method.c_str(), t, cyc == rep.cycles.end() ? 0.0 : cyc->second, ratio, fb.c_str());
   }
+  std::printf("\nx robust: ratio of %s per test, measured in this run%s\n", use_cycles ? "core cycles" : "CPU time",
+              use_cycles ? "" : " (no cycle counter: perf_event_open refused)");
   std::printf("\ncertified t of triangles and spheres: %s (RAYPROOF_CERTIFIED_NO_FMA=1 selects the x87 path)\n",
               certified::dd::available() ? "double-double with hardware FMA" : "x87 extended precision");
   benchmark::Shutdown();

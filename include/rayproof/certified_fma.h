@@ -26,16 +26,25 @@
 #define RAYPROOF_FMA_TARGET
 #define RAYPROOF_FMA_PATH 1
 #elif defined(__GNUC__) && (defined(__x86_64__) || defined(__i386__))
-#define RAYPROOF_FMA_TARGET __attribute__((target("fma")))
+#define RAYPROOF_FMA_TARGET __attribute__((target("avx2,fma")))
 #define RAYPROOF_FMA_PATH 2
 #else
 #define RAYPROOF_FMA_PATH 0
 #endif
 
+// On x86 the triangle's t runs three lanes at a time in AVX2 (every x86 CPU with FMA3 but the AMD
+// Piledriver / Steamroller generations has AVX2; those take the x87 path, see available()).
+#if RAYPROOF_FMA_PATH == 2 || (RAYPROOF_FMA_PATH == 1 && defined(__AVX2__))
+#define RAYPROOF_DD_AVX2 1
+#include <immintrin.h>
+#else
+#define RAYPROOF_DD_AVX2 0
+#endif
+
 namespace rayproof::certified::dd {
 
-/// True when the functions below run on hardware FMA (a libm fma would be correct but slow) and the
-/// environment variable RAYPROOF_CERTIFIED_NO_FMA is unset (it selects the x87 path, for tests and
+/// True when the functions below run on hardware FMA (a libm fma would be correct but slow; on x86 with
+/// AVX2 as well, which the triangle's t uses) and the environment variable RAYPROOF_CERTIFIED_NO_FMA is unset (it selects the x87 path, for tests and
 /// for comparison). Read once.
 [[nodiscard]] inline bool available() {
 #if RAYPROOF_FMA_PATH == 0
@@ -44,7 +53,7 @@ namespace rayproof::certified::dd {
 #if RAYPROOF_FMA_PATH == 1
   static const bool cpu = true;
 #else
-  static const bool cpu = (__builtin_cpu_init(), __builtin_cpu_supports("fma") != 0);
+  static const bool cpu = (__builtin_cpu_init(), __builtin_cpu_supports("fma") != 0 && __builtin_cpu_supports("avx2") != 0);
 #endif
   static const bool ok = cpu && std::getenv("RAYPROOF_CERTIFIED_NO_FMA") == nullptr;
   return ok;
@@ -162,8 +171,8 @@ struct Residual {
 /// sum_i |x_i| pn_i (x = p0 - o or d), used with 2^-90 (>= 3x slack), plus 2^-1000 (|x|_1 + 1) for
 /// products that underflow (an fma error term below 2^-1022 is not exact: <= 2^-1075 each, amplified
 /// by |x_i| at most).
-[[gnu::noinline]] RAYPROOF_FMA_TARGET inline std::optional<double> triangle_t(const Ray<double>& ray,
-                                                                              const Triangle<double>& tri) {
+RAYPROOF_FMA_TARGET inline std::optional<double> triangle_t_inline(const Ray<double>& ray,
+                                                                                         const Triangle<double>& tri) {
   const DD f1[3] = {exact_diff(tri.p1.x, tri.p0.x), exact_diff(tri.p1.y, tri.p0.y), exact_diff(tri.p1.z, tri.p0.z)};
   const DD f2[3] = {exact_diff(tri.p2.x, tri.p0.x), exact_diff(tri.p2.y, tri.p0.y), exact_diff(tri.p2.z, tri.p0.z)};
   const DD n[3] = {
@@ -181,6 +190,104 @@ struct Residual {
   const double ed = 0x1p-90 * (std::fabs(ray.d.x) * pn.x + std::fabs(ray.d.y) * pn.y + std::fabs(ray.d.z) * pn.z) +
                     0x1p-1000 * (d1 + 1);
   return pin_dd(num, den, en, ed);
+}
+/// triangle_t_inline out of line (for callers not compiled for FMA).
+[[gnu::noinline]] RAYPROOF_FMA_TARGET inline std::optional<double> triangle_t(const Ray<double>& ray,
+                                                                              const Triangle<double>& tri) {
+  return triangle_t_inline(ray, tri);
+}
+
+#if RAYPROOF_DD_AVX2
+/// triangle_t_inline three lanes at a time (x, y, z; the fourth lane is 0 and unused): the same
+/// operations on each component in the same order (the cross product of exact two-double vectors is
+/// cross_component lane by lane, with the components rotated by permutes), so its error analysis
+/// holds unchanged; the dot products gather each lane's low terms first (two roundings a lane) and then
+/// the lanes, fewer roundings per path than dot_dd's chain (six against eleven), within the same bound.
+namespace v4 {
+#define RAYPROOF_V4 [[gnu::always_inline]] RAYPROOF_FMA_TARGET inline
+using V = __m256d;
+struct VD {
+  V hi, lo;
+};
+RAYPROOF_V4 V set3(const Vec3<double>& v) { return _mm256_set_pd(0.0, v.z, v.y, v.x); }
+RAYPROOF_V4 V yzx(V v) { return _mm256_permute4x64_pd(v, 0xC9); }  // lanes (y, z, x, w)
+RAYPROOF_V4 V zxy(V v) { return _mm256_permute4x64_pd(v, 0xD2); }  // lanes (z, x, y, w)
+RAYPROOF_V4 V vabs(V v) { return _mm256_andnot_pd(_mm256_set1_pd(-0.0), v); }
+/// a - b exactly, as exact_diff (two-sum of a and -b).
+RAYPROOF_V4 VD diff(V a, V b) {
+  const V nb = _mm256_xor_pd(b, _mm256_set1_pd(-0.0));
+  const V s = _mm256_add_pd(a, nb), bb = _mm256_sub_pd(s, a);
+  return {s, _mm256_add_pd(_mm256_sub_pd(a, _mm256_sub_pd(s, bb)), _mm256_sub_pd(nb, bb))};
+}
+/// cross_component in every lane.
+RAYPROOF_V4 VD cross(const VD& x, const VD& y) {
+  const V xhj = yzx(x.hi), xlj = yzx(x.lo), xhk = zxy(x.hi), xlk = zxy(x.lo);
+  const V yhj = yzx(y.hi), ylj = yzx(y.lo), yhk = zxy(y.hi), ylk = zxy(y.lo);
+  const V p = _mm256_mul_pd(xhj, yhk), pe = _mm256_fmsub_pd(xhj, yhk, p);
+  const V q = _mm256_mul_pd(xhk, yhj), qe = _mm256_fmsub_pd(xhk, yhj, q);
+  const V mq = _mm256_xor_pd(q, _mm256_set1_pd(-0.0));
+  const V sh = _mm256_add_pd(p, mq), bb = _mm256_sub_pd(sh, p);
+  const V sl = _mm256_add_pd(_mm256_sub_pd(p, _mm256_sub_pd(sh, bb)), _mm256_sub_pd(mq, bb));
+  V lo = _mm256_add_pd(sl, _mm256_sub_pd(pe, qe));
+  lo = _mm256_fmadd_pd(xhj, ylk, lo);
+  lo = _mm256_fmadd_pd(xlj, yhk, lo);
+  lo = _mm256_fnmadd_pd(xhk, ylj, lo);
+  lo = _mm256_fnmadd_pd(xlk, yhj, lo);
+  return {sh, lo};
+}
+/// The three high products' exact sum (two-sums in dot_dd's order) plus the lanes' low terms.
+RAYPROOF_V4 DD gather(V P, V T) {
+  alignas(32) double p[4], t[4];
+  _mm256_store_pd(p, P);
+  _mm256_store_pd(t, T);
+  const TwoTerm<double> s1 = two_sum(p[0], p[1]), s2 = two_sum(s1.hi, p[2]);
+  return {s2.hi, ((t[0] + t[1]) + t[2]) + (s1.lo + s2.lo)};
+}
+/// sum_i x_i n_i for two-double x and n (dot_dd).
+RAYPROOF_V4 DD dot(const VD& x, const VD& n) {
+  const V P = _mm256_mul_pd(x.hi, n.hi), E = _mm256_fmsub_pd(x.hi, n.hi, P);
+  return gather(P, _mm256_fmadd_pd(x.hi, n.lo, _mm256_fmadd_pd(x.lo, n.hi, E)));
+}
+/// sum_i x_i n_i for double x and two-double n (dot_d_dd).
+RAYPROOF_V4 DD dot(V x, const VD& n) {
+  const V P = _mm256_mul_pd(x, n.hi), E = _mm256_fmsub_pd(x, n.hi, P);
+  return gather(P, _mm256_fmadd_pd(x, n.lo, E));
+}
+/// (v_0 + v_1) + v_2.
+RAYPROOF_V4 double sum3(V v) {
+  alignas(32) double x[4];
+  _mm256_store_pd(x, v);
+  return (x[0] + x[1]) + x[2];
+}
+#undef RAYPROOF_V4
+}  // namespace v4
+
+/// triangle_t_inline in AVX2 (see v4): the same t, the same bounds.
+RAYPROOF_FMA_TARGET inline std::optional<double> triangle_t_avx2(const Ray<double>& ray, const Triangle<double>& tri) {
+  using namespace v4;
+  const V p0 = set3(tri.p0);
+  const VD f1 = diff(set3(tri.p1), p0), f2 = diff(set3(tri.p2), p0);
+  const VD n = cross(f1, f2);
+  const VD a = diff(p0, set3(ray.o));
+  const V d = set3(ray.d);
+  const DD num = dot(a, n), den = dot(d, n);
+  // cross_permanent of the rounded differences, in the same order.
+  const V pn = _mm256_add_pd(_mm256_mul_pd(vabs(yzx(f1.hi)), vabs(zxy(f2.hi))),
+                             _mm256_mul_pd(vabs(zxy(f1.hi)), vabs(yzx(f2.hi))));
+  const V aa = vabs(a.hi), ad = vabs(d);
+  const double en = 0x1p-90 * sum3(_mm256_mul_pd(aa, pn)) + 0x1p-1000 * (sum3(aa) + 1);
+  const double ed = 0x1p-90 * sum3(_mm256_mul_pd(ad, pn)) + 0x1p-1000 * (sum3(ad) + 1);
+  return pin_dd(num, den, en, ed);
+}
+#endif
+
+/// The triangle's t for stage 1: AVX2 where available, else the scalar double-double.
+RAYPROOF_FMA_TARGET inline std::optional<double> triangle_t_stage1(const Ray<double>& ray, const Triangle<double>& tri) {
+#if RAYPROOF_DD_AVX2
+  return triangle_t_avx2(ray, tri);
+#else
+  return triangle_t_inline(ray, tri);
+#endif
 }
 
 /// The sign of x = hi + lo known within e: +1 or -1, or 0 when the bound cannot tell.
@@ -236,9 +343,14 @@ struct Residual {
 /// A certified ray / sphere test in double-double, for inputs in_range<-200, 200> (checked by the
 /// caller; every product is then >= 2^-1008 or zero, its fma error term exact, nothing overflows).
 /// With e = o - center (exact as two doubles): a t^2 + 2 b t + c = 0 with a = d.d, b = d.e,
-/// c = e.e - r^2 and disc = a r^2 - |m|^2, m = d x e (the cancellation-free form of certified_quadric.h).
+/// c = e.e - r^2, and disc = b^2 - a c or, when that cancels too much, a r^2 - |m|^2 with m = d x e
+/// (the cancellation-free form of certified_quadric.h).
 /// Error bounds (u = 2^-53), each >= 3x over the rounding count of its evaluation: a: 12 u^2 a, used
-/// as 2^-100 a; b: 21 u^2 sum |d_i e_i|, as 2^-98; c: 31 u^2 (e.e + r^2), as 2^-98; disc: m_i is
+/// as 2^-100 a; b: 21 u^2 sum |d_i e_i|, as 2^-98; c: 31 u^2 (e.e + r^2), as 2^-98. disc = b^2 - a c
+/// from the double-doubles b, a, c (pb = sum |d_i e_i| >= |b|, |b.lo| <= 5 u pb, |c.lo| <= 4 u (e.e +
+/// r^2), |a.lo| <= 3 u a; M = pb^2 + a (e.e + r^2)): the inputs' errors carry over as 2 |b| eb + a ec +
+/// |c| ea <= 2^-97 M, the six roundings of the low parts (each term <= 20 u M) add <= 120 u^2 M and
+/// the dropped b.lo^2, a.lo c.lo <= 37 u^2 M: together <= 2^-96.6 M, used as 2^-95 M. Lagrange: m_i is
 /// within 33 u^2 M_i (M_i = |d_j e_k| + |d_k e_j|, cross_component), |m|^2 within 16 u^2 |m|^2 +
 /// 148 u^2 sum |m_i| M_i + 27 u^2 sum M_i^2, a r^2 within 30 u^2 a r^2, the difference 8 u^2 a r^2 +
 /// 26 u^2 |m|^2: used as 2^-97 (a r^2 + |m|^2 + sum |m_i| M_i + sum M_i^2). Every bound also carries
@@ -257,25 +369,39 @@ template <class Next>
   const DD dz[3] = {{dv[0], 0}, {dv[1], 0}, {dv[2], 0}};
   const DD a = square_sum(dz);
   const double rh = sp.radius * sp.radius, rl = __builtin_fma(sp.radius, sp.radius, -rh);
-  const DD m[3] = {cross_d_dd(dv[1], dv[2], e[1], e[2]), cross_d_dd(dv[2], dv[0], e[2], e[0]), cross_d_dd(dv[0], dv[1], e[0], e[1])};
-  const DD mm = square_sum(m);
-  const double ar = a.hi * rh;
-  const double arl = __builtin_fma(a.lo, rh, __builtin_fma(a.hi, rl, __builtin_fma(a.hi, rh, -ar)));
-  const TwoTerm<double> rs = two_sum(ar, -mm.hi);
-  const DD red{rs.hi, rs.lo + arl - mm.lo};
-  const double D[3] = {std::fabs(ray.d.x), std::fabs(ray.d.y), std::fabs(ray.d.z)};
-  const double E[3] = {std::fabs(e[0].hi), std::fabs(e[1].hi), std::fabs(e[2].hi)};
-  const Vec3<double> M = cross_permanent(ray.d, {e[0].hi, e[1].hi, e[2].hi});
-  const double ered = 0x1p-97 * (std::fabs(ar) + std::fabs(mm.hi) + std::fabs(m[0].hi) * M.x + std::fabs(m[1].hi) * M.y +
-                                 std::fabs(m[2].hi) * M.z + M.x * M.x + M.y * M.y + M.z * M.z) +
-                      0x1p-1000;
-  if (red.hi < -2 * (std::fabs(red.lo) + ered)) return H{Contact::miss};
-  if (!(red.hi > 2 * (std::fabs(red.lo) + ered)) || !(red.hi > 0x1p-900)) return next();
   const DD b = dot_d_dd(dv, e), ee = square_sum(e);
   const TwoTerm<double> cs = two_sum(ee.hi, -rh);
   const DD c{cs.hi, cs.lo + ee.lo - rl};
-  const double ea = 0x1p-100 * a.hi + 0x1p-1000, eb = 0x1p-98 * (D[0] * E[0] + D[1] * E[1] + D[2] * E[2]) + 0x1p-1000,
-               ec = 0x1p-98 * (ee.hi + rh) + 0x1p-1000;
+  const double D[3] = {std::fabs(ray.d.x), std::fabs(ray.d.y), std::fabs(ray.d.z)};
+  const double E[3] = {std::fabs(e[0].hi), std::fabs(e[1].hi), std::fabs(e[2].hi)};
+  const double pb = D[0] * E[0] + D[1] * E[1] + D[2] * E[2];
+  const double ea = 0x1p-100 * a.hi + 0x1p-1000, eb = 0x1p-98 * pb + 0x1p-1000, ec = 0x1p-98 * (ee.hi + rh) + 0x1p-1000;
+  // disc = b^2 - a c first (cheap: b and c are needed anyway): within 2^-95 (pb^2 + a (e.e + r^2)), see
+  // above. It loses (|e| / r)^2 of relative precision to cancellation (an origin far from a small
+  // sphere); when that leaves it with fewer than ~62 good bits, the cancellation-free a r^2 - |d x e|^2.
+  DD red;
+  double ered;
+  {
+    const double bh2 = b.hi * b.hi, bh2e = __builtin_fma(b.hi, b.hi, -bh2);
+    const double ac = a.hi * c.hi, ace = __builtin_fma(a.hi, c.hi, -ac);
+    const TwoTerm<double> ds = two_sum(bh2, -ac);
+    red = {ds.hi, ds.lo + (__builtin_fma(2 * b.hi, b.lo, bh2e) - __builtin_fma(a.hi, c.lo, __builtin_fma(a.lo, c.hi, ace)))};
+    ered = 0x1p-95 * (pb * pb + a.hi * (ee.hi + rh)) + 0x1p-1000;
+  }
+  if (!(ered < 0x1p-62 * std::fabs(red.hi))) {
+    const DD m[3] = {cross_d_dd(dv[1], dv[2], e[1], e[2]), cross_d_dd(dv[2], dv[0], e[2], e[0]), cross_d_dd(dv[0], dv[1], e[0], e[1])};
+    const DD mm = square_sum(m);
+    const double ar = a.hi * rh;
+    const double arl = __builtin_fma(a.lo, rh, __builtin_fma(a.hi, rl, __builtin_fma(a.hi, rh, -ar)));
+    const TwoTerm<double> rs = two_sum(ar, -mm.hi);
+    red = {rs.hi, rs.lo + arl - mm.lo};
+    const Vec3<double> M = cross_permanent(ray.d, {e[0].hi, e[1].hi, e[2].hi});
+    ered = 0x1p-97 * (std::fabs(ar) + std::fabs(mm.hi) + std::fabs(m[0].hi) * M.x + std::fabs(m[1].hi) * M.y +
+                      std::fabs(m[2].hi) * M.z + M.x * M.x + M.y * M.y + M.z * M.z) +
+           0x1p-1000;
+  }
+  if (red.hi < -2 * (std::fabs(red.lo) + ered)) return H{Contact::miss};
+  if (!(red.hi > 2 * (std::fabs(red.lo) + ered)) || !(red.hi > 0x1p-900)) return next();
   const int sc = c.hi > 2 * (std::fabs(c.lo) + ec) ? 1 : (c.hi < -2 * (std::fabs(c.lo) + ec) ? -1 : 0);
   const int sb = b.hi > 2 * (std::fabs(b.lo) + eb) ? 1 : (b.hi < -2 * (std::fabs(b.lo) + eb) ? -1 : 0);
   if (sc == 0 || (sc > 0 && sb == 0)) return next();

@@ -166,8 +166,9 @@ template <class W>
 /// arithmetic would trap into microcode). Overflow leaves den or a bound not
 /// finite: undecided. den = u0 + u1 + u2. Decides miss, and interior / behind with t pinned in Wide.
 /// What it cannot decide it hands to next() (the later stages), whose result is returned as is.
-template <class Next>
-[[nodiscard]] std::optional<Hit<double>> triangle_fast(const Ray<double>& ray, const Triangle<double>& tri, Next next) {
+template <bool kFma, class Next>
+[[gnu::always_inline]] inline std::optional<Hit<double>> triangle_stage1(const Ray<double>& ray, const Triangle<double>& tri,
+                                                                        Next next) {
   using H = Hit<double>;
   const Vec3<double>& o = ray.o;
   const Vec3<double>& d = ray.d;
@@ -195,13 +196,13 @@ template <class Next>
   // 8 roundings per path (gamma_8 = 2^-61); permanents sum_i |x_i| pn_i with pn_i = |f1_j f2_k| +
   // |f1_k f2_j| (x = p0 - o or d), used with 2^-60 (2x slack, ample for their rounding in double).
 #if RAYPROOF_FMA_PATH != 0
-  if (dd::available()) {  // t in double-double (certified_fma.h); its sign is that of t
-    const auto tt = dd::triangle_t(ray, tri);
+  if constexpr (kFma) {  // t in double-double (certified_fma.h); its sign is that of t
+    const auto tt = dd::triangle_t_stage1(ray, tri);
     if (!tt) return next();
     return H{*tt < 0 ? Contact::behind : Contact::interior, *tt};
   }
 #endif
-  if constexpr (!kFilterAvailable) return next();
+  if constexpr (kFma || !kFilterAvailable) return next();
   const Vec3<double> pn = cross_permanent(tri.p1 - tri.p0, tri.p2 - tri.p0);
   // (2^-1000 (|x|_1 + 1) covers underflow in these double products; Wide itself cannot underflow.)
   const double a1 = std::fabs(a.x) + std::fabs(a.y) + std::fabs(a.z);
@@ -215,6 +216,24 @@ template <class Next>
   const auto tt = pin_ratio(num, dn, en, ed);
   if (!tt) return next();
   return H{(num < 0) != (dn < 0) ? Contact::behind : Contact::interior, *tt};
+}
+
+#if RAYPROOF_FMA_PATH != 0
+/// Stage 1 compiled for FMA, with the double-double t inlined (no call between the class and t).
+template <class Next>
+[[gnu::noinline, gnu::flatten]] RAYPROOF_FMA_TARGET std::optional<Hit<double>> triangle_fast_fma(const Ray<double>& ray,
+                                                                                 const Triangle<double>& tri, Next next) {
+  return triangle_stage1<true>(ray, tri, next);
+}
+#endif
+
+/// Stage 1: the FMA build of it when the CPU has FMA (dd::available()), else the x87 one.
+template <class Next>
+[[nodiscard]] std::optional<Hit<double>> triangle_fast(const Ray<double>& ray, const Triangle<double>& tri, Next next) {
+#if RAYPROOF_FMA_PATH != 0
+  if (dd::available()) return triangle_fast_fma(ray, tri, next);
+#endif
+  return triangle_stage1<false>(ray, tri, next);
 }
 
 }  // namespace detail
