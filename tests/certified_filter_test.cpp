@@ -47,6 +47,8 @@ TEST(CertifiedFilter, NonFiniteIsUndecided) {
 }
 
 // ---- Staged filters: expansions, pinning (certified_expansion.h, certified_stage.h) ----
+#include <cmath>
+#include <limits>
 #include <random>
 
 #include "rayproof/certified_stage.h"
@@ -61,6 +63,28 @@ TEST(CertifiedExpansion, ExactZerosAndTinySigns) {
   // A difference of inputs 2^100 apart is kept exactly.
   EXPECT_EQ((diff(0x1p100, -0x1p-100) - Expansion(0x1p100)).sign(), 1);
   EXPECT_EQ((diff(0x1p100, -0x1p-100) - Expansion(0x1p100) - Expansion(0x1p-100)).sign(), 0);
+}
+
+/// in_range (bits of |x|, integer max / min) against its definition: every value 0 or with |x| in
+/// [2^lo, 2^hi]; zeros of both signs, the bounds themselves and their neighbours, subnormals, inf, NaN.
+TEST(CertifiedExpansion, InRangeMatchesItsDefinition) {
+  auto want = [](std::initializer_list<double> xs) {
+    for (double x : xs)
+      if (!(x == 0 || (std::fabs(x) >= 0x1p-200 && std::fabs(x) <= 0x1p200))) return false;
+    return true;
+  };
+  std::mt19937_64 g(5);
+  const double special[] = {0.0, -0.0, 0x1p-200, -0x1p-200, 0x1p200, -0x1p200, std::nextafter(0x1p-200, 0.0),
+                            std::nextafter(0x1p200, 1e300), 4.9e-324, 1.0, -3.5, std::numeric_limits<double>::infinity(),
+                            -std::numeric_limits<double>::infinity(), std::numeric_limits<double>::quiet_NaN(), 0x1p-300, 0x1p300};
+  constexpr std::size_t n = sizeof special / sizeof special[0];
+  for (int i = 0; i < 20000; ++i) {
+    const double a = special[g() % n], b = special[g() % n], c = special[g() % n];
+    const double r = std::ldexp(1.0 + double(g() % 1000) / 1000, static_cast<int>(g() % 600) - 300);
+    EXPECT_EQ((in_range<-200, 200>(a, b, c, r)), want({a, b, c, r})) << a << " " << b << " " << c << " " << r;
+  }
+  EXPECT_TRUE((in_range<-200, 200>(0.0, -0.0)));
+  EXPECT_FALSE((in_range<-200, 200>(1.0, std::numeric_limits<double>::quiet_NaN())));
 }
 
 __extension__ typedef __int128 I128;  // exact reference for products of 31-bit integers

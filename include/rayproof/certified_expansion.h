@@ -15,7 +15,9 @@
 /// Exactness needs every two_prod free of underflow and overflow: callers check with in_range()
 /// that all nonzero inputs have exponents in a window that makes this true for their degree (every
 /// nonzero component of a degree-m polynomial in doubles >= 2^-k is a multiple of 2^(-m (k+52))).
+#include <bit>
 #include <cmath>
+#include <cstdint>
 #include <cstdlib>
 
 #include "rayproof/float_util.h"
@@ -155,11 +157,23 @@ using ExpVec3 = Vec3<Expansion>;
 /// True when every value is 0 or has |x| in [2^lo, 2^hi] (and so is finite and normal). A caller with
 /// a degree-m polynomial whose intermediate sums stay below 2^(m(hi+2)+8) picks lo, hi with
 /// m (52 - lo) <= 1022 and m (hi + 2) + 8 <= 1023.
+/// On the bits of |x| (monotone in |x| for non-negative doubles): the largest must not exceed those of
+/// 2^hi, and the smallest of bits - 1 (a zero wraps around to the largest unsigned value and so drops
+/// out) must reach those of 2^lo, minus one. A NaN's bits exceed those of any finite value. Integer
+/// max / min, no branch per value: a fold over ten values of fabs and three comparisons each was ~45
+/// cycles of a certified sphere test.
 template <int Lo, int Hi, class... D>
 [[nodiscard]] inline bool in_range(D... xs) {
-  constexpr double lo = pow2(Lo), hi = pow2(Hi);
-  // & and |, not && and ||: one branch for the whole check.
-  return (... & ((xs == 0) | ((std::fabs(xs) >= lo) & (std::fabs(xs) <= hi))));
+  constexpr std::uint64_t lo = std::bit_cast<std::uint64_t>(pow2(Lo)), hi = std::bit_cast<std::uint64_t>(pow2(Hi));
+  constexpr std::uint64_t mask = ~(std::uint64_t(1) << 63);
+  std::uint64_t big = 0, small = ~std::uint64_t(0);
+  auto step = [&](double x) {
+    const std::uint64_t b = std::bit_cast<std::uint64_t>(x) & mask;
+    big = b > big ? b : big;
+    small = b - 1 < small ? b - 1 : small;
+  };
+  (step(xs), ...);
+  return big <= hi && small >= lo - 1;
 }
 
 }  // namespace rayproof::certified
