@@ -51,6 +51,7 @@ TEST(CertifiedFilter, NonFiniteIsUndecided) {
 #include <limits>
 #include <random>
 
+#include "rayproof/certified_fma.h"
 #include "rayproof/certified_stage.h"
 
 TEST(CertifiedExpansion, ExactZerosAndTinySigns) {
@@ -167,3 +168,44 @@ TEST(CertifiedStage, PinRatioAgreesWithIntegerArithmetic) {
   EXPECT_GT(accepted, n * 95 / 100);
   EXPECT_GT(perturbed_accepted, n * 80 / 100);
 }
+
+#if RAYPROOF_FMA_PATH != 0
+/// pin_dd (the double-double quotient with one correction, certified_fma.h) against 128-bit integers:
+/// N in [2^69, 2^70) and D in [2^59, 2^60) given as two doubles each (hi rounded, lo the exact rest),
+/// exactly and then off by 2^-90 of their size with that bound passed along. Every t returned must have
+/// N / D strictly between the midpoints below prev(t) and above next(t).
+TEST(CertifiedStage, PinDdAgreesWithIntegerArithmetic) {
+  std::mt19937_64 g(78);
+  using I = __int128;
+  auto scaled = [](double m) { return static_cast<I>(std::ldexp(m, 54)); };  // m in [2^9, 2^11]: exact
+  auto split = [](I v) {
+    const double hi = static_cast<double>(v);
+    return certified::dd::DD{hi, static_cast<double>(v - static_cast<I>(hi))};
+  };
+  int accepted = 0, perturbed_accepted = 0;
+  const int n = 20000;
+  for (int i = 0; i < n; ++i) {
+    const I N = (I(1) << 69) + static_cast<I>(g() >> 1) * (I(1) << 6) + static_cast<I>(g() % 64);
+    const I D = (I(1) << 59) + static_cast<I>(g() >> 5);
+    auto holds = [&](double t) {
+      const double p = next_below(t), q = next_above(t);
+      const I below = (scaled(next_below(p)) + scaled(p)) / 2, above = (scaled(q) + scaled(next_above(q))) / 2;
+      const I NN = N << 54;
+      return below * D < NN && NN < above * D;
+    };
+    if (const auto t = certified::dd::pin_dd(split(N), split(D), 0, 0)) {
+      ++accepted;
+      ASSERT_TRUE(holds(*t)) << static_cast<double>(N) << " / " << static_cast<double>(D);
+    }
+    certified::dd::DD num = split(N), den = split(D);
+    num.lo += (g() % 2 ? 1 : -1) * std::ldexp(num.hi, -92);
+    den.lo -= std::ldexp(den.hi, -92);
+    if (const auto t = certified::dd::pin_dd(num, den, std::ldexp(num.hi, -90), std::ldexp(den.hi, -90))) {
+      ++perturbed_accepted;
+      ASSERT_TRUE(holds(*t)) << "perturbed";
+    }
+  }
+  EXPECT_GT(accepted, n * 99 / 100);
+  EXPECT_GT(perturbed_accepted, n * 99 / 100);
+}
+#endif

@@ -148,21 +148,29 @@ struct Residual {
 
 /// x = NUM / DEN with |NUM - (N.hi + N.lo)| <= en and |DEN - (D.hi + D.lo)| <= ed: a double t with
 /// round(x) equal to t or a neighbour, or nothing (a sign in doubt, t zero or outside
-/// [2^-1000, 2^1000]). t1 = N.hi / D.hi corrected once by its residual; the residual of the result
-/// bounds |x - t| <= (|R| + err + en + |t| ed) / (|D.hi| - |D.lo| - ed), accepted below the distance
-/// from t to the midpoints around its neighbours (as pin_ratio in certified_stage.h).
+/// [2^-1000, 2^1000]). One correction and no second residual (it would lengthen the dependency chain
+/// by a residual and a comparison): t1 = N.hi * inv (inv = 1 / D.hi rounded), its residual
+/// r ~ NUM - t1 DEN with |R1 - r| <= err + en + |t1| ed (R1 the exact one; residual()), and
+/// t = t1 + r inv rounded. Since x - t1 = R1 / DEN exactly,
+///   |x - t| <= |t - (t1 + r inv)| + |R1 / DEN - r inv|
+///           <= u |t| (1 + 2u) + (err + en + |t1| ed) / dmin + |r| (|D.lo| + ed) / (dmin |D.hi|) + |r| 2.0001 u / |D.hi|
+/// with dmin = |D.hi| - |D.lo| - ed <= |DEN| (the middle terms: 1 / DEN - 1 / D.hi, and the roundings
+/// of inv and of r inv). round(x) is t or a neighbour when |x - t| < midpoint_reach(t), which is at
+/// least 1.25 u |t| for a normal t: accepted at once when the rest stays below 0.25 u |t|, else against
+/// midpoint_reach itself.
 [[gnu::always_inline]] inline std::optional<double> pin_dd(const DD& N, const DD& D, double en, double ed) {
-  const double dmin = std::fabs(D.hi) - std::fabs(D.lo) - ed;
-  if (!(dmin > 0.5 * std::fabs(D.hi)) || !(std::fabs(N.hi) > 2 * (std::fabs(N.lo) + en))) return std::nullopt;
+  const double adh = std::fabs(D.hi), dmin = adh - std::fabs(D.lo) - ed;
+  if (!(dmin > 0.5 * adh) || !(std::fabs(N.hi) > 2 * (std::fabs(N.lo) + en))) return std::nullopt;
   const double inv = 1 / D.hi, t1 = N.hi * inv;
-  if (!(std::fabs(t1) < 0x1p1000 && std::fabs(t1) > 0x1p-1000)) return std::nullopt;  // also NaN
-  const double t = t1 + residual(N, D, t1).r * inv;
-  const Residual R = residual(N, D, t);
-  const double at = std::fabs(t);
-  const double lhs = (std::fabs(R.r) + R.err + en + at * ed) * (1 + 0x1p-40);
-  if (!(at > 0x1p-1000 && at < 0x1p1000)) return std::nullopt;
-  if (lhs < 0x1p-53 * at * dmin) return t;
-  if (lhs < midpoint_reach(t) * dmin) return t;
+  const Residual R = residual(N, D, t1);
+  const double t = t1 + R.r * inv, at = std::fabs(t), ar = std::fabs(R.r);
+  if (!(at > 0x1p-1000 && at < 0x1p1000)) return std::nullopt;  // also NaN
+  // The bound times dmin |D.hi| (no division on the way).
+  const double scale = dmin * adh;
+  const double rest = ((R.err + en + std::fabs(t1) * ed) * adh + ar * (std::fabs(D.lo) + ed + 2.0001 * 0x1p-53 * dmin)) *
+                      (1 + 0x1p-40);
+  if (rest < 0x1p-55 * at * scale * (1 - 0x1p-40)) return t;
+  if (rest + 0x1p-53 * at * (1 + 0x1p-50) * scale < midpoint_reach(t) * scale * (1 - 0x1p-40)) return t;
   return std::nullopt;
 }
 
