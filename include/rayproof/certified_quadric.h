@@ -78,7 +78,7 @@ struct Quad {
 /// magnitudes a r^2 + m.m + |red| (a linearised running bound: the cancellation inside m_i, a ray
 /// aimed near the centre, would make the permanent bound hopeless).
 template <class W>
-[[nodiscard]] inline Quad<W> sphere_quad(const Ray<double>& ray, const Sphere<double>& s) {
+[[nodiscard, gnu::always_inline]] inline Quad<W> sphere_quad(const Ray<double>& ray, const Sphere<double>& s) {
   constexpr W k = std::is_same_v<W, double> ? W(1) : W(0x1p-11);
   const Vec3<W> d = ray.d.template cast<W>(), e = ray.o.template cast<W>() - s.center.template cast<W>();
   const W r = s.radius, a = dot(d, d), ee = dot(e, e), rr = r * r;
@@ -190,6 +190,20 @@ template <class F>
 }
 
 
+/// A miss proven by the double stage with a bound cheaper than sphere_quad's (the ray's first test, so
+/// generic misses pay little): red = a r^2 - |m|^2 (m = d x e, e = o - center rounded, as there).
+/// sphere_quad's bound has 2^-48 sum |m_i| P_i + 2^-98 sum P_i^2 (P_i = |d_j e_k| + |d_k e_j|); with
+/// |m_i| <= P_i (1 + 7u) and sum P_i^2 <= 2 sum_{j != k} d_j^2 e_k^2 (1 + 20u) <= 2 a (e.e) (1 + 20u),
+/// both are below 2^-47 (1 + 2^-40) a (e.e), used as 2^-46 a (e.e); the other terms are sphere_quad's.
+[[nodiscard, gnu::always_inline]] inline bool sphere_miss(const Ray<double>& ray, const Sphere<double>& s) {
+  const Vec3<double>& d = ray.d;
+  const Vec3<double> e = ray.o - s.center, m = cross(d, e);
+  const double a = dot(d, d), ee = dot(e, e), rr = s.radius * s.radius, mm = dot(m, m), red = a * rr - mm;
+  const double am = std::fabs(m.x) + std::fabs(m.y) + std::fabs(m.z);
+  const double ered = 0x1p-49 * (a * rr + mm + std::fabs(red)) + 0x1p-46 * (a * ee) + 0x1p-1000 * (1 + a + rr + am);
+  return red < -ered;
+}
+
 /// The exponent window in which the sphere's degree-4 quantities are exact as expansions (and as
 /// double-double, certified_fma.h): every nonzero input in [2^-200, 2^200].
 [[nodiscard]] inline bool sphere_in_window(const Ray<double>& ray, const Sphere<double>& s) {
@@ -241,16 +255,16 @@ template <class F>
 /// Every result is a prvalue or a call's (copying a half-written optional cost store-forwarding stalls).
 [[nodiscard]] inline std::optional<Hit<double>> sphere(const Ray<double>& ray, const Sphere<double>& s) {
   using H = Hit<double>;
-  if (!ray.valid() || !all_finite(s.center) || !std::isfinite(s.radius) || s.radius < 0) return H{Contact::invalid};
+  const Vec3<double>&o = ray.o, &d = ray.d, &c = s.center;
+  if (!finite_bits(o.x, o.y, o.z, d.x, d.y, d.z, c.x, c.y, c.z, s.radius) || s.radius < 0 || is_zero(d))
+    return H{Contact::invalid};
   if (s.radius == 0) return H{Contact::degenerate};
-#if RAYPROOF_FMA_PATH != 0
   // A miss the double stage proves costs no more; everything else goes to double-double with hardware
   // FMA first (certified_fma.h), then to the stages of sphere_rest for what that leaves.
-  if (dd::available()) {
-    const detail::Quad<double> x = detail::sphere_quad<double>(ray, s);
-    if (x.red < -x.ered) return H{Contact::miss};
-    if (detail::sphere_in_window(ray, s)) return dd::sphere(ray, s, [&] { return detail::sphere_rest(ray, s); });
-  }
+  if (detail::sphere_miss(ray, s)) return H{Contact::miss};
+#if RAYPROOF_FMA_PATH != 0
+  if (dd::available() && detail::sphere_in_window(ray, s))
+    return dd::sphere(ray, s, [&] { return detail::sphere_rest(ray, s); });
 #endif
   return detail::sphere_rest(ray, s);
 }
