@@ -159,7 +159,7 @@ using ExpVec3 = Vec3<Expansion>;
 /// a degree-m polynomial whose intermediate sums stay below 2^(m(hi+2)+8) picks lo, hi with
 /// m (52 - lo) <= 1022 and m (hi + 2) + 8 <= 1023.
 /// Every value finite: the bits of |x| at most those of the largest double (integer max, no branch
-/// per value, as in_range below).
+/// per value, as in_range below; measured faster here than summing x - x, whose NaN would flag the same).
 template <class... D>
 [[nodiscard]] inline bool finite_bits(D... xs) {
   constexpr std::uint64_t mask = ~(std::uint64_t(1) << 63);

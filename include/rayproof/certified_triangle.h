@@ -241,7 +241,9 @@ template <class Next>
 /// Every result is a prvalue or a call's (copying a half-written optional cost store-forwarding stalls).
 [[nodiscard]] inline std::optional<Hit<double>> triangle(const Ray<double>& ray, const Triangle<double>& tri) {
   using H = Hit<double>;
-  if (!ray.valid() || !triangle_finite(tri)) return H{Contact::invalid};
+  const Vec3<double>&o = ray.o, &d = ray.d, &p0 = tri.p0, &p1 = tri.p1, &p2 = tri.p2;
+  if (!finite_bits(o.x, o.y, o.z, d.x, d.y, d.z, p0.x, p0.y, p0.z, p1.x, p1.y, p1.z, p2.x, p2.y, p2.z) || is_zero(d))
+    return H{Contact::invalid};  // ray.valid() and triangle_finite() in one branch
   return detail::triangle_fast(ray, tri, [&] { return detail::triangle_rest(ray, tri); });
 }
 
