@@ -6,10 +6,10 @@
 /// (p = ab rounded, e = fma(a, b, -p)), so the quantities t is a quotient of can be carried with an
 /// error of order 2^-100 of their magnitude in SSE registers.
 ///
-/// The build does not assume FMA (no -mfma): on x86 the functions here are compiled for the FMA
-/// target (GCC / Clang `target("fma")`) and called only when the CPU has it, checked once at run time
-/// (`available()`); elsewhere `available()` is false unless the compiler targets FMA anyway, and the
-/// callers keep the x87 path.
+/// The build does not assume FMA (no -mfma): on x86 the functions here are compiled for the FMA and
+/// AVX2 target (GCC / Clang `target("avx2,fma")`) and called only when the CPU has both, checked once
+/// at run time (`available()`); elsewhere `available()` is false unless the compiler targets FMA
+/// anyway, and the callers keep the x87 path.
 #include <cmath>
 #include <cstdlib>
 #include <limits>

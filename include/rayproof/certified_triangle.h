@@ -5,8 +5,10 @@
 /// barycentric signs; num = (p0 - o) . n the side of t = num / den. Returns the exact class and t
 /// within one double ulp, or nothing (undecided: a sign the bound cannot tell, an exact zero the
 /// arithmetic did not produce exactly, a coplanar range, or t not pinned to one ulp). The signs are
-/// tried in stages (certified_stage.h): (1) double with static error bounds and t pinned in Wide from
-/// a plain evaluation; (2) exact signs and t with expansions (edges, vertices, parallel rays and
+/// tried in stages (certified_stage.h): (1) double with static error bounds and t pinned from
+/// double-double (certified_fma.h: compiled for FMA and AVX2, chosen at run time; the stage itself is
+/// cloned for that target so t is inlined) or else from Wide; then, with FMA, the double-double
+/// signs of triangle_near; (2) exact signs and t with expansions (edges, vertices, parallel rays and
 /// degenerate triangles proven without GMP); (3) the running-error-bound (midpoint-radius) filters
 /// below, in double then Wide, for inputs outside the exponent window of stages 1 and 2.
 #include "rayproof/certified_filter.h"
