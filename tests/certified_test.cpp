@@ -115,6 +115,14 @@ TEST(Certified, EqualsExactOnEveryGeneratedFamily) {
 
 namespace {
 
+/// A sphere case from its ray and sphere.
+io::Case sphere_case(const Vec3<double>& o, const Vec3<double>& d, const Vec3<double>& c, double r) {
+  io::Case cs{io::Kind::sphere, {}, {}, 0};
+  const double v[] = {o.x, o.y, o.z, d.x, d.y, d.z, c.x, c.y, c.z, r};
+  for (std::size_t k = 0; k < 10; ++k) cs.v[k] = v[k];
+  return cs;
+}
+
 /// Counts the cases the filter leaves to GMP, and checks every answer against exact.
 struct Tally {
   std::size_t cases = 0, fallbacks = 0, bad = 0;
@@ -339,11 +347,7 @@ TEST(Certified, AgreesWithExactFromFarAway) {
     Vec3<double> q = normalize(Vec3<double>{U(g), U(g), U(g)});
     if (dot(q, dir) < 0) q = -1.0 * q;
     const Vec3<double> target = c + (i % 3 == 0 ? 1.01 * r : r) * q;
-    const Vec3<double> d = target - o;
-    io::Case cs{io::Kind::sphere, {}, {}, 0};
-    const double v[] = {o.x, o.y, o.z, d.x, d.y, d.z, c.x, c.y, c.z, r};
-    for (std::size_t k = 0; k < 10; ++k) cs.v[k] = v[k];
-    t.run(cs);
+    t.run(sphere_case(o, target - o, c, r));
   }
   EXPECT_EQ(t.bad, 0u);
   if (certified::dd::available()) {
@@ -372,11 +376,7 @@ TEST(Certified, AgreesWithExactNearTangentAtEveryScale) {
     Vec3<double> target = c + lambda * side;
     const int k = static_cast<int>(g() % 4096);
     for (int j = 0; j < k; ++j) target.x = (i & 1) ? certified::next_above(target.x) : certified::next_below(target.x);
-    const Vec3<double> d = target - o;
-    io::Case cs{io::Kind::sphere, {}, {}, 0};
-    const double v[] = {o.x, o.y, o.z, d.x, d.y, d.z, c.x, c.y, c.z, r};
-    for (std::size_t q = 0; q < 10; ++q) cs.v[q] = v[q];
-    t.run(cs);
+    t.run(sphere_case(o, target - o, c, r));
   }
   EXPECT_EQ(t.bad, 0u);
   // Double-double pins nearly all of these; the x87 path's 11 extra bits leave about half to GMP.
