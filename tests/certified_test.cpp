@@ -234,8 +234,9 @@ TEST(Certified, BoxFractionComparisonIsExact) {
   for (int i = 0; i < 20000; ++i) {
     const std::int64_t p1 = B(g), d1 = B(g), d2 = B(g);
     const std::int64_t k = static_cast<std::int64_t>(g() % 5) - 2;
-    const std::int64_t p2 = static_cast<std::int64_t>(std::nearbyint(double(p1) / double(d1) * double(d2))) + k;
-    if (p2 >= (std::int64_t(1) << 53)) continue;  // not exact as a double
+    const double q = std::nearbyint(double(p1) / double(d1) * double(d2));
+    if (!(q < 0x1p53 - 2)) continue;  // p2 would not be exact as a double (and the cast must stay in range)
+    const std::int64_t p2 = static_cast<std::int64_t>(q) + k;
     const __int128 x = __int128(p1) * d2, y = __int128(p2) * d1;
     const int want = x > y ? 1 : (x < y ? -1 : 0);
     const auto got = certified::detail::frac_cmp(double(p1), double(d1), double(p2), double(d2));
