@@ -256,11 +256,18 @@ struct Slab {
     const int bad = _mm_movemask_pd(_mm_cmpunord_pd(nf, nf)) | _mm_movemask_pd(_mm_cmpgt_pd(blo, bhi)) | (lo.z > hi.z);
     if (bad || is_zero(d)) return H{Contact::invalid};
   }
+#else
+  // ray.valid() and box_valid() with one branch for the ten finiteness checks.
+  if (!finite_bits(o.x, o.y, o.z, d.x, d.y, d.z, lo.x, lo.y, lo.z, hi.x, hi.y, hi.z) || is_zero(d) ||
+      !((lo.x <= hi.x) & (lo.y <= hi.y) & (lo.z <= hi.z)))
+    return H{Contact::invalid};
+#endif
   if (d.x == 0 || d.y == 0 || d.z == 0) {
     for (int i = 0; i < 3; ++i)  // parallel axis: exact comparisons of doubles
       if (d[i] == 0 && (o[i] < bx.lo[i] || o[i] > bx.hi[i])) return H{Contact::miss};
     return detail::box_rest(ray, bx);
   }
+#if defined(__SSE2__)
   auto exact_sub = [](__m128d x, __m128d y, __m128d& rounded) {  // x - y, and lanes where it rounded (two-sum)
     const __m128d ny = _mm_xor_pd(y, _mm_set1_pd(-0.0)), sum = _mm_add_pd(x, ny), bb = _mm_sub_pd(sum, x);
     const __m128d err = _mm_add_pd(_mm_sub_pd(x, _mm_sub_pd(sum, bb)), _mm_sub_pd(ny, bb));
@@ -277,15 +284,6 @@ struct Slab {
   const double enter = _mm_cvtsd_f64(_mm_max_sd(_mm_max_sd(tn, _mm_unpackhi_pd(tn, tn)), tn2));
   const double exit = _mm_cvtsd_f64(_mm_min_sd(_mm_min_sd(tf, _mm_unpackhi_pd(tf, tf)), tf2));
 #else
-  // ray.valid() and box_valid() with one branch for the ten finiteness checks.
-  if (!finite_bits(o.x, o.y, o.z, d.x, d.y, d.z, lo.x, lo.y, lo.z, hi.x, hi.y, hi.z) || is_zero(d) ||
-      !((lo.x <= hi.x) & (lo.y <= hi.y) & (lo.z <= hi.z)))
-    return H{Contact::invalid};
-  if (d.x == 0 || d.y == 0 || d.z == 0) {
-    for (int i = 0; i < 3; ++i)  // parallel axis: exact comparisons of doubles
-      if (d[i] == 0 && (o[i] < bx.lo[i] || o[i] > bx.hi[i])) return H{Contact::miss};
-    return detail::box_rest(ray, bx);
-  }
   double tn[3], tf[3];
   int inexact = 0;
   for (int i = 0; i < 3; ++i) {
