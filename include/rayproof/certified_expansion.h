@@ -155,24 +155,28 @@ using ExpVec3 = Vec3<Expansion>;
   return r;
 }
 
-/// True when every value is 0 or has |x| in [2^lo, 2^hi] (and so is finite and normal). A caller with
-/// a degree-m polynomial whose intermediate sums stay below 2^(m(hi+2)+8) picks lo, hi with
-/// m (52 - lo) <= 1022 and m (hi + 2) + 8 <= 1023.
+/// The bits of |x|: ordered as |x| for non-negative doubles, a NaN's above every finite value's.
+[[nodiscard]] inline std::uint64_t magnitude_bits(double x) {
+  return std::bit_cast<std::uint64_t>(x) & ~(std::uint64_t(1) << 63);
+}
+
 /// Every value finite: the bits of |x| at most those of the largest double (integer max, no branch
 /// per value, as in_range below; measured faster here than summing x - x, whose NaN would flag the same).
 template <class... D>
 [[nodiscard]] inline bool finite_bits(D... xs) {
-  constexpr std::uint64_t mask = ~(std::uint64_t(1) << 63);
   constexpr std::uint64_t top = std::bit_cast<std::uint64_t>(std::numeric_limits<double>::max());
   std::uint64_t big = 0;
   auto step = [&](double x) {
-    const std::uint64_t b = std::bit_cast<std::uint64_t>(x) & mask;
+    const std::uint64_t b = magnitude_bits(x);
     big = b > big ? b : big;
   };
   (step(xs), ...);
   return big <= top;
 }
 
+/// True when every value is 0 or has |x| in [2^lo, 2^hi] (and so is finite and normal). A caller with
+/// a degree-m polynomial whose intermediate sums stay below 2^(m(hi+2)+8) picks lo, hi with
+/// m (52 - lo) <= 1022 and m (hi + 2) + 8 <= 1023.
 /// On the bits of |x| (monotone in |x| for non-negative doubles): the largest must not exceed those of
 /// 2^hi, and the smallest of bits - 1 (a zero wraps around to the largest unsigned value and so drops
 /// out) must reach those of 2^lo, minus one. A NaN's bits exceed those of any finite value. Integer
@@ -181,10 +185,9 @@ template <class... D>
 template <int Lo, int Hi, class... D>
 [[nodiscard]] inline bool in_range(D... xs) {
   constexpr std::uint64_t lo = std::bit_cast<std::uint64_t>(pow2(Lo)), hi = std::bit_cast<std::uint64_t>(pow2(Hi));
-  constexpr std::uint64_t mask = ~(std::uint64_t(1) << 63);
   std::uint64_t big = 0, small = ~std::uint64_t(0);
   auto step = [&](double x) {
-    const std::uint64_t b = std::bit_cast<std::uint64_t>(x) & mask;
+    const std::uint64_t b = magnitude_bits(x);
     big = b > big ? b : big;
     small = b - 1 < small ? b - 1 : small;
   };
