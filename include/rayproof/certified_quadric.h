@@ -78,7 +78,7 @@ struct Quad {
 /// magnitudes a r^2 + m.m + |red| (a linearised running bound: the cancellation inside m_i, a ray
 /// aimed near the centre, would make the permanent bound hopeless).
 template <class W>
-[[nodiscard, gnu::always_inline]] inline Quad<W> sphere_quad(const Ray<double>& ray, const Sphere<double>& s) {
+[[nodiscard]] inline Quad<W> sphere_quad(const Ray<double>& ray, const Sphere<double>& s) {
   constexpr W k = std::is_same_v<W, double> ? W(1) : W(0x1p-11);
   const Vec3<W> d = ray.d.template cast<W>(), e = ray.o.template cast<W>() - s.center.template cast<W>();
   const W r = s.radius, a = dot(d, d), ee = dot(e, e), rr = r * r;
