@@ -249,8 +249,9 @@ void register_all() {
   }
 }
 
-/// Console output as usual, plus CPU ns per test of every run for the ratio table (CPU time, not wall
-/// time: the ratios stay meaningful when other processes share the machine).
+/// Console output as usual, plus CPU ns and core cycles per test of every run for the ratio table
+/// (CPU time or cycles, not wall time: the ratios stay meaningful when other processes share the
+/// machine).
 class Collector : public benchmark::ConsoleReporter {
  public:
   std::map<std::string, double> ns;      ///< "kind/input/method" -> CPU ns per test

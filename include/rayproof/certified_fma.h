@@ -43,9 +43,9 @@
 
 namespace rayproof::certified::dd {
 
-/// True when the functions below run on hardware FMA (a libm fma would be correct but slow; on x86 with
-/// AVX2 as well, which the triangle's t uses) and the environment variable RAYPROOF_CERTIFIED_NO_FMA is unset (it selects the x87 path, for tests and
-/// for comparison). Read once.
+/// True when the functions below run on hardware FMA (a libm fma would be correct but slow; on x86
+/// with AVX2 as well, which the triangle's t uses) and the environment variable
+/// RAYPROOF_CERTIFIED_NO_FMA is unset (it selects the x87 path, for tests and for comparison). Read once.
 [[nodiscard]] inline bool available() {
 #if RAYPROOF_FMA_PATH == 0
   return false;
@@ -179,8 +179,7 @@ struct Residual {
 /// sum_i |x_i| pn_i (x = p0 - o or d), used with 2^-90 (>= 3x slack), plus 2^-1000 (|x|_1 + 1) for
 /// products that underflow (an fma error term below 2^-1022 is not exact: <= 2^-1075 each, amplified
 /// by |x_i| at most).
-RAYPROOF_FMA_TARGET inline std::optional<double> triangle_t_inline(const Ray<double>& ray,
-                                                                                         const Triangle<double>& tri) {
+RAYPROOF_FMA_TARGET inline std::optional<double> triangle_t_inline(const Ray<double>& ray, const Triangle<double>& tri) {
   const DD f1[3] = {exact_diff(tri.p1.x, tri.p0.x), exact_diff(tri.p1.y, tri.p0.y), exact_diff(tri.p1.z, tri.p0.z)};
   const DD f2[3] = {exact_diff(tri.p2.x, tri.p0.x), exact_diff(tri.p2.y, tri.p0.y), exact_diff(tri.p2.z, tri.p0.z)};
   const DD n[3] = {
@@ -199,7 +198,8 @@ RAYPROOF_FMA_TARGET inline std::optional<double> triangle_t_inline(const Ray<dou
                     0x1p-1000 * (d1 + 1);
   return pin_dd(num, den, en, ed);
 }
-/// triangle_t_inline out of line (for callers not compiled for FMA).
+/// triangle_t_inline out of line: triangle_near's t. It stays the scalar double-double on purpose, so
+/// that on x86 both it and its AVX2 twin (stage 1's, triangle_t_stage1) run under the tests.
 [[gnu::noinline]] RAYPROOF_FMA_TARGET inline std::optional<double> triangle_t(const Ray<double>& ray,
                                                                               const Triangle<double>& tri) {
   return triangle_t_inline(ray, tri);

@@ -166,8 +166,9 @@ template <class W>
 /// |error| <= gamma_7 * that <= 2^-49 |d|_1 |b|_inf |c|_inf; underflow adds at most 2^-1075 per product,
 /// amplified by |c|_inf at most: 2^-1000 (|c|_inf + 1) covers it (a normal number: subnormal
 /// arithmetic would trap into microcode). Overflow leaves den or a bound not
-/// finite: undecided. den = u0 + u1 + u2. Decides miss, and interior / behind with t pinned in Wide.
-/// What it cannot decide it hands to next() (the later stages), whose result is returned as is.
+/// finite: undecided. den = u0 + u1 + u2. Decides miss, and interior / behind with t pinned in
+/// double-double (kFma: the clone compiled for FMA and AVX2) or in Wide. What it cannot decide it
+/// hands to next() (the later stages), whose result is returned as is.
 template <bool kFma, class Next>
 [[gnu::always_inline]] inline std::optional<Hit<double>> triangle_stage1(const Ray<double>& ray, const Triangle<double>& tri,
                                                                         Next next) {
@@ -194,9 +195,7 @@ template <bool kFma, class Next>
              neg2 = den > 0 ? u2 < -e2 : u2 > e2;
   if (neg0 || neg1 || neg2) return H{Contact::miss};
   if (!(std::fabs(u0) > e0 && std::fabs(u1) > e1 && std::fabs(u2) > e2)) return next();  // maybe 0
-  // Interior or behind: t = ((p0 - o) . n) / (d . n), n = (p1 - p0) x (p2 - p0), plain in Wide: at most
-  // 8 roundings per path (gamma_8 = 2^-61); permanents sum_i |x_i| pn_i with pn_i = |f1_j f2_k| +
-  // |f1_k f2_j| (x = p0 - o or d), used with 2^-60 (2x slack, ample for their rounding in double).
+  // Interior or behind: t = ((p0 - o) . n) / (d . n), n = (p1 - p0) x (p2 - p0).
 #if RAYPROOF_FMA_PATH != 0
   if constexpr (kFma) {  // t in double-double (certified_fma.h); its sign is that of t
     const auto tt = dd::triangle_t_stage1(ray, tri);
@@ -205,6 +204,9 @@ template <bool kFma, class Next>
   }
 #endif
   if constexpr (kFma || !kFilterAvailable) return next();
+  // t plain in Wide: at most 8 roundings per path (gamma_8 = 2^-61); permanents sum_i |x_i| pn_i with
+  // pn_i = |f1_j f2_k| + |f1_k f2_j| (x = p0 - o or d), used with 2^-60 (2x slack, ample for their
+  // rounding in double).
   const Vec3<double> pn = cross_permanent(tri.p1 - tri.p0, tri.p2 - tri.p0);
   // (2^-1000 (|x|_1 + 1) covers underflow in these double products; Wide itself cannot underflow.)
   const double a1 = std::fabs(a.x) + std::fabs(a.y) + std::fabs(a.z);
@@ -229,7 +231,7 @@ template <class Next>
 }
 #endif
 
-/// Stage 1: the FMA build of it when the CPU has FMA (dd::available()), else the x87 one.
+/// Stage 1: the FMA build of it when dd::available() (FMA, and AVX2 on x86), else the x87 one.
 template <class Next>
 [[nodiscard]] std::optional<Hit<double>> triangle_fast(const Ray<double>& ray, const Triangle<double>& tri, Next next) {
 #if RAYPROOF_FMA_PATH != 0
