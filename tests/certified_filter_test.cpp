@@ -90,6 +90,17 @@ TEST(CertifiedExpansion, InRangeMatchesItsDefinition) {
 
 __extension__ typedef __int128 I128;  // exact reference for products of 31-bit integers
 
+/// round(N / D) is t or a neighbour of t (the 1-ulp contract): N / D lies strictly between the midpoint
+/// below prev(t) and the one above next(t), compared in 128-bit integers with every double scaled by
+/// 2^54 (exact for the t >= 1 of the tests below, whose neighbours and midpoints lie on that grid).
+static bool rounds_within_one_ulp(double t, I128 N, I128 D) {
+  auto scaled = [](double m) { return static_cast<I128>(std::ldexp(m, 54)); };
+  const double p = next_below(t), q = next_above(t);
+  const I128 below = (scaled(next_below(p)) + scaled(p)) / 2, above = (scaled(q) + scaled(next_above(q))) / 2;
+  const I128 NN = N << 54;
+  return below * D < NN && NN < above * D;
+}
+
 TEST(CertifiedExpansion, SignsAgreeWithIntegerArithmetic) {
   // a b + c d - e f with 31-bit integers (exact in __int128), scaled by 2^k (sign unchanged).
   std::mt19937_64 g(7);
@@ -139,8 +150,6 @@ TEST(CertifiedStage, PinsAreWithinOneUlp) {
 /// t or a neighbour), checked in 128-bit integers with every midpoint scaled by 2^54 (x in [1, 2^20)).
 TEST(CertifiedStage, PinRatioAgreesWithIntegerArithmetic) {
   std::mt19937_64 g(77);
-  using I = __int128;
-  auto scaled = [](double m) { return static_cast<I>(std::ldexp(m, 54)); };  // an even integer: m >= 1/2 is on a 2^-53 grid
   int accepted = 0, perturbed_accepted = 0;
   const int n = 20000;
   for (int i = 0; i < n; ++i) {
@@ -148,21 +157,15 @@ TEST(CertifiedStage, PinRatioAgreesWithIntegerArithmetic) {
     const int shift = static_cast<int>(g() % 20);           // x in [2^shift, 2^(shift+1))
     const std::uint64_t lo = D << shift, N = lo + g() % lo; // N / D in [2^shift, 2^(shift+1))
     if (N >> 62) continue;
-    auto holds = [&](double t) {
-      const double p = next_below(t), q = next_above(t);
-      const I below = (scaled(next_below(p)) + scaled(p)) / 2, above = (scaled(q) + scaled(next_above(q))) / 2;
-      const I NN = static_cast<I>(N) << 54;
-      return below * static_cast<I>(D) < NN && NN < above * static_cast<I>(D);
-    };
     if (const auto t = pin_ratio(Wide(N), Wide(D), 0, 0)) {
       ++accepted;
-      ASSERT_TRUE(holds(*t)) << N << " / " << D;
+      ASSERT_TRUE(rounds_within_one_ulp(*t, N, D)) << N << " / " << D;
     }
     // Told num and den are off by up to 2^-60 of their size, and given values that are off by that.
     const Wide num = Wide(N) * (1 + 0x1p-60L * (g() % 2 ? 1 : -1)), den = Wide(D) * (1 - 0x1p-60L);
     if (const auto t = pin_ratio(num, den, Wide(N) * 0x1p-60L, Wide(D) * 0x1p-60L)) {
       ++perturbed_accepted;
-      ASSERT_TRUE(holds(*t)) << "perturbed " << N << " / " << D;
+      ASSERT_TRUE(rounds_within_one_ulp(*t, N, D)) << "perturbed " << N << " / " << D;
     }
   }
   EXPECT_GT(accepted, n * 95 / 100);
@@ -176,8 +179,7 @@ TEST(CertifiedStage, PinRatioAgreesWithIntegerArithmetic) {
 /// N / D strictly between the midpoints below prev(t) and above next(t).
 TEST(CertifiedStage, PinDdAgreesWithIntegerArithmetic) {
   std::mt19937_64 g(78);
-  using I = __int128;
-  auto scaled = [](double m) { return static_cast<I>(std::ldexp(m, 54)); };  // m in [2^9, 2^11]: exact
+  using I = I128;
   auto split = [](I v) {
     const double hi = static_cast<double>(v);
     return certified::dd::DD{hi, static_cast<double>(v - static_cast<I>(hi))};
@@ -187,22 +189,16 @@ TEST(CertifiedStage, PinDdAgreesWithIntegerArithmetic) {
   for (int i = 0; i < n; ++i) {
     const I N = (I(1) << 69) + static_cast<I>(g() >> 1) * (I(1) << 6) + static_cast<I>(g() % 64);
     const I D = (I(1) << 59) + static_cast<I>(g() >> 5);
-    auto holds = [&](double t) {
-      const double p = next_below(t), q = next_above(t);
-      const I below = (scaled(next_below(p)) + scaled(p)) / 2, above = (scaled(q) + scaled(next_above(q))) / 2;
-      const I NN = N << 54;
-      return below * D < NN && NN < above * D;
-    };
     if (const auto t = certified::dd::pin_dd(split(N), split(D), 0, 0)) {
       ++accepted;
-      ASSERT_TRUE(holds(*t)) << static_cast<double>(N) << " / " << static_cast<double>(D);
+      ASSERT_TRUE(rounds_within_one_ulp(*t, N, D)) << static_cast<double>(N) << " / " << static_cast<double>(D);
     }
     certified::dd::DD num = split(N), den = split(D);
     num.lo += (g() % 2 ? 1 : -1) * std::ldexp(num.hi, -92);
     den.lo -= std::ldexp(den.hi, -92);
     if (const auto t = certified::dd::pin_dd(num, den, std::ldexp(num.hi, -90), std::ldexp(den.hi, -90))) {
       ++perturbed_accepted;
-      ASSERT_TRUE(holds(*t)) << "perturbed";
+      ASSERT_TRUE(rounds_within_one_ulp(*t, N, D)) << "perturbed";
     }
   }
   EXPECT_GT(accepted, n * 99 / 100);

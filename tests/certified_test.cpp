@@ -117,10 +117,7 @@ namespace {
 
 /// A sphere case from its ray and sphere.
 io::Case sphere_case(const Vec3<double>& o, const Vec3<double>& d, const Vec3<double>& c, double r) {
-  io::Case cs{io::Kind::sphere, {}, {}, 0};
-  const double v[] = {o.x, o.y, o.z, d.x, d.y, d.z, c.x, c.y, c.z, r};
-  for (std::size_t k = 0; k < 10; ++k) cs.v[k] = v[k];
-  return cs;
+  return {io::Kind::sphere, {o.x, o.y, o.z, d.x, d.y, d.z, c.x, c.y, c.z, r}, {}, 0};
 }
 
 /// Counts the cases the filter leaves to GMP, and checks every answer against exact.
@@ -246,11 +243,8 @@ TEST(Certified, BoxFractionComparisonIsExact) {
     ASSERT_EQ(flipped.value_or(9), want);  // the same fraction with both signs flipped
     equal_products += double(p1) * double(d2) == double(p2) * double(d1);
     ++cases;
-    io::Case c{io::Kind::box, {}, {}, 0};
     const double big = 0x1p60;
-    const double v[12] = {0, 0, 0, double(d1), double(d2), 1, double(p1), -big, -big, big, double(p2), big};
-    for (int j = 0; j < 12; ++j) c.v[j] = v[j];
-    box.run(c);
+    box.run({io::Kind::box, {0, 0, 0, double(d1), double(d2), 1, double(p1), -big, -big, big, double(p2), big}, {}, 0});
   }
   EXPECT_GT(equal_products, cases / 20);  // the error terms were exercised (~9% of cases)
   EXPECT_EQ(box.bad, 0u);
