@@ -52,6 +52,9 @@ void Stats::merge(const Stats& o) {
   wrong_class += o.wrong_class;
   fallbacks += o.fallbacks;
   ulps.insert(ulps.end(), o.ulps.begin(), o.ulps.end());
+  kernel_failures += o.kernel_failures;
+  coarse += o.coarse;
+  bary_errors.insert(bary_errors.end(), o.bary_errors.begin(), o.bary_errors.end());
 }
 
 Stats Comparison::total(const std::string& method) const {

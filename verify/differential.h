@@ -29,6 +29,9 @@ struct Stats {
   std::size_t false_hit = 0, false_miss = 0, wrong_hit_class = 0, wrong_class = 0;
   std::uint64_t fallbacks = 0;         ///< exact fallbacks (methods that count them)
   std::vector<std::uint64_t> ulps;     ///< t error of every class-correct case that carries t
+  std::size_t kernel_failures = 0;     ///< a user kernel crashed, hung or answered garbage (not a class error)
+  std::size_t coarse = 0;              ///< answered coarsely (hit/miss, t, barycentrics; docs/kernel_protocol.md)
+  std::vector<double> bary_errors;     ///< coarse triangle hits with barycentrics: max |b - exact b| of b1, b2
   [[nodiscard]] std::size_t class_errors() const { return false_hit + false_miss + wrong_hit_class + wrong_class; }
   [[nodiscard]] double class_error_rate() const { return cases ? double(class_errors()) / double(cases) : 0.0; }
   /// q-quantile of the t errors (0 when none), nearest-rank.

@@ -48,11 +48,20 @@ using CaseEntry = std::variant<Case, CaseError>;
 /// Reads a whole stream of case lines (lines longer than max_line bytes are errors, not loaded).
 [[nodiscard]] std::vector<CaseEntry> read_cases(std::istream& in, std::size_t max_line = 1 << 16);
 
+/// How much a kernel answered. `full`: a CASES.md class with the T, T2 it carries. `coarse`: only
+/// whether the ray touches the primitive at some t >= 0 (most user kernels know no more), with the
+/// first contact's t and, for triangles, the barycentrics of p1 and p2 where the kernel gave them.
+/// A coarse answer's contact is Contact::hit or Contact::miss (Contact::error for a kernel failure).
+enum class AnswerForm : unsigned char { full, coarse };
+
 /// The answer of a method on a case: the class and T, T2 where the class carries them.
 struct CaseResult {
   Contact contact = Contact::error;
   std::optional<double> t{};
   std::optional<double> t2{};
+  AnswerForm form = AnswerForm::full;
+  std::optional<double> b1{};  ///< coarse triangle answers only: barycentric of p1, where given
+  std::optional<double> b2{};  ///< coarse triangle answers only: barycentric of p2, where given
   friend bool operator==(const CaseResult&, const CaseResult&) = default;
 };
 

@@ -14,6 +14,11 @@ io::CaseResult Method::run(const io::Case& c) const {
   return classify(c);
 }
 
+void Method::classify_many(std::span<const io::Case> in, std::span<io::CaseResult> out) const {
+  if (classify_batch) return classify_batch(in, out);
+  for (std::size_t i = 0; i < in.size(); ++i) out[i] = classify(in[i]);
+}
+
 void MethodRegistry::add(Method m) {
   if (find(m.name)) throw std::logic_error("method registered twice: " + m.name);
   methods_.push_back(std::move(m));

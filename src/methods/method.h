@@ -4,6 +4,7 @@
 /// without knowing them.
 #include <cstdint>
 #include <functional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -14,6 +15,12 @@ namespace rayproof {
 /// The precision a method is judged in: float methods see float-rounded inputs and their t error
 /// is counted in float ulps (CASES.md).
 enum class Precision { float32, float64 };
+
+/// A user kernel's failure on one case.
+struct KernelFailure {
+  std::string what;  ///< "crashed (signal 11)", "timed out after 5 s", "exited early (status 3)", "unreadable answer 'x'"
+  io::Case input;    ///< the case that caused it, as the kernel saw it
+};
 
 struct Method {
   std::string name;
@@ -26,10 +33,20 @@ struct Method {
   std::function<io::CaseResult(const io::Case&)> classify;
   /// Optional: how many cases so far needed an exact fallback on the calling thread (certified tier).
   std::function<std::uint64_t()> fallbacks;
+  /// Optional: answers many cases at once, out[i] for in[i] (same preconditions as classify).
+  /// External kernels stream a batch through their pipe instead of one round trip per case.
+  std::function<void(std::span<const io::Case> in, std::span<io::CaseResult> out)> classify_batch{};
+  /// Optional: the failures (crash, hang, early exit, unreadable answer) of an external or plugin
+  /// kernel since the last call, each with the case that caused it. The failing case's answer is
+  /// Contact::error; the kernel is restarted and the run goes on.
+  std::function<std::vector<KernelFailure>()> take_failures{};
 
   [[nodiscard]] bool supports(io::Kind k) const;
   /// Runs the method as a user would: rounds to float first for float32 methods.
   [[nodiscard]] io::CaseResult run(const io::Case& c) const;
+  /// Answers out[i] for in[i] as classify does (inputs already rounded for float32 methods),
+  /// through classify_batch when the method has one. Unsupported kinds are not filtered here.
+  void classify_many(std::span<const io::Case> in, std::span<io::CaseResult> out) const;
 };
 
 class MethodRegistry {

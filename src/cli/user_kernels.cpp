@@ -1,0 +1,25 @@
+#include "cli/user_kernels.h"
+
+#include <CLI/CLI.hpp>
+#include <fmt/core.h>
+
+namespace rayproof::cli {
+
+void add_user_kernel_options(CLI::App& sub, UserKernelOptions& opt) {
+  sub.add_option("--exec", opt.exec,
+                 "NAME=COMMAND: a kernel of yours answering case lines on stdin (docs/kernel_protocol.md); repeatable");
+  sub.add_option("--plugin", opt.plugin, "NAME=PATH.so: a kernel of yours as a shared library (rayproof/plugin.h); repeatable");
+}
+
+std::optional<std::vector<std::unique_ptr<Method>>> make_user_kernels(std::string_view command,
+                                                                     const UserKernelOptions& opt) {
+  std::vector<std::unique_ptr<Method>> out;
+  // Filled in by the exec (src/methods/exec_kernel.h) and plugin (src/methods/plugin_kernel.h) loaders.
+  if (!opt.exec.empty() || !opt.plugin.empty()) {
+    fmt::print(stderr, "rayproof {}: --exec and --plugin are not available yet\n", command);
+    return std::nullopt;
+  }
+  return out;
+}
+
+}  // namespace rayproof::cli
