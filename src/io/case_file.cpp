@@ -175,6 +175,17 @@ std::string format_result(const CaseResult& r) {
   return s;
 }
 
+std::string format_answer(const CaseResult& r) {
+  if (r.form == AnswerForm::full) return format_result(r);
+  std::string s(to_string(r.contact));
+  for (const auto& v : {r.t, r.b1, r.b2}) {
+    if (!v) break;
+    s += ' ';
+    append_double(s, *v);
+  }
+  return s;
+}
+
 std::optional<CaseResult> parse_result(std::string_view text) {
   const auto f = split_fields(text);
   if (f.size() != 3) return std::nullopt;

@@ -72,6 +72,10 @@ struct CaseResult {
 /// `CLASS T T2` with `-` for absent values.
 [[nodiscard]] std::string format_result(const CaseResult& r);
 
+/// format_result for a full answer; a coarse one as the kernel gave it: `hit T B1 B2`, `hit T`,
+/// `hit` or `miss`.
+[[nodiscard]] std::string format_answer(const CaseResult& r);
+
 /// Parses a result line (`CLASS T T2`); nothing on malformed text.
 [[nodiscard]] std::optional<CaseResult> parse_result(std::string_view text);
 
