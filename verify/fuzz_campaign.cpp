@@ -218,10 +218,12 @@ FuzzResult run_fuzz(const FuzzOptions& opt) {
       ++res.mismatches[key];
       if (kept[key]++ >= opt.keep_per_group) continue;
       // A kernel failure is not minimized: the kernel is re-run for every try, and may hang each time.
-      if (f.verdict != Verdict::kernel_failure && minimized[key]++ < opt.minimize_per_group) {
-        const Method* m = nullptr;
-        for (const Method* x : opt.methods)
-          if (x->name == f.method) m = x;
+      // A user kernel (classify_batch) starts a process for every try: two per group at most.
+      const Method* m = nullptr;
+      for (const Method* x : opt.methods)
+        if (x->name == f.method) m = x;
+      const std::size_t limit = m->classify_batch ? std::min<std::size_t>(opt.minimize_per_group, 2) : opt.minimize_per_group;
+      if (f.verdict != Verdict::kernel_failure && minimized[key]++ < limit) {
         f.input = minimize_case(*m, f.input, f.verdict);
         const Judged j = judge(*m, f.input);
         f.got = j.got, f.want = j.want, f.ulps = j.ulps;

@@ -30,7 +30,8 @@ struct FuzzOptions {
   int jobs = 1;
   std::size_t batch = 64;              ///< cases per family per round
   std::size_t keep_per_group = 50;     ///< findings kept per method x family
-  std::size_t minimize_per_group = 10; ///< of those, how many are minimized
+  std::size_t minimize_per_group = 10; ///< of those, how many are minimized (at most 2 for user kernels with
+                                       ///< classify_batch: every try starts a process; kernel failures never)
   std::function<void(const FuzzProgress&)> progress;  ///< called about once a second
 };
 

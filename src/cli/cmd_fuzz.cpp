@@ -13,6 +13,7 @@
 
 #include "cli/commands.h"
 #include "cli/registry.h"
+#include "cli/user_kernels.h"
 #include "scene/accel.h"
 #include "verify/fuzz_campaign.h"
 #include "verify/mesh_fuzz.h"
@@ -28,6 +29,7 @@ struct FuzzCliOptions {
   int jobs = 1;
   std::string out = "fuzz-findings";
   bool mesh = false;
+  UserKernelOptions user;
 };
 
 /// Methods that must never leak (and, for certified, never fail parity) in mesh mode.
@@ -84,11 +86,18 @@ int run_mesh_fuzz_cli(const FuzzCliOptions& o) {
 }
 
 int run_fuzz_cli(const FuzzCliOptions& o) {
+  if (o.mesh && (!o.user.exec.empty() || !o.user.plugin.empty())) {
+    fmt::print(stderr, "rayproof fuzz: --mesh does not take --exec or --plugin kernels yet\n");
+    return 2;
+  }
   if (o.mesh) return run_mesh_fuzz_cli(o);
   verify::FuzzOptions opt;
   auto selected = select_methods("fuzz", o.methods, false);
   if (!selected) return 2;
   opt.methods = std::move(*selected);
+  auto user = make_user_kernels("fuzz", o.user);
+  if (!user) return 2;
+  for (const auto& m : *user) opt.methods.push_back(m.get());
   if (o.families.empty()) {
     for (const auto& f : gen::families()) opt.families.push_back(&f);
   } else {
@@ -147,10 +156,14 @@ int run_fuzz_cli(const FuzzCliOptions& o) {
       out << "# rayproof fuzz findings: method " << f.method << ", family " << f.family << ", seed " << o.seed << "\n";
     }
     out << io::format_case(f.input) << "  # round " << f.round << (f.minimized ? ", minimized" : "") << ": "
-        << verify::to_string(f.verdict) << ", got " << io::format_result(f.got) << ", exact "
+        << verify::to_string(f.verdict) << ", got " << io::format_answer(f.got) << ", exact "
         << io::format_result(f.want) << (f.verdict == verify::Verdict::agree ? fmt::format(" ({} ulps)", f.ulps) : "")
         << "\n";
     ++written;
+  }
+  if (!res.kernel_failures.empty()) {
+    fmt::print("\n# kernel failures (counted as mismatches): one case-file line each, the input as the kernel saw it\n");
+    for (const auto& [m, f] : res.kernel_failures) fmt::print("{}  # {}: {}\n", io::format_case(f.input), m, f.what);
   }
   fmt::print("\n{} rounds, {} cases in {:.1f} s; {} findings written under {}/\n", res.rounds, res.cases, res.seconds,
              written, o.out);
@@ -179,6 +192,7 @@ Run add_fuzz(CLI::App& app) {
   sub->add_flag("--mesh", o->mesh,
                 "Mesh mode: random closed meshes; leak rays at every vertex and edge midpoint and the parity of "
                 "random rays' crossings (--cases counts meshes, --jobs threads per query batch)");
+  add_user_kernel_options(*sub, o->user);
   return [o] { return run_fuzz_cli(*o); };
 }
 

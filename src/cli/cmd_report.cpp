@@ -10,6 +10,7 @@
 #include "cli/commands.h"
 #include "cli/input.h"
 #include "cli/registry.h"
+#include "cli/user_kernels.h"
 #include "gen/families.h"
 #include "report/report.h"
 
@@ -23,6 +24,7 @@ struct ReportOptions {
   std::vector<std::string> methods;
   std::vector<std::string> families;
   std::string input;
+  UserKernelOptions user;
 };
 
 std::string cpu_model() {
@@ -41,7 +43,10 @@ int run_report(const ReportOptions& opt) {
   };
   const auto selected = select_methods("report", opt.methods, true);
   if (!selected) return 2;
-  const std::vector<const Method*>& methods = *selected;
+  auto user = make_user_kernels("report", opt.user);
+  if (!user) return 2;
+  std::vector<const Method*> methods = *selected;
+  for (const auto& m : *user) methods.push_back(m.get());
 
   std::vector<io::Case> cases;
   std::vector<std::string> notes;
@@ -90,6 +95,12 @@ int run_report(const ReportOptions& opt) {
     for (const Method* m : methods) s += (s.empty() ? "" : ", ") + m->name;
     return s;
   }()));
+  for (const auto& m : *user)
+    if (m->classify_batch)
+      notes.push_back(fmt::format("{} is your kernel over --exec: its ns/case is the wall time of a whole batch "
+                                  "divided by its cases, the line protocol (formatting, pipes, parsing) and the "
+                                  "start of its process included",
+                                  m->name));
   notes.push_back(fmt::format("machine: {}, one thread", cpu_model()));
 
   auto rep = report::build_report(cases, methods, progress);
@@ -120,6 +131,7 @@ Run add_report(CLI::App& app) {
   sub->add_option("--methods", opt->methods, "Methods (default: all registered)")->delimiter(',')->allow_extra_args(false);
   sub->add_option("--families", opt->families, "Families (default: all)")->delimiter(',')->allow_extra_args(false);
   sub->add_option("--input", opt->input, "Use the cases of this file instead of generated families");
+  add_user_kernel_options(*sub, opt->user);
   return [opt] { return run_report(*opt); };
 }
 

@@ -37,6 +37,9 @@ Report build_report(const std::vector<io::Case>& given, const std::vector<const 
   const verify::ExactAnswers exact = verify::exact_answers(cases);
   progress("comparing every method with exact");
   const verify::Comparison cmp = verify::compare(cases, exact, methods, 0);
+  for (const Method* m : methods)
+    if (m->take_failures)
+      for (auto& f : m->take_failures()) rep.kernel_failures.emplace_back(m->name, std::move(f));
 
   std::map<std::string, std::vector<io::Case>> by_group;
   for (const auto& c : cases) by_group[verify::group_of(c)].push_back(c);
@@ -109,6 +112,12 @@ std::string to_markdown(const Report& r) {
        "own precision, over class-correct cases. Run time: median of repeated batches, every method in this "
        "run, through the same registry call.\n\n";
   s += "![error against run time](error_vs_time.svg)\n\n";
+  if (!r.kernel_failures.empty()) {
+    s += "## Kernel failures\n\nYour kernels crashed, hung, exited early or answered garbage on these cases "
+         "(one case-file line each, the input as the kernel saw it); they count apart from class errors.\n\n```\n";
+    for (const auto& [m, f] : r.kernel_failures) s += io::format_case(f.input) + "  # " + m + ": " + f.what + "\n";
+    s += "```\n\n";
+  }
 
   s += "## Summary per method\n\n| method | ns/case | class error rate | max t error (ulps) | fallback rate | Pareto |\n"
        "|---|---:|---:|---:|---:|:---:|\n";

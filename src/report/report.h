@@ -37,6 +37,8 @@ struct Report {
   std::vector<std::string> notes;  ///< run parameters, one line each
   std::vector<Row> rows;
   std::vector<Point> points;
+  /// What user kernels reported while being compared (not while timed): (method, failure).
+  std::vector<std::pair<std::string, KernelFailure>> kernel_failures;
 };
 
 /// Compares and times `methods` on `cases` (grouped by family); `progress` gets one line now and then.
