@@ -112,6 +112,9 @@ struct Child {
     while (true) {
       const ssize_t n = ::read(err, buf, sizeof buf);
       if (n > 0) {
+        // Passed through to rayproof's stderr (the contract), and the tail kept for failure messages.
+        if (::write(2, buf, static_cast<std::size_t>(n)) < 0) {
+        }
         err_tail.append(buf, static_cast<std::size_t>(n));
         if (err_tail.size() > 2 * kStderrTail) err_tail.erase(0, err_tail.size() - kStderrTail);
         continue;

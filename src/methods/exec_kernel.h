@@ -5,7 +5,8 @@
 /// batch, so kernels that buffer until end of input work). A crash, hang, early exit or unreadable
 /// answer is pinned on one case by re-running the cases that were in flight one by one in fresh
 /// processes (halves first when many were in flight); that case is answered Contact::error and
-/// reported through Method::take_failures, and the batch goes on in a restarted kernel.
+/// reported through Method::take_failures, and the batch goes on in a restarted kernel. The
+/// kernel's stderr is passed through to rayproof's, and its last lines are added to a failure's text.
 #include <cstddef>
 #include <string>
 #include <string_view>
