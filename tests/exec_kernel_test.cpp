@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "cli/registry.h"
+#include "cli_support.h"
 #include "gen/families.h"
 #include "io/case_file.h"
 #include "methods/exec_kernel.h"
@@ -218,4 +219,32 @@ TEST(ExecKernel, CoarseAnswersAreJudgedByHitMissTAndBarycentrics) {
   EXPECT_EQ((*b)[0], 0.25);
   EXPECT_EQ((*b)[1], 0.5);
   expect_no_children();
+}
+
+TEST(ExecKernel, VerifyListsKernelFailuresWithTheirReproducer) {
+  auto cases = triangles(40);
+  cases[7].v[0] = 777;
+  std::string text;
+  for (const auto& c : cases) io::append_case_line(text, c);
+  const auto file = rayproof::testing::write_file("exec_verify.txt", text);
+  const auto r = rayproof::testing::run_rayproof("verify --methods float --exec 'c:double:triangle=" + kKernel +
+                                                 " crash' " + file.string());
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("kfail"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("# kernel failures"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(io::format_case(cases[7]) + "  # c: crashed (signal 11"), std::string::npos) << r.out;
+  const auto j = rayproof::testing::run_rayproof("verify --json --methods float --exec 'c:double:triangle=" + kKernel +
+                                                 " crash' " + file.string());
+  EXPECT_NE(j.out.find("\"kernel_failures\": 1"), std::string::npos) << j.out;
+  const auto bad = rayproof::testing::run_rayproof("verify --exec 'nocommand=' " + file.string());
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.err.find("no command"), std::string::npos) << bad.err;
+  const auto taken = rayproof::testing::run_rayproof("verify --exec 'float=" + kKernel + " mt header' " + file.string());
+  EXPECT_EQ(taken.status, 2);
+  EXPECT_NE(taken.err.find("taken"), std::string::npos) << taken.err;
+  EXPECT_EQ(rayproof::testing::run_rayproof("serve --method nosuch").status, 2);
+  const auto served = rayproof::testing::run_rayproof("serve --method double", io::format_case(cases[0]) + "\nbogus\n");
+  EXPECT_EQ(served.status, 0);
+  EXPECT_EQ(served.out, "rayproof-kernel 1 double plane,sphere,ellipsoid,triangle,box,disk\n" +
+                            io::format_result(cli::all_methods().find("double")->run(cases[0])) + "\nerror - -\n");
 }
