@@ -142,6 +142,40 @@ io::Case minimize_case(const Method& m, const io::Case& input, Verdict verdict) 
     }
   }
   // 2. Fewer significant bits per field, greedily, twice over.
+  if (m.classify_batch) {
+    // A user kernel starts a process per call: the tries of one field go in one batch, and the
+    // first that still disagrees wins, as in the one-by-one loop below.
+    const bool f32 = m.precision == Precision::float32;
+    for (int pass = 0; pass < 2; ++pass) {
+      for (int i = 0; i < n; ++i) {
+        std::vector<io::Case> tries;
+        for (int bits : {1, 2, 4, 8, 12, 16, 24, 32, 40}) {
+          io::Case c = best;
+          double& x = c.v[static_cast<std::size_t>(i)];
+          const double y = keep_bits(x, bits);
+          if (y == x) break;  // already that short
+          x = y;
+          tries.push_back(f32 ? io::round_to_float(c) : c);
+        }
+        if (tries.empty()) continue;
+        std::vector<io::CaseResult> got(tries.size());
+        m.classify_many(tries, got);
+        for (std::size_t k = 0; k < tries.size(); ++k) {
+          Stats ignored;
+          Judged j;
+          j.input = tries[k];
+          j.want = exact_classify(tries[k]);
+          j.got = got[k];
+          judge_answer(m, j, ignored);
+          if (j.verdict == verdict && is_mismatch(m.name, j.verdict, j.ulps)) {
+            best.v = tries[k].v;
+            break;
+          }
+        }
+      }
+    }
+    return best;
+  }
   for (int pass = 0; pass < 2; ++pass) {
     for (int i = 0; i < n; ++i) {
       for (int bits : {1, 2, 4, 8, 12, 16, 24, 32, 40}) {
@@ -218,12 +252,10 @@ FuzzResult run_fuzz(const FuzzOptions& opt) {
       ++res.mismatches[key];
       if (kept[key]++ >= opt.keep_per_group) continue;
       // A kernel failure is not minimized: the kernel is re-run for every try, and may hang each time.
-      // A user kernel (classify_batch) starts a process for every try: two per group at most.
       const Method* m = nullptr;
       for (const Method* x : opt.methods)
         if (x->name == f.method) m = x;
-      const std::size_t limit = m->classify_batch ? std::min<std::size_t>(opt.minimize_per_group, 2) : opt.minimize_per_group;
-      if (f.verdict != Verdict::kernel_failure && minimized[key]++ < limit) {
+      if (f.verdict != Verdict::kernel_failure && minimized[key]++ < opt.minimize_per_group) {
         f.input = minimize_case(*m, f.input, f.verdict);
         const Judged j = judge(*m, f.input);
         f.got = j.got, f.want = j.want, f.ulps = j.ulps;

@@ -30,8 +30,7 @@ struct FuzzOptions {
   int jobs = 1;
   std::size_t batch = 64;              ///< cases per family per round
   std::size_t keep_per_group = 50;     ///< findings kept per method x family
-  std::size_t minimize_per_group = 10; ///< of those, how many are minimized (at most 2 for user kernels with
-                                       ///< classify_batch: every try starts a process; kernel failures never)
+  std::size_t minimize_per_group = 10; ///< of those, how many are minimized (kernel failures never are)
   std::function<void(const FuzzProgress&)> progress;  ///< called about once a second
 };
 
@@ -69,7 +68,8 @@ struct FuzzResult {
 [[nodiscard]] FuzzResult run_fuzz(const FuzzOptions& opt);
 
 /// Shrinks a disagreeing case while it keeps the same verdict for the method: fewer significant
-/// bits per field, magnitudes scaled toward 1 by a common power of two. Bounded work.
+/// bits per field, magnitudes scaled toward 1 by a common power of two. Bounded work. A method with
+/// classify_batch (a user kernel) gets the tries of one field in one batch: about 30 calls per case.
 [[nodiscard]] io::Case minimize_case(const Method& m, const io::Case& input, Verdict verdict);
 
 }  // namespace rayproof::verify
