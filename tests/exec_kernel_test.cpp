@@ -248,3 +248,16 @@ TEST(ExecKernel, VerifyListsKernelFailuresWithTheirReproducer) {
   EXPECT_EQ(served.out, "rayproof-kernel 1 double plane,sphere,ellipsoid,triangle,box,disk\n" +
                             io::format_result(cli::all_methods().find("double")->run(cases[0])) + "\nerror - -\n");
 }
+
+TEST(ExecKernel, KernelThatReadsNothingDoesNotKillRayproofWithSigpipe) {
+  // Megabytes of input to a kernel that exits at once: writes fail with EPIPE, never SIGPIPE.
+  const auto cases = triangles(20000);
+  const Method quit = make("quit:double:triangle=exit 0");
+  const auto got = answers(quit, cases);
+  EXPECT_EQ(std::count_if(got.begin(), got.end(), [](const io::CaseResult& r) { return r.contact == Contact::error; }),
+            std::ptrdiff_t(cases.size()));
+  const auto failures = quit.take_failures();
+  ASSERT_EQ(failures.size(), 20u);  // then dropped
+  EXPECT_NE(failures[0].what.find("exited early (status 0)"), std::string::npos) << failures[0].what;
+  expect_no_children();
+}
