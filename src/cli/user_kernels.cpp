@@ -3,6 +3,8 @@
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
 
+#include "cli/plugin_host.h"
+
 namespace rayproof::cli {
 
 void add_user_kernel_options(CLI::App& sub, UserKernelOptions& opt) {
@@ -15,9 +17,16 @@ std::optional<std::vector<std::unique_ptr<Method>>> make_user_kernels(std::strin
                                                                      const UserKernelOptions& opt) {
   std::vector<std::unique_ptr<Method>> out;
   // Filled in by the exec (src/methods/exec_kernel.h) and plugin (src/methods/plugin_kernel.h) loaders.
-  if (!opt.exec.empty() || !opt.plugin.empty()) {
-    fmt::print(stderr, "rayproof {}: --exec and --plugin are not available yet\n", command);
+  if (!opt.exec.empty()) {
+    fmt::print(stderr, "rayproof {}: --exec is not available yet\n", command);
     return std::nullopt;
+  }
+
+  // --plugin: in process, or forked through `rayproof plugin-host` (src/cli/plugin_host.h).
+  for (const std::string& spec : opt.plugin) {
+    auto m = make_plugin_kernel(command, spec, opt.plugin_in_process);
+    if (!m) return std::nullopt;
+    out.push_back(std::move(m));
   }
   return out;
 }
