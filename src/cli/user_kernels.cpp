@@ -4,6 +4,7 @@
 #include <fmt/core.h>
 
 #include "cli/plugin_host.h"
+#include "cli/registry.h"
 
 namespace rayproof::cli {
 
@@ -26,6 +27,13 @@ std::optional<std::vector<std::unique_ptr<Method>>> make_user_kernels(std::strin
   for (const std::string& spec : opt.plugin) {
     auto m = make_plugin_kernel(command, spec, opt.plugin_in_process);
     if (!m) return std::nullopt;
+    bool taken = all_methods().find(m->name) != nullptr;
+    for (const auto& other : out) taken = taken || other->name == m->name;
+    if (taken) {
+      fmt::print(stderr, "rayproof {}: --plugin {}: the name '{}' is taken; choose another (NAME=PATH.so)\n", command,
+                 spec, m->name);
+      return std::nullopt;
+    }
     out.push_back(std::move(m));
   }
   return out;
