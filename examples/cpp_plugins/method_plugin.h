@@ -21,18 +21,23 @@ inline void write_answer(const io::CaseResult& r, rayproof_answer* out) {
 }
 
 /// MethodOf() gives the wrapped method (built once, on first use).
+/// One case per thread, reused: an io::Case holds a std::string, which is not built per call.
+inline io::Case& scratch_case(io::Kind k) {
+  thread_local io::Case c;
+  c.kind = k;
+  return c;
+}
+
 template <const Method& (*MethodOf)(), io::Kind K>
 void on_double(const double* in, rayproof_answer* out) {
-  io::Case c;
-  c.kind = K;
+  io::Case& c = scratch_case(K);
   std::copy_n(in, io::field_count(K), c.v.begin());
   write_answer(MethodOf().classify(c), out);
 }
 
 template <const Method& (*MethodOf)(), io::Kind K>
 void on_float(const float* in, rayproof_answer* out) {
-  io::Case c;
-  c.kind = K;
+  io::Case& c = scratch_case(K);
   std::copy_n(in, io::field_count(K), c.v.begin());
   write_answer(MethodOf().classify(c), out);
 }

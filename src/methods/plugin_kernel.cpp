@@ -52,8 +52,10 @@ io::CaseResult call(PluginState& st, const io::Case& c) {
   rayproof_answer a{RAYPROOF_NO_ANSWER, 0, 0.0, 0.0, 0.0, 0.0};
   const auto k = static_cast<std::size_t>(c.kind);
   if (st.precision == Precision::float64) {
+    if (!st.on_double[k]) return {Contact::error};  // a kind the plugin does not answer
     st.on_double[k](c.v.data(), &a);
   } else {
+    if (!st.on_float[k]) return {Contact::error};
     std::array<float, 15> in{};
     for (std::size_t i = 0; i < in.size(); ++i) in[i] = static_cast<float>(c.v[i]);
     st.on_float[k](in.data(), &a);
@@ -150,8 +152,11 @@ std::variant<Method, std::string> load_plugin_method(const std::string& path, co
       return where + ": kind " + std::string(io::to_string(kind)) + " has no " +
              (st->precision == Precision::float64 ? "on_double" : "on_float") + " function (the plugin is " +
              (st->precision == Precision::float64 ? "double" : "float") + ")";
-    st->on_double[static_cast<std::size_t>(kind)] = k.on_double;
-    st->on_float[static_cast<std::size_t>(kind)] = k.on_float;
+    if (st->precision == Precision::float64) {
+      st->on_double[static_cast<std::size_t>(kind)] = k.on_double;
+    } else {
+      st->on_float[static_cast<std::size_t>(kind)] = k.on_float;
+    }
     kinds.push_back(kind);
   }
   std::sort(kinds.begin(), kinds.end());
