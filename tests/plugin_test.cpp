@@ -1,7 +1,7 @@
 // Plugins (rayproof/plugin.h, --plugin) and the example kernels of issue 11: the loader's checks and
 // messages, in-process plugins against the built-in methods and exact, the plugin host (the line
-// protocol), and the naive Möller–Trumbore examples in C, Python and JavaScript caught on exact
-// edge and vertex hits.
+// protocol), forked plugins (an --exec kernel running the host: a crash is a kernel failure), and
+// the naive Möller–Trumbore examples in C, Python and JavaScript caught on exact edge and vertex hits.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -269,52 +269,29 @@ std::optional<io::CaseResult> parse_coarse(const std::string& line) {
   return r;
 }
 
-/// Judges a line-protocol kernel's coarse answers on `cases`: false misses, false hits, and the
-/// hits' t within 4 double ulps of exact.
-struct Tally {
-  std::size_t answered = 0, false_miss = 0, false_hit = 0, t_far = 0;
-};
-Tally judge_program(const std::string& command, const std::vector<io::Case>& cases) {
-  const auto [out, status] = run_shell(command, case_text(cases));
-  EXPECT_EQ(status, 0) << command;
-  const auto lines = lines_of(out);
-  Tally t;
-  if (lines.size() != cases.size() + 1) {
-    ADD_FAILURE() << command << ": " << lines.size() << " lines for " << cases.size() << " cases";
-    return t;
-  }
-  EXPECT_EQ(lines[0], "rayproof-kernel 1 double triangle") << command;
-  for (std::size_t i = 0; i < cases.size(); ++i) {
-    const auto got = parse_coarse(lines[i + 1]);
-    if (!got) {
-      ADD_FAILURE() << command << ": unreadable answer '" << lines[i + 1] << "'";
-      continue;
-    }
-    ++t.answered;
-    const io::CaseResult want = verify::exact_answers({cases[i]}).as_given[0];
-    const auto v = verify::judge_class(*got, want);
-    t.false_miss += v == verify::Verdict::false_miss;
-    t.false_hit += v == verify::Verdict::false_hit;
-    if (got->contact == Contact::hit && want.t && verify::t_error_ulps({got->contact, got->t}, {want.contact, want.t},
-                                                                       Precision::float64) > 4)
-      ++t.t_far;
-  }
-  return t;
-}
-
 const std::string kExamples = RAYPROOF_SOURCE_DIR "/examples";
 
 TEST(ProtocolExamples, PythonAndJavaScriptHaveFalseMissesOnEdgesAndVertices) {
-  const std::vector<std::string> programs = {"python3 " + kExamples + "/python/moller_trumbore.py",
-                                             "node " + kExamples + "/js/moller_trumbore.js"};
-  for (const std::string family : {"tri_edge", "tri_vertex"}) {
-    const auto cases = cases_of(family, 100);
-    for (const auto& program : programs) {
-      const Tally t = judge_program(program, cases);
-      EXPECT_EQ(t.answered, cases.size()) << program << " " << family;
-      EXPECT_GT(t.false_miss, 0u) << program << " " << family;
-      EXPECT_LT(t.false_miss, cases.size()) << program << " " << family;
-      EXPECT_EQ(t.false_hit, 0u) << program << " " << family;
+  // Through --exec's method (methods/exec_kernel.h) and the differential comparison verify runs.
+  const std::vector<std::string> specs = {"mt-python=python3 " + kExamples + "/python/moller_trumbore.py",
+                                          "mt-js=node " + kExamples + "/js/moller_trumbore.js"};
+  for (const auto& spec : specs) {
+    auto made = make_exec_method(spec);
+    ASSERT_TRUE(std::holds_alternative<Method>(made)) << std::get<std::string>(made);
+    const Method& m = std::get<Method>(made);
+    EXPECT_EQ(m.precision, Precision::float64);
+    EXPECT_EQ(m.kinds, std::vector<io::Kind>{io::Kind::triangle});
+    for (const std::string family : {"tri_edge", "tri_vertex"}) {
+      const auto cases = cases_of(family, 100);
+      const auto cmp = verify::compare(cases, verify::exact_answers(cases), {&m}, 0);
+      const auto s = cmp.total(m.name);
+      EXPECT_EQ(s.cases, cases.size()) << spec << " " << family;
+      EXPECT_EQ(s.coarse, cases.size()) << spec << " " << family;
+      EXPECT_EQ(s.kernel_failures, 0u) << spec << " " << family;
+      EXPECT_GT(s.false_miss, 0u) << spec << " " << family;
+      EXPECT_LT(s.false_miss, cases.size()) << spec << " " << family;
+      EXPECT_EQ(s.false_hit, 0u) << spec << " " << family;  // every case touches
+      EXPECT_TRUE(m.take_failures().empty());
     }
   }
 }
@@ -395,6 +372,53 @@ TEST(PluginHost, BadPluginsBadAnswersAndCrashes) {
   const auto crash = run_rayproof(std::string("plugin-host ") + PLUGIN_CRASH, good + bad + good);
   EXPECT_EQ(crash.status, 128 + SIGSEGV);
   EXPECT_EQ(lines_of(crash.out).at(0), "rayproof-kernel 1 double triangle");
+}
+
+// --- forked plugins: an --exec kernel running `rayproof plugin-host PATH` -------------------------------
+
+TEST(ForkedPlugin, SameAnswersAsInProcess) {
+  auto made = make_forked_plugin_method(PLUGIN_MT_C, "", RAYPROOF_BIN);
+  ASSERT_TRUE(std::holds_alternative<Method>(made)) << std::get<std::string>(made);
+  const Method& forked = std::get<Method>(made);
+  EXPECT_EQ(forked.name, "moller_trumbore_c");
+  EXPECT_EQ(forked.precision, Precision::float64);
+  const Method in_process = load_ok(PLUGIN_MT_C);
+  auto cases = cases_of("tri_edge", 100);
+  const auto generic = cases_of("tri_generic", 100);
+  cases.insert(cases.end(), generic.begin(), generic.end());
+  std::vector<io::CaseResult> out(cases.size());
+  forked.classify_many(cases, out);
+  for (std::size_t i = 0; i < cases.size(); ++i)
+    EXPECT_EQ(io::format_answer(out[i]), io::format_answer(in_process.classify(cases[i]))) << io::format_case(cases[i]);
+  EXPECT_TRUE(forked.take_failures().empty());
+}
+
+TEST(ForkedPlugin, CrashingKindFunctionIsAKernelFailureWithTheCase) {
+  auto made = make_forked_plugin_method(PLUGIN_CRASH, "crash", RAYPROOF_BIN);
+  ASSERT_TRUE(std::holds_alternative<Method>(made)) << std::get<std::string>(made);
+  const Method& m = std::get<Method>(made);
+  auto cases = cases_of("tri_generic", 20);
+  for (auto& c : cases) c.v[0] = std::abs(c.v[0]);  // x >= 0: the plugin answers
+  const std::size_t crash_at = 13;
+  cases[crash_at].v[0] = -1;  // x < 0: the plugin dereferences a null pointer
+  std::vector<io::CaseResult> out(cases.size());
+  m.classify_many(cases, out);
+  for (std::size_t i = 0; i < cases.size(); ++i)
+    EXPECT_EQ(out[i].contact, i == crash_at ? Contact::error : Contact::miss) << i;
+  const auto failures = m.take_failures();
+  ASSERT_EQ(failures.size(), 1u);
+  EXPECT_NE(failures[0].what.find("crashed (signal 11"), std::string::npos) << failures[0].what;
+  EXPECT_EQ(io::format_case(failures[0].input), io::format_case(cases[crash_at]));
+}
+
+TEST(ForkedPlugin, BadPluginsAreRefusedWithTheHostsMessage) {
+  const auto missing = make_forked_plugin_method("/nonexistent/mine.so", "mine", RAYPROOF_BIN);
+  ASSERT_TRUE(std::holds_alternative<std::string>(missing));
+  EXPECT_NE(std::get<std::string>(missing).find("no such file"), std::string::npos) << std::get<std::string>(missing);
+  const auto version = make_forked_plugin_method(PLUGIN_WRONG_VERSION, "future", RAYPROOF_BIN);
+  ASSERT_TRUE(std::holds_alternative<std::string>(version));
+  EXPECT_NE(std::get<std::string>(version).find("plugin ABI version 2"), std::string::npos)
+      << std::get<std::string>(version);
 }
 
 }  // namespace

@@ -30,9 +30,17 @@ int run_plugin_host(const std::string& path) {
   return serve_kernel_protocol(std::get<Method>(loaded), std::cin, std::cout);
 }
 
+/// This rayproof's own executable, for the child that hosts a forked plugin.
+std::string self_path() {
+  std::error_code ec;
+  const auto p = std::filesystem::read_symlink("/proc/self/exe", ec);
+  return ec ? std::string() : p.string();
+}
+
 }  // namespace
 
-std::unique_ptr<Method> make_plugin_kernel(std::string_view command, const std::string& spec, bool in_process) {
+std::unique_ptr<Method> make_plugin_kernel(std::string_view command, const std::string& spec, bool in_process,
+                                           double timeout_seconds) {
   const auto eq = spec.find('=');
   const std::string name = eq == std::string::npos ? std::string() : spec.substr(0, eq);
   const std::string path = eq == std::string::npos ? spec : spec.substr(eq + 1);
@@ -52,8 +60,21 @@ std::unique_ptr<Method> make_plugin_kernel(std::string_view command, const std::
     }
     return std::make_unique<Method>(std::move(std::get<Method>(loaded)));
   }
-  fmt::print(stderr, "rayproof {}: --plugin '{}': forked plugins need the --exec kernels, not built yet\n", command, spec);
-  return nullptr;
+  // Forked: an --exec kernel running `rayproof plugin-host PATH` with this rayproof.
+  const std::string self = self_path();
+  if (self.empty()) {
+    fmt::print(stderr, "rayproof {}: --plugin '{}': cannot find this rayproof's executable to host the plugin\n",
+               command, spec);
+    return nullptr;
+  }
+  ExecOptions eo;
+  eo.timeout_seconds = timeout_seconds;
+  auto made = make_forked_plugin_method(path, name, self, eo);
+  if (auto* why = std::get_if<std::string>(&made)) {
+    fmt::print(stderr, "rayproof {}: {}\n", command, *why);
+    return nullptr;
+  }
+  return std::make_unique<Method>(std::move(std::get<Method>(made)));
 }
 
 Run add_plugin_host(CLI::App& app) {

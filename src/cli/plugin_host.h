@@ -11,9 +11,9 @@
 namespace rayproof::cli {
 
 /// The method of one `--plugin` spec, `NAME=PATH` or `PATH` (then the plugin's declared name in
-/// process, the file name without its extension forked). A bad spec or plugin prints
-/// "rayproof COMMAND: ..." to standard error and gives nothing.
+/// process, the file name without its extension forked; forked, `timeout_seconds` is the --exec
+/// timeout). A bad spec or plugin prints "rayproof COMMAND: ..." to standard error and gives nothing.
 [[nodiscard]] std::unique_ptr<Method> make_plugin_kernel(std::string_view command, const std::string& spec,
-                                                         bool in_process);
+                                                         bool in_process, double timeout_seconds = 5);
 
 }  // namespace rayproof::cli

@@ -67,6 +67,13 @@ io::CaseResult call(PluginState& st, const io::Case& c) {
   return {Contact::error};
 }
 
+/// A word for /bin/sh: in single quotes, a quote inside as '\''.
+std::string shell_word(const std::string& s) {
+  std::string out = "'";
+  for (char ch : s) out += ch == '\'' ? std::string("'\\''") : std::string(1, ch);
+  return out + "'";
+}
+
 }  // namespace
 
 std::variant<io::CaseResult, std::string> plugin_answer_to_result(io::Kind kind, const rayproof_answer& a) {
@@ -174,6 +181,21 @@ std::variant<Method, std::string> load_plugin_method(const std::string& path, co
     return out;
   };
   return m;
+}
+
+std::variant<Method, std::string> make_forked_plugin_method(const std::string& path, const std::string& name,
+                                                           const std::string& host, const ExecOptions& opt) {
+  // Checked here so that a typo gets this message rather than the child's.
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) return "plugin " + path + ": no such file";
+  const std::string method_name = name.empty() ? std::filesystem::path(path).stem().string() : name;
+  const std::string absolute = std::filesystem::absolute(path, ec).string();
+  // `exec`: the shell becomes the host, so that a crash is reported as the host's signal.
+  auto made = make_exec_method(method_name + "=exec " + shell_word(host) + " plugin-host " + shell_word(absolute), opt);
+  if (auto* why = std::get_if<std::string>(&made)) return "plugin " + path + " (forked): " + *why;
+  Method& m = std::get<Method>(made);
+  m.summary = "plugin " + path + ", run in child processes (rayproof plugin-host)";
+  return std::move(m);
 }
 
 }  // namespace rayproof

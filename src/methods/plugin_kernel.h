@@ -6,6 +6,7 @@
 #include <variant>
 
 #include "io/case_file.h"
+#include "methods/exec_kernel.h"
 #include "methods/method.h"
 #include "rayproof/plugin.h"
 
@@ -19,6 +20,15 @@ namespace rayproof {
 /// case (take_failures; at most 10000 are kept between two takes).
 [[nodiscard]] std::variant<Method, std::string> load_plugin_method(const std::string& path,
                                                                    const std::string& name = "");
+
+/// The same plugin run in child processes, where its crash or hang is a reported kernel failure:
+/// the --exec method (methods/exec_kernel.h) of `HOST plugin-host PATH`, HOST being a rayproof
+/// executable, which declares the plugin's precision and kinds. Named `name`, or the file name
+/// without its extension. Gives the method or a one-line message.
+[[nodiscard]] std::variant<Method, std::string> make_forked_plugin_method(const std::string& path,
+                                                                          const std::string& name,
+                                                                          const std::string& host,
+                                                                          const ExecOptions& opt = {});
 
 /// A plugin's answer as a CaseResult, or a description of why it is outside the vocabulary
 /// (plugin.h, "Answers"). Exposed for tests.
