@@ -48,7 +48,7 @@ const answers = [];
 const rl = readline.createInterface({ input: process.stdin, crlfDelay: Infinity });
 rl.on('line', (line) => {
   const fields = line.trim().split(/\s+/);
-  if (fields[0] === '') return;
+  if (fields[0] === '' || fields[0].startsWith('#')) return; // rayproof sends none; a case file has them
   answers.push(triangle(fields.slice(1, 16).map(parse)));
   // Write in chunks: one write per line would be slow, and rayproof reads while it writes.
   if (answers.length >= 256) process.stdout.write(answers.splice(0).join('\n') + '\n');
