@@ -176,12 +176,12 @@ std::string format_result(const CaseResult& r) {
 }
 
 std::string format_answer(const CaseResult& r) {
-  if (r.form != AnswerForm::coarse || (r.contact != Contact::hit && r.contact != Contact::miss)) return format_result(r);
-  if (r.contact == Contact::miss) return "miss";
-  std::string s = "hit";
-  if (r.t) {
-    s += ' ' + format_double(*r.t);
-    if (r.b1 && r.b2) s += ' ' + format_double(*r.b1) + ' ' + format_double(*r.b2);
+  if (r.form == AnswerForm::full) return format_result(r);
+  std::string s(to_string(r.contact));
+  for (const auto& v : {r.t, r.b1, r.b2}) {
+    if (!v) break;
+    s += ' ';
+    append_double(s, *v);
   }
   return s;
 }

@@ -72,8 +72,8 @@ struct CaseResult {
 /// `CLASS T T2` with `-` for absent values.
 [[nodiscard]] std::string format_result(const CaseResult& r);
 
-/// An answer as the line protocol writes it (docs/kernel_protocol.md): a coarse answer as `miss`,
-/// `hit`, `hit T` or `hit T B1 B2`, a full one as format_result.
+/// format_result for a full answer; a coarse one as the kernel gave it: `hit T B1 B2`, `hit T`,
+/// `hit` or `miss`.
 [[nodiscard]] std::string format_answer(const CaseResult& r);
 
 /// Parses a result line (`CLASS T T2`); nothing on malformed text.
