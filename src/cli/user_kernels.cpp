@@ -16,7 +16,9 @@ void add_user_kernel_options(CLI::App& sub, UserKernelOptions& opt) {
                  "Seconds an --exec kernel may take without answering before it counts as hung")
       ->check(CLI::Range(0.001, 86400.0))
       ->capture_default_str();
-  sub.add_option("--plugin", opt.plugin, "NAME=PATH.so: a kernel of yours as a shared library (rayproof/plugin.h); repeatable");
+  sub.add_option("--plugin", opt.plugin,
+                 "NAME=PATH.so or PATH.so: a kernel of yours as a shared library (rayproof/plugin.h); repeatable")
+      ->allow_extra_args(false);  // one library per --plugin: the case files that follow stay positional
 }
 
 std::optional<std::vector<std::unique_ptr<Method>>> make_user_kernels(std::string_view command,
