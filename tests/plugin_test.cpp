@@ -13,6 +13,9 @@
 #include <variant>
 #include <vector>
 
+#include <CLI/CLI.hpp>
+
+#include "cli/user_kernels.h"
 #include "cli_support.h"
 #include "gen/families.h"
 #include "io/case_file.h"
@@ -176,6 +179,37 @@ TEST(PluginLoader, AnswerOutsideTheVocabularyIsAKernelFailureWithTheCase) {
   EXPECT_NE(failures[0].what.find("unknown class 99"), std::string::npos) << failures[0].what;
   EXPECT_EQ(io::format_case(failures[0].input), io::format_case(bad));
   EXPECT_TRUE(m.take_failures().empty());
+}
+
+// --- the command line: --plugin on verify, report, fuzz ------------------------------------------------
+
+TEST(PluginOption, OneLibraryPerOptionCaseFilesStayPositional) {
+  CLI::App app;
+  cli::UserKernelOptions opt;
+  std::vector<std::string> files;
+  cli::add_user_kernel_options(app, opt);
+  app.add_option("files", files);
+  app.parse("--plugin a.so --plugin mine=b.so a.txt b.txt", false);
+  EXPECT_EQ(opt.plugin, (std::vector<std::string>{"a.so", "mine=b.so"}));
+  EXPECT_EQ(files, (std::vector<std::string>{"a.txt", "b.txt"}));
+}
+
+TEST(PluginOption, MakeUserKernelsLoadsNamesAndRefuses) {
+  cli::UserKernelOptions opt;
+  opt.plugin = {PLUGIN_MT_C, std::string("mine=") + PLUGIN_MT_C};
+  auto made = cli::make_user_kernels("verify", opt);
+  ASSERT_TRUE(made.has_value());
+  ASSERT_EQ(made->size(), 2u);
+  EXPECT_EQ((*made)[0]->name, "mt-c");
+  EXPECT_EQ((*made)[1]->name, "mine");
+  // A name taken by a built-in method or by another kernel, an empty name, a bad library: nothing.
+  for (const std::vector<std::string>& bad :
+       {std::vector<std::string>{std::string("double=") + PLUGIN_MT_C},
+        std::vector<std::string>{PLUGIN_MT_C, PLUGIN_MT_C}, std::vector<std::string>{std::string("=") + PLUGIN_MT_C},
+        std::vector<std::string>{PLUGIN_NO_ENTRY}}) {
+    opt.plugin = bad;
+    EXPECT_FALSE(cli::make_user_kernels("verify", opt).has_value()) << bad.back();
+  }
 }
 
 // --- plugins against the built-in methods and exact ----------------------------------------------------
