@@ -192,7 +192,16 @@ std::string status_text(int status) {
     const char* name = ::strsignal(sig);
     return "crashed (signal " + std::to_string(sig) + (name ? std::string(", ") + name : std::string()) + ")";
   }
-  if (status >= 0 && WIFEXITED(status)) return "exited early (status " + std::to_string(WEXITSTATUS(status)) + ")";
+  if (status >= 0 && WIFEXITED(status)) {
+    // /bin/sh reports a command killed by signal N as status 128 + N when it did not exec it.
+    const int code = WEXITSTATUS(status);
+    if (code > 128 && code < 128 + NSIG) {
+      const char* name = ::strsignal(code - 128);
+      return "crashed (signal " + std::to_string(code - 128) + (name ? std::string(", ") + name : std::string()) +
+             "; the shell's status " + std::to_string(code) + ")";
+    }
+    return "exited early (status " + std::to_string(code) + ")";
+  }
   return "exited early";
 }
 
@@ -249,8 +258,8 @@ Outcome stream(const Shared& sh, std::span<const io::Case> cases, std::span<io::
     if (ch.out >= 0) idx_out = int(n), fds[n++] = {ch.out, POLLIN, 0};
     if (ch.err >= 0) idx_err = int(n), fds[n++] = {ch.err, POLLIN, 0};
     if (ch.out < 0) break;  // end of the kernel's output before every answer: handled below
-    const auto left = timeout - (Clock::now() - last_progress);
-    const int ms = left.count() <= 0 ? 0 : int(std::ceil(left.count() * 1000));
+    const double left = std::chrono::duration<double>(timeout - (Clock::now() - last_progress)).count();
+    const int ms = left <= 0 ? 0 : int(std::ceil(std::min(left, 1e6) * 1000));
     const int pr = ::poll(fds, n, ms);
     if (pr < 0) {
       if (errno == EINTR) continue;
