@@ -8,12 +8,14 @@
 #include <csignal>
 #include <cstdlib>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
 #include <variant>
 #include <vector>
 
 #include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 
 #include "cli/user_kernels.h"
 #include "cli_support.h"
@@ -210,6 +212,40 @@ TEST(PluginOption, MakeUserKernelsLoadsNamesAndRefuses) {
     opt.plugin = bad;
     EXPECT_FALSE(cli::make_user_kernels("verify", opt).has_value()) << bad.back();
   }
+}
+
+TEST(PluginOption, VerifyJsonJudgesPluginsLikeBuiltInMethods) {
+  // Case files from `rayproof gen`, as a user would make them.
+  std::string files;
+  for (const std::string family : {"tri_edge", "tri_vertex", "sph_tangent_exact", "box_graze"}) {
+    const auto g = run_rayproof("gen " + family + " -n 100 -s 3");
+    ASSERT_EQ(g.status, 0) << g.err;
+    files += " " + testing::write_file(family + ".txt", g.out).string();
+  }
+  const auto r = run_rayproof(std::string("verify --json --methods float --plugin ") + PLUGIN_FLOAT + " --plugin " +
+                              PLUGIN_MT_C + " --plugin " + PLUGIN_CERTIFIED + " --" + files);
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  std::map<std::pair<std::string, std::string>, nlohmann::json> rows;
+  for (const auto& row : j["rows"]) rows[{row["method"], row["family"]}] = row;
+  for (const std::string family : {"tri_edge", "tri_vertex", "sph_tangent_exact", "box_graze"}) {
+    auto f = rows.at({"float", family}), p = rows.at({"plugin-float", family});
+    f.erase("method"), p.erase("method");
+    EXPECT_EQ(f, p) << family;  // the same tallies, column for column
+    const auto& c = rows.at({"plugin-certified", family});
+    EXPECT_EQ(c["cases"], 100) << family;
+    EXPECT_EQ(c["class_errors"], 0) << family;
+    EXPECT_LE(c["ulp_max"].get<std::uint64_t>(), 1u) << family;
+  }
+  EXPECT_GT(rows.at({"float", "box_graze"})["class_errors"].get<int>(), 0);  // the comparison is not vacuous
+  for (const std::string family : {"tri_edge", "tri_vertex"}) {
+    const auto& m = rows.at({"mt-c", family});
+    EXPECT_EQ(m["coarse"], 100) << family;
+    EXPECT_GT(m["false_miss"].get<int>(), 0) << family;
+    EXPECT_EQ(m["false_hit"], 0) << family;
+    EXPECT_EQ(m["kernel_failures"], 0) << family;
+  }
+  EXPECT_EQ(rows.count({"mt-c", "box_graze"}), 0u);  // triangles only
 }
 
 // --- plugins against the built-in methods and exact ----------------------------------------------------
