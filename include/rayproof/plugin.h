@@ -23,8 +23,9 @@
  *   - a full answer: `cls` one of the CASES.md classes RAYPROOF_INVALID .. RAYPROOF_RIM, with
  *     RAYPROOF_HAS_T / RAYPROOF_HAS_T2 in `has` for the values the class carries (`t`, `t2`), or
  *   - a coarse answer: `cls` RAYPROOF_COARSE_MISS (no contact at t >= 0; nothing in `has`) or
- *     RAYPROOF_COARSE_HIT, optionally with RAYPROOF_HAS_T (`t` = the first contact's t) and, for
- *     triangles with a t only, RAYPROOF_HAS_B (`b1`, `b2` = the barycentrics of p1 and p2).
+ *     RAYPROOF_COARSE_HIT, optionally with RAYPROOF_HAS_T (`t` = the first contact's t at t >= 0)
+ *     and, for a triangle and together with RAYPROOF_HAS_T, RAYPROOF_HAS_B (`b1`, `b2` = the
+ *     barycentrics of p1 and p2).
  * Anything else (no answer written, an unknown class or flag, T2 or barycentrics on a coarse answer,
  * barycentrics on a full one or on another kind) is a kernel failure for that case, reported with
  * the case as a one-line reproducer; it is not counted as a class error.
@@ -37,7 +38,7 @@
  *
  * Threads. rayproof may call the kind functions from several threads at once (`fuzz --jobs`), so
  * they must not share mutable state without synchronisation. rayproof calls `rayproof_plugin_entry`
- * once and never unloads the library.
+ * once per --plugin and never unloads the library.
  *
  * Crashes. In process (the default of verify, report, fuzz), a plugin that crashes takes rayproof
  * down with it. `rayproof plugin-host PATH.so` serves a plugin over the line protocol, so a plugin can
