@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
   add(add_cast(app));
   add(add_render(app));
   add(add_bench(app));
+  add(add_plugin_host(app));
   add(add_serve(app));
   auto* methods = app.add_subcommand("methods", "List the registered methods");
   try {

@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
 
+#include "cli/plugin_host.h"
 #include "cli/registry.h"
 #include "methods/exec_kernel.h"
 
@@ -15,7 +16,9 @@ void add_user_kernel_options(CLI::App& sub, UserKernelOptions& opt) {
                  "Seconds an --exec kernel may take without answering before it counts as hung")
       ->check(CLI::Range(0.001, 86400.0))
       ->capture_default_str();
-  sub.add_option("--plugin", opt.plugin, "NAME=PATH.so: a kernel of yours as a shared library (rayproof/plugin.h); repeatable");
+  sub.add_option("--plugin", opt.plugin,
+                 "NAME=PATH.so or PATH.so: a kernel of yours as a shared library (rayproof/plugin.h); repeatable")
+      ->allow_extra_args(false);  // one library per --plugin: the case files that follow stay positional
 }
 
 std::optional<std::vector<std::unique_ptr<Method>>> make_user_kernels(std::string_view command,
@@ -44,9 +47,18 @@ std::optional<std::vector<std::unique_ptr<Method>>> make_user_kernels(std::strin
     }
   }
 
-  if (!opt.plugin.empty()) {
-    fmt::print(stderr, "rayproof {}: --plugin is not available yet\n", command);
-    return std::nullopt;
+  // --plugin: in process, or forked through `rayproof plugin-host` (src/cli/plugin_host.h).
+  for (const std::string& spec : opt.plugin) {
+    auto m = make_plugin_kernel(command, spec, opt.plugin_in_process, opt.exec_timeout);
+    if (!m) return std::nullopt;
+    bool taken = all_methods().find(m->name) != nullptr;
+    for (const auto& other : out) taken = taken || other->name == m->name;
+    if (taken) {
+      fmt::print(stderr, "rayproof {}: --plugin {}: the name '{}' is taken; choose another (NAME=PATH.so)\n", command,
+                 spec, m->name);
+      return std::nullopt;
+    }
+    out.push_back(std::move(m));
   }
   return out;
 }

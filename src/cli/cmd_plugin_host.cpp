@@ -1,0 +1,88 @@
+/// rayproof plugin-host PATH.so (hidden): loads a plugin (rayproof/plugin.h) and answers the line
+/// protocol (docs/kernel_protocol.md) on standard input and output, so that a plugin can run in a
+/// child process as an --exec kernel, where its crash is a reported kernel failure instead of
+/// rayproof's own.
+#include <CLI/CLI.hpp>
+#include <fmt/core.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <iostream>
+#include <memory>
+#include <system_error>
+
+#include "cli/commands.h"
+#include "cli/plugin_host.h"
+#include "methods/plugin_kernel.h"
+#include "methods/serve.h"
+
+namespace rayproof::cli {
+
+namespace {
+
+int run_plugin_host(const std::string& path) {
+  auto loaded = load_plugin_method(path);
+  if (auto* why = std::get_if<std::string>(&loaded)) {
+    fmt::print(stderr, "rayproof plugin-host: {}\n", *why);
+    return 2;
+  }
+  std::ios::sync_with_stdio(false);
+  return serve_kernel_protocol(std::get<Method>(loaded), std::cin, std::cout);
+}
+
+/// This rayproof's own executable, for the child that hosts a forked plugin.
+std::string self_path() {
+  std::error_code ec;
+  const auto p = std::filesystem::read_symlink("/proc/self/exe", ec);
+  return ec ? std::string() : p.string();
+}
+
+}  // namespace
+
+std::unique_ptr<Method> make_plugin_kernel(std::string_view command, const std::string& spec, bool in_process,
+                                           double timeout_seconds) {
+  const auto eq = spec.find('=');
+  const std::string name = eq == std::string::npos ? std::string() : spec.substr(0, eq);
+  const std::string path = eq == std::string::npos ? spec : spec.substr(eq + 1);
+  if (eq != std::string::npos && name.empty()) {
+    fmt::print(stderr, "rayproof {}: --plugin '{}': empty NAME (NAME=PATH.so or PATH.so)\n", command, spec);
+    return nullptr;
+  }
+  if (path.empty()) {
+    fmt::print(stderr, "rayproof {}: --plugin '{}': no PATH (NAME=PATH.so or PATH.so)\n", command, spec);
+    return nullptr;
+  }
+  if (in_process) {
+    auto loaded = load_plugin_method(path, name);
+    if (auto* why = std::get_if<std::string>(&loaded)) {
+      fmt::print(stderr, "rayproof {}: {}\n", command, *why);
+      return nullptr;
+    }
+    return std::make_unique<Method>(std::move(std::get<Method>(loaded)));
+  }
+  // Forked: an --exec kernel running `rayproof plugin-host PATH` with this rayproof.
+  const std::string self = self_path();
+  if (self.empty()) {
+    fmt::print(stderr, "rayproof {}: --plugin '{}': cannot find this rayproof's executable to host the plugin\n",
+               command, spec);
+    return nullptr;
+  }
+  ExecOptions eo;
+  eo.timeout_seconds = timeout_seconds;
+  auto made = make_forked_plugin_method(path, name, self, eo);
+  if (auto* why = std::get_if<std::string>(&made)) {
+    fmt::print(stderr, "rayproof {}: {}\n", command, *why);
+    return nullptr;
+  }
+  return std::make_unique<Method>(std::move(std::get<Method>(made)));
+}
+
+Run add_plugin_host(CLI::App& app) {
+  auto path = std::make_shared<std::string>();
+  auto* sub = app.add_subcommand("plugin-host", "Serve a plugin (rayproof/plugin.h) over the line protocol on stdin/stdout");
+  sub->group("");  // hidden: --plugin's forked mode runs it
+  sub->add_option("plugin", *path, "The plugin's shared library")->required();
+  return [path] { return run_plugin_host(*path); };
+}
+
+}  // namespace rayproof::cli
