@@ -299,8 +299,9 @@ int run_check(const CheckCliOptions& o) {
   if (o.json) {
     fmt::print("{}\n", result_json(res).dump(1));
   } else {
-    fmt::print("rayproof check: kernel '{}' ({} precision), {} cases per family, seed {}\n\n", res.method,
-               res.precision == Precision::float32 ? "float" : "double", o.count, o.seed);
+    fmt::print("rayproof check: kernel '{}' ({} precision); {} cases generated per family (half built in float "
+               "precision, half in double), seed {}; the table counts those of the kinds the kernel answers\n\n",
+               res.method, res.precision == Precision::float32 ? "float" : "double", o.count, o.seed);
     fmt::print("{}", check_table(res));
     const auto lines = reproducer_lines(res);
     if (!lines.empty()) {
