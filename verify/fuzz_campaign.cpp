@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <mutex>
+#include <optional>
 #include <span>
 #include <thread>
 
@@ -115,49 +116,74 @@ RoundOutput run_round(const FuzzOptions& opt, std::size_t round) {
 
 }  // namespace
 
-io::Case minimize_case(const Method& m, const io::Case& input, Verdict verdict) {
-  const int n = io::field_count(input.kind);
-  auto still = [&](const io::Case& c) {
-    const Judged j = judge(m, c);
-    return j.verdict == verdict && is_mismatch(m.name, j.verdict, j.ulps);
+std::vector<io::Case> minimize_cases(const std::vector<io::Case>& inputs, const StillFails& still) {
+  std::vector<io::Case> best = inputs;
+  std::vector<io::Case> variants;
+  std::vector<std::size_t> owner;
+  // Judges every variant in one call; returns, per input, the first variant that still fails.
+  auto first_failing = [&]() {
+    std::vector<std::optional<std::size_t>> pick(best.size());
+    if (variants.empty()) return pick;
+    const std::vector<bool> ok = still(variants, owner);
+    for (std::size_t v = 0; v < variants.size(); ++v)
+      if (ok[v] && !pick[owner[v]]) pick[owner[v]] = v;
+    return pick;
   };
-  io::Case best = input;
   // 1. A common power-of-two scale toward magnitude 1 keeps the geometry (and exact class) and
   //    shows the case at readable magnitudes, when it still disagrees.
-  double big = 0;
-  for (int i = 0; i < n; ++i) big = std::max(big, std::fabs(best.v[static_cast<std::size_t>(i)]));
-  if (big > 0 && std::isfinite(big)) {
+  for (std::size_t k = 0; k < best.size(); ++k) {
+    const int n = io::field_count(best[k].kind);
+    double big = 0;
+    for (int i = 0; i < n; ++i) big = std::max(big, std::fabs(best[k].v[static_cast<std::size_t>(i)]));
+    if (!(big > 0) || !std::isfinite(big)) continue;
     int e;
     std::frexp(big, &e);
-    if (e != 0) {
-      io::Case scaled = best;
-      bool exact_scale = true;
-      for (int i = 0; i < n; ++i) {
-        double& x = scaled.v[static_cast<std::size_t>(i)];
-        const double y = std::ldexp(x, -e);
-        if (std::ldexp(y, e) != x) exact_scale = false;
-        x = y;
-      }
-      if (exact_scale && still(scaled)) best = scaled;
-    }
-  }
-  // 2. Fewer significant bits per field, greedily, twice over.
-  for (int pass = 0; pass < 2; ++pass) {
+    if (e == 0) continue;
+    io::Case scaled = best[k];
+    bool exact_scale = true;
     for (int i = 0; i < n; ++i) {
-      for (int bits : {1, 2, 4, 8, 12, 16, 24, 32, 40}) {
-        io::Case c = best;
-        double& x = c.v[static_cast<std::size_t>(i)];
-        const double y = keep_bits(x, bits);
-        if (y == x) break;  // already that short
-        x = y;
-        if (still(c)) {
-          best = c;
-          break;
+      double& x = scaled.v[static_cast<std::size_t>(i)];
+      const double y = std::ldexp(x, -e);
+      if (std::ldexp(y, e) != x) exact_scale = false;
+      x = y;
+    }
+    if (exact_scale) variants.push_back(scaled), owner.push_back(k);
+  }
+  auto pick = first_failing();
+  for (std::size_t k = 0; k < best.size(); ++k)
+    if (pick[k]) best[k] = variants[*pick[k]];
+  // 2. Fewer significant bits per field, greedily (the fewest bits that still fail), twice over.
+  for (int pass = 0; pass < 2; ++pass) {
+    for (int i = 0; i < 15; ++i) {
+      variants.clear(), owner.clear();
+      for (std::size_t k = 0; k < best.size(); ++k) {
+        if (i >= io::field_count(best[k].kind)) continue;
+        for (int bits : {1, 2, 4, 8, 12, 16, 24, 32, 40}) {
+          io::Case c = best[k];
+          double& x = c.v[static_cast<std::size_t>(i)];
+          const double y = keep_bits(x, bits);
+          if (y == x) break;  // already that short
+          x = y;
+          variants.push_back(std::move(c)), owner.push_back(k);
         }
       }
+      pick = first_failing();
+      for (std::size_t k = 0; k < best.size(); ++k)
+        if (pick[k]) best[k] = variants[*pick[k]];
     }
   }
   return best;
+}
+
+io::Case minimize_case(const Method& m, const io::Case& input, Verdict verdict) {
+  return minimize_cases({input}, [&](const std::vector<io::Case>& variants, const std::vector<std::size_t>&) {
+    std::vector<bool> ok;
+    for (const auto& c : variants) {
+      const Judged j = judge(m, c);
+      ok.push_back(j.verdict == verdict && is_mismatch(m.name, j.verdict, j.ulps));
+    }
+    return ok;
+  }).front();
 }
 
 FuzzResult run_fuzz(const FuzzOptions& opt) {

@@ -75,4 +75,12 @@ struct FuzzResult {
 /// bits per field, magnitudes scaled toward 1 by a common power of two. Bounded work.
 [[nodiscard]] io::Case minimize_case(const Method& m, const io::Case& input, Verdict verdict);
 
+/// Whether each variant still fails as the input it was made from (`owner[v]` indexes the inputs).
+using StillFails = std::function<std::vector<bool>(const std::vector<io::Case>& variants,
+                                                   const std::vector<std::size_t>& owner)>;
+/// The shrinking of minimize_case for many inputs at once: every step's variants of all the inputs
+/// are judged by one call of `still` (a batch for a kernel behind a pipe: 31 calls in all). Each
+/// input ends where minimize_case would take it.
+[[nodiscard]] std::vector<io::Case> minimize_cases(const std::vector<io::Case>& inputs, const StillFails& still);
+
 }  // namespace rayproof::verify
