@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <mutex>
+#include <optional>
 #include <span>
 #include <thread>
 
@@ -115,91 +116,100 @@ RoundOutput run_round(const FuzzOptions& opt, std::size_t round) {
 
 }  // namespace
 
-io::Case minimize_case(const Method& m, const io::Case& input, Verdict verdict) {
-  const int n = io::field_count(input.kind);
-  auto still = [&](const io::Case& c) {
-    const Judged j = judge(m, c);
-    return j.verdict == verdict && is_mismatch(m.name, j.verdict, j.ulps);
+std::vector<io::Case> minimize_cases(const std::vector<io::Case>& inputs, const StillFails& still) {
+  std::vector<io::Case> best = inputs;
+  std::vector<io::Case> variants;
+  std::vector<std::size_t> owner;
+  // Judges every variant in one call; returns, per input, the first variant that still fails.
+  auto first_failing = [&]() {
+    std::vector<std::optional<std::size_t>> pick(best.size());
+    if (variants.empty()) return pick;
+    const std::vector<bool> ok = still(variants, owner);
+    for (std::size_t v = 0; v < variants.size(); ++v)
+      if (ok[v] && !pick[owner[v]]) pick[owner[v]] = v;
+    return pick;
   };
-  io::Case best = input;
   // 1. A common power-of-two scale toward magnitude 1 keeps the geometry (and exact class) and
   //    shows the case at readable magnitudes, when it still disagrees.
-  double big = 0;
-  for (int i = 0; i < n; ++i) big = std::max(big, std::fabs(best.v[static_cast<std::size_t>(i)]));
-  if (big > 0 && std::isfinite(big)) {
+  for (std::size_t k = 0; k < best.size(); ++k) {
+    const int n = io::field_count(best[k].kind);
+    double big = 0;
+    for (int i = 0; i < n; ++i) big = std::max(big, std::fabs(best[k].v[static_cast<std::size_t>(i)]));
+    if (!(big > 0) || !std::isfinite(big)) continue;
     int e;
     std::frexp(big, &e);
-    if (e != 0) {
-      io::Case scaled = best;
-      bool exact_scale = true;
-      for (int i = 0; i < n; ++i) {
-        double& x = scaled.v[static_cast<std::size_t>(i)];
-        const double y = std::ldexp(x, -e);
-        if (std::ldexp(y, e) != x) exact_scale = false;
-        x = y;
-      }
-      if (exact_scale && still(scaled)) best = scaled;
+    if (e == 0) continue;
+    io::Case scaled = best[k];
+    bool exact_scale = true;
+    for (int i = 0; i < n; ++i) {
+      double& x = scaled.v[static_cast<std::size_t>(i)];
+      const double y = std::ldexp(x, -e);
+      if (std::ldexp(y, e) != x) exact_scale = false;
+      x = y;
     }
+    if (exact_scale) variants.push_back(scaled), owner.push_back(k);
   }
-  // 2. Fewer significant bits per field, greedily, twice over.
-  if (m.classify_batch) {
-    // A user kernel starts a process per call: the tries of one field go in one batch, and the
-    // first that still disagrees wins, as in the one-by-one loop below.
-    const bool f32 = m.precision == Precision::float32;
-    for (int pass = 0; pass < 2; ++pass) {
-      for (int i = 0; i < n; ++i) {
-        std::vector<io::Case> tries;
+  auto pick = first_failing();
+  for (std::size_t k = 0; k < best.size(); ++k)
+    if (pick[k]) best[k] = variants[*pick[k]];
+  // 2. Fewer significant bits per field, greedily (the fewest bits that still fail), twice over.
+  for (int pass = 0; pass < 2; ++pass) {
+    for (int i = 0; i < 15; ++i) {
+      variants.clear(), owner.clear();
+      for (std::size_t k = 0; k < best.size(); ++k) {
+        if (i >= io::field_count(best[k].kind)) continue;
         for (int bits : {1, 2, 4, 8, 12, 16, 24, 32, 40}) {
-          io::Case c = best;
+          io::Case c = best[k];
           double& x = c.v[static_cast<std::size_t>(i)];
           const double y = keep_bits(x, bits);
           if (y == x) break;  // already that short
           x = y;
-          tries.push_back(f32 ? io::round_to_float(c) : c);
-        }
-        if (tries.empty()) continue;
-        std::vector<io::CaseResult> got(tries.size());
-        m.classify_many(tries, got);
-        for (std::size_t k = 0; k < tries.size(); ++k) {
-          Stats ignored;
-          Judged j;
-          j.input = tries[k];
-          j.want = exact_classify(tries[k]);
-          j.got = got[k];
-          judge_answer(m, j, ignored);
-          if (j.verdict == verdict && is_mismatch(m.name, j.verdict, j.ulps)) {
-            best.v = tries[k].v;
-            break;
-          }
+          variants.push_back(std::move(c)), owner.push_back(k);
         }
       }
-    }
-    return best;
-  }
-  for (int pass = 0; pass < 2; ++pass) {
-    for (int i = 0; i < n; ++i) {
-      for (int bits : {1, 2, 4, 8, 12, 16, 24, 32, 40}) {
-        io::Case c = best;
-        double& x = c.v[static_cast<std::size_t>(i)];
-        const double y = keep_bits(x, bits);
-        if (y == x) break;  // already that short
-        x = y;
-        if (still(c)) {
-          best = c;
-          break;
-        }
-      }
+      pick = first_failing();
+      for (std::size_t k = 0; k < best.size(); ++k)
+        if (pick[k]) best[k] = variants[*pick[k]];
     }
   }
   return best;
+}
+
+io::Case minimize_case(const Method& m, const io::Case& input, Verdict verdict) {
+  // Every variant of a step in one classify_many call: a user kernel behind a pipe starts one
+  // process per call, not one per variant.
+  return minimize_cases({input}, [&](const std::vector<io::Case>& variants, const std::vector<std::size_t>&) {
+    const bool f32 = m.precision == Precision::float32;
+    std::vector<io::Case> seen;
+    seen.reserve(variants.size());
+    for (const auto& c : variants) seen.push_back(f32 ? io::round_to_float(c) : c);
+    std::vector<io::CaseResult> got(seen.size());
+    m.classify_many(seen, got);
+    std::vector<bool> ok;
+    for (std::size_t k = 0; k < seen.size(); ++k) {
+      Stats ignored;
+      Judged j;
+      j.input = seen[k];
+      j.want = exact_classify(seen[k]);
+      j.got = got[k];
+      judge_answer(m, j, ignored);
+      ok.push_back(j.verdict == verdict && is_mismatch(m.name, j.verdict, j.ulps));
+    }
+    return ok;
+  }).front();
 }
 
 FuzzResult run_fuzz(const FuzzOptions& opt) {
   using clock = std::chrono::steady_clock;
   const auto start = clock::now();
   const std::size_t per_round = opt.batch * opt.families.size();
-  const std::size_t round_limit =
+  const std::size_t all_rounds =
       opt.max_cases ? (opt.max_cases + per_round - 1) / std::max<std::size_t>(per_round, 1) : SIZE_MAX;
+  // Workers take this shard's rounds in order: local round i is round i * shard_count + shard_index.
+  const std::size_t shards = std::max<std::size_t>(opt.shard_count, 1), shard = opt.shard_index;
+  const std::size_t round_limit = all_rounds == SIZE_MAX ? SIZE_MAX
+                                  : all_rounds > shard   ? (all_rounds - shard + shards - 1) / shards
+                                                         : 0;
   std::atomic<std::size_t> next{0};
   std::atomic<bool> stop{false};
   std::mutex mu;
@@ -211,7 +221,7 @@ FuzzResult run_fuzz(const FuzzOptions& opt) {
     while (!stop.load()) {
       const std::size_t r = next.fetch_add(1);
       if (r >= round_limit) break;
-      RoundOutput out = run_round(opt, r);
+      RoundOutput out = run_round(opt, r * shards + shard);
       std::lock_guard<std::mutex> lock(mu);
       cases_done += out.cases;
       for (const auto& f : out.findings) ++mismatch_count[f.method];

@@ -39,6 +39,7 @@ struct Report {
   std::vector<Point> points;
   /// What user kernels reported while being compared (not while timed): (method, failure).
   std::vector<std::pair<std::string, KernelFailure>> kernel_failures;
+  std::string highlight;  ///< a method drawn marked in the chart (the kernel `rayproof check` checks)
 };
 
 /// Compares and times `methods` on `cases` (grouped by family); `progress` gets one line now and then.
