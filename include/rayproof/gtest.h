@@ -5,7 +5,7 @@
 ///
 ///   auto kernel = [](const auto& ray, const auto& prim) { return my::intersect(ray, prim); };
 ///   EXPECT_RAY_HIT_MATCHES_EXACT(kernel, ray, triangle, 2);   // or ASSERT_...
-///   EXPECT_TRUE(rayproof::testing::matches_exact(kernel, ray, triangle, 2));
+///   EXPECT_TRUE(rayproof::gtest::matches_exact(kernel, ray, triangle, 2));
 ///
 /// kernel: any callable taking (const Ray<T>&, const Prim<T>&) for T = float or double and returning
 /// Hit<T> (TriangleHit<T> for triangles) or anything with .contact, .t, .t2 of those meanings.
@@ -30,7 +30,7 @@
 #include "rayproof/exact.h"
 #include "rayproof/float_util.h"
 
-namespace rayproof::testing {
+namespace rayproof::gtest {
 
 namespace detail {
 
@@ -133,7 +133,8 @@ template <class Kernel, class T, template <class> class Prim>
   if (same_class && d1 <= max_ulps && d2 <= max_ulps) return ::testing::AssertionSuccess();
 
   auto ulps = [](std::uint64_t d) {
-    return d == std::numeric_limits<std::uint64_t>::max() ? std::string("NaN or inf vs finite") : std::to_string(d) + " ulps";
+    if (d == std::numeric_limits<std::uint64_t>::max()) return std::string("NaN or inf vs finite");
+    return std::to_string(d) + (d == 1 ? " ulp" : " ulps");
   };
   std::string why;
   if (!same_class) why = "class " + std::string(to_string(got.contact)) + " != exact " + std::string(to_string(want.contact));
@@ -158,11 +159,11 @@ template <class Kernel, class T, template <class> class Prim>
          << "  kernel: " << detail::result_line(got.contact, double(got_t), double(got_t2), kg) << ulp_note << "\n";
 }
 
-}  // namespace rayproof::testing
+}  // namespace rayproof::gtest
 
 /// Non-fatal / fatal check that kernel(ray, prim) has the exact class and its t values within
 /// max_ulps ulps of the exact ones (see the top of rayproof/gtest.h).
 #define EXPECT_RAY_HIT_MATCHES_EXACT(kernel, ray, prim, max_ulps) \
-  EXPECT_TRUE(::rayproof::testing::matches_exact(kernel, ray, prim, max_ulps))
+  EXPECT_TRUE(::rayproof::gtest::matches_exact(kernel, ray, prim, max_ulps))
 #define ASSERT_RAY_HIT_MATCHES_EXACT(kernel, ray, prim, max_ulps) \
-  ASSERT_TRUE(::rayproof::testing::matches_exact(kernel, ray, prim, max_ulps))
+  ASSERT_TRUE(::rayproof::gtest::matches_exact(kernel, ray, prim, max_ulps))
