@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdint>
 #include <optional>
+#include <thread>
 
 #include "api_cases.h"
 #include "methods/method.h"
@@ -58,6 +59,40 @@ TEST(CertifiedApi, SampleExactClassTWithinOneUlpTryIntersectUndecidedOrEqual) {
   }
   EXPECT_EQ(certified::fallback_count() - fallbacks_before, undecided);
   EXPECT_GT(decided, s.cases.size() / 2);  // the filters decide the bulk; otherwise the check above is empty
+}
+
+// Concurrent calls: every thread gets the serial answers, and its own fallback count (thread-local)
+// is the serial count, whatever the other thread does.
+TEST(CertifiedApi, ConcurrentCallsAndPerThreadFallbackCount) {
+  // The sample, and extreme magnitudes (subnormal, near overflow), where the filters leave work for GMP.
+  std::vector<io::Case> cases = api_test::load_sample().cases;
+  for (const char* family : {"tri_extreme_scale", "sph_generic"}) {
+    const gen::Family* f = gen::find_family(family);
+    ASSERT_NE(f, nullptr) << family;
+    const auto more = gen::generate(*f, 200, 3, gen::Precision::float64);
+    cases.insert(cases.end(), more.begin(), more.end());
+  }
+  auto run = [&cases](std::vector<std::string>& out) {
+    const std::uint64_t before = certified::fallback_count();
+    for (const io::Case& c : cases)
+      api_test::visit(c, [&](const auto& ray, const auto& prim) {
+        const auto h = certified::intersect(ray, prim);
+        out.push_back(io::format_result(make_result(c.kind, h.contact, h.t, h.t2)));
+      });
+    return certified::fallback_count() - before;
+  };
+  std::vector<std::string> serial, a, b;
+  const std::uint64_t fb = run(serial);
+  std::uint64_t fa = 0, fbb = 0;
+  std::thread ta([&] { fa = run(a); });
+  std::thread tb([&] { fbb = run(b); });
+  ta.join();
+  tb.join();
+  EXPECT_EQ(a, serial);
+  EXPECT_EQ(b, serial);
+  EXPECT_EQ(fa, fb);
+  EXPECT_EQ(fbb, fb);
+  EXPECT_GT(fb, 0U);  // the sample has cases only the fallback decides: the counts are not trivially 0
 }
 
 // Answers without a t carry NaN; hits carry finite t (and t2 for two-valued kinds).
