@@ -9,7 +9,9 @@
 ///    ulp, a coplanar range, a barycentric they cannot bound), the answer is std::nullopt:
 ///    *undecided*. A decided answer is final: intersect returns exactly that answer.
 ///  - intersect (compiled, link rayproof::certified: GMP and MPFR, no CGAL): try_intersect, then
-///    the exact kernels (rayproof/exact.h) for whatever it left undecided. Always decided.
+///    the certified tier's own exact fallback (GMP rationals, MPFR; verify/fallback_*.cpp, the
+///    contract of rayproof/exact.h but not its CGAL code) for whatever it left undecided. Always
+///    decided.
 ///
 /// What a decided answer guarantees (fields a class does not carry are NaN, as in rayproof/hit.h):
 ///  - contact: the class exact arithmetic on the given doubles gives (rayproof::exact::intersect).
@@ -266,7 +268,7 @@ inline bool triangle_barycentrics(const Ray<double>& ray, const Triangle<double>
   return out;
 }
 
-/// Compiled, rayproof::certified: always decided (exact fallback, GMP, when the filter is not).
+/// Compiled, rayproof::certified: always decided (the exact fallback, GMP, when the filter is not).
 [[nodiscard]] Hit<double> intersect(const Ray<double>& ray, const Plane<double>& plane);
 [[nodiscard]] Hit<double> intersect(const Ray<double>& ray, const Sphere<double>& sphere);
 [[nodiscard]] Hit<double> intersect(const Ray<double>& ray, const Ellipsoid<double>& ellipsoid);
