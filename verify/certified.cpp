@@ -1,13 +1,12 @@
-/// The certified method: floating-point filters with error bounds, exact fallback (GMP via
-/// exact_classify) when a bound cannot decide a sign or pin a t to one ulp.
+/// The certified method on case files: rayproof::certified's filters (header-only) first, its exact
+/// fallback (certified::fallback, GMP, verify/fallback.h) when they cannot decide: the same
+/// implementation as rayproof::certified::intersect, on a case's fields. It is judged against the
+/// `exact` method (CGAL), a separate implementation.
 #include "verify/certified.h"
 
 #include "methods/primitive_of.h"
-#include "rayproof/certified_box.h"
-#include "rayproof/certified_planar.h"
-#include "rayproof/certified_quadric.h"
-#include "rayproof/certified_triangle.h"
-#include "verify/exact.h"
+#include "rayproof/certified.h"
+#include "verify/fallback.h"
 
 namespace rayproof::verify {
 
@@ -21,12 +20,13 @@ thread_local std::uint64_t g_fallbacks = 0;
 std::optional<Hit<double>> certified_filter(const io::Case& c) {
   const Ray<double> ray = ray_of<double>(c);
   switch (c.kind) {
-    case io::Kind::plane: return certified::plane(ray, plane_of<double>(c));
-    case io::Kind::sphere: return certified::sphere(ray, sphere_of<double>(c));
-    case io::Kind::ellipsoid: return certified::ellipsoid(ray, ellipsoid_of<double>(c));
+    case io::Kind::plane: return certified::try_intersect(ray, plane_of<double>(c));
+    case io::Kind::sphere: return certified::try_intersect(ray, sphere_of<double>(c));
+    case io::Kind::ellipsoid: return certified::try_intersect(ray, ellipsoid_of<double>(c));
+    // The method reports no barycentrics: the triangle filter without them (certified_triangle.h).
     case io::Kind::triangle: return certified::triangle(ray, triangle_of<double>(c));
-    case io::Kind::box: return certified::box(ray, box_of<double>(c));
-    case io::Kind::disk: return certified::disk(ray, disk_of<double>(c));
+    case io::Kind::box: return certified::try_intersect(ray, box_of<double>(c));
+    case io::Kind::disk: return certified::try_intersect(ray, disk_of<double>(c));
   }
   return std::nullopt;
 }
@@ -34,7 +34,17 @@ std::optional<Hit<double>> certified_filter(const io::Case& c) {
 io::CaseResult certified_classify(const io::Case& c, std::uint64_t* fallbacks) {
   if (const auto h = certified_filter(c)) return make_result(c.kind, h->contact, h->t, h->t2);
   if (fallbacks) ++*fallbacks;
-  return exact_classify(c);
+  const Ray<double> ray = ray_of<double>(c);
+  auto result = [&](const auto& h) { return make_result(c.kind, h.contact, h.t, h.t2); };
+  switch (c.kind) {
+    case io::Kind::plane: return result(certified::fallback::intersect(ray, plane_of<double>(c)));
+    case io::Kind::sphere: return result(certified::fallback::intersect(ray, sphere_of<double>(c)));
+    case io::Kind::ellipsoid: return result(certified::fallback::intersect(ray, ellipsoid_of<double>(c)));
+    case io::Kind::triangle: return result(certified::fallback::intersect(ray, triangle_of<double>(c)));
+    case io::Kind::box: return result(certified::fallback::intersect(ray, box_of<double>(c)));
+    case io::Kind::disk: return result(certified::fallback::intersect(ray, disk_of<double>(c)));
+  }
+  return {Contact::invalid, std::nullopt, std::nullopt};
 }
 
 std::uint64_t certified_fallbacks() { return g_fallbacks; }
@@ -43,12 +53,7 @@ void register_certified_method(MethodRegistry& reg) {
   reg.add({"certified",
            "exact class, T within 1 ulp: error-bounded filters in extended precision, exact (GMP) fallback",
            Precision::float64, std::vector<io::Kind>(io::kAllKinds.begin(), io::kAllKinds.end()),
-           [](const io::Case& c) {
-             if (const auto h = certified_filter(c)) return make_result(c.kind, h->contact, h->t, h->t2);
-             ++g_fallbacks;
-             return exact_classify(c);
-           },
-           certified_fallbacks});
+           [](const io::Case& c) { return certified_classify(c, &g_fallbacks); }, certified_fallbacks});
 }
 
 }  // namespace rayproof::verify

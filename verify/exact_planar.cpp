@@ -21,32 +21,32 @@ PlaneCrossing cross_plane(const Point& o, const Vector& d, const Point& on, cons
 }
 
 /// parallel / coplanar for a ray with d . n = 0.
-io::CaseResult in_or_off_plane(const PlaneCrossing& x) {
-  return {sign(x.num) == 0 ? Contact::coplanar : Contact::parallel, std::nullopt, std::nullopt};
+Hit<double> in_or_off_plane(const PlaneCrossing& x) {
+  return {sign(x.num) == 0 ? Contact::coplanar : Contact::parallel};
 }
 
 }  // namespace
 
-io::CaseResult exact_plane(const io::Case& c) {
-  const PlaneCrossing x = cross_plane(point_at(c, 0), vector_at(c, 3), point_at(c, 6), vector_at(c, 9));
+Hit<double> exact_plane(const Ray<double>& ray, const Plane<double>& pl) {
+  const PlaneCrossing x = cross_plane(point_of(ray.o), vector_of(ray.d), point_of(pl.point), vector_of(pl.normal));
   if (sign(x.den) == 0) return in_or_off_plane(x);
   const double t = round_nearest(x.num / x.den);
-  return {x.side() < 0 ? Contact::behind : Contact::hit, t, std::nullopt};
+  return {x.side() < 0 ? Contact::behind : Contact::hit, t};
 }
 
-io::CaseResult exact_disk(const io::Case& c) {
-  const Point o = point_at(c, 0), center = point_at(c, 6);
-  const Vector d = vector_at(c, 3);
-  const PlaneCrossing x = cross_plane(o, d, center, vector_at(c, 9));
+Hit<double> exact_disk(const Ray<double>& ray, const Disk<double>& dk) {
+  const Point o = point_of(ray.o), center = point_of(dk.center);
+  const Vector d = vector_of(ray.d);
+  const PlaneCrossing x = cross_plane(o, d, center, vector_of(dk.normal));
   if (sign(x.den) == 0) return in_or_off_plane(x);
   // den (P - center) = den (o - center) + num d, so |P - c|^2 vs r^2 <=> |that|^2 vs r^2 den^2.
   const Vector w = x.den * (o - center) + x.num * d;
-  const Q r(c.v[12]);
+  const Q r(dk.radius);
   const int outside = sign(w * w - r * r * x.den * x.den);
-  if (outside > 0) return {Contact::miss, std::nullopt, std::nullopt};
+  if (outside > 0) return {Contact::miss};
   const double t = round_nearest(x.num / x.den);
-  if (x.side() < 0) return {Contact::behind, t, std::nullopt};
-  return {outside == 0 ? Contact::rim : Contact::hit, t, std::nullopt};
+  if (x.side() < 0) return {Contact::behind, t};
+  return {outside == 0 ? Contact::rim : Contact::hit, t};
 }
 
 }  // namespace rayproof::verify

@@ -53,10 +53,10 @@ RootPair approximate_roots(const Quadratic& q, const Q& disc) {
   return sign(q.b) >= 0 ? RootPair{d1, d2} : RootPair{d2, d1};
 }
 
-io::CaseResult solve(const Quadratic& q) {
+Hit<double> solve(const Quadratic& q) {
   const Q disc = q.b * q.b - q.a * q.c;
   const int sd = sign(disc), sb = sign(q.b), sc = sign(q.c);
-  if (sd < 0) return {Contact::miss, std::nullopt, std::nullopt};
+  if (sd < 0) return {Contact::miss};
   if (sd == 0) {  // double root -b / a, behind when b > 0 (t = 0 when b = 0 is a tangent at 0.0)
     const double t = round_nearest(-q.b / q.a);
     return {sb > 0 ? Contact::behind : Contact::tangent, t, t};
@@ -78,19 +78,19 @@ io::CaseResult solve(const Quadratic& q) {
 
 }  // namespace
 
-io::CaseResult exact_sphere(const io::Case& c) {
+Hit<double> exact_sphere(const Ray<double>& ray, const Sphere<double>& s) {
   // |o + t d - center|^2 = r^2 with e = o - center.
-  const Vector d = vector_at(c, 3);
-  const Vector e = point_at(c, 0) - point_at(c, 6);
-  const Q r(c.v[9]);
+  const Vector d = vector_of(ray.d);
+  const Vector e = point_of(ray.o) - point_of(s.center);
+  const Q r(s.radius);
   return solve({d * d, d * e, e * e - r * r});
 }
 
-io::CaseResult exact_ellipsoid(const io::Case& c) {
+Hit<double> exact_ellipsoid(const Ray<double>& ray, const Ellipsoid<double>& el) {
   // sum_i (e_i + t d_i)^2 / s_i^2 = 1, times P = s_0^2 s_1^2 s_2^2 (> 0): weights w_i = P / s_i^2.
-  const Vector d = vector_at(c, 3);
-  const Vector e = point_at(c, 0) - point_at(c, 6);
-  const Q s0(c.v[9]), s1(c.v[10]), s2(c.v[11]);
+  const Vector d = vector_of(ray.d);
+  const Vector e = point_of(ray.o) - point_of(el.center);
+  const Q s0(el.semi_axes.x), s1(el.semi_axes.y), s2(el.semi_axes.z);
   const Q q0 = s0 * s0, q1 = s1 * s1, q2 = s2 * s2;
   const Q w[3] = {q1 * q2, q0 * q2, q0 * q1};
   Quadratic q{Q(0), Q(0), -(q0 * w[0])};
