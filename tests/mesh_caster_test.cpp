@@ -11,8 +11,8 @@
 #include <type_traits>
 #include <vector>
 
+#include "rayproof/certified.h"
 #include "rayproof/certified_triangle.h"
-#include "rayproof/exact.h"
 #include "rayproof/mesh_caster.h"
 #include "rayproof/triangle_moller_trumbore.h"
 #include "rayproof/triangle_watertight.h"
@@ -68,10 +68,10 @@ std::optional<Crossing> brute_one(cast::Robust, const Ray<double>& r, const Tria
       intersect_watertight<float, double>(rf, Triangle<float>{t.p0.cast<float>(), t.p1.cast<float>(), t.p2.cast<float>()});
   return crossing_of(h, h.b1, h.b2);
 }
-/// certified: the filter, else the exact answer (GMP), as the caster's fallback.
+/// certified: the filter, else certified::intersect (the filter again, then the exact fallback).
 std::optional<Crossing> brute_one(cast::Certified, const Ray<double>& r, const Triangle<double>& t) {
   if (const auto h = certified::triangle(r, t)) return crossing_of(*h, kNaN<double>, kNaN<double>);
-  return crossing_of(exact::intersect(r, t), kNaN<double>, kNaN<double>);
+  return crossing_of(certified::intersect(r, t), kNaN<double>, kNaN<double>);
 }
 
 /// Every crossing in [tmin, tmax], sorted by t then triangle.
@@ -278,7 +278,7 @@ TEST(MeshCaster, CertifiedUsesTheExactFallbackWhereTheFilterCannotDecide) {
     ASSERT_FALSE(certified::triangle(r, t)) << c[0] << ": the filter decides this case now: pick one that needs the fallback";
     const std::vector<std::uint32_t> f = {0, 1, 2};
     const MeshCaster<cast::Certified> caster(VertexArray(c + 6, 3), IndexArray{f.data(), 1});
-    const auto exact = brute_one(cast::Certified{}, r, t);  // the exact answer, through exact::intersect
+    const auto exact = brute_one(cast::Certified{}, r, t);  // the exact answer, through certified::intersect
     ASSERT_TRUE(exact);
     const MeshHit h = caster.closest(r);
     EXPECT_EQ(h.triangle, 0u);

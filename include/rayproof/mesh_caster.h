@@ -27,10 +27,10 @@
 ///                    edge or vertex.
 ///   cast::Certified  certified filter in double (rayproof/certified_triangle.h): the exact class,
 ///                    t within 1 ulp of the exact t of the double inputs, conservative traversal.
-///                    Its exact fallback is rayproof::exact::intersect (GMP, MPFR; no CGAL): a
-///                    program using MeshCaster<cast::Certified> links rayproof_scene_certified,
-///                    which brings rayproof_certified (else: an undefined reference to
-///                    MeshCaster<cast::Certified>'s constructor).
+///                    Where the filter cannot decide: rayproof::certified::intersect (its exact
+///                    fallback: GMP, MPFR; no CGAL). A program using MeshCaster<cast::Certified>
+///                    links rayproof_scene_certified, which brings rayproof_certified (else: an
+///                    undefined reference to MeshCaster<cast::Certified>'s constructor).
 /// - Results (MeshHit): triangle number (its position in the index array), t, contact class
 ///   (interior / edge / vertex / coplanar, CASES.md) and barycentrics b1 (weight of the triangle's
 ///   second vertex) and b2 (third) as the Float and Robust kernels compute them. Certified's

@@ -1,16 +1,16 @@
-// MeshCaster<cast::Certified>: the certified triangle filter of rayproof_scene with its exact
-// fallback, rayproof::exact::intersect (rayproof_certified: GMP and MPFR, no CGAL), for the
-// triangles the filter cannot decide.
-#include "rayproof/exact.h"
+// MeshCaster<cast::Certified>: the certified triangle filter of rayproof_scene; for the triangles
+// it cannot decide, rayproof::certified::intersect (rayproof_certified: the same filter, then its
+// exact fallback in GMP and MPFR; no CGAL).
+#include "rayproof/certified.h"
 #include "scene/mesh_caster_state.h"
 
 namespace rayproof {
 namespace detail {
 namespace {
 
-/// The exact class and t (rounded to nearest) of one ray/triangle pair.
+/// The exact class and t (rounded to nearest) of a ray/triangle pair the filter left undecided.
 Hit<double> exact_triangle(const Ray<double>& r, const Triangle<double>& t) {
-  const TriangleHit<double> h = exact::intersect(r, t);
+  const TriangleHit<double> h = certified::intersect(r, t);
   return {h.contact, h.t, h.t2};
 }
 
