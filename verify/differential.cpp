@@ -19,6 +19,7 @@ Verdict judge_class(const io::CaseResult& got, const io::CaseResult& want) {
   const bool g = touches(got), w = touches(want);
   if (g && !w) return Verdict::false_hit;
   if (!g && w) return Verdict::false_miss;
+  if (got.form == io::AnswerForm::coarse) return Verdict::agree;  // hit/miss only: no class to compare
   if (got.contact == want.contact) return Verdict::agree;
   return g ? Verdict::wrong_hit_class : Verdict::wrong_class;
 }
@@ -33,6 +34,12 @@ std::uint64_t ulps_one(const std::optional<double>& a, const std::optional<doubl
 }  // namespace
 
 std::uint64_t t_error_ulps(const io::CaseResult& got, const io::CaseResult& want, Precision p) {
+  if (got.form == io::AnswerForm::coarse) {
+    // A coarse t is the first contact at t >= 0: the exact T, or T2 when T < 0 (origin inside).
+    if (!got.t) return 0;
+    const std::optional<double> first = want.t && !(*want.t < 0) ? want.t : want.t2;
+    return ulps_one(got.t, first, p);
+  }
   return std::max(ulps_one(got.t, want.t, p), ulps_one(got.t2, want.t2, p));
 }
 
@@ -93,6 +100,7 @@ Judged run_and_tally(const Method& m, const io::Case& c, const io::CaseResult& e
   j.got = m.classify(j.input);
   if (m.fallbacks) s.fallbacks += m.fallbacks() - before;
   ++s.cases;
+  if (j.got.form == io::AnswerForm::coarse) ++s.coarse;
   j.verdict = judge_class(j.got, j.want);
   switch (j.verdict) {
     case Verdict::false_hit: ++s.false_hit; break;
@@ -100,7 +108,8 @@ Judged run_and_tally(const Method& m, const io::Case& c, const io::CaseResult& e
     case Verdict::wrong_hit_class: ++s.wrong_hit_class; break;
     case Verdict::wrong_class: ++s.wrong_class; break;
     case Verdict::agree:
-      if (j.want.t || j.got.t) s.ulps.push_back(j.ulps = t_error_ulps(j.got, j.want, m.precision));
+      if (j.got.form == io::AnswerForm::coarse ? j.got.t.has_value() && touches(j.want) : (j.want.t || j.got.t))
+        s.ulps.push_back(j.ulps = t_error_ulps(j.got, j.want, m.precision));
       break;
   }
   return j;
