@@ -100,7 +100,13 @@ Judged run_and_tally(const Method& m, const io::Case& c, const io::CaseResult& e
   j.got = m.classify(j.input);
   if (m.fallbacks) s.fallbacks += m.fallbacks() - before;
   ++s.cases;
-  if (j.got.form == io::AnswerForm::coarse) ++s.coarse;
+  if (j.got.form == io::AnswerForm::coarse) {
+    ++s.coarse;
+    if (j.got.contact == Contact::error) {  // a coarse error is a kernel failure (io/case_file.h), not a class error
+      ++s.kernel_failures;
+      return j;
+    }
+  }
   j.verdict = judge_class(j.got, j.want);
   switch (j.verdict) {
     case Verdict::false_hit: ++s.false_hit; break;

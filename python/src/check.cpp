@@ -1,17 +1,21 @@
 /// rayproof.check: a user's Python intersection function against exact, on rayproof's adversarial
-/// case families. The function answers coarsely (hit, t), per case or vectorized over numpy arrays;
-/// the answers are judged by verify::compare (verify/differential.h), the same judgement as
-/// `rayproof verify`.
+/// case families, through verify::check (verify/check.h), the engine of `rayproof check`: the same
+/// cases, the same judgement (verify/differential.h) and the same reproducers.
+///
+/// The function answers coarsely (hit, t), per case or vectorized over numpy arrays. It becomes a
+/// Method whose batches call Python (the GIL is held only while Python runs); an exception it raises
+/// makes that case a kernel failure (Contact::error, reported with the case through
+/// Method::take_failures), not a crash.
+#include <pybind11/stl.h>
+
 #include <fmt/core.h>
 
 #include <cmath>
-#include <cstring>
 #include <limits>
-#include <unordered_map>
 
 #include "bindings.h"
 #include "gen/families.h"
-#include "verify/differential.h"
+#include "verify/check.h"
 
 namespace rayproof::python {
 
@@ -31,61 +35,81 @@ std::vector<int> prim_groups(io::Kind k) {
   return {};
 }
 
-std::string key_of(const io::Case& c) {
-  std::string k(1 + sizeof(c.v), '\0');
-  k[0] = static_cast<char>(c.kind);
-  std::memcpy(k.data() + 1, c.v.data(), sizeof(c.v));
-  return k;
+bool is_interrupt(const py::error_already_set& e) {
+  return e.matches(PyExc_KeyboardInterrupt) || e.matches(PyExc_SystemExit);
 }
 
-struct Failure {
-  std::string family, case_line, error;
-};
-
-/// Thrown (as a C++ exception carrying a Python error) when the user's function breaks the
-/// calling contract (not when it raises: that is a failure of the case).
-[[noreturn]] void contract_error(const std::string& what) { throw py::type_error(what); }
-
-class Caller {
+/// The user's function behind the Method interface. Every member is called with the GIL released
+/// (from verify::check) and takes it for the Python calls.
+class PyKernel {
  public:
-  Caller(py::function f, io::Kind kind, bool f32) : f_(std::move(f)), groups_(prim_groups(kind)), f32_(f32) {}
+  PyKernel(py::function f, io::Kind kind, bool f32, bool vectorized)
+      : f_(std::move(f)), groups_(prim_groups(kind)), f32_(f32), vectorized_(vectorized) {}
 
-  /// Arguments for cases [b, e): per case (e - b == 1 and !vectorized) 1-D arrays and scalars,
-  /// else (n, 3) and (n,) arrays.
-  py::tuple arguments(const std::vector<io::Case>& cs, std::size_t b, std::size_t e, bool vectorized) const {
+  void classify_batch(std::span<const io::Case> in, std::span<io::CaseResult> out) {
+    py::gil_scoped_acquire locked;
+    if (vectorized_) {
+      std::string ignored;
+      if (batch(in, out, ignored)) return;
+      // It raised on the batch: one case at a time finds the cases that raise.
+      for (std::size_t i = 0; i < in.size(); ++i) {
+        std::string error;
+        if (!batch(in.subspan(i, 1), out.subspan(i, 1), error)) fail(in[i], out[i], error);
+      }
+      return;
+    }
+    for (std::size_t i = 0; i < in.size(); ++i) {
+      std::string error;
+      if (!one(in[i], out[i], error)) fail(in[i], out[i], error);
+    }
+  }
+
+  io::CaseResult classify(const io::Case& c) {
+    io::CaseResult r;
+    classify_batch({&c, 1}, {&r, 1});
+    return r;
+  }
+
+  std::vector<KernelFailure> take_failures() { return std::exchange(failures_, {}); }
+
+ private:
+  void fail(const io::Case& c, io::CaseResult& out, const std::string& error) {
+    out = io::CaseResult{};
+    out.form = io::AnswerForm::coarse;  // a coarse Contact::error: a kernel failure (io/case_file.h)
+    out.contact = Contact::error;
+    failures_.push_back({error, c});
+  }
+
+  /// The arguments for cases `cs`: (n, 3) and (n,) arrays when vectorized, else 1-D arrays of 3
+  /// and floats for the one case.
+  py::tuple arguments(std::span<const io::Case> cs) const {
     std::vector<int> widths = {3, 3};
     widths.insert(widths.end(), groups_.begin(), groups_.end());
     py::tuple args(widths.size());
-    const auto n = static_cast<py::ssize_t>(e - b);
     std::size_t off = 0;
     for (std::size_t g = 0; g < widths.size(); ++g) {
       const int w = widths[g];
-      py::array a;
-      if (!vectorized && w == 1) {
-        args[g] = py::float_(f32_ ? double(float(cs[b].v[off])) : cs[b].v[off]);
+      if (!vectorized_ && w == 1) {
+        args[g] = py::float_(cs[0].v[off]);  // float methods' inputs are already rounded: exact
         off += 1;
         continue;
       }
       std::vector<py::ssize_t> shape;
-      if (vectorized) shape.push_back(n);
+      if (vectorized_) shape.push_back(static_cast<py::ssize_t>(cs.size()));
       if (w > 1) shape.push_back(w);
-      if (f32_) {
-        py::array_t<float> x(shape);
-        float* p = x.mutable_data();
-        for (std::size_t i = b; i < e; ++i)
-          for (int k = 0; k < w; ++k) *p++ = static_cast<float>(cs[i].v[off + std::size_t(k)]);
-        a = x;
-      } else {
-        py::array_t<double> x(shape);
-        double* p = x.mutable_data();
-        for (std::size_t i = b; i < e; ++i)
-          for (int k = 0; k < w; ++k) *p++ = cs[i].v[off + std::size_t(k)];
-        a = x;
-      }
-      args[g] = a;
+      if (f32_) args[g] = fill<float>(shape, cs, off, w);
+      else args[g] = fill<double>(shape, cs, off, w);
       off += std::size_t(w);
     }
     return args;
+  }
+  template <class T>
+  static py::array_t<T> fill(const std::vector<py::ssize_t>& shape, std::span<const io::Case> cs, std::size_t off, int w) {
+    py::array_t<T> x(shape);
+    T* p = x.mutable_data();
+    for (const auto& c : cs)
+      for (int k = 0; k < w; ++k) *p++ = static_cast<T>(c.v[off + std::size_t(k)]);
+    return x;
   }
 
   static io::CaseResult coarse(bool hit, std::optional<double> t) {
@@ -96,13 +120,13 @@ class Caller {
     return r;
   }
 
-  /// One case, per-case calling convention. Returns false (and sets `error`) when f raised.
-  bool one(const std::vector<io::Case>& cs, std::size_t i, io::CaseResult& out, std::string& error) const {
+  /// One case, per-case convention. False (with the message) when the function raised.
+  bool one(const io::Case& c, io::CaseResult& out, std::string& error) const {
     py::object r;
     try {
-      r = f_(*arguments(cs, i, i + 1, false));
+      r = f_(*arguments({&c, 1}));
     } catch (py::error_already_set& e) {
-      if (e.matches(PyExc_KeyboardInterrupt) || e.matches(PyExc_SystemExit)) throw;
+      if (is_interrupt(e)) throw;
       error = e.what();
       return false;
     }
@@ -112,60 +136,69 @@ class Caller {
     }
     if ((py::isinstance<py::tuple>(r) || py::isinstance<py::list>(r)) && py::len(r) == 2) {
       py::sequence s = r.cast<py::sequence>();
-      std::optional<double> t;
       try {
-        const bool hit = PyObject_IsTrue(s[0].ptr()) == 1;
+        std::optional<double> t;
         if (!s[1].is_none()) t = s[1].cast<double>();
-        out = coarse(hit, t);
+        const int hit = PyObject_IsTrue(s[0].ptr());
+        if (hit < 0) throw py::error_already_set();
+        out = coarse(hit == 1, t);
         return true;
       } catch (py::cast_error&) {
+      } catch (py::error_already_set& e) {
+        if (is_interrupt(e)) throw;
       }
     }
-    contract_error(fmt::format("check: the function returned {} for the case `{}`; expected (hit: bool, t: float or None)",
-                               py::repr(r).cast<std::string>(), io::format_case(cs[i])));
+    throw py::type_error(fmt::format("check: the function returned {} for the case `{}`; expected (hit: bool, t: float or None)",
+                                     py::repr(r).cast<std::string>(), io::format_case(c)));
   }
 
-  /// Cases [0, n) vectorized. Returns false when f raised (then call one case at a time).
-  bool batch(const std::vector<io::Case>& cs, std::vector<io::CaseResult>& out, std::string& error) const {
+  /// Cases `cs` in one vectorized call. False (with the message) when the function raised.
+  bool batch(std::span<const io::Case> cs, std::span<io::CaseResult> out, std::string& error) const {
     const std::size_t n = cs.size();
     py::object r;
     try {
-      r = f_(*arguments(cs, 0, n, true));
+      r = f_(*arguments(cs));
     } catch (py::error_already_set& e) {
-      if (e.matches(PyExc_KeyboardInterrupt) || e.matches(PyExc_SystemExit)) throw;
+      if (is_interrupt(e)) throw;
       error = e.what();
       return false;
     }
-    if (!(py::isinstance<py::tuple>(r) || py::isinstance<py::list>(r)) || py::len(r) != 2)
-      contract_error(fmt::format("check: the vectorized function returned {}; expected (hit array, t array)",
-                                 py::repr(r).attr("__getitem__")(py::slice(0, 200, 1)).cast<std::string>()));
-    py::sequence s = r.cast<py::sequence>();
     auto np = py::module_::import("numpy");
-    auto hit = py::array_t<bool, py::array::c_style | py::array::forcecast>::ensure(np.attr("asarray")(s[0], "bool"));
+    if (!(py::isinstance<py::tuple>(r) || py::isinstance<py::list>(r)) || py::len(r) != 2)
+      throw py::type_error(fmt::format("check: the vectorized function returned {}; expected (hit array, t array)",
+                                       py::repr(r).attr("__getitem__")(py::slice(0, 200, 1)).cast<std::string>()));
+    py::sequence s = r.cast<py::sequence>();
+    const auto shape_of = [&](py::handle x) { return py::str(np.attr("shape")(x)).cast<std::string>(); };
+    py::array_t<bool, py::array::c_style | py::array::forcecast> hit;
     py::array_t<double, py::array::c_style | py::array::forcecast> t;
-    if (!s[1].is_none()) t = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(s[1]);
-    if (!hit || hit.ndim() != 1 || static_cast<std::size_t>(hit.shape(0)) != n)
-      contract_error(fmt::format("check: the vectorized function's hit array has shape {}; expected ({},)",
-                                 py::str(np.attr("shape")(s[0])).cast<std::string>(), n));
-    if (!s[1].is_none() && (!t || t.ndim() != 1 || static_cast<std::size_t>(t.shape(0)) != n))
-      contract_error(fmt::format("check: the vectorized function's t array has shape {}; expected ({},)",
-                                 py::str(np.attr("shape")(s[1])).cast<std::string>(), n));
-    out.resize(n);
+    try {
+      hit = np.attr("asarray")(s[0], "bool");
+      if (!s[1].is_none()) t = np.attr("asarray")(s[1], "float64");
+    } catch (py::error_already_set& e) {
+      if (is_interrupt(e)) throw;
+      throw py::type_error(fmt::format("check: the vectorized function's answer is not (bool array, float array): {}", e.what()));
+    }
+    if (hit.ndim() != 1 || static_cast<std::size_t>(hit.shape(0)) != n)
+      throw py::type_error(fmt::format("check: the vectorized function's hit array has shape {}; expected ({},)",
+                                       shape_of(s[0]), n));
+    if (!s[1].is_none() && (t.ndim() != 1 || static_cast<std::size_t>(t.shape(0)) != n))
+      throw py::type_error(fmt::format("check: the vectorized function's t array has shape {}; expected ({},)",
+                                       shape_of(s[1]), n));
     for (std::size_t i = 0; i < n; ++i)
-      out[i] = coarse(hit.data()[i], t ? std::optional<double>(t.data()[i]) : std::nullopt);
+      out[i] = coarse(hit.data()[i], s[1].is_none() ? std::nullopt : std::optional<double>(t.data()[i]));
     return true;
   }
 
- private:
   py::function f_;
   std::vector<int> groups_;
-  bool f32_;
+  bool f32_, vectorized_;
+  std::vector<KernelFailure> failures_;
 };
 
-py::dict stats_dict(const verify::Stats& s, std::optional<std::uint64_t> max_ulps, std::size_t failures) {
+py::dict stats_dict(const verify::Stats& s, std::size_t over, std::size_t failures) {
   py::dict d;
-  d["cases"] = s.cases + failures;
-  d["judged"] = s.cases;
+  d["cases"] = s.cases;
+  d["judged"] = s.cases - failures;
   d["false_hits"] = s.false_hit;
   d["false_misses"] = s.false_miss;
   d["failures"] = failures;
@@ -173,17 +206,23 @@ py::dict stats_dict(const verify::Stats& s, std::optional<std::uint64_t> max_ulp
   d["t_ulps_median"] = s.ulp_quantile(0.5);
   d["t_ulps_p99"] = s.ulp_quantile(0.99);
   d["t_ulps_max"] = s.ulp_quantile(1.0);
-  if (max_ulps) {
-    std::size_t over = 0;
-    for (auto u : s.ulps) over += u > *max_ulps;
-    d["t_over_max_ulps"] = over;
-  }
+  d["t_over_tolerance"] = over;
   return d;
 }
 
-py::dict check(py::function f, const std::string& kind_name, std::size_t count, std::uint64_t seed,
+std::string row(const std::string& name, const verify::Stats& s, std::size_t failures) {
+  return fmt::format("{:<24} {:>7} {:>10} {:>11} {:>7} {:>10} {:>8} {:>8}\n", name, s.cases, s.false_hit, s.false_miss,
+                     failures, s.ulp_quantile(0.5), s.ulp_quantile(0.99), s.ulp_quantile(1.0));
+}
+
+py::dict check(py::object f_obj, const std::string& kind_name, std::size_t count, std::uint64_t seed,
                const std::string& precision, bool vectorized, std::optional<std::vector<std::string>> family_names,
-               std::size_t reproducers, std::optional<std::uint64_t> max_ulps) {
+               std::size_t reproducers, std::uint64_t ulp_tolerance, bool watertight, bool exact_class,
+               std::optional<std::uint64_t> max_ulps, bool minimize, py::object progress) {
+  if (!PyCallable_Check(f_obj.ptr()))
+    throw py::type_error(fmt::format("f: expected a callable, got {}", py::repr(f_obj).cast<std::string>()));
+  if (!progress.is_none() && !PyCallable_Check(progress.ptr()))
+    throw py::type_error(fmt::format("progress: expected a callable or None, got {}", py::repr(progress).cast<std::string>()));
   const io::Kind kind = kind_named(kind_name);
   if (precision != "float" && precision != "double")
     throw py::value_error(fmt::format("precision: expected 'float' or 'double', got '{}'", precision));
@@ -191,125 +230,96 @@ py::dict check(py::function f, const std::string& kind_name, std::size_t count, 
   if (count > 10'000'000) throw py::value_error(fmt::format("count: {} cases per family is too many (at most 10000000)", count));
   const bool f32 = precision == "float";
 
-  // The families: every one of this kind (and `invalid`, restricted to this kind), or those named.
-  std::vector<const gen::Family*> fams;
+  verify::CheckOptions opt;
   if (family_names) {
     for (const auto& n : *family_names) {
       const gen::Family* fam = gen::find_family(n);
       if (!fam) throw py::value_error(fmt::format("families: unknown family '{}' (known: {})", n, gen::family_names()));
       if (!fam->every_kind && fam->kind != kind)
         throw py::value_error(fmt::format("families: '{}' is a {} family, not {}", n, io::to_string(fam->kind), kind_name));
-      fams.push_back(fam);
+      opt.families.push_back(fam);
     }
-  } else {
-    for (const auto& fam : gen::families())
-      if (fam.kind == kind || fam.every_kind) fams.push_back(&fam);
+    if (opt.families.empty()) throw py::value_error("families: empty list (None runs every family of the kind)");
   }
+  opt.count = count;
+  opt.seed = seed;
+  opt.ulp_tolerance = ulp_tolerance;
+  opt.reproducers = reproducers;
+  opt.minimize = minimize;
+  opt.promises.watertight = watertight;
+  opt.promises.exact_class = exact_class;
+  opt.promises.max_ulps = max_ulps;
+  if (!progress.is_none())
+    opt.progress = [progress](const verify::CheckProgress& p) {
+      py::gil_scoped_acquire locked;
+      progress(p.family, p.families_done, p.families_total);
+    };
 
+  PyKernel kernel(py::reinterpret_borrow<py::function>(f_obj), kind, f32, vectorized);
   Method meth;
   meth.name = "python";
   meth.summary = "the user's Python function";
   meth.precision = f32 ? Precision::float32 : Precision::float64;
   meth.kinds = {kind};
-  std::unordered_map<std::string, io::CaseResult> answers;
-  meth.classify = [&answers](const io::Case& c) {
-    auto it = answers.find(key_of(c));
-    return it == answers.end() ? io::CaseResult{Contact::error} : it->second;
+  meth.classify = [&kernel](const io::Case& c) { return kernel.classify(c); };
+  meth.classify_batch = [&kernel](std::span<const io::Case> in, std::span<io::CaseResult> out) {
+    kernel.classify_batch(in, out);
   };
-  meth.classify_batch = [&meth](std::span<const io::Case> in, std::span<io::CaseResult> out) {
-    for (std::size_t i = 0; i < in.size(); ++i) out[i] = meth.classify(in[i]);
-  };
+  meth.take_failures = [&kernel] { return kernel.take_failures(); };
 
-  Caller caller(f, kind, f32);
+  verify::CheckResult res;
+  {
+    py::gil_scoped_release unlocked;
+    res = verify::check(meth, opt);
+  }
+
   py::dict per_family;
-  verify::Stats total;
-  std::size_t total_failures = 0;
   py::list repro, failures_out;
-  std::string table = fmt::format("{:<24} {:>7} {:>10} {:>12} {:>8} {:>10} {:>8} {:>8}\n", "family", "cases",
+  std::string table = fmt::format("{:<24} {:>7} {:>10} {:>11} {:>7} {:>10} {:>8} {:>8}\n", "family", "cases",
                                   "false hit", "false miss", "raised", "t med ulp", "p99", "max");
-  for (const gen::Family* fam : fams) {
-    std::vector<io::Case> cases;
-    verify::ExactAnswers exact;
-    {
-      py::gil_scoped_release unlocked;
-      for (auto& c : gen::generate(*fam, count, seed, f32 ? gen::Precision::float32 : gen::Precision::float64))
-        if (c.kind == kind) cases.push_back(f32 ? io::round_to_float(c) : c);
-    }
-    if (cases.empty()) continue;
-    // The function's answers; cases it raised on are set aside with the error.
-    std::vector<io::CaseResult> got(cases.size());
-    std::vector<bool> raised(cases.size(), false);
-    std::vector<Failure> fails;
-    std::string batch_error;
-    const bool batched = vectorized && caller.batch(cases, got, batch_error);  // raised: one case at a time
-    if (!batched) {
-      for (std::size_t i = 0; i < cases.size(); ++i) {
-        std::string err;
-        if (vectorized) {
-          std::vector<io::Case> one{cases[i]};
-          std::vector<io::CaseResult> r;
-          if (caller.batch(one, r, err)) {
-            got[i] = r[0];
-            continue;
-          }
-        } else if (caller.one(cases, i, got[i], err)) {
-          continue;
-        }
-        raised[i] = true;
-        fails.push_back({fam->name, io::format_case(cases[i]), err});
-      }
-    }
-    std::vector<io::Case> judged_cases;
-    answers.clear();
-    for (std::size_t i = 0; i < cases.size(); ++i)
-      if (!raised[i]) {
-        judged_cases.push_back(cases[i]);
-        answers.emplace(key_of(cases[i]), got[i]);
-      }
-    verify::Comparison cmp;
-    {
-      py::gil_scoped_release unlocked;
-      exact = verify::exact_answers(judged_cases);
-      cmp = verify::compare(judged_cases, exact, {&meth}, reproducers,
-                            max_ulps ? *max_ulps : std::numeric_limits<std::uint64_t>::max());
-    }
-    const verify::Stats s = cmp.total(meth.name);
-    total.merge(s);
-    total_failures += fails.size();
-    per_family[py::str(fam->name)] = stats_dict(s, max_ulps, fails.size());
-    table += fmt::format("{:<24} {:>7} {:>10} {:>12} {:>8} {:>10} {:>8} {:>8}\n", fam->name, s.cases + fails.size(),
-                         s.false_hit, s.false_miss, fails.size(), s.ulp_quantile(0.5), s.ulp_quantile(0.99),
-                         s.ulp_quantile(1.0));
-    for (const auto& mm : cmp.mismatches) {
+  for (const auto& fc : res.families) {
+    per_family[py::str(fc.family)] = stats_dict(fc.stats, fc.over_tolerance, fc.failures.size());
+    table += row(fc.family, fc.stats, fc.failures.size());
+    for (const auto& w : fc.worst) {
       py::dict r;
-      r["family"] = fam->name;
-      r["verdict"] = verify::to_string(mm.verdict);
-      r["case"] = io::format_case(mm.input);
-      r["got"] = io::format_result(mm.got);
-      r["want"] = io::format_result(mm.want);
-      r["ulps"] = mm.ulps;
+      r["family"] = w.family;
+      r["verdict"] = verify::to_string(w.judged.verdict);
+      r["case"] = io::format_case(w.judged.input);
+      r["got"] = io::format_result(w.judged.got);
+      r["want"] = io::format_result(w.judged.want);
+      r["ulps"] = w.judged.ulps;
+      r["minimized"] = w.minimized;
       repro.append(r);
     }
-    for (const auto& fl : fails) {
+    for (const auto& kf : fc.failures) {
       py::dict r;
-      r["family"] = fl.family;
-      r["case"] = fl.case_line;
-      r["error"] = fl.error;
+      r["family"] = fc.family;
+      r["case"] = io::format_case(kf.input);
+      r["error"] = kf.what;
       failures_out.append(r);
     }
   }
-  table += fmt::format("{:<24} {:>7} {:>10} {:>12} {:>8} {:>10} {:>8} {:>8}\n", "total", total.cases + total_failures,
-                       total.false_hit, total.false_miss, total_failures, total.ulp_quantile(0.5),
-                       total.ulp_quantile(0.99), total.ulp_quantile(1.0));
+  const verify::Stats total = res.total();
+  table += row("total", total, res.failures());
+  py::list promises;
+  for (const auto& p : res.promises) {
+    py::dict d;
+    d["promise"] = p.promise;
+    d["kept"] = p.kept;
+    d["violations"] = p.violations;
+    promises.append(d);
+  }
   py::dict out;
   out["kind"] = kind_name;
   out["precision"] = precision;
   out["count"] = count;
   out["seed"] = seed;
   out["families"] = per_family;
-  out["total"] = stats_dict(total, max_ulps, total_failures);
+  out["total"] = stats_dict(total, res.over_tolerance(), res.failures());
   out["reproducers"] = repro;
   out["failures"] = failures_out;
+  out["promises"] = promises;
+  out["promises_kept"] = res.promises_kept();
   out["table"] = table;
   return out;
 }
@@ -319,27 +329,32 @@ py::dict check(py::function f, const std::string& kind_name, std::size_t count, 
 void bind_check(py::module_& m) {
   using namespace pybind11::literals;
   m.def("check", &check, "f"_a, "kind"_a = "triangle", "count"_a = 200, "seed"_a = 1, "precision"_a = "float",
-        "vectorized"_a = false, "families"_a = py::none(), "reproducers"_a = 3, "max_ulps"_a = py::none(),
+        "vectorized"_a = false, "families"_a = py::none(), "reproducers"_a = 3, "ulp_tolerance"_a = 1,
+        "watertight"_a = false, "exact_class"_a = false, "max_ulps"_a = py::none(), "minimize"_a = true,
+        "progress"_a = py::none(),
         R"doc(Check a Python intersection function against exact on rayproof's case families.
 
-f answers whether the ray touches the primitive at some t >= 0 and where first:
+f answers whether the ray touches the primitive at some t >= 0, and where first:
   per case:    f(o, d, *prim) -> (hit, t)        o, d, points: numpy arrays (3,); radii: float
   vectorized:  f(O, D, *prim) -> (hits, ts)      O, D, points: (n, 3); radii: (n,); results (n,)
-  (triangle: f(o, d, p0, p1, p2); sphere: f(o, d, center, radius); plane: point, normal;
-  ellipsoid: center, semi_axes; box: lo, hi; disk: center, normal, radius.)
-t may be None (or NaN) when the function does not compute it; it is ignored for misses.
-precision 'float': cases built in float precision, arrays are float32, t error in float ulps;
-'double': float64. Every family of the kind runs (count cases each, from seed; `families` picks
-some), and the answers are judged as `rayproof verify` judges them: false hits, false misses
-(against the exact class) and t error in ulps of the exact first contact.
-A Python exception raised by f is not propagated: the case is listed in 'failures' with the error
-and left out of the tallies (KeyboardInterrupt and SystemExit do propagate). A result of the wrong
-form raises TypeError.
-Returns a dict: 'families' (per family: cases, judged, false_hits, false_misses, failures,
-t_count, t_ulps_median, t_ulps_p99, t_ulps_max, and t_over_max_ulps with max_ulps), 'total',
-'reproducers' (up to `reproducers` per family: the case line as the function saw it, its answer,
-the exact answer, the verdict and the t error; class errors, and t errors above max_ulps when it
-is given), 'failures', and 'table' (the tallies as text).)doc");
+  (triangle: f(o, d, p0, p1, p2); sphere: center, radius; plane: point, normal; ellipsoid:
+  center, semi_axes; box: lo, hi; disk: center, normal, radius.)
+t may be None (or NaN) when f does not compute it; it is ignored for misses.
+precision 'float': f is a float kernel: it gets float32 arrays of the float-rounded inputs and its
+t error is counted in float ulps; 'double': float64.
+This is `rayproof check` (verify::check): every family of the kind (or `families`), count cases
+each (half built in float precision, half in double) from seed, judged as `rayproof verify` judges:
+false hits and false misses against the exact class, t error in ulps of the exact first contact.
+A Python exception raised by f does not propagate: the case is listed in 'failures' with the
+error (KeyboardInterrupt and SystemExit do propagate). An answer of the wrong form raises TypeError.
+Promises (watertight: no false miss on tri_edge/tri_vertex; exact_class: no class error; max_ulps)
+are reported kept or broken in 'promises'.
+progress: called as progress(family, families_done, families_total) after each family.
+Returns a dict: 'families' (per family: cases, judged, false_hits, false_misses, failures, t_count,
+t_ulps_median, t_ulps_p99, t_ulps_max, t_over_tolerance), 'total', 'reproducers' (the worst
+`reproducers` cases per family as case lines, as f saw them, minimized when `minimize`: f's
+answer, the exact one, the verdict, the t error in ulps), 'failures', 'promises',
+'promises_kept' and 'table' (the tallies as text).)doc");
 }
 
 }  // namespace rayproof::python

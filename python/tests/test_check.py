@@ -142,3 +142,25 @@ def test_keyboard_interrupt_propagates():
 
     with pytest.raises(KeyboardInterrupt):
         rayproof.check(stop, count=3, families=["tri_generic"])
+
+
+def test_promises_and_progress():
+    seen = []
+    res = rayproof.check(moller_trumbore, vectorized=True, count=200, families=EDGE_VERTEX, watertight=True,
+                         max_ulps=4, progress=lambda fam, done, total: seen.append((fam, done, total)))
+    assert seen == [("tri_edge", 1, 2), ("tri_vertex", 2, 2)]
+    promises = {p["promise"]: p for p in res["promises"]}
+    assert not promises["watertight"]["kept"] and not res["promises_kept"]
+    fm = res["families"]["tri_edge"]["false_misses"] + res["families"]["tri_vertex"]["false_misses"]
+    assert promises["watertight"]["violations"] == fm > 0
+    assert "max-ulps 4" in promises
+    res = rayproof.check(certified, count=10, precision="double", exact_class=True, watertight=True, max_ulps=1)
+    assert res["promises_kept"] and all(p["kept"] for p in res["promises"])
+
+
+def test_the_example_finds_false_misses():
+    import pathlib, subprocess, sys
+    example = pathlib.Path(__file__).resolve().parents[2] / "examples" / "python" / "numpy_mt_check.py"
+    out = subprocess.run([sys.executable, str(example)], capture_output=True, text=True, check=True).stdout
+    assert "'watertight', 'kept': False" in out
+    assert "-> miss - - ; exact:" in out
