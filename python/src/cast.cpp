@@ -1,20 +1,28 @@
 /// rayproof.Mesh: ray casting (closest, any, all) on a triangle mesh given as numpy arrays, through
-/// the scene's four-wide BVH (src/scene/accel.h) with a compiled or registry method.
+/// the public API rayproof::MeshCaster (include/rayproof/mesh_caster.h) with the float, robust or
+/// certified method.
 #include <fmt/core.h>
 
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <mutex>
+#include <variant>
 
 #include "bindings.h"
-#include "scene/accel.h"
+#include "rayproof/mesh_caster.h"
 
 namespace rayproof::python {
 
 namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
-constexpr double kNaNd = std::numeric_limits<double>::quiet_NaN();
+
+template <class M>
+struct Lazy {
+  std::once_flag once;
+  std::unique_ptr<MeshCaster<M>> caster;
+};
 
 class PyMesh {
  public:
@@ -25,110 +33,97 @@ class PyMesh {
     const auto id = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(ix);
     if (!vd || !id) throw py::error_already_set();
     const std::size_t nv = static_cast<std::size_t>(vd.shape(0)), nt = static_cast<std::size_t>(id.shape(0));
-    if (nt == 0) throw py::value_error("indices: the mesh has no triangles (shape (0, 3))");
-    if (nv >= std::numeric_limits<std::uint32_t>::max())
-      throw py::value_error(fmt::format("vertices: {} vertices, at most 4294967294 are supported", nv));
-    // uint64 indices above 2^63 wrap to negative int64 in the cast above and are caught as negative.
-    scene_ = std::make_unique<scene::Scene>();
-    auto& mesh = scene_->mesh;
-    mesh.vertices.resize(nv);
-    const double* vp = vd.data();
-    for (std::size_t i = 0; i < nv; ++i) {
-      for (int k = 0; k < 3; ++k)
-        if (!std::isfinite(vp[3 * i + k]))
-          throw py::value_error(fmt::format("vertices: row {} is not finite ({}, {}, {})", i, vp[3 * i],
-                                            vp[3 * i + 1], vp[3 * i + 2]));
-      mesh.vertices[i] = {vp[3 * i], vp[3 * i + 1], vp[3 * i + 2]};
-    }
-    mesh.triangles.resize(nt);
-    const std::int64_t* ip = id.data();
+    // A private packed copy: MeshCaster reads packed doubles in place, and the caller's array may change.
+    vertices_.assign(vd.data(), vd.data() + 3 * nv);
+    indices_.resize(3 * nt);
+    const std::int64_t* ip = id.data();  // uint64 indices >= 2^63 wrap to negative here: caught below
     for (std::size_t i = 0; i < nt; ++i)
-      for (int k = 0; k < 3; ++k) {
+      for (std::size_t k = 0; k < 3; ++k) {
         const std::int64_t x = ip[3 * i + k];
         if (x < 0 || static_cast<std::uint64_t>(x) >= nv)
           throw py::value_error(fmt::format("indices: row {} has vertex index {} outside [0, {})", i, x, nv));
-        mesh.triangles[i][k] = static_cast<std::uint32_t>(x);
+        indices_[3 * i + k] = static_cast<std::uint32_t>(x);
       }
-    py::gil_scoped_release unlocked;
-    accel_ = std::make_unique<scene::Accel>(*scene_);
+    (void)caster<cast::Robust>();  // builds the default method's BVH now: bad input is reported here
   }
 
-  [[nodiscard]] std::size_t triangles() const { return scene_->mesh.triangles.size(); }
-  [[nodiscard]] std::size_t vertices() const { return scene_->mesh.vertices.size(); }
+  [[nodiscard]] std::size_t triangles() const { return indices_.size() / 3; }
+  [[nodiscard]] std::size_t vertices() const { return vertices_.size() / 3; }
 
   py::dict closest(py::handle origins, py::handle directions, const std::string& method, double tmin, double tmax,
-                   int threads) const {
+                   int threads) {
     const auto rays = rays_of(origins, directions);
-    const scene::SceneMethod sm = scene_method(method);
     const std::size_t n = rays.size();
-    py::array_t<std::uint8_t> codes(static_cast<py::ssize_t>(n));
-    py::array_t<double> t(static_cast<py::ssize_t>(n));
-    py::array_t<std::int64_t> prim(static_cast<py::ssize_t>(n));
-    auto* co = codes.mutable_data();
-    auto* to = t.mutable_data();
-    auto* po = prim.mutable_data();
-    {
+    std::vector<MeshHit> hits(n);
+    const TRange range{tmin, tmax};
+    dispatch(method, [&](const auto& c) {
       py::gil_scoped_release unlocked;
-      std::vector<scene::PrimHit> hits(n);
-      accel_->closest_batch(rays, hits, sm, threads, {tmin, tmax});
-      for (std::size_t i = 0; i < n; ++i) {
-        const bool valid = rays[i].valid();
-        const bool none = !valid || hits[i].prim == scene::PrimHit::kNoPrim;
-        co[i] = static_cast<std::uint8_t>(valid ? hits[i].contact : Contact::invalid);
-        to[i] = none ? kNaNd : hits[i].t;
-        po[i] = none ? -1 : static_cast<std::int64_t>(hits[i].prim);
-      }
+      c.closest(rays, {&range, 1}, hits, threads);
+    });
+    py::array_t<std::uint8_t> codes(static_cast<py::ssize_t>(n));
+    py::array_t<double> t(static_cast<py::ssize_t>(n)), b1(static_cast<py::ssize_t>(n)), b2(static_cast<py::ssize_t>(n));
+    py::array_t<std::int64_t> prim(static_cast<py::ssize_t>(n));
+    py::array_t<bool> hit(static_cast<py::ssize_t>(n));
+    for (std::size_t i = 0; i < n; ++i) {
+      const MeshHit& h = hits[i];
+      codes.mutable_data()[i] = static_cast<std::uint8_t>(h.contact);
+      hit.mutable_data()[i] = h.hit();
+      prim.mutable_data()[i] = h.hit() ? static_cast<std::int64_t>(h.triangle) : -1;
+      t.mutable_data()[i] = h.t;
+      b1.mutable_data()[i] = h.b1;
+      b2.mutable_data()[i] = h.b2;
     }
     py::dict out;
-    out["hit"] = py::array(prim.attr("__ge__")(0));
+    out["hit"] = hit;
     out["prim"] = prim;
     out["t"] = t;
+    out["b1"] = b1;
+    out["b2"] = b2;
     out["classes"] = class_names(codes);
     out["codes"] = codes;
     return out;
   }
 
   py::array_t<bool> any(py::handle origins, py::handle directions, const std::string& method, double tmin, double tmax,
-                        int threads) const {
+                        int threads) {
     const auto rays = rays_of(origins, directions);
-    const scene::SceneMethod sm = scene_method(method);
     const std::size_t n = rays.size();
-    py::array_t<bool> out(static_cast<py::ssize_t>(n));
-    bool* o = out.mutable_data();
-    {
+    std::vector<std::uint8_t> hit(n);
+    const TRange range{tmin, tmax};
+    dispatch(method, [&](const auto& c) {
       py::gil_scoped_release unlocked;
-      std::vector<std::uint8_t> hit(n);
-      accel_->any_batch(rays, hit, sm, threads, {tmin, tmax});
-      for (std::size_t i = 0; i < n; ++i) o[i] = rays[i].valid() && hit[i];
-    }
+      c.any(rays, {&range, 1}, hit, threads);
+    });
+    py::array_t<bool> out(static_cast<py::ssize_t>(n));
+    for (std::size_t i = 0; i < n; ++i) out.mutable_data()[i] = hit[i] != 0;
     return out;
   }
 
-  py::dict all(py::handle origins, py::handle directions, const std::string& method, double tmin, double tmax) const {
+  py::dict all(py::handle origins, py::handle directions, const std::string& method, double tmin, double tmax) {
     const auto rays = rays_of(origins, directions);
-    const scene::SceneMethod sm = scene_method(method);
     const std::size_t n = rays.size();
     std::vector<std::int64_t> offsets(n + 1, 0);
-    std::vector<scene::PrimHit> flat;
-    {
+    std::vector<MeshHit> flat;
+    const TRange range{tmin, tmax};
+    dispatch(method, [&](const auto& c) {
       py::gil_scoped_release unlocked;
       for (std::size_t i = 0; i < n; ++i) {
-        if (rays[i].valid()) {
-          auto hits = accel_->all(rays[i], sm, {tmin, tmax});
-          flat.insert(flat.end(), hits.begin(), hits.end());
-        }
+        const auto hits = c.all(rays[i], range);
+        flat.insert(flat.end(), hits.begin(), hits.end());
         offsets[i + 1] = static_cast<std::int64_t>(flat.size());
       }
-    }
+    });
     const auto m = static_cast<py::ssize_t>(flat.size());
     py::array_t<std::int64_t> ray(m), prim(m);
-    py::array_t<double> t(m);
+    py::array_t<double> t(m), b1(m), b2(m);
     py::array_t<std::uint8_t> codes(m);
     for (std::size_t i = 0, k = 0; i < n; ++i)
       for (; k < static_cast<std::size_t>(offsets[i + 1]); ++k) {
         ray.mutable_data()[k] = static_cast<std::int64_t>(i);
-        prim.mutable_data()[k] = flat[k].prim;
+        prim.mutable_data()[k] = flat[k].triangle;
         t.mutable_data()[k] = flat[k].t;
+        b1.mutable_data()[k] = flat[k].b1;
+        b2.mutable_data()[k] = flat[k].b2;
         codes.mutable_data()[k] = static_cast<std::uint8_t>(flat[k].contact);
       }
     py::dict out;
@@ -136,12 +131,44 @@ class PyMesh {
     out["ray"] = ray;
     out["prim"] = prim;
     out["t"] = t;
+    out["b1"] = b1;
+    out["b2"] = b2;
     out["classes"] = class_names(codes);
     out["codes"] = codes;
     return out;
   }
 
  private:
+  /// The caster of method M, built on first use (once, even with concurrent callers; the GIL is
+  /// released while the BVH is built). MeshInputError becomes ValueError.
+  template <class M>
+  const MeshCaster<M>& caster() {
+    auto& lazy = std::get<Lazy<M>>(casters_);
+    std::string error;
+    {
+      py::gil_scoped_release unlocked;
+      std::call_once(lazy.once, [&] {
+        try {
+          lazy.caster = std::make_unique<MeshCaster<M>>(VertexArray(vertices_.data(), vertices()),
+                                                        IndexArray{indices_.data(), triangles()});
+        } catch (const MeshInputError& e) {
+          error = e.what();
+        }
+      });
+    }
+    if (!error.empty()) throw py::value_error(fmt::format("mesh: {}", error));
+    if (!lazy.caster) throw py::value_error("mesh: the arrays were rejected (see the first error)");
+    return *lazy.caster;
+  }
+
+  template <class F>
+  void dispatch(const std::string& method, F&& f) {
+    if (method == "float") return f(caster<cast::Float>());
+    if (method == "robust") return f(caster<cast::Robust>());
+    if (method == "certified") return f(caster<cast::Certified>());
+    throw py::value_error(fmt::format("method: '{}' is not a mesh casting method (float, robust, certified)", method));
+  }
+
   static std::vector<Ray<double>> rays_of(py::handle origins, py::handle directions) {
     const Rows o = rows_of(origins, "origins", 3, true);
     const Rows d = rows_of(directions, "directions", 3, true);
@@ -155,45 +182,43 @@ class PyMesh {
     }
     return rays;
   }
-  static scene::SceneMethod scene_method(const std::string& name) {
-    try {
-      return scene::find_scene_method(name, registry());
-    } catch (const scene::SceneError& e) {
-      throw py::value_error(fmt::format("method: {}", e.what()));
-    }
-  }
 
-  std::unique_ptr<scene::Scene> scene_;  // the Accel refers to it: kept at a fixed address
-  std::unique_ptr<scene::Accel> accel_;
+  std::vector<double> vertices_;
+  std::vector<std::uint32_t> indices_;
+  std::tuple<Lazy<cast::Float>, Lazy<cast::Robust>, Lazy<cast::Certified>> casters_;
 };
 
 }  // namespace
 
 void bind_cast(py::module_& m) {
   using namespace pybind11::literals;
-  py::class_<PyMesh>(m, "Mesh", R"doc(A triangle mesh in a four-wide BVH, for ray casting.
+  py::class_<PyMesh>(m, "Mesh", R"doc(A triangle mesh in a four-wide BVH, for ray casting (rayproof::MeshCaster).
 
-Mesh(vertices, indices): vertices (n, 3) float32 or float64 (finite), indices (m, 3) of an integer
-dtype (uint32, int32, int64, ...), each in [0, n). The arrays are copied.
+Mesh(vertices, indices): vertices (n, 3) float32 or float64, indices (m, 3) of an integer dtype
+(uint32, int32, int64, ...), each in [0, n); the vertices the triangles use must be finite. The
+arrays are copied. Zero triangles is an empty mesh (every ray misses).
 
-Queries take origins and directions ((r, 3), or (3,) broadcast) and a method: 'float', 'double',
-'robust' (watertight, conservative traversal: no leaks between shared edges), 'certified' (exact
-classes, t within one ulp), or another compiled or registered method. A ray with a NaN or
-infinite component or a zero direction is invalid: closest gives class 'invalid', any gives False,
-all gives no crossing. Only crossings with tmin <= t <= tmax count.)doc")
+Queries take origins and directions ((r, 3), or (3,) broadcast) and a method:
+  'float'      Möller–Trumbore on the float-rounded ray and vertices: fast, can leak between
+               triangles that share an edge or vertex;
+  'robust'     watertight test with conservative traversal: no leaks (the default);
+  'certified'  exact classes, t within one ulp of the exact t (no barycentrics: NaN).
+A ray with a NaN or infinite component or a zero direction has no crossing (closest gives class
+'invalid'). A crossing counts when tmin <= t <= tmax. Each method's BVH is built on its first use.)doc")
       .def(py::init<py::handle, py::handle>(), "vertices"_a, "indices"_a)
       .def_property_readonly("num_triangles", &PyMesh::triangles)
       .def_property_readonly("num_vertices", &PyMesh::vertices)
       .def("closest", &PyMesh::closest, "origins"_a, "directions"_a, "method"_a = "robust", "tmin"_a = 0.0,
            "tmax"_a = kInf, "threads"_a = 0,
            "Closest crossing per ray (ties: lower triangle number). Returns a dict of arrays: 'hit' (bool), "
-           "'prim' (int64 triangle number, -1 for none), 't' (NaN for none), 'classes', 'codes'. "
+           "'prim' (int64 triangle number, -1 for none), 't' (NaN for none), 'b1', 'b2' (barycentrics of the "
+           "triangle's 2nd and 3rd vertex; NaN for none and for certified), 'classes', 'codes'. "
            "threads: 0 = every hardware thread. The GIL is released.")
       .def("any", &PyMesh::any, "origins"_a, "directions"_a, "method"_a = "robust", "tmin"_a = 0.0, "tmax"_a = kInf,
            "threads"_a = 0, "Whether each ray crosses the mesh (occlusion): a bool array. The GIL is released.")
       .def("all", &PyMesh::all, "origins"_a, "directions"_a, "method"_a = "robust", "tmin"_a = 0.0, "tmax"_a = kInf,
            "Every crossing of every ray, sorted by t then triangle within a ray: a dict of flat arrays 'ray', "
-           "'prim', 't', 'classes', 'codes', and 'offsets' (r + 1: ray i's crossings are "
+           "'prim', 't', 'b1', 'b2', 'classes', 'codes', and 'offsets' (r + 1: ray i's crossings are "
            "offsets[i]:offsets[i+1]). The GIL is released.");
 }
 

@@ -127,3 +127,17 @@ def test_tmin_tmax(scene):
     assert not mesh.closest(o, d, method="certified", tmax=t_in * 0.99)["hit"][0]
     assert not mesh.any(o, d, method="robust", tmin=t_out * 1.01)[0]
     assert list(mesh.all(o, d, method="certified", tmin=(t_in + t_out) / 2)["t"]) == [t_out]
+
+
+def test_barycentrics_locate_the_hit(scene):
+    v, f, off, rays, o, d = scene
+    mesh = rayproof.Mesh(v, f)
+    for method in ("float", "robust"):
+        r = mesh.closest(o[:120], d[:120], method=method)
+        h = r["hit"]
+        tri = v[f[r["prim"][h]]]
+        b1, b2 = r["b1"][h], r["b2"][h]
+        assert ((b1 >= 0) & (b2 >= 0) & (b1 + b2 <= 1)).all()
+        p = (1 - b1 - b2)[:, None] * tri[:, 0] + b1[:, None] * tri[:, 1] + b2[:, None] * tri[:, 2]
+        assert np.allclose(p, o[:120][h] + r["t"][h][:, None] * d[:120][h], atol=1e-5)
+    assert np.isnan(mesh.closest(o[:5], d[:5], method="certified")["b1"]).all()

@@ -46,8 +46,8 @@ I = np.array([[0, 1, 2]], dtype=np.uint32)
         (V, I.astype(np.float32), TypeError, "indices: expected an array of integers"),
         (V, np.array([[0, 1, 3]]), ValueError, "indices: row 0 has vertex index 3 outside [0, 3)"),
         (V, np.array([[0, -1, 2]]), ValueError, "indices: row 0 has vertex index -1 outside [0, 3)"),
-        (V, np.zeros((0, 3), dtype=np.int64), ValueError, "indices: the mesh has no triangles"),
-        (np.array([[0, 0, 0], [1, np.inf, 0], [0, 1, 0]]), I, ValueError, "vertices: row 1 is not finite"),
+        (np.array([[0, 0, 0], [1, np.inf, 0], [0, 1, 0]]), I, ValueError,
+         "mesh: MeshCaster: vertex 1 (used by triangle 0) has a NaN or infinite coordinate"),
         (V, I.ravel(), ValueError, "indices: expected shape (n, 3), got (3,)"),
     ],
 )
@@ -59,8 +59,8 @@ def test_mesh_errors(v, i, exc, words):
 
 def test_cast_errors():
     m = rayproof.Mesh(V, I)
-    with pytest.raises(ValueError, match="method: unknown method 'nope'"):
-        m.closest([0, 0, 1], [0, 0, -1], method="nope")
+    with pytest.raises(ValueError, match=r"method: 'double' is not a mesh casting method \(float, robust, certified\)"):
+        m.closest([0, 0, 1], [0, 0, -1], method="double")
     with pytest.raises(ValueError, match="directions: 2 rows, but origins has 3"):
         m.any(np.zeros((3, 3)), np.ones((2, 3)))
 
@@ -79,3 +79,13 @@ def test_check_argument_errors():
         rayproof.check(f, families=["sph_generic"])
     with pytest.raises(ValueError, match="count: must be at least 1"):
         rayproof.check(f, count=0)
+
+
+def test_empty_mesh_and_unused_non_finite_vertices():
+    empty = rayproof.Mesh(V, np.zeros((0, 3), dtype=np.int64))
+    assert empty.num_triangles == 0
+    r = empty.closest([0, 0, 1], [0, 0, -1])
+    assert not r["hit"][0] and r["prim"][0] == -1 and r["classes"][0] == "miss"
+    # A vertex no triangle uses is not checked (include/rayproof/mesh_caster.h).
+    m = rayproof.Mesh(np.vstack([V, [[np.nan, 0, 0]]]), I)
+    assert m.closest([0.25, 0.25, 1], [0, 0, -1], method="certified")["classes"][0] == "interior"
