@@ -3,6 +3,8 @@
 /// plane point are u_i / (d . n) with u_i = det(d, p_j - o, p_k - o) (edges p1p2, p2p0, p0p1),
 /// which sum to d . n, so their signs and zeros are exact. Construction: t = (p0 - o) . n / (d . n).
 /// A ray in the plane is clipped against the three closed edge half-planes, exactly.
+#include <array>
+#include <cmath>
 #include <optional>
 
 #include "verify/exact_kinds.h"
@@ -71,6 +73,26 @@ io::CaseResult exact_triangle(const io::Case& c) {
   const int zeros = (b[0] == 0) + (b[1] == 0) + (b[2] == 0);
   const Contact contact = zeros == 0 ? Contact::interior : (zeros == 1 ? Contact::edge : Contact::vertex);
   return {contact, t, std::nullopt};
+}
+
+}  // namespace rayproof::verify
+
+namespace rayproof::verify {
+
+std::optional<std::array<double, 2>> exact_barycentrics(const io::Case& c) {
+  if (c.kind != io::Kind::triangle) return std::nullopt;
+  for (int i = 0; i < 15; ++i)
+    if (!std::isfinite(c.v[static_cast<std::size_t>(i)])) return std::nullopt;
+  const Point o = point_at(c, 0);
+  const Vector d = vector_at(c, 3);
+  const Point p[3] = {point_at(c, 6), point_at(c, 9), point_at(c, 12)};
+  const Vector n = CGAL::cross_product(p[1] - p[0], p[2] - p[0]);
+  const Q den = d * n;
+  if (sign(den) == 0) return std::nullopt;  // degenerate, parallel or coplanar: no single plane point
+  const Q u1 = CGAL::determinant(d, p[2] - o, p[0] - o);
+  const Q u0 = CGAL::determinant(d, p[1] - o, p[2] - o);
+  const Q u2 = den - u0 - u1;
+  return std::array<double, 2>{round_nearest(u1 / den), round_nearest(u2 / den)};
 }
 
 }  // namespace rayproof::verify

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <cmath>
 #include <mutex>
+#include <span>
 #include <thread>
 
 #include "verify/exact.h"
@@ -62,18 +63,51 @@ RoundOutput run_round(const FuzzOptions& opt, std::size_t round) {
   RoundOutput out;
   out.round = round;
   const auto precision = round % 2 == 0 ? gen::Precision::float32 : gen::Precision::float64;
+  std::vector<std::vector<io::Case>> cases;
+  std::vector<ExactAnswers> exact;
   for (const gen::Family* f : opt.families) {
-    const auto cases = gen::generate(*f, opt.batch, round_seed(opt.seed, round), precision);
-    out.cases += cases.size();
-    const ExactAnswers exact = exact_answers(cases);
-    for (const Method* m : opt.methods) {
-      Stats& s = out.stats[{m->name, f->name}];
-      for (std::size_t i = 0; i < cases.size(); ++i) {
-        if (!m->supports(cases[i].kind)) continue;
-        const Judged j = run_and_tally(*m, cases[i], exact.as_given[i], exact.float_rounded[i], s);
-        if (is_mismatch(m->name, j.verdict, j.ulps))
-          out.findings.push_back({m->name, f->name, round, j.input, j.got, j.want, j.verdict, j.ulps, false});
+    cases.push_back(gen::generate(*f, opt.batch, round_seed(opt.seed, round), precision));
+    out.cases += cases.back().size();
+    exact.push_back(exact_answers(cases.back()));
+  }
+  // One classify_many call per method over the round (per family for methods that count exact
+  // fallbacks, so that they land in the right family).
+  for (const Method* m : opt.methods) {
+    const bool f32 = m->precision == Precision::float32;
+    std::vector<io::Case> inputs;
+    std::vector<std::pair<std::size_t, std::size_t>> where;  // (family, case)
+    std::vector<std::size_t> family_start;
+    for (std::size_t fi = 0; fi < opt.families.size(); ++fi) {
+      out.stats[{m->name, opt.families[fi]->name}];
+      family_start.push_back(inputs.size());
+      for (std::size_t i = 0; i < cases[fi].size(); ++i) {
+        if (!m->supports(cases[fi][i].kind)) continue;
+        inputs.push_back(f32 ? io::round_to_float(cases[fi][i]) : cases[fi][i]);
+        where.emplace_back(fi, i);
       }
+    }
+    family_start.push_back(inputs.size());
+    std::vector<io::CaseResult> got(inputs.size());
+    if (m->fallbacks) {
+      for (std::size_t fi = 0; fi < opt.families.size(); ++fi) {
+        const std::size_t b = family_start[fi], e = family_start[fi + 1];
+        const std::uint64_t before = m->fallbacks();
+        m->classify_many(std::span<const io::Case>(inputs).subspan(b, e - b), std::span<io::CaseResult>(got).subspan(b, e - b));
+        out.stats[{m->name, opt.families[fi]->name}].fallbacks += m->fallbacks() - before;
+      }
+    } else {
+      m->classify_many(inputs, got);
+    }
+    for (std::size_t k = 0; k < inputs.size(); ++k) {
+      const auto [fi, i] = where[k];
+      const gen::Family* f = opt.families[fi];
+      Judged j;
+      j.input = std::move(inputs[k]);
+      j.want = f32 ? exact[fi].float_rounded[i] : exact[fi].as_given[i];
+      j.got = got[k];
+      judge_answer(*m, j, out.stats[{m->name, f->name}]);
+      if (is_mismatch(m->name, j.verdict, j.ulps))
+        out.findings.push_back({m->name, f->name, round, j.input, j.got, j.want, j.verdict, j.ulps, false});
     }
   }
   return out;
@@ -183,7 +217,8 @@ FuzzResult run_fuzz(const FuzzOptions& opt) {
       const auto key = std::make_pair(f.method, f.family);
       ++res.mismatches[key];
       if (kept[key]++ >= opt.keep_per_group) continue;
-      if (minimized[key]++ < opt.minimize_per_group) {
+      // A kernel failure is not minimized: the kernel is re-run for every try, and may hang each time.
+      if (f.verdict != Verdict::kernel_failure && minimized[key]++ < opt.minimize_per_group) {
         const Method* m = nullptr;
         for (const Method* x : opt.methods)
           if (x->name == f.method) m = x;
@@ -200,6 +235,9 @@ FuzzResult run_fuzz(const FuzzOptions& opt) {
   std::stable_sort(res.findings.begin(), res.findings.end(), [](const FuzzFinding& a, const FuzzFinding& b) {
     return std::tie(a.method, a.family) < std::tie(b.method, b.family);
   });
+  for (const Method* m : opt.methods)
+    if (m->take_failures)
+      for (auto& kf : m->take_failures()) res.kernel_failures.emplace_back(m->name, std::move(kf));
   res.seconds = std::chrono::duration<double>(clock::now() - start).count();
   return res;
 }

@@ -50,6 +50,9 @@ struct FuzzResult {
   std::map<std::pair<std::string, std::string>, Stats> stats;  ///< (method, family)
   std::map<std::pair<std::string, std::string>, std::size_t> mismatches;
   std::vector<FuzzFinding> findings;  ///< ordered by method, family, round
+  /// What user kernels (methods with take_failures) reported: crash, hang, early exit, unreadable
+  /// answer, each with its case; (method, failure), in method order.
+  std::vector<std::pair<std::string, KernelFailure>> kernel_failures;
   /// Methods that broke a promise: `certified` (and `exact`) promise the exact class and t
   /// within one ulp.
   [[nodiscard]] std::vector<std::string> broken_promises() const;

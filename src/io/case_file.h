@@ -75,8 +75,19 @@ struct CaseResult {
 /// Parses a result line (`CLASS T T2`); nothing on malformed text.
 [[nodiscard]] std::optional<CaseResult> parse_result(std::string_view text);
 
+/// Parses a user kernel's answer line (docs/kernel_protocol.md): the full `CLASS T T2` form
+/// (AnswerForm::full, as parse_result) or a coarse one, AnswerForm::coarse: `hit T B1 B2`, `hit T`,
+/// `hit` (Contact::hit) or `miss` (Contact::miss). Nothing on anything else.
+[[nodiscard]] std::optional<CaseResult> parse_answer(std::string_view text);
+
 /// The case as a case-file line that reads back to the same doubles (a one-line reproducer).
 [[nodiscard]] std::string format_case(const Case& c);
+
+/// Appends format_double(x) to `out` without temporaries (the same text).
+void append_double(std::string& out, double x);
+
+/// Appends format_case(c) and a newline to `out` (the same text; for streaming many cases).
+void append_case_line(std::string& out, const Case& c);
 
 /// The case with every input rounded to float (the input a float method sees; CASES.md).
 [[nodiscard]] Case round_to_float(const Case& c);
