@@ -19,6 +19,7 @@ std::tuple<int, std::uint64_t> badness(const Judged& j) {
     case Verdict::wrong_hit_class: return {2, 0};
     case Verdict::wrong_class: return {1, 0};
     case Verdict::agree: break;
+    case Verdict::kernel_failure: break;  // listed in FamilyCheck::failures, never kept as a reproducer
   }
   return {0, j.ulps};
 }
@@ -94,6 +95,9 @@ CheckResult check(const Method& m, const CheckOptions& opt) {
   replay.precision = m.precision;
   replay.kinds = m.kinds;
   replay.classify = [&](const io::Case&) { return got[at]; };
+  // A failing case (Contact::error) of a kernel that reports failures is a kernel failure, not a
+  // class error: the judgement (judge_answer) tells them apart by the method's take_failures.
+  replay.take_failures = m.take_failures;
 
   CheckProgress progress;
   progress.families_total = fams.size();
@@ -126,7 +130,7 @@ CheckResult check(const Method& m, const CheckOptions& opt) {
         at = i - b;
         Judged j = run_and_tally(replay, cases[i], exact.as_given[i], exact.float_rounded[i], fc.stats);
         if (j.verdict == Verdict::agree && j.ulps > opt.ulp_tolerance) ++fc.over_tolerance;
-        if (j.verdict != Verdict::agree || j.ulps > opt.ulp_tolerance) {
+        if (j.verdict != Verdict::kernel_failure && (j.verdict != Verdict::agree || j.ulps > opt.ulp_tolerance)) {
           worst.push_back({std::move(j), i});
           if (worst.size() > 8 * opt.reproducers + 8) keep_worst(worst, 4 * opt.reproducers);
         }

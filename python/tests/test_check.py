@@ -164,3 +164,19 @@ def test_the_example_finds_false_misses():
     out = subprocess.run([sys.executable, str(example)], capture_output=True, text=True, check=True).stdout
     assert "'watertight', 'kept': False" in out
     assert "-> miss - - ; exact:" in out
+
+
+def test_failures_are_not_class_errors_nor_reproducers():
+    def fragile(O, D, P0, P1, P2):
+        if (P0[:, 0] < 0).any():
+            raise ValueError("negative x in batch")
+        return np.zeros(len(O), dtype=bool), None  # never a hit: false misses only where exact touches
+
+    res = rayproof.check(fragile, vectorized=True, count=40, seed=5, precision="double",
+                         families=["tri_interior_exact"])
+    fam = res["families"]["tri_interior_exact"]
+    raised = len(res["failures"])
+    assert 0 < raised < 40 and fam["failures"] == raised
+    # tri_interior_exact cases all touch (double: no rounding): every judged case is a false miss.
+    assert fam["false_misses"] == fam["judged"] == 40 - raised
+    assert all(r["verdict"] == "false-miss" for r in res["reproducers"])
