@@ -163,7 +163,7 @@ def test_the_example_finds_false_misses():
     example = pathlib.Path(__file__).resolve().parents[2] / "examples" / "python" / "numpy_mt_check.py"
     out = subprocess.run([sys.executable, str(example)], capture_output=True, text=True, check=True).stdout
     assert "'watertight', 'kept': False" in out
-    assert "-> miss - - ; exact:" in out
+    assert "-> miss - -, exact:" in out
 
 
 def test_failures_are_not_class_errors_nor_reproducers():
