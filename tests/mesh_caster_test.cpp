@@ -12,12 +12,12 @@
 #include <vector>
 
 #include "rayproof/certified_triangle.h"
+#include "rayproof/exact.h"
 #include "rayproof/mesh_caster.h"
 #include "rayproof/triangle_moller_trumbore.h"
 #include "rayproof/triangle_watertight.h"
 #include "scene/scene.h"
 #include "scene/watertight.h"
-#include "verify/exact.h"
 
 using namespace rayproof;
 
@@ -71,14 +71,7 @@ std::optional<Crossing> brute_one(cast::Robust, const Ray<double>& r, const Tria
 /// certified: the filter, else the exact answer (GMP), as the caster's fallback.
 std::optional<Crossing> brute_one(cast::Certified, const Ray<double>& r, const Triangle<double>& t) {
   if (const auto h = certified::triangle(r, t)) return crossing_of(*h, kNaN<double>, kNaN<double>);
-  io::Case c;
-  c.kind = io::Kind::triangle;
-  const Vec3<double> p[5] = {r.o, r.d, t.p0, t.p1, t.p2};
-  for (int i = 0; i < 5; ++i)
-    for (int k = 0; k < 3; ++k) c.v[3 * i + k] = p[i][k];
-  const io::CaseResult e = verify::exact_classify(c);
-  return crossing_of(Hit<double>{e.contact, e.t.value_or(kNaN<double>), e.t2.value_or(kNaN<double>)}, kNaN<double>,
-                     kNaN<double>);
+  return crossing_of(exact::intersect(r, t), kNaN<double>, kNaN<double>);
 }
 
 /// Every crossing in [tmin, tmax], sorted by t then triangle.
@@ -285,7 +278,7 @@ TEST(MeshCaster, CertifiedUsesTheExactFallbackWhereTheFilterCannotDecide) {
     ASSERT_FALSE(certified::triangle(r, t)) << c[0] << ": the filter decides this case now: pick one that needs the fallback";
     const std::vector<std::uint32_t> f = {0, 1, 2};
     const MeshCaster<cast::Certified> caster(VertexArray(c + 6, 3), IndexArray{f.data(), 1});
-    const auto exact = brute_one(cast::Certified{}, r, t);  // the exact answer, through verify::exact_classify
+    const auto exact = brute_one(cast::Certified{}, r, t);  // the exact answer, through exact::intersect
     ASSERT_TRUE(exact);
     const MeshHit h = caster.closest(r);
     EXPECT_EQ(h.triangle, 0u);

@@ -1,6 +1,6 @@
 #pragma once
 /// Exact answers: the class of exact arithmetic on the parsed doubles and T/T2 rounded to nearest
-/// double (CASES.md). CGAL's exact number types decide every class by signs of rational
+/// double (CASES.md). GMP rationals decide every class by signs of rational
 /// quantities; square roots (quadric roots) are rounded correctly by MPFR and checked exactly.
 #include <array>
 #include <optional>
@@ -13,9 +13,9 @@ namespace rayproof::verify {
 /// Ground truth for one case. Never throws on well-formed cases (NaN and infinities are `invalid`).
 [[nodiscard]] io::CaseResult exact_classify(const io::Case& c);
 
-/// The barycentrics of p1 and p2 of the point where a triangle case's line crosses the triangle's
-/// plane, exact and rounded to nearest double; nothing for other kinds, non-finite inputs and lines
-/// that do not cross the plane at one point (degenerate, parallel, coplanar).
+/// The barycentrics of p1 and p2 of the point where a triangle case's line meets the closed
+/// triangle at one point (exact classes interior, edge, vertex, behind), exact and rounded to
+/// nearest double; nothing for other kinds and other classes.
 [[nodiscard]] std::optional<std::array<double, 2>> exact_barycentrics(const io::Case& c);
 
 /// Registers the `exact` method.

@@ -1,7 +1,8 @@
 // MeshCaster<cast::Certified>: the certified triangle filter of rayproof_scene with its exact
-// fallback, exact_classify (GMP rationals through CGAL), for the triangles the filter cannot decide.
+// fallback, rayproof::exact::intersect (rayproof_certified: GMP and MPFR, no CGAL), for the
+// triangles the filter cannot decide.
+#include "rayproof/exact.h"
 #include "scene/mesh_caster_state.h"
-#include "verify/exact.h"
 
 namespace rayproof {
 namespace detail {
@@ -9,13 +10,8 @@ namespace {
 
 /// The exact class and t (rounded to nearest) of one ray/triangle pair.
 Hit<double> exact_triangle(const Ray<double>& r, const Triangle<double>& t) {
-  io::Case c;
-  c.kind = io::Kind::triangle;
-  const Vec3<double> p[5] = {r.o, r.d, t.p0, t.p1, t.p2};
-  for (int i = 0; i < 5; ++i)
-    for (int k = 0; k < 3; ++k) c.v[3 * i + k] = p[i][k];
-  const io::CaseResult e = verify::exact_classify(c);
-  return {e.contact, e.t.value_or(kNaN<double>), e.t2.value_or(kNaN<double>)};
+  const TriangleHit<double> h = exact::intersect(r, t);
+  return {h.contact, h.t, h.t2};
 }
 
 }  // namespace
