@@ -18,8 +18,8 @@ std::tuple<int, std::uint64_t> badness(const Judged& j) {
     case Verdict::false_hit: return {3, 0};
     case Verdict::wrong_hit_class: return {2, 0};
     case Verdict::wrong_class: return {1, 0};
-    case Verdict::agree: break;
-    case Verdict::kernel_failure: break;  // listed in FamilyCheck::failures, never kept as a reproducer
+    case Verdict::agree:
+    case Verdict::kernel_failure: break;  // failures are listed apart, with the kernel's message
   }
   return {0, j.ulps};
 }
@@ -86,18 +86,8 @@ CheckResult check(const Method& m, const CheckOptions& opt) {
     for (const auto& f : gen::families())
       if (f.every_kind ? !m.kinds.empty() : m.supports(f.kind)) fams.push_back(&f);
 
-  // The judgement is verify's (run_and_tally); the answers come from one classify_many per batch,
-  // replayed to it through a method that returns the batch's answer for the case in hand.
+  // The answers come from one classify_many per batch; the judgement is verify's (judge_answer).
   std::vector<io::CaseResult> got;
-  std::size_t at = 0;
-  Method replay;
-  replay.name = m.name;
-  replay.precision = m.precision;
-  replay.kinds = m.kinds;
-  replay.classify = [&](const io::Case&) { return got[at]; };
-  // A failing case (Contact::error) of a kernel that reports failures is a kernel failure, not a
-  // class error: the judgement (judge_answer) tells them apart by the method's take_failures.
-  replay.take_failures = m.take_failures;
 
   CheckProgress progress;
   progress.families_total = fams.size();
@@ -127,10 +117,14 @@ CheckResult check(const Method& m, const CheckOptions& opt) {
       if (m.take_failures)
         for (auto& kf : m.take_failures()) fc.failures.push_back(std::move(kf));
       for (std::size_t i = b; i < e; ++i) {
-        at = i - b;
-        Judged j = run_and_tally(replay, cases[i], exact.as_given[i], exact.float_rounded[i], fc.stats);
+        Judged j;
+        j.input = std::move(seen[i - b]);
+        j.want = f32 ? exact.float_rounded[i] : exact.as_given[i];
+        j.got = got[i - b];
+        judge_answer(m, j, fc.stats);
+        if (j.verdict == Verdict::kernel_failure) continue;
         if (j.verdict == Verdict::agree && j.ulps > opt.ulp_tolerance) ++fc.over_tolerance;
-        if (j.verdict != Verdict::kernel_failure && (j.verdict != Verdict::agree || j.ulps > opt.ulp_tolerance)) {
+        if (j.verdict != Verdict::agree || j.ulps > opt.ulp_tolerance) {
           worst.push_back({std::move(j), i});
           if (worst.size() > 8 * opt.reproducers + 8) keep_worst(worst, 4 * opt.reproducers);
         }

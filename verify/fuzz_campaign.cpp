@@ -164,8 +164,13 @@ FuzzResult run_fuzz(const FuzzOptions& opt) {
   using clock = std::chrono::steady_clock;
   const auto start = clock::now();
   const std::size_t per_round = opt.batch * opt.families.size();
-  const std::size_t round_limit =
+  const std::size_t all_rounds =
       opt.max_cases ? (opt.max_cases + per_round - 1) / std::max<std::size_t>(per_round, 1) : SIZE_MAX;
+  // Workers take this shard's rounds in order: local round i is round i * shard_count + shard_index.
+  const std::size_t shards = std::max<std::size_t>(opt.shard_count, 1), shard = opt.shard_index;
+  const std::size_t round_limit = all_rounds == SIZE_MAX ? SIZE_MAX
+                                  : all_rounds > shard   ? (all_rounds - shard + shards - 1) / shards
+                                                         : 0;
   std::atomic<std::size_t> next{0};
   std::atomic<bool> stop{false};
   std::mutex mu;
@@ -177,7 +182,7 @@ FuzzResult run_fuzz(const FuzzOptions& opt) {
     while (!stop.load()) {
       const std::size_t r = next.fetch_add(1);
       if (r >= round_limit) break;
-      RoundOutput out = run_round(opt, r);
+      RoundOutput out = run_round(opt, r * shards + shard);
       std::lock_guard<std::mutex> lock(mu);
       cases_done += out.cases;
       for (const auto& f : out.findings) ++mismatch_count[f.method];

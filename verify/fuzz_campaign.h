@@ -32,6 +32,10 @@ struct FuzzOptions {
   std::size_t keep_per_group = 50;     ///< findings kept per method x family
   std::size_t minimize_per_group = 10; ///< of those, how many are minimized
   std::function<void(const FuzzProgress&)> progress;  ///< called about once a second
+  /// Shard `shard_index` (0-based) of `shard_count` disjoint parts of the campaign: the rounds r with
+  /// r % shard_count == shard_index (round r holds the same cases in every shard and in the whole
+  /// run), so the shards of a --cases campaign add up to exactly the whole run.
+  std::size_t shard_index = 0, shard_count = 1;
 };
 
 struct FuzzFinding {
@@ -45,7 +49,7 @@ struct FuzzFinding {
 };
 
 struct FuzzResult {
-  std::size_t rounds = 0, cases = 0;
+  std::size_t rounds = 0, cases = 0;  ///< rounds and cases this run (or shard) did
   double seconds = 0;
   std::map<std::pair<std::string, std::string>, Stats> stats;  ///< (method, family)
   std::map<std::pair<std::string, std::string>, std::size_t> mismatches;

@@ -15,7 +15,10 @@
 #include "cli/registry.h"
 #include "cli/user_kernels.h"
 #include "report/report.h"
+#include "scene/accel.h"
 #include "verify/check.h"
+#include "verify/mesh_check.h"
+#include "verify/mesh_fuzz.h"
 
 namespace rayproof::cli {
 
@@ -30,6 +33,11 @@ struct CheckCliOptions {
   std::size_t reproducers = 3;
   std::string out;
   bool json = false;
+  std::vector<std::string> mesh;  ///< mesh files, or `generated`
+  std::size_t meshes = 8;         ///< how many generated meshes `generated` stands for
+  std::size_t mesh_targets = 0;
+  int interior = 2;
+  bool plugin_in_process = false;
 };
 
 nlohmann::json ulps_json(std::uint64_t u) {
@@ -81,6 +89,103 @@ nlohmann::json result_json(const verify::CheckResult& r) {
           {"promises_kept", r.promises_kept()}};
 }
 
+/// check --mesh: leak rays on closed meshes (verify/mesh_check.h). Leaks break the promise
+/// `watertight`, which --mesh states.
+int run_mesh_check(const CheckCliOptions& o, const Method& kernel) {
+  if (!kernel.supports(io::Kind::triangle)) {
+    fmt::print(stderr, "rayproof check: --mesh needs a triangle kernel; '{}' answers no triangles\n", kernel.name);
+    return 2;
+  }
+  for (const auto& e : o.expect)
+    if (e != "watertight") {
+      fmt::print(stderr, "rayproof check: --expect {} applies to the families, not to --mesh (which checks watertight)\n", e);
+      return 2;
+    }
+  if (o.max_ulps || !o.families.empty() || !o.out.empty()) {
+    fmt::print(stderr, "rayproof check: --max-ulps, --families and --out apply to the families, not to --mesh\n");
+    return 2;
+  }
+  verify::MeshCheckOptions opt;
+  opt.finder = scene::find_scene_method("certified", all_methods());
+  opt.max_targets = o.mesh_targets;
+  opt.keep = o.reproducers;
+  std::vector<verify::MeshCheck> results;
+  auto run_one = [&](verify::MeshUnderTest mt) {
+    fmt::print(stderr, "[mesh] {}: {} triangles, {} interior points\n", mt.name, mt.mesh.triangles.size(), mt.interior.size());
+    results.push_back(verify::check_mesh(kernel, mt, opt));
+  };
+  for (const auto& name : o.mesh) {
+    if (name == "generated") {
+      verify::MeshFuzzOptions gen_opt;
+      gen_opt.seed = o.seed;
+      gen_opt.interior_points = o.interior;
+      for (std::size_t i = 0; i < o.meshes; ++i) {
+        verify::MeshUnderTest mt;
+        std::mt19937_64 rng;
+        verify::MeshShape shape;
+        mt.mesh = verify::fuzz_mesh(gen_opt, i, shape, mt.interior, rng);
+        mt.name = fmt::format("generated #{} ({})", i, shape == verify::MeshShape::star ? "icosphere" : "hull");
+        run_one(std::move(mt));
+      }
+      continue;
+    }
+    verify::MeshUnderTest mt;
+    mt.name = name;
+    try {
+      mt.mesh = mesh::read_mesh(name);
+    } catch (const std::exception& e) {
+      fmt::print(stderr, "rayproof check: {}\n", e.what());
+      return 2;
+    }
+    if (auto problem = verify::closed_mesh_problem(mt.mesh)) {
+      fmt::print(stderr, "rayproof check: {}: cannot be leak-checked: {}\n", name, *problem);
+      return 2;
+    }
+    mt.interior = verify::interior_points(mt.mesh, opt.finder, o.interior, o.seed);
+    if (mt.interior.empty()) {
+      fmt::print(stderr, "rayproof check: {}: found no point strictly inside it (is it closed and consistently oriented?)\n",
+                 name);
+      return 2;
+    }
+    run_one(std::move(mt));
+  }
+  const auto sentences = mesh_sentences(results);
+  bool leaked = false;
+  for (const auto& r : results) leaked = leaked || r.leaks > 0 || !r.failures.empty();
+  if (o.json) {
+    nlohmann::json meshes = nlohmann::json::array();
+    for (const auto& r : results) {
+      nlohmann::json leaks = nlohmann::json::array();
+      for (const auto& l : r.reproducers) {
+        nlohmann::json cands = nlohmann::json::array();
+        for (const auto& c : l.candidates)
+          cands.push_back({{"case", io::format_case(c.input)}, {"kernel", io::format_result(c.answer)},
+                           {"finder", std::string(to_string(c.finder_contact))}, {"finder_t", c.finder_t}});
+        leaks.push_back({{"origin", {l.ray.o.x, l.ray.o.y, l.ray.o.z}}, {"direction", {l.ray.d.x, l.ray.d.y, l.ray.d.z}},
+                         {"candidates", cands}});
+      }
+      meshes.push_back({{"mesh", r.mesh}, {"triangles", r.triangles}, {"rays", r.rays}, {"candidates", r.candidate_cases},
+                        {"leaks", r.leaks}, {"rays_without_candidates", r.rays_without_candidates},
+                        {"failures", r.failures.size()}, {"reproducers", leaks}});
+    }
+    fmt::print("{}\n", nlohmann::json{{"method", kernel.name}, {"finder", opt.finder.name}, {"seed", o.seed},
+                                      {"meshes", meshes}, {"watertight", !leaked}}.dump(1));
+  } else {
+    fmt::print("rayproof check --mesh: kernel '{}' ({} precision), candidates from {} (conservative BVH traversal)\n\n",
+               kernel.name, kernel.precision == Precision::float32 ? "float" : "double", opt.finder.name);
+    fmt::print("{}", mesh_table(results));
+    const auto lines = leak_lines(results, opt.finder.name);
+    if (!lines.empty()) {
+      fmt::print("\n# leaks (up to {} per mesh): each ray, then the triangles it slipped between as case lines\n",
+                 o.reproducers);
+      for (const auto& l : lines) fmt::print("{}\n", l);
+    }
+    fmt::print("\n");
+    for (const auto& l : sentences) fmt::print("{}\n", l);
+  }
+  return leaked ? 1 : 0;
+}
+
 int run_check(const CheckCliOptions& o) {
   // The kernel under test: exactly one of --exec, --plugin, --method.
   const std::size_t named = o.user.exec.size() + o.user.plugin.size() + (o.method.empty() ? 0 : 1);
@@ -99,7 +204,7 @@ int run_check(const CheckCliOptions& o) {
     }
   } else {
     UserKernelOptions u = o.user;
-    u.plugin_in_process = false;  // a crashing plugin is a finding, not the end of the check
+    u.plugin_in_process = o.plugin_in_process;  // forked by default: a crashing plugin is a finding, not the end
     auto made = make_user_kernels("check", u);
     if (!made) return 2;
     if (made->size() != 1) {
@@ -113,6 +218,7 @@ int run_check(const CheckCliOptions& o) {
     fmt::print(stderr, "rayproof check: kernel '{}' answers no kind of case\n", kernel->name);
     return 2;
   }
+  if (!o.mesh.empty()) return run_mesh_check(o, *kernel);
 
   verify::CheckOptions opt;
   opt.count = o.count;
@@ -194,8 +300,9 @@ int run_check(const CheckCliOptions& o) {
   if (o.json) {
     fmt::print("{}\n", result_json(res).dump(1));
   } else {
-    fmt::print("rayproof check: kernel '{}' ({} precision), {} cases per family, seed {}\n\n", res.method,
-               res.precision == Precision::float32 ? "float" : "double", o.count, o.seed);
+    fmt::print("rayproof check: kernel '{}' ({} precision); {} cases generated per family (half built in float "
+               "precision, half in double), seed {}; the table counts those of the kinds the kernel answers\n\n",
+               res.method, res.precision == Precision::float32 ? "float" : "double", o.count, o.seed);
     fmt::print("{}", check_table(res));
     const auto lines = reproducer_lines(res);
     if (!lines.empty()) {
@@ -214,6 +321,8 @@ Run add_check(CLI::App& app) {
   auto o = std::make_shared<CheckCliOptions>();
   auto* sub = app.add_subcommand("check", "Check one kernel (yours, or a built-in one) against exact on every family");
   add_user_kernel_options(*sub, o->user);
+  sub->add_flag("--plugin-in-process", o->plugin_in_process,
+                "Load --plugin into rayproof itself instead of a forked child (faster; a crash ends the check)");
   sub->add_option("--method", o->method, "Check this built-in method instead of a kernel of yours");
   sub->add_option("--count", o->count, "Cases per family (half built in float precision, half in double)")
       ->check(CLI::Range(std::size_t{2}, std::size_t{10000000}))
@@ -232,6 +341,18 @@ Run add_check(CLI::App& app) {
   sub->add_option("--compare", o->compare, "Built-in methods placed beside the kernel in the report (default: all)")
       ->delimiter(',')->allow_extra_args(false);
   sub->add_flag("--json", o->json, "Print the result as JSON instead of the table");
+  sub->add_option("--mesh", o->mesh,
+                  "Leak check on closed meshes instead of the families: mesh files (.off .obj .ply .stl), or "
+                  "`generated` for the generated meshes of fuzz --mesh; leaks break the promise watertight")
+      ->expected(1, -1);
+  sub->add_option("--meshes", o->meshes, "How many generated meshes `--mesh generated` checks")
+      ->check(CLI::Range(std::size_t{1}, std::size_t{100000}))
+      ->capture_default_str();
+  sub->add_option("--mesh-targets", o->mesh_targets, "Vertices and edge midpoints aimed at per mesh, evenly strided (0: all)")
+      ->capture_default_str();
+  sub->add_option("--interior", o->interior, "Interior points per mesh (rays start there)")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
   return [o] { return run_check(*o); };
 }
 

@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
 
+#include "cli/plugin_host.h"
 #include "cli/registry.h"
 #include "methods/exec_kernel.h"
 
@@ -44,9 +45,18 @@ std::optional<std::vector<std::unique_ptr<Method>>> make_user_kernels(std::strin
     }
   }
 
-  if (!opt.plugin.empty()) {
-    fmt::print(stderr, "rayproof {}: --plugin is not available yet\n", command);
-    return std::nullopt;
+  // --plugin: in process, or forked through `rayproof plugin-host` (src/cli/plugin_host.h).
+  for (const std::string& spec : opt.plugin) {
+    auto m = make_plugin_kernel(command, spec, opt.plugin_in_process);
+    if (!m) return std::nullopt;
+    bool taken = all_methods().find(m->name) != nullptr;
+    for (const auto& other : out) taken = taken || other->name == m->name;
+    if (taken) {
+      fmt::print(stderr, "rayproof {}: --plugin {}: the name '{}' is taken; choose another (NAME=PATH.so)\n", command,
+                 spec, m->name);
+      return std::nullopt;
+    }
+    out.push_back(std::move(m));
   }
   return out;
 }

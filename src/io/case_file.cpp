@@ -175,6 +175,17 @@ std::string format_result(const CaseResult& r) {
   return s;
 }
 
+std::string format_answer(const CaseResult& r) {
+  if (r.form != AnswerForm::coarse || (r.contact != Contact::hit && r.contact != Contact::miss)) return format_result(r);
+  if (r.contact == Contact::miss) return "miss";
+  std::string s = "hit";
+  if (r.t) {
+    s += ' ' + format_double(*r.t);
+    if (r.b1 && r.b2) s += ' ' + format_double(*r.b1) + ' ' + format_double(*r.b2);
+  }
+  return s;
+}
+
 std::optional<CaseResult> parse_result(std::string_view text) {
   const auto f = split_fields(text);
   if (f.size() != 3) return std::nullopt;

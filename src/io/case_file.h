@@ -72,6 +72,10 @@ struct CaseResult {
 /// `CLASS T T2` with `-` for absent values.
 [[nodiscard]] std::string format_result(const CaseResult& r);
 
+/// An answer as the line protocol writes it (docs/kernel_protocol.md): a coarse answer as `miss`,
+/// `hit`, `hit T` or `hit T B1 B2`, a full one as format_result.
+[[nodiscard]] std::string format_answer(const CaseResult& r);
+
 /// Parses a result line (`CLASS T T2`); nothing on malformed text.
 [[nodiscard]] std::optional<CaseResult> parse_result(std::string_view text);
 
