@@ -10,6 +10,7 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -44,7 +45,8 @@ bool is_interrupt(const py::error_already_set& e) {
 class PyKernel {
  public:
   PyKernel(py::function f, io::Kind kind, bool f32, bool vectorized)
-      : f_(std::move(f)), groups_(prim_groups(kind)), f32_(f32), vectorized_(vectorized) {}
+      : f_(std::move(f)), groups_(prim_groups(kind)), f32_(f32), vectorized_(vectorized),
+        barycentrics_(kind == io::Kind::triangle) {}
 
   void classify_batch(std::span<const io::Case> in, std::span<io::CaseResult> out) {
     py::gil_scoped_acquire locked;
@@ -112,11 +114,13 @@ class PyKernel {
     return x;
   }
 
-  static io::CaseResult coarse(bool hit, std::optional<double> t) {
+  static io::CaseResult coarse(bool hit, std::optional<double> t, std::optional<double> b1 = std::nullopt,
+                               std::optional<double> b2 = std::nullopt) {
     io::CaseResult r;
     r.form = io::AnswerForm::coarse;
     r.contact = hit ? Contact::hit : Contact::miss;
     if (hit && t && !std::isnan(*t)) r.t = *t;
+    if (hit && b1 && b2) r.b1 = *b1, r.b2 = *b2;  // judged against the exact barycentrics (NaN: the worst)
     return r;
   }
 
@@ -134,22 +138,25 @@ class PyKernel {
       out = coarse(r.cast<bool>(), std::nullopt);
       return true;
     }
-    if ((py::isinstance<py::tuple>(r) || py::isinstance<py::list>(r)) && py::len(r) == 2) {
+    const std::size_t len = (py::isinstance<py::tuple>(r) || py::isinstance<py::list>(r)) ? py::len(r) : 0;
+    if (len == 2 || (len == 4 && barycentrics_)) {
       py::sequence s = r.cast<py::sequence>();
       try {
-        std::optional<double> t;
+        std::optional<double> t, b1, b2;
         if (!s[1].is_none()) t = s[1].cast<double>();
+        if (len == 4 && !s[2].is_none() && !s[3].is_none()) b1 = s[2].cast<double>(), b2 = s[3].cast<double>();
         const int hit = PyObject_IsTrue(s[0].ptr());
         if (hit < 0) throw py::error_already_set();
-        out = coarse(hit == 1, t);
+        out = coarse(hit == 1, t, b1, b2);
         return true;
       } catch (py::cast_error&) {
       } catch (py::error_already_set& e) {
         if (is_interrupt(e)) throw;
       }
     }
-    throw py::type_error(fmt::format("check: the function returned {} for the case `{}`; expected (hit: bool, t: float or None)",
-                                     py::repr(r).cast<std::string>(), io::format_case(c)));
+    throw py::type_error(fmt::format("check: the function returned {} for the case `{}`; expected (hit: bool, t: float or None){}",
+                                     py::repr(r).cast<std::string>(), io::format_case(c),
+                                     barycentrics_ ? " or (hit, t, b1, b2)" : ""));
   }
 
   /// Cases `cs` in one vectorized call. False (with the message) when the function raised.
@@ -164,16 +171,20 @@ class PyKernel {
       return false;
     }
     auto np = py::module_::import("numpy");
-    if (!(py::isinstance<py::tuple>(r) || py::isinstance<py::list>(r)) || py::len(r) != 2)
-      throw py::type_error(fmt::format("check: the vectorized function returned {}; expected (hit array, t array)",
-                                       py::repr(r).attr("__getitem__")(py::slice(0, 200, 1)).cast<std::string>()));
+    const std::size_t len = (py::isinstance<py::tuple>(r) || py::isinstance<py::list>(r)) ? py::len(r) : 0;
+    if (len != 2 && !(len == 4 && barycentrics_))
+      throw py::type_error(fmt::format("check: the vectorized function returned {}; expected (hit array, t array){}",
+                                       py::repr(r).attr("__getitem__")(py::slice(0, 200, 1)).cast<std::string>(),
+                                       barycentrics_ ? " or (hit, t, b1, b2 arrays)" : ""));
     py::sequence s = r.cast<py::sequence>();
     const auto shape_of = [&](py::handle x) { return py::str(np.attr("shape")(x)).cast<std::string>(); };
     py::array_t<bool, py::array::c_style | py::array::forcecast> hit;
-    py::array_t<double, py::array::c_style | py::array::forcecast> t;
+    py::array_t<double, py::array::c_style | py::array::forcecast> t, b1, b2;
+    const bool with_b = len == 4 && !s[2].is_none() && !s[3].is_none();
     try {
       hit = np.attr("asarray")(s[0], "bool");
       if (!s[1].is_none()) t = np.attr("asarray")(s[1], "float64");
+      if (with_b) b1 = np.attr("asarray")(s[2], "float64"), b2 = np.attr("asarray")(s[3], "float64");
     } catch (py::error_already_set& e) {
       if (is_interrupt(e)) throw;
       throw py::type_error(fmt::format("check: the vectorized function's answer is not (bool array, float array): {}", e.what()));
@@ -184,14 +195,20 @@ class PyKernel {
     if (!s[1].is_none() && (t.ndim() != 1 || static_cast<std::size_t>(t.shape(0)) != n))
       throw py::type_error(fmt::format("check: the vectorized function's t array has shape {}; expected ({},)",
                                        shape_of(s[1]), n));
+    if (with_b && (b1.ndim() != 1 || b2.ndim() != 1 || static_cast<std::size_t>(b1.shape(0)) != n ||
+                   static_cast<std::size_t>(b2.shape(0)) != n))
+      throw py::type_error(fmt::format("check: the vectorized function's b1, b2 arrays have shapes {}, {}; expected ({},)",
+                                       shape_of(s[2]), shape_of(s[3]), n));
     for (std::size_t i = 0; i < n; ++i)
-      out[i] = coarse(hit.data()[i], s[1].is_none() ? std::nullopt : std::optional<double>(t.data()[i]));
+      out[i] = coarse(hit.data()[i], s[1].is_none() ? std::nullopt : std::optional<double>(t.data()[i]),
+                      with_b ? std::optional<double>(b1.data()[i]) : std::nullopt,
+                      with_b ? std::optional<double>(b2.data()[i]) : std::nullopt);
     return true;
   }
 
   py::function f_;
   std::vector<int> groups_;
-  bool f32_, vectorized_;
+  bool f32_, vectorized_, barycentrics_;
   std::vector<KernelFailure> failures_;
 };
 
@@ -207,6 +224,8 @@ py::dict stats_dict(const verify::Stats& s, std::size_t over, std::size_t failur
   d["t_ulps_p99"] = s.ulp_quantile(0.99);
   d["t_ulps_max"] = s.ulp_quantile(1.0);
   d["t_over_tolerance"] = over;
+  d["bary_count"] = s.bary_errors.size();
+  d["bary_error_max"] = s.bary_errors.empty() ? 0.0 : *std::max_element(s.bary_errors.begin(), s.bary_errors.end());
   return d;
 }
 
@@ -339,7 +358,9 @@ f answers whether the ray touches the primitive at some t >= 0, and where first:
   vectorized:  f(O, D, *prim) -> (hits, ts)      O, D, points: (n, 3); radii: (n,); results (n,)
   (triangle: f(o, d, p0, p1, p2); sphere: center, radius; plane: point, normal; ellipsoid:
   center, semi_axes; box: lo, hi; disk: center, normal, radius.)
-t may be None (or NaN) when f does not compute it; it is ignored for misses.
+t may be None (or NaN) when f does not compute it; it is ignored for misses. A triangle function
+may return (hit, t, b1, b2) with the barycentrics of p1 and p2: they are judged against the exact
+ones (absolute error; 'bary_count', 'bary_error_max').
 precision 'float': f is a float kernel: it gets float32 arrays of the float-rounded inputs and its
 t error is counted in float ulps; 'double': float64.
 This is `rayproof check` (verify::check): every family of the kind (or `families`), count cases
@@ -351,7 +372,7 @@ Promises (watertight: no false miss on tri_edge/tri_vertex; exact_class: no clas
 are reported kept or broken in 'promises'.
 progress: called as progress(family, families_done, families_total) after each family.
 Returns a dict: 'families' (per family: cases, judged, false_hits, false_misses, failures, t_count,
-t_ulps_median, t_ulps_p99, t_ulps_max, t_over_tolerance), 'total', 'reproducers' (the worst
+t_ulps_median, t_ulps_p99, t_ulps_max, t_over_tolerance, bary_count, bary_error_max), 'total', 'reproducers' (the worst
 `reproducers` cases per family as case lines, as f saw them, minimized when `minimize`: f's
 answer, the exact one, the verdict, the t error in ulps), 'failures', 'promises',
 'promises_kept' and 'table' (the tallies as text).)doc");

@@ -180,3 +180,22 @@ def test_failures_are_not_class_errors_nor_reproducers():
     # tri_interior_exact cases all touch (double: no rounding): every judged case is a false miss.
     assert fam["false_misses"] == fam["judged"] == 40 - raised
     assert all(r["verdict"] == "false-miss" for r in res["reproducers"])
+
+
+def test_barycentrics_are_judged():
+    def mt_bary(O, D, P0, P1, P2, swap=False):
+        hit, t = moller_trumbore(O, D, P0, P1, P2)
+        with np.errstate(all="ignore"):
+            e1, e2, s = P1 - P0, P2 - P0, O - P0
+            p, q = np.cross(D, e2), np.cross(s, e1)
+            det = np.einsum("ij,ij->i", e1, p)
+            u, v = np.einsum("ij,ij->i", s, p) / det, np.einsum("ij,ij->i", D, q) / det
+        return (hit, t, v, u) if swap else (hit, t, u, v)
+
+    kw = dict(vectorized=True, count=40, precision="double", families=["tri_interior_exact"])
+    good = rayproof.check(mt_bary, **kw)["families"]["tri_interior_exact"]
+    assert good["bary_count"] > 0 and good["bary_error_max"] < 1e-6
+    bad = rayproof.check(lambda *a: mt_bary(*a, swap=True), **kw)["families"]["tri_interior_exact"]
+    assert bad["bary_count"] == good["bary_count"] and bad["bary_error_max"] > 1e-3
+    # Without barycentrics nothing is judged.
+    assert rayproof.check(moller_trumbore, **kw)["families"]["tri_interior_exact"]["bary_count"] == 0
