@@ -27,7 +27,7 @@ struct Lazy {
 class PyMesh {
  public:
   PyMesh(py::handle vertices, py::handle indices) {
-    const py::array v = checked_array(vertices, "vertices", 3, false, DtypeRule::floating);
+    const py::array v = checked_array(vertices, "vertices", 3, false, DtypeRule::real);
     const py::array ix = checked_array(indices, "indices", 3, false, DtypeRule::integer);
     const auto vd = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(v);
     const auto id = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(ix);
@@ -194,7 +194,7 @@ void bind_cast(py::module_& m) {
   using namespace pybind11::literals;
   py::class_<PyMesh>(m, "Mesh", R"doc(A triangle mesh in a four-wide BVH, for ray casting (rayproof::MeshCaster).
 
-Mesh(vertices, indices): vertices (n, 3) float32 or float64, indices (m, 3) of an integer dtype
+Mesh(vertices, indices): vertices (n, 3) float32 or float64 (integers are converted), indices (m, 3) of an integer dtype
 (uint32, int32, int64, ...), each in [0, n); the vertices the triangles use must be finite. The
 arrays are copied. Zero triangles is an empty mesh (every ray misses).
 

@@ -42,7 +42,7 @@ I = np.array([[0, 1, 2]], dtype=np.uint32)
     "v, i, exc, words",
     [
         (V[:, :2], I, ValueError, "vertices: expected shape (n, 3), got (3, 2)"),
-        (V.astype(np.int32), I, TypeError, "vertices: expected an array of floats"),
+        (V.astype(np.complex64), I, TypeError, "vertices: expected an array of real numbers"),
         (V, I.astype(np.float32), TypeError, "indices: expected an array of integers"),
         (V, np.array([[0, 1, 3]]), ValueError, "indices: row 0 has vertex index 3 outside [0, 3)"),
         (V, np.array([[0, -1, 2]]), ValueError, "indices: row 0 has vertex index -1 outside [0, 3)"),
@@ -89,3 +89,8 @@ def test_empty_mesh_and_unused_non_finite_vertices():
     # A vertex no triangle uses is not checked (include/rayproof/mesh_caster.h).
     m = rayproof.Mesh(np.vstack([V, [[np.nan, 0, 0]]]), I)
     assert m.closest([0.25, 0.25, 1], [0, 0, -1], method="certified")["classes"][0] == "interior"
+
+
+def test_mesh_from_lists():
+    m = rayproof.Mesh([[0, 0, 0], [1, 0, 0], [0, 1, 0]], [[0, 1, 2]])  # int64 vertices, converted exactly
+    assert m.closest([0.25, 0.25, 1], [0, 0, -1], method="certified")["t"][0] == 1.0
