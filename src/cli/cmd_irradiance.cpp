@@ -25,7 +25,7 @@ struct IrradianceOptions {
   std::vector<double> at{0, 0, 0};
   std::uint64_t samples = 100000;
   std::uint64_t seed = 1;
-  std::vector<std::string> estimators{"cosine"};
+  std::vector<std::string> estimators;  ///< empty: cosine, or all for a sweep
   std::vector<std::string> methods;
   std::string bias_against = "certified";
   bool sweep = false;
@@ -197,7 +197,9 @@ int run_irradiance(const IrradianceOptions& opt) {
     return 2;
   }
   std::vector<light::Estimator> estimators;
-  for (const auto& name : opt.estimators) {
+  std::vector<std::string> estimator_names = opt.estimators;
+  if (estimator_names.empty()) estimator_names.push_back(opt.sweep ? "all" : "cosine");
+  for (const auto& name : estimator_names) {
     if (name == "all") {
       estimators.assign(light::kAllEstimators.begin(), light::kAllEstimators.end());
       continue;
@@ -258,8 +260,8 @@ Run add_irradiance(CLI::App& app) {
       ->expected(3);
   sub->add_option("--samples,-n", opt->samples, "Samples per estimate (the largest count of a sweep)")->capture_default_str();
   sub->add_option("--seed", opt->seed, "Seed (a sweep uses SEED..SEED+K-1)")->capture_default_str();
-  sub->add_option("--estimator,-e", opt->estimators, "hemisphere, cosine, area, solid-angle or all; comma list")
-      ->delimiter(',')->capture_default_str();
+  sub->add_option("--estimator,-e", opt->estimators, "hemisphere, cosine, area, solid-angle or all; comma list (default: cosine; a sweep: all)")
+      ->delimiter(',');
   sub->add_option("--method,-m", opt->methods,
                   "Methods casting the rays, comma list (default: double; a sweep: every method answering disks but exact)")
       ->delimiter(',');
