@@ -165,7 +165,7 @@ TEST(IrradianceMc, EveryEstimatorConvergesToTheReference) {
   on_axis.r = 1, on_axis.h = 2, on_axis.L = 1.5;
   light::DiskLightSetup clipped;
   clipped.r = 1, clipped.h = 1, clipped.offset = 1.5, clipped.tilt = deg(-50), clipped.at = {3, -2, 1};
-  light::DiskLightSetup near;  // receiver inside the disk's bounding sphere: the whole-sphere cone
+  light::DiskLightSetup near;  // receiver inside the disk's bounding sphere: the hemisphere toward the disk
   near.r = 2, near.h = 0.5, near.offset = 0.3, near.tilt = deg(20);
   std::vector<const Method*> methods;
   for (const char* name : {"certified", "double", "float", "robust"}) {

@@ -65,15 +65,16 @@ std::optional<std::vector<const Method*>> resolve(const std::vector<std::string>
   return out;
 }
 
-std::string bias_verdict(const light::MethodEstimate& pm) {
-  if (pm.disagreements == 0) return "no ray answered differently: no bias from the kernel";
+/// What the paired difference against the reference method says, in words true for its numbers.
+std::string bias_verdict(const light::MethodEstimate& pm, const light::MethodEstimate& ref) {
+  if (pm.disagreements == 0) return "the same answer on every ray: no kernel bias in this run";
   const double z = pm.diff_std_error > 0 ? pm.diff_mean / pm.diff_std_error : 0;
-  const double of_se = pm.std_error > 0 ? std::fabs(pm.diff_mean) / pm.std_error : 0;
-  if (std::fabs(z) > 4)
-    return fmt::format("BIASED: the difference is {:.1f} of its standard errors, {:.2f} of the estimate's standard error", z,
-                       of_se);
-  return fmt::format("no bias detected (difference {:.1f} of its standard errors, {:.2f} of the estimate's standard error)", z,
-                     of_se);
+  const std::string size =
+      ref.std_error > 0 ? fmt::format("{:.3g} times the standard error of {}'s estimate", std::fabs(pm.diff_mean) / ref.std_error,
+                                      ref.method->name)
+                        : std::string("the reference method's estimate has no spread");
+  if (std::fabs(z) > 4) return fmt::format("BIASED beyond 4 standard errors of the difference ({:+.1f}); the bias is {}", z, size);
+  return fmt::format("not significant at 4 standard errors of the difference ({:+.1f}); its size is {}", z, size);
 }
 
 int run_single(const IrradianceOptions& opt, const light::DiskLightSetup& setup, const verify::Reference& ref,
@@ -104,7 +105,7 @@ int run_single(const IrradianceOptions& opt, const light::DiskLightSetup& setup,
       for (const auto& pm : run.per_method) {
         if (pm.method == bias_ref) continue;
         fmt::print("  {:<16} {} rays differ; difference {:.3g} +- {:.3g}: {}\n", pm.method->name, pm.disagreements,
-                   pm.diff_mean, pm.diff_std_error, bias_verdict(pm));
+                   pm.diff_mean, pm.diff_std_error, bias_verdict(pm, run.per_method.front()));
       }
     }
   }

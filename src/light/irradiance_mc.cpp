@@ -92,12 +92,16 @@ EstimateRun estimate_irradiance(const DiskLightSetup& setup, Estimator est, std:
   const Frame around_n(n);
   // Solid-angle sampling: the cone around the disk's bounding sphere (centre, r).
   const double dist = length(rel);
-  double k = 2;  // 1 - cos theta_max; 2 is the whole sphere
+  // Inside the bounding sphere, the hemisphere above the receiver's height (toward the disk's
+  // plane, which lies wholly at z > 0 relative to it) contains the disk instead.
+  double k = 1;  // 1 - cos theta_max
+  Vec3<double> axis{0, 0, 1};
   if (dist > setup.r) {
     const double s2 = (setup.r / dist) * (setup.r / dist);
     k = s2 / (1 + std::sqrt(1 - s2));
+    axis = rel / dist;
   }
-  const Frame around_axis(rel / dist);
+  const Frame around_axis(axis);
   const double disk_area = kPi * setup.r * setup.r;
 
   EstimateRun run;

@@ -13,7 +13,8 @@
 /// - area: points y uniform on the disk (pdf 1 / (pi r^2)), the ray aimed at y (direction y - at):
 ///   f = pi r^2 L cos theta cos theta' / |y - at|^2 on a hit (change of variables dw = cos theta' dA / d^2);
 /// - solid-angle: directions uniform in the cone around the disk's bounding sphere (pdf
-///   1 / (2 pi (1 - cos theta_max)); the whole sphere when `at` is inside it): f = L cos theta / pdf on
+///   1 / (2 pi (1 - cos theta_max)); when `at` is inside that sphere, the hemisphere toward the
+///   disk's plane): f = L cos theta / pdf on
 ///   a hit, 0 on a miss. This is the cone sampling of sphere lights (P. Shirley, C. Wang,
 ///   K. Zimmerman, "Monte Carlo techniques for direct lighting calculations", ACM TOG 15(1), 1996),
 ///   used as a solid-angle sampler for the disk; not the exact spherical-ellipse sampling of
