@@ -13,7 +13,7 @@
 #include "cli/registry.h"
 #include "cli/user_kernels.h"
 #include "light/irradiance_mc.h"
-#include "report/sweep_svg.h"
+#include "report/irradiance_sweep.h"
 #include "verify/radiometry.h"
 
 namespace rayproof::cli {
@@ -112,46 +112,19 @@ int run_single(const IrradianceOptions& opt, const light::DiskLightSetup& setup,
   return 0;
 }
 
-int run_sweep(const IrradianceOptions& opt, const light::DiskLightSetup& setup, const verify::Reference& ref,
+int run_sweep(const IrradianceOptions& opt, const light::DiskLightSetup& setup,
               const std::vector<light::Estimator>& estimators, const std::vector<const Method*>& methods) {
   std::vector<std::uint64_t> counts;
   for (std::uint64_t n = opt.sweep_min; n <= opt.samples; n *= 4) counts.push_back(n);
   if (counts.empty()) counts.push_back(opt.samples);
-  std::vector<report::SweepSeries> series;
-  std::string csv = "estimator,method,samples,seeds,rms_error,mean_std_error,seconds_per_estimate,mean_estimate,reference\n";
-  for (light::Estimator est : estimators) {
-    const std::size_t first = series.size();
-    for (const Method* m : methods) series.push_back({std::string(light::to_string(est)), m->name, {}});
-    for (std::uint64_t n : counts) {
-      std::vector<double> sq(methods.size()), se(methods.size()), sec(methods.size()), mean(methods.size());
-      for (int k = 0; k < opt.sweep_seeds; ++k) {
-        const auto run = light::estimate_irradiance(setup, est, methods, n, opt.seed + static_cast<std::uint64_t>(k));
-        for (std::size_t i = 0; i < methods.size(); ++i) {
-          const auto& pm = run.per_method[i];
-          sq[i] += (pm.mean - ref.value) * (pm.mean - ref.value);
-          se[i] += pm.std_error;
-          sec[i] += pm.seconds;
-          mean[i] += pm.mean;
-        }
-      }
-      const double K = opt.sweep_seeds;
-      for (std::size_t i = 0; i < methods.size(); ++i) {
-        report::SweepPoint p{n, sec[i] / K, std::sqrt(sq[i] / K), se[i] / K};
-        series[first + i].points.push_back(p);
-        csv += fmt::format("{},{},{},{},{:.17g},{:.17g},{:.6g},{:.17g},{:.17g}\n", light::to_string(est), methods[i]->name,
-                           n, opt.sweep_seeds, p.rms_error, p.mean_std_error, p.seconds, mean[i] / K, ref.value);
-      }
-      fmt::print(stderr, "{}: {} N = {} done\n", kCmd, light::to_string(est), n);
-    }
-  }
+  const auto sw = report::run_irradiance_sweep(setup, estimators, methods, counts, opt.sweep_seeds, opt.seed,
+                                               [](const std::string& msg) { fmt::print(stderr, "{}: {}\n", kCmd, msg); });
   std::error_code ec;
   std::filesystem::create_directories(opt.out, ec);
   const auto svg_path = std::filesystem::path(opt.out) / "irradiance_sweep.svg";
   const auto csv_path = std::filesystem::path(opt.out) / "irradiance_sweep.csv";
-  const std::string title =
-      fmt::format("Disk light irradiance: r = {:g}, h = {:g}, offset = {:g}, tilt = {:g} deg; RMS over {} seeds", setup.r,
-                  setup.h, setup.offset, opt.tilt_deg, opt.sweep_seeds);
-  for (const auto& [path, text] : {std::pair{svg_path, report::sweep_svg(series, title)}, std::pair{csv_path, csv}}) {
+  const std::string title = fmt::format("Irradiance: {}; RMS over {} seeds", report::describe_setup(setup), opt.sweep_seeds);
+  for (const auto& [path, text] : {std::pair{svg_path, report::sweep_svg(sw.series, title)}, std::pair{csv_path, sw.csv}}) {
     std::ofstream f(path, std::ios::binary);
     f << text;
     if (!f) {
@@ -160,18 +133,12 @@ int run_sweep(const IrradianceOptions& opt, const light::DiskLightSetup& setup, 
     }
   }
   fmt::print("wrote {} and {}\n", svg_path.string(), csv_path.string());
-  // The slope of log RMS error against log N per series, fitted by least squares.
-  fmt::print("{:<12} {:<16} {:>14} {:>14}\n", "estimator", "method", "slope vs N", "RMS at max N");
-  for (const auto& s : series) {
-    double sx = 0, sy = 0, sxx = 0, sxy = 0;
-    int n = 0;
-    for (const auto& p : s.points)
-      if (p.rms_error > 0) {
-        const double x = std::log10(static_cast<double>(p.samples)), y = std::log10(p.rms_error);
-        sx += x, sy += y, sxx += x * x, sxy += x * y, ++n;
-      }
-    const double slope = n > 1 ? (n * sxy - sx * sy) / (n * sxx - sx * sx) : 0;
-    fmt::print("{:<12} {:<16} {:>14.2f} {:>14.3g}\n", s.estimator, s.method, slope, s.points.back().rms_error);
+  fmt::print("{:<12} {:<16} {:>8} {:>12} {:>12} {:>11} {:>14}\n", "estimator", "method", "N", "RMS error", "mean SE",
+             "slope vs N", "us/estimate");
+  for (const auto& s : sw.series) {
+    const auto& p = s.points.back();
+    fmt::print("{:<12} {:<16} {:>8} {:>12.3g} {:>12.3g} {:>11.2f} {:>14.0f}\n", s.estimator, s.method, p.samples,
+               p.rms_error, p.mean_std_error, report::fitted_slope(s), p.seconds * 1e6);
   }
   return 0;
 }
@@ -241,7 +208,7 @@ int run_irradiance(const IrradianceOptions& opt) {
     const verify::Reference omega = verify::disk_solid_angle(setup.r, setup.h, setup.offset);
     fmt::print("disk solid angle = {}\n", describe_reference(omega));
   }
-  if (opt.sweep) return run_sweep(opt, setup, ref, estimators, *methods);
+  if (opt.sweep) return run_sweep(opt, setup, estimators, *methods);
   return run_single(opt, setup, ref, estimators, *methods, bias_ref);
 }
 
