@@ -118,6 +118,23 @@ TEST(Radiometry, ParallelOffAxisClosedFormAgreesWithOnAxisAndQuadrature) {
   }
 }
 
+TEST(Radiometry, QuadratureErrorEstimatesHoldTheClosedFormInHardParallelCases) {
+  // Receivers close to the disk's plane, under the rim, far away: the rim quadrature's stated
+  // interval must hold the proven closed form (or say that it did not converge).
+  int converged = 0;
+  for (const auto& [r, h, a] : {std::array{1.0, 1e-6, 1.0}, std::array{1.0, 1e-3, 0.999}, std::array{1.0, 1e-6, 1.5},
+                                std::array{1.0, 1e-2, 2.001}, std::array{1e-3, 1e3, 50.0}, std::array{1.0, 1e-8, 3.0},
+                                std::array{1.0, 1e-4, 0.5}, std::array{5.0, 0.3, 4.0}}) {
+    const auto closed = verify::irradiance_parallel(r, h, a, 1);
+    const auto quad = verify::irradiance_tilted(r, h, a, 0, 1);
+    if (quad.method.find("NOT CONVERGED") != std::string::npos) continue;
+    ++converged;
+    EXPECT_LE(quad.lo, closed.hi) << r << " " << h << " " << a << ": " << quad.method;
+    EXPECT_GE(quad.hi, closed.lo) << r << " " << h << " " << a << ": " << quad.method;
+  }
+  EXPECT_GE(converged, 7);
+}
+
 TEST(Radiometry, TiltedReceiverReferences) {
   // Wholly above the horizon, E is linear in n: E(t) = cos t E(0) + sin t E(90 deg).
   const double r = 1, h = 1.5, a = 2.5;
