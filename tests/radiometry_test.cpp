@@ -303,5 +303,22 @@ TEST(IrradianceCli, SweepWritesSvgAndCsv) {
   EXPECT_NE(csv.find("solid-angle,float,1024,2,"), std::string::npos);
 }
 
+TEST(IrradianceCli, ReportGainsAnIrradianceSection) {
+  const auto dir = testing::scratch_dir() / "report_light";
+  const auto res = testing::run_rayproof("report --count 20 --families disk_rim --methods double,float --irradiance-samples 1024 --out " +
+                                         dir.string());
+  ASSERT_EQ(res.status, 0) << res.err;
+  const std::string md = testing::slurp(dir / "report.md");
+  EXPECT_NE(md.find("## Irradiance from a disk light"), std::string::npos);
+  EXPECT_NE(md.find("| solid-angle | float | 1024 |"), std::string::npos) << md;
+  EXPECT_NE(md.find("rays answered unlike certified"), std::string::npos);
+  EXPECT_NE(testing::slurp(dir / "irradiance_sweep.svg").find("</svg>"), std::string::npos);
+  // --irradiance-samples 0: no section.
+  const auto dir0 = testing::scratch_dir() / "report_dark";
+  ASSERT_EQ(testing::run_rayproof("report --count 20 --families disk_rim --methods double --irradiance-samples 0 --out " +
+                                  dir0.string()).status, 0);
+  EXPECT_EQ(testing::slurp(dir0 / "report.md").find("## Irradiance"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace rayproof

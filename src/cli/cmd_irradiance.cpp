@@ -99,7 +99,7 @@ int run_single(const IrradianceOptions& opt, const light::DiskLightSetup& setup,
                  pm.std_error, err, pm.std_error > 0 ? err / pm.std_error : 0.0, pm.hits,
                  pm.seconds > 0 ? static_cast<double>(run.rays) / pm.seconds * 1e-6 : 0.0);
     }
-    if (bias_ref) {
+    if (bias_ref && run.per_method.size() > 1) {
       fmt::print("kernel bias, paired against {} on the same rays (mean of f_method - f_{}):\n", bias_ref->name,
                  bias_ref->name);
       for (const auto& pm : run.per_method) {
@@ -204,10 +204,8 @@ int run_irradiance(const IrradianceOptions& opt) {
   fmt::print("disk light: r = {:g}, h = {:g}, lateral offset = {:g}, L = {:g}; receiver at ({:g}, {:g}, {:g}) tilted {:g} deg\n",
              setup.r, setup.h, setup.offset, setup.L, setup.at.x, setup.at.y, setup.at.z, opt.tilt_deg);
   fmt::print("reference E = {}\n", describe_reference(ref));
-  if (setup.tilt == 0) {
-    const verify::Reference omega = verify::disk_solid_angle(setup.r, setup.h, setup.offset);
-    fmt::print("disk solid angle = {}\n", describe_reference(omega));
-  }
+  const verify::Reference omega = verify::disk_solid_angle(setup.r, setup.h, setup.offset);
+  fmt::print("disk solid angle = {}\n", describe_reference(omega));
   if (opt.sweep) return run_sweep(opt, setup, estimators, *methods);
   return run_single(opt, setup, ref, estimators, *methods, bias_ref);
 }
