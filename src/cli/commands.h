@@ -18,5 +18,6 @@ Run add_cast(CLI::App& app);
 Run add_render(CLI::App& app);
 Run add_bench(CLI::App& app);
 Run add_irradiance(CLI::App& app);
+Run add_spawn(CLI::App& app);
 
 }  // namespace rayproof::cli

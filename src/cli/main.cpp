@@ -23,6 +23,7 @@ int main(int argc, char** argv) {
   add(add_render(app));
   add(add_bench(app));
   add(add_irradiance(app));
+  add(add_spawn(app));
   auto* methods = app.add_subcommand("methods", "List the registered methods");
   try {
     app.parse(argc, argv);
