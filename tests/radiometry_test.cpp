@@ -312,6 +312,7 @@ TEST(IrradianceCli, ReportGainsAnIrradianceSection) {
   EXPECT_NE(md.find("## Irradiance from a disk light"), std::string::npos);
   EXPECT_NE(md.find("| solid-angle | float | 1024 |"), std::string::npos) << md;
   EXPECT_NE(md.find("rays answered unlike certified"), std::string::npos);
+  EXPECT_NE(md.find("| sphere | 20 | float | 2000 |"), std::string::npos) << md;
   EXPECT_NE(testing::slurp(dir / "irradiance_sweep.svg").find("</svg>"), std::string::npos);
   // --irradiance-samples 0: no section.
   const auto dir0 = testing::scratch_dir() / "report_dark";

@@ -49,8 +49,9 @@ struct IrradianceSweep {
 /// The irradiance section of `rayproof report`: a sweep (256 .. max_samples by 4, four seeds) of
 /// every estimator x method (those answering disks) on a tilted, off-axis receiver, written as
 /// DIR/irradiance_sweep.svg and .csv, and a kernel-bias table on a small, far disk seen from far
-/// from the origin, against `bias_reference`; both appended to DIR/report.md. Returns an error
-/// message or "".
+/// from the origin, against `bias_reference`; then self-intersection counts per spawn strategy
+/// (light/spawn_count.h) with `bias_reference` as the exact judge; all appended to DIR/report.md.
+/// Returns an error message or "".
 [[nodiscard]] std::string write_irradiance_section(const std::string& dir, std::span<const Method* const> methods,
                                                    const Method* bias_reference, std::uint64_t max_samples,
                                                    std::uint64_t seed,
