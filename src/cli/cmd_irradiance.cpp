@@ -90,7 +90,7 @@ int run_single(const IrradianceOptions& opt, const light::DiskLightSetup& setup,
                run.rays);
     if (est == light::Estimator::solid_angle) fmt::print(", cone of {:.6g} sr", run.sampled_solid_angle);
     fmt::print("\n{:<16} {:>20} {:>11} {:>12} {:>9} {:>10} {:>9}\n", "method", "estimate", "std.error", "error",
-               "error/SE", "hits", "Mrays/s");
+               "error/SE", "hits", "Mrays/s*");
     for (const auto& pm : run.per_method) {
       const bool shown = std::find(methods.begin(), methods.end(), pm.method) != methods.end();
       if (!shown) continue;
@@ -99,6 +99,7 @@ int run_single(const IrradianceOptions& opt, const light::DiskLightSetup& setup,
                  pm.std_error, err, pm.std_error > 0 ? err / pm.std_error : 0.0, pm.hits,
                  pm.seconds > 0 ? static_cast<double>(run.rays) / pm.seconds * 1e-6 : 0.0);
     }
+    fmt::print("(* rays per second of wall time, sampling included)\n");
     if (bias_ref && run.per_method.size() > 1) {
       fmt::print("kernel bias, paired against {} on the same rays (mean of f_method - f_{}):\n", bias_ref->name,
                  bias_ref->name);
