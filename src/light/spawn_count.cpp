@@ -10,8 +10,8 @@ namespace rayproof::light {
 
 namespace {
 
-constexpr std::array<SpawnStrategy, 3> kStrategies = {SpawnStrategy::none, SpawnStrategy::fixed_epsilon,
-                                                      SpawnStrategy::error_bounded};
+constexpr std::array<SpawnStrategy, 4> kStrategies = {SpawnStrategy::none, SpawnStrategy::fixed_epsilon,
+                                                      SpawnStrategy::error_bounded, SpawnStrategy::certified};
 
 Vec3<double> random_unit(gen::Rng& rng) {
   for (;;) {
@@ -80,7 +80,7 @@ Vec3<T> vec(const io::Case& c, int at) {
 
 /// Spawned rays from the method's hit on `in` (inputs as the method saw them), computed in T.
 template <class T>
-std::array<io::Case, 6> spawned_cases(const io::Case& in, double t_hit, gen::Rng& rng, double epsilon) {
+std::array<io::Case, 8> spawned_cases(const io::Case& in, double t_hit, gen::Rng& rng, double epsilon, const Method& exact) {
   const Vec3<T> o = vec<T>(in, 0), d = vec<T>(in, 3), c = vec<T>(in, 6);
   const Vec3<T> p = o + static_cast<T>(t_hit) * d;
   const SurfacePoint<T> sp = in.kind == io::Kind::sphere ? surface_point_on_sphere(p, c, static_cast<T>(in.v[9]))
@@ -94,15 +94,20 @@ std::array<io::Case, 6> spawned_cases(const io::Case& in, double t_hit, gen::Rng
   Vec3<T> tangential{static_cast<T>(j.x), static_cast<T>(j.y), static_cast<T>(j.z)};
   tangential = tangential - dot(tangential, n_in) * n_in;
   const Vec3<T> to_light = up * n_in + tangential;
-  std::array<io::Case, 6> out{};
+  auto as_case = [&](const Ray<T>& ray) {
+    io::Case k = in;
+    k.v[0] = ray.o.x, k.v[1] = ray.o.y, k.v[2] = ray.o.z;
+    k.v[3] = ray.d.x, k.v[4] = ray.d.y, k.v[5] = ray.d.z;
+    return k;
+  };
+  auto meets_own = [&](const Ray<T>& ray) { return self_hit(exact.classify(as_case(ray))); };
+  std::array<io::Case, 8> out{};
   std::size_t i = 0;
   for (SpawnStrategy s : kStrategies)
     for (const Vec3<T>& w : {reflect, to_light}) {
-      const Ray<T> ray = spawn_ray(sp, w, s, static_cast<T>(epsilon));
-      io::Case k = in;
-      k.v[0] = ray.o.x, k.v[1] = ray.o.y, k.v[2] = ray.o.z;
-      k.v[3] = ray.d.x, k.v[4] = ray.d.y, k.v[5] = ray.d.z;
-      out[i++] = k;
+      int steps = 0;
+      out[i++] = as_case(s == SpawnStrategy::certified ? spawn_ray_certified(sp, w, meets_own, steps)
+                                                       : spawn_ray(sp, w, s, static_cast<T>(epsilon)));
     }
   return out;
 }
@@ -114,6 +119,7 @@ std::string_view to_string(SpawnStrategy s) {
     case SpawnStrategy::none: return "none";
     case SpawnStrategy::fixed_epsilon: return "fixed-epsilon";
     case SpawnStrategy::error_bounded: return "error-bounded";
+    case SpawnStrategy::certified: return "certified";
   }
   return "?";
 }
@@ -143,8 +149,8 @@ std::vector<SpawnCount> count_self_intersections(io::Kind kind, std::span<const 
         for (std::size_t s = 0; s < kStrategies.size(); ++s) ++row[s].primary_misses;
         continue;
       }
-      const auto spawned = m.precision == Precision::float32 ? spawned_cases<float>(in, *r.t, side_rng, epsilon)
-                                                             : spawned_cases<double>(in, *r.t, side_rng, epsilon);
+      const auto spawned = m.precision == Precision::float32 ? spawned_cases<float>(in, *r.t, side_rng, epsilon, exact)
+                                                             : spawned_cases<double>(in, *r.t, side_rng, epsilon, exact);
       for (std::size_t j = 0; j < spawned.size(); ++j) {
         SpawnCount& cnt = row[j / 2];
         ++cnt.spawned;

@@ -5,7 +5,10 @@
 /// each origin strategy of rayproof/spawn.h, and the spawned rays are tested against the primitive
 /// they leave. Leaving to the side they came from, they cannot meet it again: every contact at
 /// t > 0 is a self-intersection. Counted as the method's own kernel sees it and as an exact method
-/// (certified) sees the same spawned ray.
+/// (certified) sees the same spawned ray. The certified strategy uses that exact method as its
+/// classifier (spawn_ray_certified); its origins sit within ulps of the surface, so a renderer using
+/// it must test the primitive it leaves with the exact classifier too: the exact count is the one
+/// that applies, the own-kernel count shows what a fast kernel would see there instead.
 #include <cstdint>
 #include <span>
 #include <vector>

@@ -153,7 +153,7 @@ std::string write_irradiance_section(const std::string& dir, std::span<const Met
                       "`misses`: primary rays the method's kernel did not see hit (float inputs at large magnitudes). "
                       "`rayproof spawn` reproduces these (seed {}).\n\n"
                       "| kind | 2^k | method | spawned | misses | none: own / exact | fixed epsilon: own / exact | "
-                      "error-bounded: own / exact |\n|---|---:|---|---:|---:|---:|---:|---:|\n",
+                      "error-bounded: own / exact | certified: own / exact |\n|---|---:|---|---:|---:|---:|---:|---:|---:|\n",
                       kTrials, bias_reference->name, kEpsilon, seed);
     for (io::Kind kind : {io::Kind::plane, io::Kind::sphere, io::Kind::disk}) {
       std::vector<const Method*> ms;
@@ -163,11 +163,12 @@ std::string write_irradiance_section(const std::string& dir, std::span<const Met
       for (int mag : {0, 20, 40}) {
         if (progress) progress(fmt::format("spawn counts: {} at 2^{}", io::to_string(kind), mag));
         const auto rows = light::count_self_intersections(kind, ms, *bias_reference, kTrials, seed, mag, kEpsilon);
-        for (std::size_t i = 0; i + 2 < rows.size(); i += 3)
-          md += fmt::format("| {} | {} | {} | {} | {} | {} / {} | {} / {} | {} / {} |\n", io::to_string(kind), mag,
+        for (std::size_t i = 0; i + 3 < rows.size(); i += 4)
+          md += fmt::format("| {} | {} | {} | {} | {} | {} / {} | {} / {} | {} / {} | {} / {} |\n", io::to_string(kind), mag,
                             rows[i].method->name, rows[i].spawned, rows[i].primary_misses, rows[i].self_hits,
                             rows[i].exact_self_hits, rows[i + 1].self_hits, rows[i + 1].exact_self_hits,
-                            rows[i + 2].self_hits, rows[i + 2].exact_self_hits);
+                            rows[i + 2].self_hits, rows[i + 2].exact_self_hits, rows[i + 3].self_hits,
+                            rows[i + 3].exact_self_hits);
       }
     }
   }
