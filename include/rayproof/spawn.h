@@ -1,6 +1,6 @@
 #pragma once
 /// Spawning secondary rays (shadow, reflection) from a computed hit point so that they do not hit
-/// the surface they leave ("shadow acne"). Three origin strategies:
+/// the surface they leave ("shadow acne"). Four origin strategies:
 /// - none: the computed hit point itself;
 /// - fixed_epsilon: the hit point pushed a fixed distance along the normal, toward the side the
 ///   ray leaves to (the common renderer habit; the distance means nothing at large magnitudes);

@@ -151,7 +151,9 @@ std::string write_irradiance_section(const std::string& dir, std::span<const Met
                       "primary ray came from, so any contact with the same primitive at t > 0 is a self-intersection. "
                       "Counted by the method's own kernel and by {} on the same spawned rays; fixed epsilon = {:g}; "
                       "`misses`: primary rays the method's kernel did not see hit (float inputs at large magnitudes). "
-                      "`rayproof spawn` reproduces these (seed {}).\n\n"
+                      "The certified strategy's origins sit within ulps of the surface and a renderer using it tests the "
+                      "primitive it leaves with the exact classifier, so its exact count is the one that applies; its own-kernel "
+                      "count shows what a fast kernel would see there instead. `rayproof spawn` reproduces these (seed {}).\n\n"
                       "| kind | 2^k | method | spawned | misses | none: own / exact | fixed epsilon: own / exact | "
                       "error-bounded: own / exact | certified: own / exact |\n|---|---:|---|---:|---:|---:|---:|---:|---:|\n",
                       kTrials, bias_reference->name, kEpsilon, seed);
