@@ -3,6 +3,8 @@
 // offset and a fixed epsilon at large magnitudes do (light/spawn_count.h).
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 #include "cli/registry.h"
 #include "light/spawn_count.h"
 #include "tests/cli_support.h"
@@ -61,11 +63,36 @@ TEST(Spawn, FixedEpsilonFailsWhereItIsBelowTheUlp) {
     }
 }
 
+TEST(Spawn, NoLeaksThroughThinSlabsForErrorBoundedAndCertifiedOrigins) {
+  const Method& exact = *cli::all_methods().find("certified");
+  const auto ms = methods({"float", "double", "robust", "certified"});
+  for (int mag : {0, 10, 20}) {
+    // A slab 1e-6 of the magnitude thick: about 16 float ulps, thinner than the fixed epsilon at 2^0.
+    const auto rows = light::count_slab_leaks(ms, exact, 1000, 11, mag, 1e-6 * std::ldexp(1.0, mag), 1e-4);
+    for (const auto& r : rows) {
+      const std::string what = "2^" + std::to_string(mag) + " " + std::string(light::to_string(r.strategy)) + " " +
+                               r.method->name;
+      EXPECT_EQ(r.spawned, 1000u) << what;
+      if (r.strategy == SpawnStrategy::error_bounded || r.strategy == SpawnStrategy::certified) {
+        EXPECT_EQ(r.self_hits, 0u) << what;
+        EXPECT_EQ(r.exact_self_hits, 0u) << what;
+      }
+      if (r.strategy == SpawnStrategy::fixed_epsilon && mag == 0) {
+        EXPECT_EQ(r.exact_self_hits, 1000u) << what;
+      }
+    }
+  }
+}
+
 TEST(Spawn, CliPrintsCountsAndRejectsBadFlags) {
   const auto ok = testing::run_rayproof("spawn --trials 200 --kinds disk --magnitudes 0 --methods double");
   ASSERT_EQ(ok.status, 0) << ok.err;
   EXPECT_NE(ok.out.find("error-bounded"), std::string::npos);
-  for (const char* bad : {"--kinds triangle", "--trials 0", "--epsilon -1", "--magnitudes 99", "--methods nosuch"}) {
+  const auto slab = testing::run_rayproof("spawn --trials 200 --slab-gap 1e-6 --magnitudes 0 --methods float");
+  ASSERT_EQ(slab.status, 0) << slab.err;
+  EXPECT_NE(slab.out.find("leaks (exact)"), std::string::npos);
+  for (const char* bad : {"--kinds triangle", "--trials 0", "--epsilon -1", "--magnitudes 99", "--methods nosuch",
+                          "--slab-gap 2", "--slab-gap nan"}) {
     const auto r = testing::run_rayproof(std::string("spawn ") + bad);
     EXPECT_EQ(r.status, 2) << bad;
     EXPECT_NE(r.err, "") << bad;

@@ -34,6 +34,18 @@ struct SurfacePoint {
   Vec3<T> n;           ///< unit length, up to rounding
 };
 
+/// Hit point refinement (as pbrt-v4 does for its quadrics): the computed point o + t d carries the
+/// error of t times |d| and of the sum, often far more than an ulp of p; projecting it back onto
+/// the surface leaves only the rounding of the projection. Plane or disk through c with normal N:
+[[nodiscard]] inline auto reproject_to_plane(auto p, auto c, auto normal) {
+  return p - (dot(p - c, normal) / dot(normal, normal)) * normal;
+}
+/// Sphere with centre c and radius r: c + r (p - c) / |p - c|.
+[[nodiscard]] inline auto reproject_to_sphere(auto p, auto c, auto r) {
+  const auto q = p - c;
+  return c + (r / length(q)) * q;
+}
+
 /// Plane or disk through c with normal N (any non-zero length).
 template <class T>
 [[nodiscard]] SurfacePoint<T> surface_point_on_plane(Vec3<T> p, Vec3<T> c, Vec3<T> normal) {

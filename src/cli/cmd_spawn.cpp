@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
 
+#include <cmath>
 #include <memory>
 
 #include "cli/commands.h"
@@ -20,6 +21,7 @@ struct SpawnOptions {
   std::uint64_t trials = 20000;
   std::uint64_t seed = 1;
   double epsilon = 1e-4;
+  double slab_gap = 0;  ///< > 0: count leaks through a slab of this relative thickness instead
 };
 
 int run_spawn(const SpawnOptions& opt) {
@@ -41,6 +43,27 @@ int run_spawn(const SpawnOptions& opt) {
   if (!exact) {
     fmt::print(stderr, "{}: the certified method is not registered\n", kCmd);
     return 2;
+  }
+  if (opt.slab_gap != 0) {
+    if (!(std::isfinite(opt.slab_gap) && opt.slab_gap > 0 && opt.slab_gap < 1)) {
+      fmt::print(stderr, "{}: --slab-gap must be in (0, 1) (the gap over the magnitude 2^k)\n", kCmd);
+      return 2;
+    }
+    const auto sel = select_methods("spawn", opt.methods, false);
+    if (!sel) return 2;
+    std::vector<const Method*> methods;
+    for (const Method* m : *sel)
+      if (m->supports(io::Kind::disk)) methods.push_back(m);
+    fmt::print("{:>5} {:>10} {:<14} {:<14} {:>9} {:>9} {:>12} {:>12}\n", "2^k", "gap", "strategy", "method", "shadow",
+               "misses", "leaks (own)", "leaks (exact)");
+    for (int mag : opt.magnitudes) {
+      const double gap = opt.slab_gap * std::ldexp(1.0, mag);
+      const auto rows = light::count_slab_leaks(methods, *exact, opt.trials, opt.seed, mag, gap, opt.epsilon);
+      for (const auto& r : rows)
+        fmt::print("{:>5} {:>10.3g} {:<14} {:<14} {:>9} {:>9} {:>12} {:>12}\n", mag, gap, light::to_string(r.strategy),
+                   r.method->name, r.spawned, r.primary_misses, r.self_hits, r.exact_self_hits);
+    }
+    return 0;
   }
   fmt::print("{:<7} {:>5} {:<14} {:<14} {:>9} {:>9} {:>16} {:>16}\n", "kind", "2^k", "strategy", "method", "spawned",
              "misses", "self-hits (own)", "self-hits (exact)");
@@ -87,6 +110,8 @@ Run add_spawn(CLI::App& app) {
   sub->add_option("--trials", opt->trials, "Primary rays per kind, magnitude and method")->capture_default_str();
   sub->add_option("--seed", opt->seed, "Seed")->capture_default_str();
   sub->add_option("--epsilon", opt->epsilon, "The fixed-epsilon strategy's offset")->capture_default_str();
+  sub->add_option("--slab-gap", opt->slab_gap,
+                  "Count light leaks through two parallel disks this far apart (times 2^k) instead of self-intersections");
   return [opt] { return run_spawn(*opt); };
 }
 

@@ -82,7 +82,8 @@ Vec3<T> vec(const io::Case& c, int at) {
 template <class T>
 std::array<io::Case, 8> spawned_cases(const io::Case& in, double t_hit, gen::Rng& rng, double epsilon, const Method& exact) {
   const Vec3<T> o = vec<T>(in, 0), d = vec<T>(in, 3), c = vec<T>(in, 6);
-  const Vec3<T> p = o + static_cast<T>(t_hit) * d;
+  const Vec3<T> p = in.kind == io::Kind::sphere ? reproject_to_sphere(o + static_cast<T>(t_hit) * d, c, static_cast<T>(in.v[9]))
+                                                : reproject_to_plane(o + static_cast<T>(t_hit) * d, c, vec<T>(in, 9));
   const SurfacePoint<T> sp = in.kind == io::Kind::sphere ? surface_point_on_sphere(p, c, static_cast<T>(in.v[9]))
                                                          : surface_point_on_plane(p, c, vec<T>(in, 9));
   const Vec3<T> n_in = dot(d, sp.n) < T(0) ? sp.n : -sp.n;  // the side the primary ray came from
@@ -156,6 +157,81 @@ std::vector<SpawnCount> count_self_intersections(io::Kind kind, std::span<const 
         ++cnt.spawned;
         if (self_hit(m.classify(spawned[j]))) ++cnt.self_hits;
         if (self_hit(exact.classify(spawned[j]))) ++cnt.exact_self_hits;
+      }
+    }
+  }
+  return rows;
+}
+
+namespace {
+
+/// Shadow rays through a thin slab, computed in T: the top disk's hit point, the light below the
+/// bottom disk; one spawned case per strategy (against the bottom disk).
+template <class T>
+std::array<io::Case, 4> slab_cases(const io::Case& top, const io::Case& bottom, double t_hit, Vec3<double> light,
+                                   double epsilon, const Method& exact) {
+  const Vec3<T> o = vec<T>(top, 0), d = vec<T>(top, 3), c = vec<T>(top, 6);
+  const Vec3<T> p = reproject_to_plane(o + static_cast<T>(t_hit) * d, c, vec<T>(top, 9));
+  const SurfacePoint<T> sp = surface_point_on_plane(p, c, vec<T>(top, 9));
+  const Vec3<T> w = Vec3<T>{static_cast<T>(light.x), static_cast<T>(light.y), static_cast<T>(light.z)} - p;
+  auto with_ray = [](const io::Case& prim, const Ray<T>& ray) {
+    io::Case k = prim;
+    k.v[0] = ray.o.x, k.v[1] = ray.o.y, k.v[2] = ray.o.z;
+    k.v[3] = ray.d.x, k.v[4] = ray.d.y, k.v[5] = ray.d.z;
+    return k;
+  };
+  auto meets_own = [&](const Ray<T>& ray) { return self_hit(exact.classify(with_ray(top, ray))); };
+  std::array<io::Case, 4> out{};
+  std::size_t i = 0;
+  for (SpawnStrategy s : kStrategies) {
+    int steps = 0;
+    out[i++] = with_ray(bottom, s == SpawnStrategy::certified ? spawn_ray_certified(sp, w, meets_own, steps)
+                                                              : spawn_ray(sp, w, s, static_cast<T>(epsilon)));
+  }
+  return out;
+}
+
+/// The bottom disk occludes the light: a contact at 0 < t <= 1 (w runs from the origin to the light).
+bool blocks(const io::CaseResult& r) {
+  return (r.contact == Contact::hit || r.contact == Contact::rim) && r.t && *r.t > 0 && *r.t <= 1;
+}
+
+}  // namespace
+
+std::vector<SpawnCount> count_slab_leaks(std::span<const Method* const> methods, const Method& exact,
+                                         std::uint64_t trials, std::uint64_t seed, int magnitude_log2, double gap,
+                                         double epsilon) {
+  for (const Method* m : methods)
+    if (!m->supports(io::Kind::disk)) throw std::invalid_argument("method '" + m->name + "' does not answer disk");
+  if (!(gap > 0 && std::isfinite(gap))) throw std::invalid_argument("the slab's gap must be finite and > 0");
+  std::vector<SpawnCount> rows;
+  for (const Method* m : methods)
+    for (SpawnStrategy s : kStrategies) rows.push_back({io::Kind::disk, magnitude_log2, s, m});
+  const double scale = std::ldexp(1.0, magnitude_log2);
+  for (std::size_t mi = 0; mi < methods.size(); ++mi) {
+    const Method& m = *methods[mi];
+    gen::Rng rng(seed);
+    for (std::uint64_t k = 0; k < trials; ++k) {
+      const io::Case top = make_case(io::Kind::disk, rng, scale);
+      const Vec3<double> n{top.v[9], top.v[10], top.v[11]}, c{top.v[6], top.v[7], top.v[8]};
+      io::Case bottom = top;
+      const Vec3<double> cb = c - gap * n;
+      bottom.v[6] = cb.x, bottom.v[7] = cb.y, bottom.v[8] = cb.z;
+      const Vec3<double> light = in_disk(rng, cb - rng.uniform(0.5, 3) * n, n, 0.3 * top.v[12]);
+      const io::Case in_top = m.precision == Precision::float32 ? io::round_to_float(top) : top;
+      const io::Case in_bottom = m.precision == Precision::float32 ? io::round_to_float(bottom) : bottom;
+      SpawnCount* row = &rows[mi * kStrategies.size()];
+      const io::CaseResult r = m.classify(in_top);
+      if (!primary_hit(r)) {
+        for (std::size_t s = 0; s < kStrategies.size(); ++s) ++row[s].primary_misses;
+        continue;
+      }
+      const auto cases = m.precision == Precision::float32 ? slab_cases<float>(in_top, in_bottom, *r.t, light, epsilon, exact)
+                                                           : slab_cases<double>(in_top, in_bottom, *r.t, light, epsilon, exact);
+      for (std::size_t j = 0; j < cases.size(); ++j) {
+        ++row[j].spawned;
+        if (!blocks(m.classify(cases[j]))) ++row[j].self_hits;
+        if (!blocks(exact.classify(cases[j]))) ++row[j].exact_self_hits;
       }
     }
   }

@@ -39,4 +39,12 @@ struct SpawnCount {
                                                                const Method& exact, std::uint64_t trials,
                                                                std::uint64_t seed, int magnitude_log2, double epsilon);
 
+/// Leaks through a thin slab: two parallel disks `gap` apart; a primary ray hits the top one from
+/// above, a shadow ray leaves the hit point toward a light below the bottom disk, which must block
+/// it. Rows as above, but `self_hits` / `exact_self_hits` count leaks: the bottom disk not met at
+/// 0 < t <= 1 by the method's kernel / by the exact method (an origin pushed past the bottom disk).
+[[nodiscard]] std::vector<SpawnCount> count_slab_leaks(std::span<const Method* const> methods, const Method& exact,
+                                                       std::uint64_t trials, std::uint64_t seed, int magnitude_log2,
+                                                       double gap, double epsilon);
+
 }  // namespace rayproof::light
