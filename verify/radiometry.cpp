@@ -345,7 +345,7 @@ double irradiance_parallel_double(double r, double h, double offset, double L) {
 Reference irradiance_tilted(double r, double h, double offset, double tilt_rad, double L) {
   check_disk(r, h, offset);
   require(std::isfinite(L) && L >= 0, "radiance L must be finite and >= 0");
-  require(std::isfinite(tilt_rad) && std::fabs(tilt_rad) <= std::numbers::pi, "tilt must be within [-180, 180] degrees");
+  require(std::isfinite(tilt_rad) && std::fabs(tilt_rad) <= std::numbers::pi * (1 + 1e-12), "tilt must be within [-180, 180] degrees");
   const V3 n{std::sin(tilt_rad), 0, std::cos(tilt_rad)};
   const V3 c{offset, 0, h};
   auto p = [&](double psi) { return V3{c.x + r * std::cos(psi), c.y + r * std::sin(psi), c.z}; };

@@ -57,7 +57,7 @@ std::string check_setup(const DiskLightSetup& s) {
   if (!(std::isfinite(s.r) && s.r > 0)) return "the disk radius r must be finite and > 0";
   if (!(std::isfinite(s.h) && s.h > 0)) return "the height h must be finite and > 0 (the receiver is below the light)";
   if (!std::isfinite(s.offset)) return "the lateral offset must be finite";
-  if (!(std::isfinite(s.tilt) && std::fabs(s.tilt) <= kPi)) return "the tilt must be within [-180, 180] degrees";
+  if (!(std::isfinite(s.tilt) && std::fabs(s.tilt) <= kPi * (1 + 1e-12))) return "the tilt must be within [-180, 180] degrees";
   if (!(std::isfinite(s.L) && s.L >= 0)) return "the radiance L must be finite and >= 0";
   if (!all_finite(s.at)) return "the receiver position must be finite";
   return {};

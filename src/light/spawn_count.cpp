@@ -2,6 +2,7 @@
 
 #include <array>
 #include <cmath>
+#include <numbers>
 #include <stdexcept>
 
 #include "gen/rng.h"
@@ -28,7 +29,7 @@ Vec3<double> in_disk(gen::Rng& rng, Vec3<double> c, Vec3<double> n, double r) {
   const Vec3<double> a = normalize(cross(n, std::fabs(n.x) < 0.9 ? Vec3<double>{1, 0, 0} : Vec3<double>{0, 1, 0}));
   const Vec3<double> b = cross(n, a);
   const double rho = r * std::sqrt(rng.unit());
-  const double phi = 2 * 3.141592653589793 * rng.unit();
+  const double phi = 2 * std::numbers::pi * rng.unit();
   return c + (rho * std::cos(phi)) * a + (rho * std::sin(phi)) * b;
 }
 
