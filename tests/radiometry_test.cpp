@@ -277,6 +277,7 @@ TEST(IrradianceCli, BadFlagsGetClearErrors) {
       {"--method nosuch", "unknown method 'nosuch'"},
       {"--method cramer-double", "does not answer disk"},
       {"--sweep-seeds 0", "--sweep-seeds"},
+      {"--sweep --sweep-min 0", "--sweep-min"},
   };
   for (const auto& [flags, message] : bad) {
     const auto res = testing::run_rayproof(std::string("irradiance ") + flags);

@@ -161,6 +161,10 @@ int run_irradiance(const IrradianceOptions& opt) {
     fmt::print(stderr, "{}: --samples must be in 1..2^36\n", kCmd);
     return 2;
   }
+  if (opt.sweep_min < 1 || opt.sweep_min > (std::uint64_t{1} << 36)) {
+    fmt::print(stderr, "{}: --sweep-min must be in 1..2^36\n", kCmd);
+    return 2;
+  }
   if (opt.sweep_seeds < 1 || opt.sweep_seeds > 1000) {
     fmt::print(stderr, "{}: --sweep-seeds must be in 1..1000\n", kCmd);
     return 2;
