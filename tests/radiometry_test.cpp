@@ -277,6 +277,8 @@ TEST(IrradianceCli, BadFlagsGetClearErrors) {
       {"--method nosuch", "unknown method 'nosuch'"},
       {"--method cramer-double", "does not answer disk"},
       {"--sweep-seeds 0", "--sweep-seeds"},
+      {"--r 1e300", "within [1e-100, 1e100]"},
+      {"--at 1e200,0,0", "at most 1e100"},
       {"--sweep --sweep-min 0", "--sweep-min"},
   };
   for (const auto& [flags, message] : bad) {

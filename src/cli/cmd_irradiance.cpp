@@ -95,8 +95,10 @@ int run_single(const IrradianceOptions& opt, const light::DiskLightSetup& setup,
       const bool shown = std::find(methods.begin(), methods.end(), pm.method) != methods.end();
       if (!shown) continue;
       const double err = pm.mean - ref.value;
-      fmt::print("{:<16} {:>20.15g} {:>11.3g} {:>12.3g} {:>9.2f} {:>10} {:>9.2f}\n", pm.method->name, pm.mean,
-                 pm.std_error, err, pm.std_error > 0 ? err / pm.std_error : 0.0, pm.hits,
+      // With no spread (no hits, or a constant contribution) error/SE is undefined unless the error is 0.
+      const std::string z = pm.std_error > 0 ? fmt::format("{:.2f}", err / pm.std_error) : err == 0 ? "0" : "no SE";
+      fmt::print("{:<16} {:>20.15g} {:>11.3g} {:>12.3g} {:>9} {:>10} {:>9.2f}\n", pm.method->name, pm.mean,
+                 pm.std_error, err, z, pm.hits,
                  pm.seconds > 0 ? static_cast<double>(run.rays) / pm.seconds * 1e-6 : 0.0);
     }
     fmt::print("(* rays per second of wall time, sampling included)\n");

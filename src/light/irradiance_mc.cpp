@@ -60,6 +60,12 @@ std::string check_setup(const DiskLightSetup& s) {
   if (!(std::isfinite(s.tilt) && std::fabs(s.tilt) <= kPi * (1 + 1e-12))) return "the tilt must be within [-180, 180] degrees";
   if (!(std::isfinite(s.L) && s.L >= 0)) return "the radiance L must be finite and >= 0";
   if (!all_finite(s.at)) return "the receiver position must be finite";
+  // Squares and products of the sizes must stay normal doubles.
+  constexpr double kMax = 1e100, kMin = 1e-100;
+  if (s.r > kMax || s.r < kMin || s.h > kMax || s.h < kMin) return "r and h must be within [1e-100, 1e100]";
+  if (std::fabs(s.offset) > kMax || std::fabs(s.at.x) > kMax || std::fabs(s.at.y) > kMax || std::fabs(s.at.z) > kMax ||
+      s.L > kMax)
+    return "the offset, the receiver position and L must be at most 1e100 in magnitude";
   return {};
 }
 
