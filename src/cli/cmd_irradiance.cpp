@@ -68,6 +68,8 @@ std::optional<std::vector<const Method*>> resolve(const std::vector<std::string>
 /// What the paired difference against the reference method says, in words true for its numbers.
 std::string bias_verdict(const light::MethodEstimate& pm, const light::MethodEstimate& ref) {
   if (pm.disagreements == 0) return "the same answer on every ray: no kernel bias in this run";
+  if (pm.diff_std_error == 0 && pm.diff_mean != 0)
+    return "BIASED: the difference has no spread (every sample differs by the same amount)";
   const double z = pm.diff_std_error > 0 ? pm.diff_mean / pm.diff_std_error : 0;
   const std::string size =
       ref.std_error > 0 ? fmt::format("{:.3g} times the standard error of {}'s estimate", std::fabs(pm.diff_mean) / ref.std_error,
