@@ -93,10 +93,11 @@ std::string bias_table_markdown(const light::DiskLightSetup& setup, std::span<co
     for (std::size_t i = 1; i < run.per_method.size(); ++i) {
       const auto& pm = run.per_method[i];
       const double z = pm.diff_std_error > 0 ? pm.diff_mean / pm.diff_std_error : 0;
-      const double of_ref = ref.std_error > 0 ? pm.diff_mean / ref.std_error : 0;
+      const std::string of_ref = ref.std_error > 0 ? fmt::format("{:+.3g}", pm.diff_mean / ref.std_error)
+                                 : pm.diff_mean == 0 ? std::string("0") : std::string("n/a (no spread)");
       const std::string zs = pm.diff_std_error == 0 && pm.diff_mean != 0 ? std::string("**biased** (no spread)")
                              : fmt::format("{}{:+.1f}", std::fabs(z) > 4 ? "**biased** " : "", z);
-      s += fmt::format("| {} | {} | {} | {} | {:.3g} | {:.3g} | {} | {:+.3g} |\n", light::to_string(est), pm.method->name,
+      s += fmt::format("| {} | {} | {} | {} | {:.3g} | {:.3g} | {} | {} |\n", light::to_string(est), pm.method->name,
                        run.rays, pm.disagreements, pm.diff_mean, pm.diff_std_error, zs, of_ref);
     }
   }
