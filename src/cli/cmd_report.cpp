@@ -13,6 +13,7 @@
 #include "cli/user_kernels.h"
 #include "gen/families.h"
 #include "report/report.h"
+#include "report/irradiance_sweep.h"
 
 namespace rayproof::cli {
 
@@ -25,6 +26,7 @@ struct ReportOptions {
   std::vector<std::string> families;
   std::string input;
   UserKernelOptions user;
+  std::uint64_t irradiance_samples = 16384;
 };
 
 std::string cpu_model() {
@@ -112,6 +114,11 @@ int run_report(const ReportOptions& opt) {
     return 2;
   }
   progress(fmt::format("wrote {0}/report.md, {0}/report.csv, {0}/error_vs_time.svg", opt.out));
+  if (auto err = report::write_irradiance_section(opt.out, methods, all_methods().find("certified"), opt.irradiance_samples,
+                                                  opt.seed, progress); !err.empty()) {
+    fmt::print(stderr, "rayproof report: {}\n", err);
+    return 2;
+  }
   fmt::print("{:<16} {:>10} {:>12} {:>12} {:>10}\n", "method", "ns/case", "class err %", "max ulps", "fallback %");
   for (const auto& p : rep.points)
     fmt::print("{:<16} {:>10.1f} {:>12.4f} {:>12} {:>10.3f}\n", p.method, p.ns_per_case, 100 * p.class_error_rate,
@@ -132,6 +139,9 @@ Run add_report(CLI::App& app) {
   sub->add_option("--families", opt->families, "Families (default: all)")->delimiter(',')->allow_extra_args(false);
   sub->add_option("--input", opt->input, "Use the cases of this file instead of generated families");
   add_user_kernel_options(*sub, opt->user);
+  sub->add_option("--irradiance-samples", opt->irradiance_samples,
+                  "Largest sample count of the irradiance section's sweep (0: no irradiance section)")
+      ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 24))->capture_default_str();
   return [opt] { return run_report(*opt); };
 }
 

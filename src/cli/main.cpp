@@ -25,6 +25,8 @@ int main(int argc, char** argv) {
   add(add_check(app));
   add(add_serve(app));
   add(add_plugin_host(app));
+  add(add_irradiance(app));
+  add(add_spawn(app));
   auto* methods = app.add_subcommand("methods", "List the registered methods");
   try {
     app.parse(argc, argv);
