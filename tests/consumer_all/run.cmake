@@ -1,0 +1,127 @@
+# The installed package as a downstream project sees it, from the already built tree BUILD (no rebuild):
+#   MODE=prefix: `cmake --install BUILD --prefix WORK/prefix`; the component checks of the config file
+#                (a missing dependency, an unknown component, an optional component); consumer_all
+#                built with find_package against the prefix; a pkg-config build of core + certified.
+#   MODE=deb:    `cpack -G DEB` in BUILD; the .deb's metadata and files; dpkg-deb -x into WORK/root;
+#                consumer_all and the pkg-config build against it; the packaged rayproof tool runs.
+# LIBDIR is the tree's CMAKE_INSTALL_LIBDIR (relative), CXX the compiler the tree was built with.
+# Consumers are built without optimization (a compile check and a run, not a benchmark).
+cmake_minimum_required(VERSION 3.20)
+foreach(v SRC BUILD WORK MODE CXX LIBDIR)
+  if(NOT DEFINED ${v})
+    message(FATAL_ERROR "run.cmake needs -D${v}=...")
+  endif()
+endforeach()
+set(CONSUMER ${SRC}/tests/consumer_all)
+file(REMOVE_RECURSE ${WORK})
+file(MAKE_DIRECTORY ${WORK})
+
+function(run)
+  execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(NOT rc EQUAL 0)
+    string(REPLACE ";" " " cmd "${ARGN}")
+    message(FATAL_ERROR "failed (${rc}): ${cmd}\n${out}\n${err}")
+  endif()
+  set(run_out "${out}" PARENT_SCOPE)
+endfunction()
+
+# consumer_all against PREFIX with find_package, then both programs run.
+function(build_consumer prefix dir)
+  run(${CMAKE_COMMAND} -S ${CONSUMER} -B ${dir} -DCMAKE_PREFIX_PATH=${prefix} -DCMAKE_CXX_COMPILER=${CXX}
+      -DCMAKE_BUILD_TYPE= -DCGAL_DO_NOT_WARN_ABOUT_CMAKE_BUILD_TYPE=TRUE)
+  run(${CMAKE_COMMAND} --build ${dir} -j2)
+  foreach(exe consumer_certified consumer_all)
+    run(${dir}/${exe})
+    message(STATUS "${exe}:\n${run_out}")
+  endforeach()
+endfunction()
+
+# core + certified with pkg-config's flags only (no CMake package).
+function(build_pkgconfig prefix libdir out)
+  find_program(PKG_CONFIG NAMES pkg-config pkgconf REQUIRED)
+  set(ENV{PKG_CONFIG_PATH} ${prefix}/${libdir}/pkgconfig)
+  run(${PKG_CONFIG} --cflags --libs rayproof-certified)
+  string(STRIP "${run_out}" flags)
+  message(STATUS "pkg-config --cflags --libs rayproof-certified: ${flags}")
+  separate_arguments(flags UNIX_COMMAND "${flags}")
+  run(${CXX} -std=c++20 ${CONSUMER}/main_certified.cpp ${CONSUMER}/core.cpp ${CONSUMER}/certified.cpp ${flags}
+      -o ${out})
+  run(${out})
+  message(STATUS "pkg-config consumer:\n${run_out}")
+endfunction()
+
+# A consumer project that must fail to configure with a message matching every regex in EXPECT.
+function(expect_configure_failure name components expect)
+  set(dir ${WORK}/${name})
+  file(MAKE_DIRECTORY ${dir}/src)
+  file(WRITE ${dir}/src/CMakeLists.txt
+       "cmake_minimum_required(VERSION 3.20)\nproject(c LANGUAGES CXX)\n"
+       "find_package(rayproof CONFIG REQUIRED COMPONENTS ${components})\n")
+  execute_process(COMMAND ${CMAKE_COMMAND} -S ${dir}/src -B ${dir}/build -DCMAKE_PREFIX_PATH=${WORK}/prefix ${ARGN}
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  if(rc EQUAL 0)
+    message(FATAL_ERROR "${name}: configuring with COMPONENTS ${components} succeeded, it must fail")
+  endif()
+  foreach(re IN LISTS expect)
+    if(NOT err MATCHES "${re}")
+      message(FATAL_ERROR "${name}: the error does not match '${re}':\n${err}")
+    endif()
+  endforeach()
+  string(REGEX MATCH "rayproof[^\n]*(component|has no)[^\n]*" line "${err}")
+  message(STATUS "${name}: fails as it should: ${line}")
+endfunction()
+
+if(MODE STREQUAL "prefix")
+  run(${CMAKE_COMMAND} --install ${BUILD} --prefix ${WORK}/prefix)
+  # A required component whose dependency is missing, and an unknown component.
+  expect_configure_failure(no_tbb "core;scene" "component 'scene'" "TBB" "libtbb-dev"
+                           -DCMAKE_DISABLE_FIND_PACKAGE_TBB=ON)
+  expect_configure_failure(unknown "core;bogus" "no component 'bogus'")
+  # An optional component whose dependency is missing: found FALSE, its target absent, no error.
+  file(MAKE_DIRECTORY ${WORK}/optional/src)
+  file(WRITE ${WORK}/optional/src/CMakeLists.txt [=[
+cmake_minimum_required(VERSION 3.20)
+project(c LANGUAGES CXX)
+find_package(rayproof CONFIG REQUIRED COMPONENTS core OPTIONAL_COMPONENTS scene)
+if(rayproof_scene_FOUND OR TARGET rayproof::scene OR NOT rayproof_core_FOUND OR NOT TARGET rayproof::core)
+  message(FATAL_ERROR "optional scene without TBB: scene ${rayproof_scene_FOUND}, core ${rayproof_core_FOUND}")
+endif()
+]=])
+  run(${CMAKE_COMMAND} -S ${WORK}/optional/src -B ${WORK}/optional/build -DCMAKE_PREFIX_PATH=${WORK}/prefix
+      -DCMAKE_DISABLE_FIND_PACKAGE_TBB=ON)
+  build_consumer(${WORK}/prefix ${WORK}/consumer)
+  build_pkgconfig(${WORK}/prefix ${LIBDIR} ${WORK}/pkgconfig_consumer)
+elseif(MODE STREQUAL "deb")
+  get_filename_component(cmake_bin ${CMAKE_COMMAND} DIRECTORY)
+  find_program(CPACK NAMES cpack HINTS ${cmake_bin} REQUIRED)
+  find_program(DPKG_DEB dpkg-deb REQUIRED)
+  execute_process(COMMAND ${CPACK} -G DEB -B ${WORK}/deb WORKING_DIRECTORY ${BUILD}
+                  RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
+  file(GLOB deb ${WORK}/deb/*.deb)
+  if(NOT rc EQUAL 0 OR NOT deb)
+    message(FATAL_ERROR "cpack -G DEB failed (${rc}):\n${out}\n${err}")
+  endif()
+  run(${DPKG_DEB} --field ${deb} Package Version Depends)
+  message(STATUS "${deb}:\n${run_out}")
+  foreach(dep libgmp-dev libmpfr-dev libtbb-dev libcgal-dev)
+    if(NOT run_out MATCHES "Depends:.*${dep}")
+      message(FATAL_ERROR "the .deb does not depend on ${dep}")
+    endif()
+  endforeach()
+  run(${DPKG_DEB} -x ${deb} ${WORK}/root)
+  set(prefix ${WORK}/root/usr)
+  set(libdir ${LIBDIR})
+  foreach(f bin/rayproof include/rayproof/triangle.h ${libdir}/cmake/rayproof/rayproofConfig.cmake
+            ${libdir}/cmake/rayproof/rayproofConfigVersion.cmake ${libdir}/pkgconfig/rayproof.pc
+            ${libdir}/pkgconfig/rayproof-certified.pc)
+    if(NOT EXISTS ${prefix}/${f})
+      message(FATAL_ERROR "the .deb has no /usr/${f}")
+    endif()
+  endforeach()
+  run(${prefix}/bin/rayproof methods)
+  message(STATUS "packaged rayproof methods:\n${run_out}")
+  build_consumer(${prefix} ${WORK}/consumer)
+  build_pkgconfig(${prefix} ${libdir} ${WORK}/pkgconfig_consumer)
+else()
+  message(FATAL_ERROR "MODE must be prefix or deb, not '${MODE}'")
+endif()
