@@ -10,12 +10,14 @@
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
-# component  target (its EXPORT_NAME is the component's name)
+# component:targets. The first target is the component's own (exported as rayproof::COMPONENT), the
+# others keep their EXPORT_NAME (else their name without "rayproof_"); a|b takes the first of a, b
+# that this build has.
 set(_rp_table
-  core      rayproof_core
-  certified rayproof_certified_gmp
-  verify    rayproof_verify
-  scene     rayproof_scene)
+  "core:rayproof_core"
+  "certified:rayproof_certified|rayproof_certified_gmp"
+  "verify:rayproof_check|rayproof_verify"
+  "scene:rayproof_scene,rayproof_scene_certified")
 # Link-interface items that only the build uses: warning flags, header-only libraries linked
 # privately. They are dropped from the installed interface.
 set(_rp_build_only rayproof_warnings nlohmann_json::nlohmann_json)
@@ -41,16 +43,38 @@ set(RAYPROOF_PKGCONFIG_DIR ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
 # The components this build has (core always; the others need RAYPROOF_BUILD_TOOLS).
 set(_rp_components)
 set(_rp_component_targets)
-while(_rp_table)
-  list(POP_FRONT _rp_table _c _t)
-  if(TARGET ${_t})
-    list(APPEND _rp_components ${_c})
-    list(APPEND _rp_component_targets ${_t})
-    set(_rp_${_c}_target ${_t})
-    set(_rp_target_${_t}_component ${_c})
-    set_target_properties(${_t} PROPERTIES EXPORT_NAME ${_c})
+foreach(_entry IN LISTS _rp_table)
+  string(REPLACE ":" ";" _entry "${_entry}")
+  list(POP_FRONT _entry _c)
+  string(REPLACE "," ";" _wanted "${_entry}")
+  set(_rp_${_c}_targets)
+  foreach(_alternatives IN LISTS _wanted)
+    string(REPLACE "|" ";" _alternatives "${_alternatives}")
+    foreach(_t IN LISTS _alternatives)
+      if(TARGET ${_t})
+        list(APPEND _rp_${_c}_targets ${_t})
+        break()
+      endif()
+    endforeach()
+  endforeach()
+  if(NOT _rp_${_c}_targets)
+    continue()
   endif()
-endwhile()
+  list(APPEND _rp_components ${_c})
+  list(APPEND _rp_component_targets ${_rp_${_c}_targets})
+  foreach(_t IN LISTS _rp_${_c}_targets)
+    set(_rp_target_${_t}_component ${_c})
+    get_target_property(_name ${_t} EXPORT_NAME)
+    if(NOT _name)
+      string(REGEX REPLACE "^rayproof_" "" _name ${_t})
+    endif()
+    list(GET _rp_${_c}_targets 0 _main)
+    if(_t STREQUAL _main)
+      set(_name ${_c})
+    endif()
+    set_target_properties(${_t} PROPERTIES EXPORT_NAME ${_name})
+  endforeach()
+endforeach()
 
 # _rp_link_items(TARGET OUT): what TARGET's link interface names, $<LINK_ONLY:> unwrapped, ALIAS
 # targets resolved, other generator expressions and directory markers skipped.
@@ -82,7 +106,7 @@ set(_rp_ext_lib_regex "(^|/)(lib)?(gmpxx|gmp|mpfr)(\\.so|\\.a)?$")
 # components), components needed, external packages and libraries, and our archives in link order.
 set(_rp_internal)
 foreach(_c IN LISTS _rp_components)
-  set(_todo ${_rp_${_c}_target})
+  set(_todo ${_rp_${_c}_targets})
   set(_seen)
   set(_rp_${_c}_requires)
   set(_rp_${_c}_packages)
@@ -105,7 +129,7 @@ foreach(_c IN LISTS _rp_components)
       if(_imported)
         list(APPEND _rp_${_c}_packages ${_t})
         continue()
-      elseif(_t IN_LIST _rp_component_targets AND NOT _t STREQUAL _rp_${_c}_target)
+      elseif(_t IN_LIST _rp_component_targets AND NOT _t IN_LIST _rp_${_c}_targets)
         list(APPEND _rp_${_c}_requires ${_rp_target_${_t}_component})
         continue()
       elseif(NOT _t IN_LIST _rp_component_targets)
@@ -172,6 +196,7 @@ foreach(_c IN LISTS _rp_components)
   endforeach()
 endforeach()
 
+set(_rp_source_include_targets)  # targets whose interface names a source directory
 # Installed link interfaces: build-only items wrapped in $<BUILD_INTERFACE:>, GMP and MPFR by path
 # replaced with rayproof_ext:: targets, source-tree include directories made build-only.
 foreach(_t IN LISTS _rp_component_targets _rp_internal)
@@ -201,36 +226,57 @@ foreach(_t IN LISTS _rp_component_targets _rp_internal)
         list(APPEND _new "${_d}")
       else()
         list(APPEND _new "$<BUILD_INTERFACE:${_d}>")
+        list(APPEND _rp_source_include_targets ${_t})
       endif()
     endforeach()
     set_property(TARGET ${_t} PROPERTY INTERFACE_INCLUDE_DIRECTORIES "${_new}")
   endif()
 endforeach()
 
-# Headers below the public API that installed headers still include (see docs/library.md): installed
-# under include/rayproof/internal/ with their source-relative paths ("io/case_file.h").
-set(_rp_internal_header_dirs src/io src/methods src/mesh src/scene verify)
+# Headers below the public API that users of a component include (ideally none: the public API is
+# include/rayproof/), with every header of the tree they include, found by following their
+# #include "..." lines. Installed under include/rayproof/internal/ with their source-relative paths
+# ("io/case_file.h"); the targets whose interface named a source directory get that include directory.
+set(_rp_internal_entries verify/certified.h verify/exact.h scene/accel.h)
 set(_rp_internal_includedir ${CMAKE_INSTALL_INCLUDEDIR}/rayproof/internal)
-set(_rp_needs_internal_headers rayproof_io rayproof_methods rayproof_mesh rayproof_scene rayproof_verify
-                               rayproof_certified_gmp)
-
-install(DIRECTORY ${PROJECT_SOURCE_DIR}/include/rayproof DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-if(_rp_internal)
-  foreach(_d IN LISTS _rp_internal_header_dirs)
-    install(DIRECTORY ${PROJECT_SOURCE_DIR}/${_d} DESTINATION ${_rp_internal_includedir}
-            FILES_MATCHING PATTERN "*.h" PATTERN "compare" EXCLUDE)
+set(_rp_headers)
+set(_rp_todo ${_rp_internal_entries})
+while(_rp_todo)
+  list(POP_FRONT _rp_todo _h)
+  if(_h IN_LIST _rp_headers OR _h MATCHES "^rayproof/")
+    continue()
+  endif()
+  set(_file)
+  foreach(_root ${PROJECT_SOURCE_DIR}/src ${PROJECT_SOURCE_DIR})
+    if(NOT _file AND EXISTS ${_root}/${_h})
+      set(_file ${_root}/${_h})
+    endif()
   endforeach()
-endif()
-foreach(_t IN LISTS _rp_needs_internal_headers)
-  if(TARGET ${_t})
+  if(NOT _file)
+    message(FATAL_ERROR "rayproof install: header ${_h} (included by an installed header) not found")
+  endif()
+  list(APPEND _rp_headers ${_h})
+  get_filename_component(_dir ${_h} DIRECTORY)
+  install(FILES ${_file} DESTINATION ${_rp_internal_includedir}/${_dir})
+  file(STRINGS ${_file} _includes REGEX "^[ \t]*#[ \t]*include[ \t]*\"")
+  foreach(_line IN LISTS _includes)
+    if(_line MATCHES "\"([^\"]+)\"")
+      list(APPEND _rp_todo ${CMAKE_MATCH_1})
+    endif()
+  endforeach()
+endwhile()
+if(_rp_headers)
+  foreach(_t IN LISTS _rp_source_include_targets)
     set_property(TARGET ${_t} APPEND PROPERTY INTERFACE_INCLUDE_DIRECTORIES
                  "$<INSTALL_INTERFACE:${_rp_internal_includedir}>")
-  endif()
-endforeach()
+  endforeach()
+endif()
+
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/include/rayproof DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
 
 # One export set per component, one for the internal libraries; the config file loads the ones asked for.
 foreach(_c IN LISTS _rp_components)
-  install(TARGETS ${_rp_${_c}_target} EXPORT rayproof_${_c}_targets
+  install(TARGETS ${_rp_${_c}_targets} EXPORT rayproof_${_c}_targets
           ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
   install(EXPORT rayproof_${_c}_targets NAMESPACE rayproof:: FILE rayproof_${_c}_targets.cmake
           DESTINATION ${RAYPROOF_CMAKE_DIR})
@@ -321,7 +367,7 @@ foreach(_c IN LISTS _rp_components)
     set(PC_CFLAGS "")
     if(_rp_${_c}_archives)
       foreach(_a IN LISTS _rp_${_c}_archives)
-        if(_a IN_LIST _rp_needs_internal_headers)
+        if(_a IN_LIST _rp_source_include_targets AND _rp_headers)
           set(PC_CFLAGS "-I\${includedir}/rayproof/internal")
         endif()
       endforeach()
