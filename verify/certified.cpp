@@ -1,12 +1,10 @@
-/// The certified method: floating-point filters with error bounds, exact fallback (GMP via
-/// exact_classify) when a bound cannot decide a sign or pin a t to one ulp.
+/// The certified method on case files: rayproof::certified's filters (header-only) first, its exact
+/// fallback (rayproof::exact, GMP, through exact_classify) when they cannot decide: the same
+/// implementation as the rayproof_certified library, on a case's fields.
 #include "verify/certified.h"
 
 #include "methods/primitive_of.h"
-#include "rayproof/certified_box.h"
-#include "rayproof/certified_planar.h"
-#include "rayproof/certified_quadric.h"
-#include "rayproof/certified_triangle.h"
+#include "rayproof/certified.h"
 #include "verify/exact.h"
 
 namespace rayproof::verify {
@@ -21,12 +19,13 @@ thread_local std::uint64_t g_fallbacks = 0;
 std::optional<Hit<double>> certified_filter(const io::Case& c) {
   const Ray<double> ray = ray_of<double>(c);
   switch (c.kind) {
-    case io::Kind::plane: return certified::plane(ray, plane_of<double>(c));
-    case io::Kind::sphere: return certified::sphere(ray, sphere_of<double>(c));
-    case io::Kind::ellipsoid: return certified::ellipsoid(ray, ellipsoid_of<double>(c));
+    case io::Kind::plane: return certified::try_intersect(ray, plane_of<double>(c));
+    case io::Kind::sphere: return certified::try_intersect(ray, sphere_of<double>(c));
+    case io::Kind::ellipsoid: return certified::try_intersect(ray, ellipsoid_of<double>(c));
+    // The method reports no barycentrics: the triangle filter without them (certified_triangle.h).
     case io::Kind::triangle: return certified::triangle(ray, triangle_of<double>(c));
-    case io::Kind::box: return certified::box(ray, box_of<double>(c));
-    case io::Kind::disk: return certified::disk(ray, disk_of<double>(c));
+    case io::Kind::box: return certified::try_intersect(ray, box_of<double>(c));
+    case io::Kind::disk: return certified::try_intersect(ray, disk_of<double>(c));
   }
   return std::nullopt;
 }
@@ -43,12 +42,7 @@ void register_certified_method(MethodRegistry& reg) {
   reg.add({"certified",
            "exact class, T within 1 ulp: error-bounded filters in extended precision, exact (GMP) fallback",
            Precision::float64, std::vector<io::Kind>(io::kAllKinds.begin(), io::kAllKinds.end()),
-           [](const io::Case& c) {
-             if (const auto h = certified_filter(c)) return make_result(c.kind, h->contact, h->t, h->t2);
-             ++g_fallbacks;
-             return exact_classify(c);
-           },
-           certified_fallbacks});
+           [](const io::Case& c) { return certified_classify(c, &g_fallbacks); }, certified_fallbacks});
 }
 
 }  // namespace rayproof::verify

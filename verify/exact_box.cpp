@@ -11,11 +11,11 @@
 
 namespace rayproof::verify {
 
-io::CaseResult exact_box(const io::Case& c) {
-  constexpr io::CaseResult kMiss{Contact::miss, std::nullopt, std::nullopt};
+Hit<double> exact_box(const Ray<double>& ray, const Box<double>& box) {
+  constexpr Hit<double> kMiss{Contact::miss};
   std::optional<Q> enter, exit;  // d != 0, so at least one axis sets both
   for (std::size_t i = 0; i < 3; ++i) {
-    const double o = c.v[i], d = c.v[3 + i], lo = c.v[6 + i], hi = c.v[9 + i];
+    const double o = ray.o[i], d = ray.d[i], lo = box.lo[i], hi = box.hi[i];
     if (d == 0) {  // comparisons of doubles are exact
       if (o < lo || o > hi) return kMiss;
       continue;

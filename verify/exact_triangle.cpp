@@ -1,8 +1,10 @@
 /// Exact ray/triangle (closed triangle). Predicates: n = (p1 - p0) x (p2 - p0) decides degeneracy;
 /// d . n and (p0 - o) . n decide parallel / coplanar; for a crossing line, the barycentrics of the
 /// plane point are u_i / (d . n) with u_i = det(d, p_j - o, p_k - o) (edges p1p2, p2p0, p0p1),
-/// which sum to d . n, so their signs and zeros are exact. Construction: t = (p0 - o) . n / (d . n).
-/// A ray in the plane is clipped against the three closed edge half-planes, exactly.
+/// which sum to d . n, so their signs and zeros are exact. Constructions: t = (p0 - o) . n / (d . n)
+/// and, for a contact (interior, edge, vertex, behind), b1 = u_1 / (d . n) and b2 = u_2 / (d . n),
+/// each rounded to nearest. A ray in the plane is clipped against the three closed edge
+/// half-planes, exactly.
 #include <optional>
 
 #include "verify/exact_kinds.h"
@@ -13,19 +15,20 @@ namespace rayproof::verify {
 
 namespace {
 
-constexpr io::CaseResult kNone{Contact::coplanar, std::nullopt, std::nullopt};
+using TH = TriangleHit<double>;
 
 /// Range of t >= 0 with o + t d in the closed triangle, for a ray lying in its plane. Edge j -> k
 /// keeps the points P with det(p_k - p_j, P - p_j, n) >= 0 (the side of the third vertex, where
 /// the determinant is n . n > 0); along the ray that is alpha + t beta >= 0, linear in t.
-io::CaseResult coplanar_range(const Point& o, const Vector& d, const Point (&p)[3], const Vector& n) {
+TH coplanar_range(const QVec& o, const QVec& d, const QVec (&p)[3], const QVec& n) {
+  constexpr TH kNone{Contact::coplanar};
   Q lo(0);
   std::optional<Q> hi;
   for (int j = 0; j < 3; ++j) {
     const int k = (j + 1) % 3;
-    const Vector edge = p[k] - p[j];
-    const Q alpha = CGAL::determinant(edge, o - p[j], n);
-    const Q beta = CGAL::determinant(edge, d, n);
+    const QVec edge = p[k] - p[j];
+    const Q alpha = det(edge, o - p[j], n);
+    const Q beta = det(edge, d, n);
     if (sign(beta) == 0) {
       if (sign(alpha) < 0) return kNone;  // the ray runs outside this edge's line
       continue;
@@ -44,33 +47,34 @@ io::CaseResult coplanar_range(const Point& o, const Vector& d, const Point (&p)[
 
 }  // namespace
 
-io::CaseResult exact_triangle(const io::Case& c) {
-  const Point o = point_at(c, 0);
-  const Vector d = vector_at(c, 3);
-  const Point p[3] = {point_at(c, 6), point_at(c, 9), point_at(c, 12)};
-  const Vector n = CGAL::cross_product(p[1] - p[0], p[2] - p[0]);
-  if (n == CGAL::NULL_VECTOR) return {Contact::degenerate, std::nullopt, std::nullopt};
+TriangleHit<double> exact_triangle(const Ray<double>& ray, const Triangle<double>& tri) {
+  const QVec o = exact3(ray.o);
+  const QVec d = exact3(ray.d);
+  const QVec p[3] = {exact3(tri.p0), exact3(tri.p1), exact3(tri.p2)};
+  const QVec n = cross(p[1] - p[0], p[2] - p[0]);
+  if (is_zero(n)) return {Contact::degenerate};
 
-  const Q den = d * n;
-  const Q num = (p[0] - o) * n;
+  const Q den = dot(d, n);
+  const Q num = dot(p[0] - o, n);
   const int s_den = sign(den);
   if (s_den == 0) {
-    if (sign(num) != 0) return {Contact::parallel, std::nullopt, std::nullopt};
+    if (sign(num) != 0) return {Contact::parallel};
     return coplanar_range(o, d, p, n);
   }
 
   // Barycentric i has the sign of u_i * den; u_2 follows from the sum.
-  const Q u0 = CGAL::determinant(d, p[1] - o, p[2] - o);
-  const Q u1 = CGAL::determinant(d, p[2] - o, p[0] - o);
+  const Q u0 = det(d, p[1] - o, p[2] - o);
+  const Q u1 = det(d, p[2] - o, p[0] - o);
   const Q u2 = den - u0 - u1;
   const int b[3] = {sign(u0) * s_den, sign(u1) * s_den, sign(u2) * s_den};
-  if (b[0] < 0 || b[1] < 0 || b[2] < 0) return {Contact::miss, std::nullopt, std::nullopt};
+  if (b[0] < 0 || b[1] < 0 || b[2] < 0) return {Contact::miss};
 
-  const double t = round_nearest(num / den);
-  if (sign(num) * s_den < 0) return {Contact::behind, t, std::nullopt};
+  const double t = round_nearest(Q(num / den));
+  const double b1 = round_nearest(Q(u1 / den)), b2 = round_nearest(Q(u2 / den));
+  if (sign(num) * s_den < 0) return {Contact::behind, t, kNaN<double>, b1, b2};
   const int zeros = (b[0] == 0) + (b[1] == 0) + (b[2] == 0);
   const Contact contact = zeros == 0 ? Contact::interior : (zeros == 1 ? Contact::edge : Contact::vertex);
-  return {contact, t, std::nullopt};
+  return {contact, t, kNaN<double>, b1, b2};
 }
 
 }  // namespace rayproof::verify

@@ -1,0 +1,39 @@
+#pragma once
+/// Exact answers for one ray against one primitive, typed (no case file): the class of exact real
+/// arithmetic on the given doubles (CASES.md), every t correctly rounded to the nearest double
+/// (ties to even), and for triangles the barycentrics b1, b2 of the contact point correctly
+/// rounded too. This is the ground truth of the `exact` method (the same kernels).
+///
+/// Compiled: link rayproof::certified (GMP, MPFR; no CGAL) or rayproof::verify (which links it).
+/// Cost: microseconds per call (GMP rationals; MPFR for roots and roundings), see docs/library.md.
+/// Thread safety: the functions keep no state; concurrent calls from several threads are safe
+/// (GMP and MPFR are reentrant; MPFR's exponent range, changed during a rounding and restored, is
+/// thread-local in Debian's build).
+///
+/// Results (rayproof/hit.h): fields a class does not carry are NaN.
+///  - invalid: a field NaN or infinite, d = 0, negative radius or semi-axis, box lo > hi.
+///  - degenerate: zero normal, radius or semi-axis, collinear triangle.
+///  - plane, disk: t. sphere, ellipsoid: t <= t2, the two roots (tangent: t = t2), also for
+///    behind and inside. box: t = entry, t2 = exit (hit, graze, inside, behind).
+///  - triangle: t for interior / edge / vertex / behind, with b1 (weight of p1) and b2 (weight of
+///    p2) of the plane point rounded to nearest (a zero barycentric is exactly 0.0, a vertex's 1 is
+///    exactly 1.0); coplanar: [t, t2] the range of t >= 0 on the closed triangle, or NaN, NaN.
+#include "rayproof/box.h"
+#include "rayproof/disk.h"
+#include "rayproof/ellipsoid.h"
+#include "rayproof/hit.h"
+#include "rayproof/plane.h"
+#include "rayproof/ray.h"
+#include "rayproof/sphere.h"
+#include "rayproof/triangle_common.h"
+
+namespace rayproof::exact {
+
+[[nodiscard]] Hit<double> intersect(const Ray<double>& ray, const Plane<double>& plane);
+[[nodiscard]] Hit<double> intersect(const Ray<double>& ray, const Sphere<double>& sphere);
+[[nodiscard]] Hit<double> intersect(const Ray<double>& ray, const Ellipsoid<double>& ellipsoid);
+[[nodiscard]] Hit<double> intersect(const Ray<double>& ray, const Box<double>& box);
+[[nodiscard]] Hit<double> intersect(const Ray<double>& ray, const Disk<double>& disk);
+[[nodiscard]] TriangleHit<double> intersect(const Ray<double>& ray, const Triangle<double>& triangle);
+
+}  // namespace rayproof::exact

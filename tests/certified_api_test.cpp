@@ -1,0 +1,138 @@
+/// rayproof/certified.h, the typed certified API: over the shared sample, certified::intersect has
+/// exactly the expected class and t, t2 within one ulp of the expected (exact) values, and the
+/// header-only try_intersect is either undecided or the same answer; the fallback count is the
+/// number of undecided calls; on the generator's triangle families the barycentrics are within
+/// kBarycentricError of the exact ones (an oracle computed here with GMP rationals), with exact
+/// zeros and ones on edges and vertices.
+#include "rayproof/certified.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <optional>
+
+#include "api_cases.h"
+#include "methods/method.h"
+#include "rayproof/exact.h"
+
+namespace rayproof {
+namespace {
+
+using api_test::same;
+
+bool same_answer(const Hit<double>& a, const Hit<double>& b) {
+  return a.contact == b.contact && same(a.t, b.t) && same(a.t2, b.t2);
+}
+bool same_answer(const TriangleHit<double>& a, const TriangleHit<double>& b) {
+  return a.contact == b.contact && same(a.t, b.t) && same(a.t2, b.t2) && same(a.b1, b.b1) && same(a.b2, b.b2);
+}
+
+/// Within one ulp, where both are present (a NaN on one side only is a failure).
+bool within_one_ulp(std::optional<double> got, std::optional<double> want) {
+  if (got.has_value() != want.has_value()) return false;
+  return !got || ulp_distance(*got, *want) <= 1;
+}
+
+TEST(CertifiedApi, SampleExactClassTWithinOneUlpTryIntersectUndecidedOrEqual) {
+  const api_test::Sample s = api_test::load_sample();
+  ASSERT_EQ(s.cases.size(), s.expected.size());
+  std::size_t decided = 0, undecided = 0;
+  const std::uint64_t fallbacks_before = certified::fallback_count();
+  for (std::size_t i = 0; i < s.cases.size(); ++i) {
+    const io::Case& c = s.cases[i];
+    const io::CaseResult& want = s.expected[i];
+    api_test::visit(c, [&](const auto& ray, const auto& prim) {
+      const auto got = certified::intersect(ray, prim);
+      const io::CaseResult r = make_result(c.kind, got.contact, got.t, got.t2);
+      EXPECT_EQ(got.contact, want.contact) << io::format_case(c);
+      EXPECT_TRUE(within_one_ulp(r.t, want.t)) << io::format_case(c) << ": t " << got.t;
+      EXPECT_TRUE(within_one_ulp(r.t2, want.t2)) << io::format_case(c) << ": t2 " << got.t2;
+      if (const auto core = certified::try_intersect(ray, prim)) {
+        ++decided;
+        EXPECT_TRUE(same_answer(*core, got)) << io::format_case(c);
+      } else {
+        ++undecided;
+      }
+    });
+  }
+  EXPECT_EQ(certified::fallback_count() - fallbacks_before, undecided);
+  EXPECT_GT(decided, s.cases.size() / 2);  // the filters decide the bulk; otherwise the check above is empty
+}
+
+// Answers without a t carry NaN; hits carry finite t (and t2 for two-valued kinds).
+TEST(CertifiedApi, UnusedFieldsAreNaN) {
+  const Ray<double> ray{{0, 0, -1}, {0, 0, 1}};
+  const auto miss = certified::intersect(ray, Sphere<double>{{5, 5, 5}, 1});
+  EXPECT_EQ(miss.contact, Contact::miss);
+  EXPECT_TRUE(std::isnan(miss.t) && std::isnan(miss.t2));
+  const auto hit = certified::intersect(ray, Triangle<double>{{-1, -1, 0}, {1, -1, 0}, {0, 1, 0}});
+  EXPECT_EQ(hit.contact, Contact::interior);
+  EXPECT_EQ(hit.t, 1.0);
+  EXPECT_TRUE(std::isnan(hit.t2));
+  // The plane point (0, 0) = 0.25 p0 + 0.25 p1 + 0.5 p2: exact in binary.
+  EXPECT_EQ(hit.b1, 0.25);
+  EXPECT_EQ(hit.b2, 0.5);
+  const auto invalid = certified::intersect(Ray<double>{{0, 0, 0}, {0, 0, 0}}, Plane<double>{{0, 0, 1}, {0, 0, 1}});
+  EXPECT_EQ(invalid.contact, Contact::invalid);
+}
+
+struct BaryStats {
+  std::size_t contacts = 0, filter_decided = 0;
+};
+
+/// One triangle case: class and t against exact::intersect; b1, b2 against the oracle.
+void check_triangle(const io::Case& c, BaryStats& st) {
+  const Ray<double> ray = ray_of<double>(c);
+  const Triangle<double> tri = triangle_of<double>(c);
+  const TriangleHit<double> got = certified::intersect(ray, tri), want = exact::intersect(ray, tri);
+  const std::string line = io::format_case(c);
+  ASSERT_EQ(got.contact, want.contact) << line;
+  EXPECT_TRUE(std::isnan(want.t) ? std::isnan(got.t) : ulp_distance(got.t, want.t) <= 1) << line;
+  EXPECT_TRUE(std::isnan(want.t2) ? std::isnan(got.t2) : ulp_distance(got.t2, want.t2) <= 1) << line;
+  const auto core = certified::try_intersect(ray, tri);
+  if (core) {
+    EXPECT_TRUE(same_answer(*core, got)) << line;
+  }
+  const Contact k = got.contact;
+  if (k != Contact::interior && k != Contact::edge && k != Contact::vertex && k != Contact::behind) {
+    EXPECT_TRUE(std::isnan(got.b1) && std::isnan(got.b2)) << line;
+    return;
+  }
+  ++st.contacts;
+  st.filter_decided += core.has_value();
+  const auto [b1, b2] = api_test::exact_barycentrics(ray, tri);
+  const mpq_class bound(certified::kBarycentricError);
+  for (const auto& [b, x, name] : {std::tuple{b1, got.b1, "b1"}, std::tuple{b2, got.b2, "b2"}}) {
+    ASSERT_FALSE(std::isnan(x)) << line << " " << name;
+    EXPECT_LE(abs(mpq_class(x) - b), bound) << line << " " << name << " = " << x << ", exact " << b.get_d();
+    EXPECT_TRUE(x >= 0 && x <= 1) << line << " " << name;
+    if (k == Contact::edge || k == Contact::vertex) {
+      if (sgn(b) == 0) {
+        EXPECT_EQ(x, 0.0) << line << " " << name;
+      }
+      if (b == 1) {
+        EXPECT_EQ(x, 1.0) << line << " " << name;
+      }
+    }
+  }
+}
+
+TEST(CertifiedApi, TriangleFamiliesBarycentricBound) {
+  BaryStats st;
+  std::size_t families = 0;
+  for (const gen::Family* f : api_test::triangle_families()) {
+    ++families;
+    for (const auto p : {gen::Precision::float32, gen::Precision::float64})
+      for (const io::Case& c : gen::generate(*f, 150, 11, p)) check_triangle(c, st);
+  }
+  EXPECT_GE(families, 10U);
+  // The bound is exercised on both paths: the filter's (Wide intervals) and the exact fallback's.
+  EXPECT_GT(st.filter_decided, st.contacts / 2);
+  EXPECT_LT(st.filter_decided, st.contacts);
+  RecordProperty("contacts", static_cast<int>(st.contacts));
+  RecordProperty("filter_decided", static_cast<int>(st.filter_decided));
+}
+
+}  // namespace
+}  // namespace rayproof
