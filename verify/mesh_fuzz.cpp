@@ -138,6 +138,16 @@ mesh::Mesh random_hull_mesh(std::mt19937_64& rng, int points, int count, std::ve
   }
 }
 
+mesh::Mesh fuzz_mesh(const MeshFuzzOptions& opt, std::size_t i, MeshShape& shape, std::vector<Vec3<double>>& interior,
+                     std::mt19937_64& rng) {
+  rng.seed((opt.seed + 1) * 0x9E3779B97F4A7C15ull + i);
+  shape = i % 2 ? MeshShape::hull : MeshShape::star;
+  if (shape == MeshShape::star)
+    return random_star_mesh(rng, int(rng() % std::uint64_t(opt.max_subdivisions + 1)), opt.interior_points, interior);
+  const int n = 8 + int(rng() % std::uint64_t(std::max(1, opt.max_hull_points - 7)));
+  return random_hull_mesh(rng, n, opt.interior_points, interior);
+}
+
 MeshFuzzResult run_mesh_fuzz(const MeshFuzzOptions& opt) {
   const auto start = std::chrono::steady_clock::now();
   auto elapsed = [&] { return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(); };
@@ -151,18 +161,12 @@ MeshFuzzResult run_mesh_fuzz(const MeshFuzzOptions& opt) {
 
   for (std::size_t i = 0; i < max_meshes; ++i) {
     if (opt.seconds > 0 && !opt.max_meshes && elapsed() >= opt.seconds) break;
-    std::mt19937_64 rng((opt.seed + 1) * 0x9E3779B97F4A7C15ull + i);
-    const MeshShape shape = i % 2 ? MeshShape::hull : MeshShape::star;
+    std::mt19937_64 rng;
+    MeshShape shape;
     std::vector<Vec3<double>> interior;
     scene::Scene s;
-    if (shape == MeshShape::star) {
-      scene::add_mesh(s, random_star_mesh(rng, int(rng() % std::uint64_t(opt.max_subdivisions + 1)), opt.interior_points, interior));
-      ++res.star_meshes;
-    } else {
-      const int n = 8 + int(rng() % std::uint64_t(std::max(1, opt.max_hull_points - 7)));
-      scene::add_mesh(s, random_hull_mesh(rng, n, opt.interior_points, interior));
-      ++res.hull_meshes;
-    }
+    scene::add_mesh(s, fuzz_mesh(opt, i, shape, interior, rng));
+    ++(shape == MeshShape::star ? res.star_meshes : res.hull_meshes);
     ++res.meshes;
     res.triangles += s.mesh.triangles.size();
     const scene::Accel accel(s);

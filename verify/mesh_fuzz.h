@@ -72,6 +72,11 @@ struct MeshFuzzResult {
   std::vector<MeshFuzzFinding> findings;
 };
 
+/// Mesh i of the campaign `opt` describes (seed, sizes, interior points), as run_mesh_fuzz draws
+/// it; `rng` is left where the campaign goes on drawing (its parity rays).
+[[nodiscard]] mesh::Mesh fuzz_mesh(const MeshFuzzOptions& opt, std::size_t i, MeshShape& shape,
+                                   std::vector<Vec3<double>>& interior, std::mt19937_64& rng);
+
 [[nodiscard]] MeshFuzzResult run_mesh_fuzz(const MeshFuzzOptions& opt);
 
 }  // namespace rayproof::verify

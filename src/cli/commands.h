@@ -17,5 +17,6 @@ Run add_fuzz(CLI::App& app);
 Run add_cast(CLI::App& app);
 Run add_render(CLI::App& app);
 Run add_bench(CLI::App& app);
+Run add_check(CLI::App& app);
 
 }  // namespace rayproof::cli

@@ -22,6 +22,7 @@ int main(int argc, char** argv) {
   add(add_cast(app));
   add(add_render(app));
   add(add_bench(app));
+  add(add_check(app));
   auto* methods = app.add_subcommand("methods", "List the registered methods");
   try {
     app.parse(argc, argv);

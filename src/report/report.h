@@ -37,6 +37,7 @@ struct Report {
   std::vector<std::string> notes;  ///< run parameters, one line each
   std::vector<Row> rows;
   std::vector<Point> points;
+  std::string highlight;  ///< a method drawn marked in the chart (the kernel `rayproof check` checks)
 };
 
 /// Compares and times `methods` on `cases` (grouped by family); `progress` gets one line now and then.

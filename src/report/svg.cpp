@@ -24,6 +24,7 @@ struct KindPoint {
   std::string method;
   double ns = 0, rate = 0, ulps = 0;
   bool f32 = false;
+  bool highlight = false;  ///< the kernel under test (rayproof check)
 };
 
 const char* kPalette[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b",
@@ -123,7 +124,10 @@ std::string panel(double x0, double y0, double w, double h, const std::string& t
     else s += fmt::format("<circle cx='{:.1f}' cy='{:.1f}' r='5' fill='{}'/>", x, y, col);
     const double ly = free_spot(x + 9, y);
     placed.emplace_back(x + 9, ly);
-    s += fmt::format("<text x='{:.1f}' y='{:.1f}' font-size='10' fill='{}'>{}</text>\n", x + 9, ly, col, escape(p.method));
+    if (p.highlight)
+      s += fmt::format("<circle cx='{:.1f}' cy='{:.1f}' r='11' fill='none' stroke='{}' stroke-width='2'/>", x, y, col);
+    s += fmt::format("<text x='{:.1f}' y='{:.1f}' font-size='10' fill='{}'{}>{}</text>\n", x + 9, ly, col,
+                     p.highlight ? " font-weight='bold'" : "", escape(p.highlight ? p.method + " (checked)" : p.method));
   }
   return s;
 }
@@ -163,6 +167,7 @@ std::string to_svg(const Report& r) {
       auto& p = agg[row.method];
       p.method = row.method;
       p.f32 = row.precision == Precision::float32;
+      p.highlight = row.method == r.highlight;
       p.ns += row.ns_per_case * double(row.stats.cases);
       st[row.method].merge(row.stats);
     }

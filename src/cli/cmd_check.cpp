@@ -1,0 +1,355 @@
+/// rayproof check: one kernel (--exec, --plugin, or a built-in --method) under the exact
+/// differential test over every built-in family of the kinds it answers; a verdict per family, the
+/// worst reproducers, the usual report with the kernel among the built-in methods, and an exit
+/// status for the promises the user states (--expect watertight|exact-class, --max-ulps N).
+#include <CLI/CLI.hpp>
+#include <fmt/core.h>
+#include <fmt/format.h>
+
+#include <chrono>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "cli/check_text.h"
+#include "cli/commands.h"
+#include "cli/registry.h"
+#include "cli/user_kernels.h"
+#include "report/report.h"
+#include "scene/accel.h"
+#include "verify/check.h"
+#include "verify/mesh_check.h"
+#include "verify/mesh_fuzz.h"
+
+namespace rayproof::cli {
+
+namespace {
+struct CheckCliOptions {
+  UserKernelOptions user;
+  std::string method;
+  std::size_t count = 2000;
+  std::uint64_t seed = 1;
+  std::vector<std::string> families, expect, compare;
+  std::optional<std::uint64_t> max_ulps;
+  std::size_t reproducers = 3;
+  std::string out;
+  bool json = false;
+  std::vector<std::string> mesh;  ///< mesh files, or `generated`
+  std::size_t meshes = 8;         ///< how many generated meshes `generated` stands for
+  std::size_t mesh_targets = 0;
+  int interior = 2;
+};
+
+nlohmann::json ulps_json(std::uint64_t u) {
+  if (u == std::numeric_limits<std::uint64_t>::max()) return nullptr;  // a NaN or missing t
+  return u;
+}
+
+nlohmann::json result_json(const verify::CheckResult& r) {
+  auto stats = [](const verify::Stats& s) {
+    return nlohmann::json{{"cases", s.cases},
+                          {"false_hit", s.false_hit},
+                          {"false_miss", s.false_miss},
+                          {"wrong_hit_class", s.wrong_hit_class},
+                          {"wrong_class", s.wrong_class},
+                          {"ulp_median", ulps_json(s.ulp_quantile(0.5))},
+                          {"ulp_p99", ulps_json(s.ulp_quantile(0.99))},
+                          {"ulp_max", ulps_json(s.ulp_quantile(1.0))},
+                          {"fallbacks", s.fallbacks}};
+  };
+  nlohmann::json fams = nlohmann::json::array();
+  for (const auto& f : r.families) {
+    auto j = stats(f.stats);
+    j["family"] = f.family;
+    j["over_tolerance"] = f.over_tolerance;
+    j["failures"] = f.failures.size();
+    nlohmann::json worst = nlohmann::json::array();
+    for (const auto& w : f.worst)
+      worst.push_back({{"case", io::format_case(w.judged.input)}, {"verdict", verify::to_string(w.judged.verdict)},
+                       {"got", io::format_result(w.judged.got)}, {"exact", io::format_result(w.judged.want)},
+                       {"ulps", ulps_json(w.judged.ulps)}, {"minimized", w.minimized}});
+    for (const auto& kf : f.failures)
+      worst.push_back({{"case", io::format_case(kf.input)}, {"verdict", "kernel-failure"}, {"what", kf.what}});
+    j["reproducers"] = worst;
+    fams.push_back(j);
+  }
+  auto total = stats(r.total());
+  total["over_tolerance"] = r.over_tolerance();
+  total["failures"] = r.failures();
+  nlohmann::json promises = nlohmann::json::array();
+  for (const auto& p : r.promises) promises.push_back({{"promise", p.promise}, {"kept", p.kept}, {"violations", p.violations}});
+  return {{"method", r.method},
+          {"precision", r.precision == Precision::float32 ? "float" : "double"},
+          {"seed", r.seed},
+          {"count", r.count},
+          {"ulp_tolerance", r.ulp_tolerance},
+          {"families", fams},
+          {"total", total},
+          {"promises", promises},
+          {"promises_kept", r.promises_kept()}};
+}
+
+/// check --mesh: leak rays on closed meshes (verify/mesh_check.h). Leaks break the promise
+/// `watertight`, which --mesh states.
+int run_mesh_check(const CheckCliOptions& o, const Method& kernel) {
+  if (!kernel.supports(io::Kind::triangle)) {
+    fmt::print(stderr, "rayproof check: --mesh needs a triangle kernel; '{}' answers no triangles\n", kernel.name);
+    return 2;
+  }
+  for (const auto& e : o.expect)
+    if (e != "watertight") {
+      fmt::print(stderr, "rayproof check: --expect {} applies to the families, not to --mesh (which checks watertight)\n", e);
+      return 2;
+    }
+  if (o.max_ulps || !o.families.empty() || !o.out.empty()) {
+    fmt::print(stderr, "rayproof check: --max-ulps, --families and --out apply to the families, not to --mesh\n");
+    return 2;
+  }
+  verify::MeshCheckOptions opt;
+  opt.finder = scene::find_scene_method("certified", all_methods());
+  opt.max_targets = o.mesh_targets;
+  opt.keep = o.reproducers;
+  std::vector<verify::MeshCheck> results;
+  auto run_one = [&](verify::MeshUnderTest mt) {
+    fmt::print(stderr, "[mesh] {}: {} triangles, {} interior points\n", mt.name, mt.mesh.triangles.size(), mt.interior.size());
+    results.push_back(verify::check_mesh(kernel, mt, opt));
+  };
+  for (const auto& name : o.mesh) {
+    if (name == "generated") {
+      verify::MeshFuzzOptions gen_opt;
+      gen_opt.seed = o.seed;
+      gen_opt.interior_points = o.interior;
+      for (std::size_t i = 0; i < o.meshes; ++i) {
+        verify::MeshUnderTest mt;
+        std::mt19937_64 rng;
+        verify::MeshShape shape;
+        mt.mesh = verify::fuzz_mesh(gen_opt, i, shape, mt.interior, rng);
+        mt.name = fmt::format("generated #{} ({})", i, shape == verify::MeshShape::star ? "icosphere" : "hull");
+        run_one(std::move(mt));
+      }
+      continue;
+    }
+    verify::MeshUnderTest mt;
+    mt.name = name;
+    try {
+      mt.mesh = mesh::read_mesh(name);
+    } catch (const std::exception& e) {
+      fmt::print(stderr, "rayproof check: {}\n", e.what());
+      return 2;
+    }
+    if (auto problem = verify::closed_mesh_problem(mt.mesh)) {
+      fmt::print(stderr, "rayproof check: {}: cannot be leak-checked: {}\n", name, *problem);
+      return 2;
+    }
+    mt.interior = verify::interior_points(mt.mesh, opt.finder, o.interior, o.seed);
+    if (mt.interior.empty()) {
+      fmt::print(stderr, "rayproof check: {}: found no point strictly inside it (is it closed and consistently oriented?)\n",
+                 name);
+      return 2;
+    }
+    run_one(std::move(mt));
+  }
+  const auto sentences = mesh_sentences(results);
+  bool leaked = false;
+  for (const auto& r : results) leaked = leaked || r.leaks > 0 || !r.failures.empty();
+  if (o.json) {
+    nlohmann::json meshes = nlohmann::json::array();
+    for (const auto& r : results) {
+      nlohmann::json leaks = nlohmann::json::array();
+      for (const auto& l : r.reproducers) {
+        nlohmann::json cands = nlohmann::json::array();
+        for (const auto& c : l.candidates)
+          cands.push_back({{"case", io::format_case(c.input)}, {"kernel", io::format_result(c.answer)},
+                           {"finder", std::string(to_string(c.finder_contact))}, {"finder_t", c.finder_t}});
+        leaks.push_back({{"origin", {l.ray.o.x, l.ray.o.y, l.ray.o.z}}, {"direction", {l.ray.d.x, l.ray.d.y, l.ray.d.z}},
+                         {"candidates", cands}});
+      }
+      meshes.push_back({{"mesh", r.mesh}, {"triangles", r.triangles}, {"rays", r.rays}, {"candidates", r.candidate_cases},
+                        {"leaks", r.leaks}, {"rays_without_candidates", r.rays_without_candidates},
+                        {"failures", r.failures.size()}, {"reproducers", leaks}});
+    }
+    fmt::print("{}\n", nlohmann::json{{"method", kernel.name}, {"finder", opt.finder.name}, {"seed", o.seed},
+                                      {"meshes", meshes}, {"watertight", !leaked}}.dump(1));
+  } else {
+    fmt::print("rayproof check --mesh: kernel '{}' ({} precision), candidates from {} (conservative BVH traversal)\n\n",
+               kernel.name, kernel.precision == Precision::float32 ? "float" : "double", opt.finder.name);
+    fmt::print("{}", mesh_table(results));
+    const auto lines = leak_lines(results, opt.finder.name);
+    if (!lines.empty()) {
+      fmt::print("\n# leaks (up to {} per mesh): each ray, then the triangles it slipped between as case lines\n",
+                 o.reproducers);
+      for (const auto& l : lines) fmt::print("{}\n", l);
+    }
+    fmt::print("\n");
+    for (const auto& l : sentences) fmt::print("{}\n", l);
+  }
+  return leaked ? 1 : 0;
+}
+
+int run_check(const CheckCliOptions& o) {
+  // The kernel under test: exactly one of --exec, --plugin, --method.
+  const std::size_t named = o.user.exec.size() + o.user.plugin.size() + (o.method.empty() ? 0 : 1);
+  if (named != 1) {
+    fmt::print(stderr, "rayproof check: name one kernel to check: --exec NAME=COMMAND, --plugin NAME=PATH.so or "
+                       "--method NAME ({} given)\n", named);
+    return 2;
+  }
+  std::vector<std::unique_ptr<Method>> owned;
+  const Method* kernel = nullptr;
+  if (!o.method.empty()) {
+    kernel = all_methods().find(o.method);
+    if (!kernel) {
+      fmt::print(stderr, "rayproof check: unknown method '{}' (known: {})\n", o.method, all_methods().names());
+      return 2;
+    }
+  } else {
+    UserKernelOptions u = o.user;
+    u.plugin_in_process = false;  // a crashing plugin is a finding, not the end of the check
+    auto made = make_user_kernels("check", u);
+    if (!made) return 2;
+    if (made->size() != 1) {
+      fmt::print(stderr, "rayproof check: the kernel could not be made\n");
+      return 2;
+    }
+    owned = std::move(*made);
+    kernel = owned.front().get();
+  }
+  if (kernel->kinds.empty()) {
+    fmt::print(stderr, "rayproof check: kernel '{}' answers no kind of case\n", kernel->name);
+    return 2;
+  }
+  if (!o.mesh.empty()) return run_mesh_check(o, *kernel);
+
+  verify::CheckOptions opt;
+  opt.count = o.count;
+  opt.seed = o.seed;
+  opt.reproducers = o.reproducers;
+  for (const auto& name : o.families) {
+    const gen::Family* f = gen::find_family(name);
+    if (!f) {
+      fmt::print(stderr, "rayproof check: unknown family '{}' (known: {})\n", name, gen::family_names());
+      return 2;
+    }
+    if (!f->every_kind && !kernel->supports(f->kind)) {
+      fmt::print(stderr, "rayproof check: family '{}' is of kind {}, which kernel '{}' does not answer\n", name,
+                 io::to_string(f->kind), kernel->name);
+      return 2;
+    }
+    opt.families.push_back(f);
+  }
+  for (const auto& e : o.expect) {
+    if (e == "watertight") opt.promises.watertight = true;
+    else if (e == "exact-class") opt.promises.exact_class = true;
+    else {
+      fmt::print(stderr, "rayproof check: unknown promise '{}' for --expect (known: watertight, exact-class; "
+                         "a t bound is --max-ulps N)\n", e);
+      return 2;
+    }
+  }
+  if (opt.promises.watertight) {
+    const bool runs_them = opt.families.empty()
+                               ? kernel->supports(io::Kind::triangle)
+                               : std::any_of(opt.families.begin(), opt.families.end(),
+                                             [](const gen::Family* f) { return verify::is_watertight_family(f->name); });
+    if (!runs_them) {
+      fmt::print(stderr, "rayproof check: --expect watertight is judged on the families tri_edge and tri_vertex, "
+                         "which this run does not include{}\n",
+                 kernel->supports(io::Kind::triangle) ? "" : " (the kernel answers no triangles)");
+      return 2;
+    }
+  }
+  opt.promises.max_ulps = o.max_ulps;
+  if (o.max_ulps) opt.ulp_tolerance = *o.max_ulps;
+  const auto start = std::chrono::steady_clock::now();
+  opt.progress = [&](const verify::CheckProgress& p) {
+    const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    fmt::print(stderr, "[{:6.1f}s] {}/{} {} ({} cases so far)\n", s, p.families_done, p.families_total, p.family,
+               p.cases_done);
+  };
+  const verify::CheckResult res = verify::check(*kernel, opt);
+
+  if (!o.out.empty()) {
+    std::vector<const Method*> methods{kernel};
+    auto compare = select_methods("check", o.compare, true);
+    if (!compare) return 2;
+    for (const Method* m : *compare)
+      if (m->name != kernel->name) methods.push_back(m);
+    std::vector<io::Case> cases;
+    for (const auto& fc : res.families)
+      for (auto p : {gen::Precision::float32, gen::Precision::float64}) {
+        const std::size_t n = p == gen::Precision::float32 ? o.count / 2 : o.count - o.count / 2;
+        auto part = gen::generate(*gen::find_family(fc.family), n, o.seed, p);
+        for (auto& c : part)
+          if (kernel->supports(c.kind)) cases.push_back(std::move(c));
+      }
+    auto rep = report::build_report(cases, methods, [](const std::string& msg) { fmt::print(stderr, "[report] {}\n", msg); });
+    rep.title = fmt::format("rayproof check: {} among the built-in methods", kernel->name);
+    rep.highlight = kernel->name;
+    rep.notes.push_back(fmt::format("kernel under test: {} ({} precision)", kernel->name,
+                                    kernel->precision == Precision::float32 ? "float" : "double"));
+    rep.notes.push_back(fmt::format("cases: {} families x {} (half built in float precision, half in double), seed {}",
+                                    res.families.size(), o.count, o.seed));
+    for (const auto& line : check_sentences(res)) rep.notes.push_back(line);
+    if (auto err = report::write_report(rep, o.out); !err.empty()) {
+      fmt::print(stderr, "rayproof check: {}\n", err);
+      return 2;
+    }
+    fmt::print(stderr, "wrote {0}/report.md, {0}/report.csv, {0}/error_vs_time.svg\n", o.out);
+  }
+
+  if (o.json) {
+    fmt::print("{}\n", result_json(res).dump(1));
+  } else {
+    fmt::print("rayproof check: kernel '{}' ({} precision), {} cases per family, seed {}\n\n", res.method,
+               res.precision == Precision::float32 ? "float" : "double", o.count, o.seed);
+    fmt::print("{}", check_table(res));
+    const auto lines = reproducer_lines(res);
+    if (!lines.empty()) {
+      fmt::print("\n# worst reproducers (up to {} per family): case-file lines, the input as the kernel saw it\n",
+                 o.reproducers);
+      for (const auto& l : lines) fmt::print("{}\n", l);
+    }
+    fmt::print("\n");
+    for (const auto& s : check_sentences(res)) fmt::print("{}\n", s);
+  }
+  return res.promises_kept() ? 0 : 1;
+}
+}  // namespace
+
+Run add_check(CLI::App& app) {
+  auto o = std::make_shared<CheckCliOptions>();
+  auto* sub = app.add_subcommand("check", "Check one kernel (yours, or a built-in one) against exact on every family");
+  add_user_kernel_options(*sub, o->user);
+  sub->add_option("--method", o->method, "Check this built-in method instead of a kernel of yours");
+  sub->add_option("--count", o->count, "Cases per family (half built in float precision, half in double)")
+      ->check(CLI::Range(std::size_t{2}, std::size_t{10000000}))
+      ->capture_default_str();
+  sub->add_option("--seed", o->seed, "Seed of the case families")->capture_default_str();
+  sub->add_option("--families", o->families, "Families (default: every family of the kinds the kernel answers)")
+      ->delimiter(',')->allow_extra_args(false);
+  sub->add_option("--expect", o->expect, "Promises that set the exit status: watertight, exact-class")
+      ->delimiter(',')->allow_extra_args(false);
+  sub->add_option("--max-ulps", o->max_ulps, "Promise: every class-correct t within N ulps (also the tolerance shown)")
+      ->check(CLI::Range(std::uint64_t{0}, std::numeric_limits<std::uint64_t>::max() - 1));
+  sub->add_option("--reproducers", o->reproducers, "Worst cases shown per family")
+      ->check(CLI::Range(std::size_t{0}, std::size_t{1000}))
+      ->capture_default_str();
+  sub->add_option("--out", o->out, "Write report.md, report.csv and error_vs_time.svg here");
+  sub->add_option("--compare", o->compare, "Built-in methods placed beside the kernel in the report (default: all)")
+      ->delimiter(',')->allow_extra_args(false);
+  sub->add_flag("--json", o->json, "Print the result as JSON instead of the table");
+  sub->add_option("--mesh", o->mesh,
+                  "Leak check on closed meshes instead of the families: mesh files (.off .obj .ply .stl), or "
+                  "`generated` for the generated meshes of fuzz --mesh; leaks break the promise watertight")
+      ->expected(1, -1);
+  sub->add_option("--meshes", o->meshes, "How many generated meshes `--mesh generated` checks")
+      ->check(CLI::Range(std::size_t{1}, std::size_t{100000}))
+      ->capture_default_str();
+  sub->add_option("--mesh-targets", o->mesh_targets, "Vertices and edge midpoints aimed at per mesh, evenly strided (0: all)")
+      ->capture_default_str();
+  sub->add_option("--interior", o->interior, "Interior points per mesh (rays start there)")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
+  return [o] { return run_check(*o); };
+}
+
+}  // namespace rayproof::cli
