@@ -245,7 +245,7 @@ endforeach()
 # include/rayproof/), with every header of the tree they include, found by following their
 # #include "..." lines. Installed under include/rayproof/internal/ with their source-relative paths
 # ("io/case_file.h"); the targets whose interface named a source directory get that include directory.
-set(_rp_internal_entries scene/accel.h)
+set(_rp_internal_entries scene/accel.h verify/check.h)
 set(_rp_internal_includedir ${CMAKE_INSTALL_INCLUDEDIR}/rayproof/internal)
 set(_rp_headers)
 set(_rp_todo ${_rp_internal_entries})
