@@ -8,6 +8,7 @@
 
 #include <tbb/task_arena.h>
 
+#include <algorithm>
 #include <chrono>
 #include <optional>
 #include <map>
@@ -15,6 +16,7 @@
 #include <thread>
 
 #include "cli/commands.h"
+#include "cli/scene_caster.h"
 #include "cli/scene_input.h"
 #include "scene/compare/competitors.h"
 #include "scene/watertight.h"
@@ -127,16 +129,25 @@ int run_bench(const BenchOptions& opt) {
       return 2;
     }
     const std::size_t cap = m.fast == scene::FastKernel::none ? opt.slow_rays : 0;
+    // float, robust and certified on a triangle mesh: through the public MeshCaster (its own BVH,
+    // built as `accel`, on the same threads); the other methods through the scene BVH.
+    std::optional<SceneCaster> caster;
+    if (SceneCaster::takes_public_api(s, m)) build_arena.execute([&] { caster.emplace(s, m); });
+    else caster.emplace(accel, m);
+    const double build_s = caster->public_api() ? caster->build_seconds() : accel.build_seconds();
     for (const auto& [set, all_rays] : sets) {
       const std::vector<Ray<double>> rays = subset(all_rays, cap);
-      std::vector<scene::PrimHit> hits(rays.size());
-      const double t = best_seconds(cap ? 1 : opt.repeat, [&] { accel.closest_batch(rays, hits, m, threads); });
-      rows.push_back({name, set, rays.size() / t / 1e6, accel.build_seconds(), bytes, rays.size()});
+      std::vector<CastHit> hits(rays.size());
+      const double t = best_seconds(cap ? 1 : opt.repeat, [&] { caster->closest(rays, hits, threads); });
+      rows.push_back({name, set, rays.size() / t / 1e6, build_s, caster->bytes_per_primitive(), rays.size()});
     }
     if (closed) {
-      const auto lc = scene::count_leaks(accel, m, subset(leak, cap), threads);
+      const std::vector<Ray<double>> lr = subset(leak, cap);
+      std::vector<CastHit> hits(lr.size());
+      caster->closest(lr, hits, threads);
+      const auto misses = std::count_if(hits.begin(), hits.end(), [](const CastHit& h) { return !h.hit(); });
       for (auto& r : rows)
-        if (r.method == name) r.leaks = std::int64_t(lc.misses), r.leak_rays = std::int64_t(lc.rays);
+        if (r.method == name) r.leaks = std::int64_t(misses), r.leak_rays = std::int64_t(lr.size());
     }
   }
   for (auto& c : scene::compare::make_competitors(s, opt.competitors, threads)) {

@@ -25,9 +25,9 @@ struct CastOptions {
   double tmin = 0, tmax = std::numeric_limits<double>::infinity();
 };
 
-std::string format_hit(const scene::PrimHit& h) {
-  if (h.prim == scene::PrimHit::kNoPrim) return std::string(to_string(h.contact)) + " - -";
-  return fmt::format("{} {} {}", to_string(h.contact), io::format_double(h.t), h.prim);
+std::string format_hit(const CastHit& h) {
+  if (!h.hit()) return std::string(to_string(h.contact)) + " - -";
+  return fmt::format("{} {} {}", to_string(h.contact), io::format_double(h.t), h.triangle);
 }
 
 int run_cast(const CastOptions& opt) {
@@ -50,15 +50,14 @@ int run_cast(const CastOptions& opt) {
     fmt::print(stderr, "rayproof cast: {}: no rays (expected lines 'ox oy oz dx dy dz')\n", opt.rays);
     return 2;
   }
-  const auto& accel = *loaded->accel;
-  const auto& m = loaded->method;
-  const scene::QueryRange q{opt.tmin, opt.tmax};
+  const SceneCaster& caster = *loaded->caster;
+  const TRange q{opt.tmin, opt.tmax};
   std::string out;
   int bad = 0;
-  std::vector<scene::PrimHit> hits;
+  std::vector<CastHit> hits;
   std::vector<std::uint8_t> any;
-  if (opt.query == "closest") hits.resize(rays.size()), accel.closest_batch(rays, hits, m, opt.threads, q);
-  if (opt.query == "any") any.resize(rays.size()), accel.any_batch(rays, any, m, opt.threads, q);
+  if (opt.query == "closest") hits.resize(rays.size()), caster.closest(rays, hits, opt.threads, q);
+  if (opt.query == "any") any.resize(rays.size()), caster.any(rays, any, opt.threads, q);
   for (std::size_t i = 0; i < rays.size(); ++i) {
     if (!errors[i].empty()) {
       fmt::print(stderr, "rayproof cast: {}\n", errors[i]);
@@ -73,7 +72,7 @@ int run_cast(const CastOptions& opt) {
     } else if (opt.query == "any") {
       out += any[i] ? "hit\n" : "miss\n";
     } else {
-      const auto all = accel.all(rays[i], m, q);
+      const auto all = caster.all(rays[i], q);
       if (all.empty()) out += "miss - -";
       for (std::size_t k = 0; k < all.size(); ++k) out += (k ? " " : "") + format_hit(all[k]);
       out += "\n";

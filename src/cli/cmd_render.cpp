@@ -90,43 +90,45 @@ int run_render(const RenderOptions& opt) {
   rays.reserve(std::size_t(w) * h);
   for (int j = 0; j < h; ++j)
     for (int i = 0; i < w; ++i) rays.push_back(cam.generate(i, j));
-  std::vector<scene::PrimHit> hits(rays.size());
-  loaded->accel->closest_batch(rays, hits, loaded->method, opt.threads);
+  std::vector<CastHit> hits(rays.size());
+  loaded->caster->closest(rays, hits, opt.threads);
   // Depth range over the hits, for the depth shading.
   double tlo = 1e300, thi = -1e300;
   for (const auto& x : hits)
-    if (x.prim != scene::PrimHit::kNoPrim) tlo = std::min(tlo, x.t), thi = std::max(thi, x.t);
+    if (x.hit()) tlo = std::min(tlo, x.t), thi = std::max(thi, x.t);
   std::vector<std::uint8_t> rgb(rays.size() * 3, 0);
   for (std::size_t p = 0; p < rays.size(); ++p) {
     const auto& x = hits[p];
-    if (x.prim == scene::PrimHit::kNoPrim) {
+    if (!x.hit()) {
       rgb[3 * p] = 30, rgb[3 * p + 1] = 30, rgb[3 * p + 2] = 40;
       continue;
     }
     const Vec3<double> d = normalize(rays[p].d);
-    const Vec3<double> n = normal_at(s, x.prim, rays[p].at(x.t), d);
+    const Vec3<double> n = normal_at(s, x.triangle, rays[p].at(x.t), d);
     const double depth = thi > tlo ? 1 - 0.6 * (x.t - tlo) / (thi - tlo) : 1;
     for (int c = 0; c < 3; ++c) rgb[3 * p + c] = static_cast<std::uint8_t>(std::clamp((0.5 + 0.5 * n[c]) * depth * 255, 0.0, 255.0));
   }
   std::string err;
   if (!write_png(opt.out, w, h, rgb, err)) return fmt::print(stderr, "rayproof render: {}\n", err), 2;
   fmt::print("{}: {}x{} pixels, {} hits, method {}\n", opt.out, w, h,
-             std::count_if(hits.begin(), hits.end(), [](const auto& x) { return x.prim != scene::PrimHit::kNoPrim; }),
+             std::count_if(hits.begin(), hits.end(), [](const auto& x) { return x.hit(); }),
              loaded->method.name);
   if (!opt.verify) return 0;
 
-  // Exact first hits: the registry's exact kernels under conservative traversal.
+  // Exact first hits: the registry's exact kernels under conservative traversal, through the scene
+  // BVH (the public MeshCaster has no exact method).
   const scene::SceneMethod exact = scene::find_scene_method("exact", all_methods());
-  std::vector<scene::PrimHit> truth(rays.size());
-  loaded->accel->closest_batch(rays, truth, exact, opt.threads);
+  const SceneCaster exact_caster(s, exact);
+  std::vector<CastHit> truth(rays.size());
+  exact_caster.closest(rays, truth, opt.threads);
   std::uint64_t false_miss = 0, false_hit = 0, wrong = 0;
   std::vector<std::uint8_t> marks(rgb.size());
   for (std::size_t p = 0; p < rays.size(); ++p) {
-    const bool a = hits[p].prim != scene::PrimHit::kNoPrim, b = truth[p].prim != scene::PrimHit::kNoPrim;
+    const bool a = hits[p].hit(), b = truth[p].hit();
     std::uint8_t c[3] = {std::uint8_t(rgb[3 * p] / 3), std::uint8_t(rgb[3 * p + 1] / 3), std::uint8_t(rgb[3 * p + 2] / 3)};
     if (!a && b) ++false_miss, c[0] = 255, c[1] = 0, c[2] = 0;
     else if (a && !b) ++false_hit, c[0] = 0, c[1] = 80, c[2] = 255;
-    else if (a && (hits[p].prim != truth[p].prim || hits[p].contact != truth[p].contact)) ++wrong, c[0] = 255, c[1] = 230, c[2] = 0;
+    else if (a && (hits[p].triangle != truth[p].triangle || hits[p].contact != truth[p].contact)) ++wrong, c[0] = 255, c[1] = 230, c[2] = 0;
     std::copy(c, c + 3, marks.begin() + 3 * p);
   }
   std::string vout = opt.verify_out;

@@ -8,13 +8,14 @@
 #include <string>
 
 #include "cli/registry.h"
+#include "cli/scene_caster.h"
 #include "scene/accel.h"
 
 namespace rayproof::cli {
 
 struct LoadedScene {
   std::unique_ptr<scene::Scene> scene;
-  std::unique_ptr<scene::Accel> accel;
+  std::unique_ptr<SceneCaster> caster;  ///< the public MeshCaster for meshes, else the scene BVH
   scene::SceneMethod method;
 };
 
@@ -28,7 +29,7 @@ inline std::optional<LoadedScene> load_scene_for_cli(const char* cmd, const std:
     l.scene = std::make_unique<scene::Scene>(path == "default" ? scene::default_scene() : scene::load_scene(path));
     BvhBuildOptions opt;
     opt.builder = builder == "median" ? BvhBuilder::median : BvhBuilder::sah;
-    l.accel = std::make_unique<scene::Accel>(*l.scene, opt);
+    l.caster = std::make_unique<SceneCaster>(*l.scene, l.method, opt);
     return l;
   } catch (const std::exception& e) {
     fmt::print(stderr, "rayproof {}: {}\n", cmd, e.what());

@@ -2,7 +2,10 @@
 /// Queries over a whole scene: a BVH over every primitive and one per-primitive method, for
 /// closest hit, any hit (occlusion) and all hits (every crossing, sorted), each with [tmin, tmax],
 /// one ray at a time or a batch over threads (TBB).
+#include <array>
+#include <cstddef>
 #include <cstdint>
+#include <cstring>
 #include <ostream>
 #include <span>
 #include <string>
@@ -12,6 +15,7 @@
 #include "rayproof/bvh_build.h"
 #include "rayproof/bvh_traverse.h"
 #include "rayproof/bvh_wide.h"
+#include "rayproof/mesh_caster.h"
 #include "scene/scene.h"
 
 namespace rayproof::scene {
@@ -22,7 +26,10 @@ struct PrimHit {
   Contact contact = Contact::miss;
   double t = kNaN<double>;
   std::uint32_t prim = kNoPrim;
-  /// Equal classes, primitives and t (NaN t, as in a miss, equals NaN).
+  /// A triangle's barycentrics b1 (weight of p1) and b2 (of p2) where the kernel has them
+  /// (compiled float, double and robust kernels), else NaN.
+  double b1 = kNaN<double>, b2 = kNaN<double>;
+  /// Equal classes, primitives and t (NaN t, as in a miss, equals NaN); barycentrics not compared.
   friend bool operator==(const PrimHit& a, const PrimHit& b) {
     return a.contact == b.contact && a.prim == b.prim && (a.t == b.t || (a.t != a.t && b.t != b.t));
   }
@@ -37,6 +44,10 @@ struct PrimHit {
 enum class FastKernel { none, mt_float, mt_double, cramer_float, cramer_double, watertight_float, watertight_double,
                         robust, certified };
 
+/// A typed exact fallback for `certified` triangles the filter cannot decide: the exact class, t
+/// within 1 ulp (as the registry's certified method). Given by the layer that has exact arithmetic.
+using TriangleFallback = Hit<double> (*)(const Ray<double>&, const Triangle<double>&);
+
 /// How the scene's primitives are intersected: a compiled kernel, or any registry method through
 /// its case interface (slower, used for exact, robust, certified and other methods).
 struct SceneMethod {
@@ -44,6 +55,7 @@ struct SceneMethod {
   FastKernel fast = FastKernel::none;
   const Method* generic = nullptr;
   BvhTraversal traversal = BvhTraversal::standard;
+  TriangleFallback triangle_fallback = nullptr;  ///< certified: used instead of `generic` for triangles
 };
 
 /// The scene method called `name`: a compiled kernel when there is one, else the registry's
@@ -60,14 +72,33 @@ struct LeafPrim {
 };
 static_assert(sizeof(LeafPrim) == 16);
 
-struct QueryRange {
-  double tmin = 0;
-  double tmax = std::numeric_limits<double>::infinity();
+/// A query's range of t (the public API's type: a crossing counts when tmin <= t <= tmax).
+using QueryRange = TRange;
+
+/// A triangle mesh read in place: packed double vertices (x y z, 24 bytes each) and 32-bit indices
+/// `index_stride` bytes apart (the indices are read once, at build: the leaf records keep them).
+struct MeshRef {
+  const Vec3<double>* vertices = nullptr;
+  std::size_t vertex_count = 0;
+  const std::byte* indices = nullptr;
+  std::size_t index_stride = 3 * sizeof(std::uint32_t);
+  std::size_t triangle_count = 0;
+  [[nodiscard]] std::array<std::uint32_t, 3> triangle(std::size_t i) const {
+    std::array<std::uint32_t, 3> t;
+    std::memcpy(t.data(), indices + i * index_stride, sizeof t);
+    return t;
+  }
 };
+
+/// Receives closest() results from a batch: f(context, ray number, hit).
+using HitSink = void (*)(void* context, std::size_t i, const PrimHit& h);
 
 class Accel {
  public:
   Accel(const Scene& s, const BvhBuildOptions& opt = {});
+  /// A BVH over a mesh read in place (triangles only; compiled methods only). The caller checks
+  /// the input (indices in range, finite vertices) and keeps the vertex array alive.
+  explicit Accel(const MeshRef& m, const BvhBuildOptions& opt = {});
 
   [[nodiscard]] const Scene& scene() const { return scene_; }
   /// The four-wide BVH the queries traverse (the SAH or median binary tree, collapsed).
@@ -92,9 +123,20 @@ class Accel {
                      int threads = 0, QueryRange q = {}) const;
   void any_batch(std::span<const Ray<double>> rays, std::span<std::uint8_t> out, const SceneMethod& m,
                  int threads = 0, QueryRange q = {}) const;
+  /// The same with a range per ray (`ranges` of size 1: one for all; empty: [0, inf)), closest
+  /// hits handed to `sink` (from the batch's threads, each ray once).
+  void closest_batch(std::span<const Ray<double>> rays, std::span<const QueryRange> ranges, HitSink sink,
+                     void* context, const SceneMethod& m, int threads = 0) const;
+  void any_batch(std::span<const Ray<double>> rays, std::span<const QueryRange> ranges, std::span<std::uint8_t> out,
+                 const SceneMethod& m, int threads = 0) const;
 
  private:
+  /// The BVH over `boxes` and leaf records with ids (vertex indices filled by the constructor).
+  void build(const std::vector<BvhBox>& boxes, const std::vector<Vec3<float>>& centers, const BvhBuildOptions& opt);
   const Scene& scene_;
+  const Vec3<double>* verts_ = nullptr;  ///< the triangles' vertices
+  std::uint32_t ntri_ = 0;
+  std::size_t triangle_bytes_ = 0;  ///< bytes of triangle data held for the queries
   Bvh4 bvh_;  ///< nodes only: prim_ids is folded into leaf_prims_
   std::vector<LeafPrim> leaf_prims_;
   double build_seconds_ = 0;

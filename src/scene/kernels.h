@@ -15,6 +15,7 @@ namespace rayproof::scene::detail {
 struct Crossing {
   Contact contact;
   double t;
+  double b1 = kNaN<double>, b2 = kNaN<double>;  ///< a triangle's barycentrics, where the kernel has them
 };
 
 /// The crossings a primitive's class carries, from its class and T, T2 (CASES.md): a quadric or
@@ -41,6 +42,14 @@ inline int crossings_of(Contact c, double t, double t2, Crossing out[2]) {
   }
 }
 
+/// A triangle kernel's crossings with its barycentrics (coplanar: none, the touch is a segment).
+template <class T>
+inline int crossings_of(const TriangleHit<T>& h, Crossing out[2]) {
+  const int n = crossings_of(h.contact, double(h.t), double(h.t2), out);
+  if (n == 1 && h.contact != Contact::coplanar) out[0].b1 = double(h.b1), out[0].b2 = double(h.b2);
+  return n;
+}
+
 /// Möller–Trumbore's miss screen: the same arithmetic as intersect_moller_trumbore up to b1, b2
 /// and t, so a `true` here is a case the full kernel classes miss or behind (no crossing). A
 /// nonzero det, in-range barycentrics and t >= 0 (or NaN) go on to the full kernel, which adds
@@ -60,47 +69,6 @@ template <class T>
   if (!(b2 >= T(0) && T(1) - b1 - b2 >= T(0))) return true;
   return dot(s2, e2) * inv < T(0);  // behind
 }
-
-/// The robust and certified methods' triangle kernels, compiled: `robust` is the watertight test
-/// on float inputs in double arithmetic; `certified` the certified filter with the registry's
-/// exact fallback when it cannot decide.
-enum class TriAlgo { moller_trumbore, cramer, watertight, robust, certified };
-
-template <class T, TriAlgo A>
-struct CompiledKernel {
-  const Scene& s;
-  Ray<T> ray{};
-  std::optional<WatertightRay<T>> wr;
-  const Method* fallback = nullptr;  ///< robust, certified: the registry method (other kinds, undecided)
-  Ray<double> ray_d{};
-
-  bool ray_ok = false;                                ///< robust: the float ray is valid
-  std::optional<WatertightRay<float, double>> wr_robust{};  ///< robust: the front door's per-ray part
-
-  void prepare(const Ray<double>& r) {
-    ray = {r.o.template cast<T>(), r.d.template cast<T>()};
-    ray_d = r;
-    if constexpr (A == TriAlgo::watertight) wr.emplace(ray);
-    if constexpr (A == TriAlgo::robust) {
-      ray_ok = ray.valid();
-      if (ray_ok) wr_robust.emplace(ray);
-    }
-  }
-  /// The ray the kernel intersects, in double (a float kernel's float-rounded ray): the one the
-  /// BVH traversal must not cull boxes of.
-  [[nodiscard]] Ray<double> traversal_ray() const { return {ray.o.template cast<double>(), ray.d.template cast<double>()}; }
-  [[nodiscard]] Triangle<T> tri(std::uint32_t i) const {
-    const auto& t = s.mesh.triangles[i];
-    const auto& v = s.mesh.vertices;
-    return {v[t[0]].template cast<T>(), v[t[1]].template cast<T>(), v[t[2]].template cast<T>()};
-  }
-  int crossings(std::uint32_t id, Crossing out[2]) const;
-  /// The same from a leaf-order record: the triangle's vertices straight from its indices.
-  int crossings(const LeafPrim& p, Crossing out[2]) const;
-
- private:
-  int triangle_crossings(const Triangle<T>& t, Crossing out[2]) const;
-};
 
 /// Any registry method, through the case interface (io::Case in, CaseResult out).
 struct GenericKernel {
@@ -139,17 +107,70 @@ struct GenericKernel {
   }
 };
 
+/// The robust and certified methods' triangle kernels, compiled: `robust` is the watertight test
+/// on float inputs in double arithmetic; `certified` the certified filter with the registry's
+/// exact fallback when it cannot decide.
+enum class TriAlgo { moller_trumbore, cramer, watertight, robust, certified };
+
+template <class T, TriAlgo A>
+struct CompiledKernel {
+  const Scene& s;
+  const Vec3<double>* verts;  ///< the triangles' vertices (the scene's, or a user's array in place)
+  std::uint32_t ntri;         ///< global numbers below ntri are triangles
+  const Method* fallback = nullptr;  ///< robust, certified: the registry method (other kinds, undecided)
+  TriangleFallback tri_fallback = nullptr;  ///< certified: the typed exact fallback, before `fallback`
+  Ray<T> ray{};
+  std::optional<WatertightRay<T>> wr{};
+  Ray<double> ray_d{};
+
+  bool ray_ok = false;                                ///< robust: the float ray is valid
+  std::optional<WatertightRay<float, double>> wr_robust{};  ///< robust: the front door's per-ray part
+
+  void prepare(const Ray<double>& r) {
+    ray = {r.o.template cast<T>(), r.d.template cast<T>()};
+    ray_d = r;
+    if constexpr (A == TriAlgo::watertight) wr.emplace(ray);
+    if constexpr (A == TriAlgo::robust) {
+      ray_ok = ray.valid();
+      if (ray_ok) wr_robust.emplace(ray);
+    }
+  }
+  /// The ray the kernel intersects, in double (a float kernel's float-rounded ray): the one the
+  /// BVH traversal must not cull boxes of.
+  [[nodiscard]] Ray<double> traversal_ray() const { return {ray.o.template cast<double>(), ray.d.template cast<double>()}; }
+  /// Triangle i by global number (the scene's index list: only for scenes, not in-place meshes).
+  [[nodiscard]] Triangle<double> triangle_d(std::uint32_t i) const {
+    const auto& t = s.mesh.triangles[i];
+    return {verts[t[0]], verts[t[1]], verts[t[2]]};
+  }
+  [[nodiscard]] Triangle<T> tri(std::uint32_t i) const {
+    const Triangle<double> t = triangle_d(i);
+    return {t.p0.template cast<T>(), t.p1.template cast<T>(), t.p2.template cast<T>()};
+  }
+  int crossings(std::uint32_t id, Crossing out[2]) const;
+  /// The same from a leaf-order record: the triangle's vertices straight from its indices.
+  int crossings(const LeafPrim& p, Crossing out[2]) const;
+
+ private:
+  int triangle_crossings(const Triangle<T>& t, Crossing out[2]) const;
+  /// certified: the filter's answer, else the exact fallback (typed, or the registry method's).
+  int certified_crossings(const Triangle<double>& t, std::uint32_t id, Crossing out[2]) const {
+    if (const auto h = certified::triangle(ray_d, t)) return crossings_of(h->contact, h->t, h->t2, out);
+    if (tri_fallback) {
+      const Hit<double> h = tri_fallback(ray_d, t);
+      return crossings_of(h.contact, h.t, h.t2, out);
+    }
+    return GenericKernel{s, *fallback, ray_d}.crossings(id, out);
+  }
+};
+
 template <class T, TriAlgo A>
 int CompiledKernel<T, A>::crossings(std::uint32_t id, Crossing out[2]) const {
     if constexpr (A == TriAlgo::robust || A == TriAlgo::certified) {
-      if (id >= s.mesh.triangles.size()) return GenericKernel{s, *fallback, ray_d}.crossings(id, out);
+      if (id >= ntri) return GenericKernel{s, *fallback, ray_d}.crossings(id, out);
     }
-    if (id < s.mesh.triangles.size()) {
-      if constexpr (A == TriAlgo::certified) {
-        const auto h = certified::triangle(ray_d, s.triangle(id));
-        if (!h) return GenericKernel{s, *fallback, ray_d}.crossings(id, out);  // exact fallback
-        return crossings_of(h->contact, h->t, h->t2, out);
-      }
+    if (id < ntri) {
+      if constexpr (A == TriAlgo::certified) return certified_crossings(triangle_d(id), id, out);
       return triangle_crossings(tri(id), out);
     }
     std::uint32_t k;
@@ -172,12 +193,10 @@ int CompiledKernel<T, A>::crossings(std::uint32_t id, Crossing out[2]) const {
 
 template <class T, TriAlgo A>
 int CompiledKernel<T, A>::crossings(const LeafPrim& p, Crossing out[2]) const {
-  if (p.id >= s.mesh.triangles.size()) return crossings(p.id, out);
-  const auto& v = s.mesh.vertices;
+  if (p.id >= ntri) return crossings(p.id, out);
+  const Vec3<double>* v = verts;
   if constexpr (A == TriAlgo::certified) {
-    const auto h = certified::triangle(ray_d, Triangle<double>{v[p.v[0]], v[p.v[1]], v[p.v[2]]});
-    if (!h) return GenericKernel{s, *fallback, ray_d}.crossings(p.id, out);  // exact fallback
-    return crossings_of(h->contact, h->t, h->t2, out);
+    return certified_crossings(Triangle<double>{v[p.v[0]], v[p.v[1]], v[p.v[2]]}, p.id, out);
   } else {
     return triangle_crossings({v[p.v[0]].template cast<T>(), v[p.v[1]].template cast<T>(), v[p.v[2]].template cast<T>()}, out);
   }
@@ -212,7 +231,7 @@ int CompiledKernel<T, A>::triangle_crossings(const Triangle<T>& t, Crossing out[
         if (mt_surely_no_crossing(ray, t)) return 0;
         h = intersect_moller_trumbore(ray, t);
       }
-      return crossings_of(h.contact, double(h.t), double(h.t2), out);
+      return crossings_of(h, out);
 }
 
 }  // namespace rayproof::scene::detail

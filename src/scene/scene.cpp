@@ -37,25 +37,25 @@ Vec3<float> center_of(const BvhBox& b) {
 }
 }  // namespace
 
+void triangle_bounds(const Triangle<double>& t, BvhBox& box, Vec3<float>& center) {
+  // Bounds in double, then rounded outward once: the same box as extending by each vertex
+  // (rounding down / up is monotonic), with 6 roundings instead of 18.
+  Vec3<double> lo, hi;
+  for (int k = 0; k < 3; ++k) {
+    const double a = t.p0[k], b = t.p1[k], c = t.p2[k];
+    const double l = a < b ? a : b, h = a > b ? a : b;
+    lo[k] = c < l ? c : l, hi[k] = c > h ? c : h;
+  }
+  box = BvhBox{};
+  box.extend(lo), box.extend(hi);
+  center = ((t.p0 + t.p1 + t.p2) / 3.0).cast<float>();
+}
+
 void Scene::primitive_bounds(std::vector<BvhBox>& out, std::vector<Vec3<float>>& centers) const {
   out.clear(), centers.clear();
   out.reserve(size()), centers.reserve(size());
   out.resize(mesh.triangles.size()), centers.resize(mesh.triangles.size());
-  for (std::uint32_t i = 0; i < mesh.triangles.size(); ++i) {
-    const Triangle<double> t = triangle(i);
-    // Bounds in double, then rounded outward once: the same box as extending by each vertex
-    // (rounding down / up is monotonic), with 6 roundings instead of 18.
-    Vec3<double> lo, hi;
-    for (int k = 0; k < 3; ++k) {
-      const double a = t.p0[k], b = t.p1[k], c = t.p2[k];
-      const double l = a < b ? a : b, h = a > b ? a : b;
-      lo[k] = c < l ? c : l, hi[k] = c > h ? c : h;
-    }
-    BvhBox& box = out[i];
-    box = BvhBox{};
-    box.extend(lo), box.extend(hi);
-    centers[i] = ((t.p0 + t.p1 + t.p2) / 3.0).cast<float>();
-  }
+  for (std::uint32_t i = 0; i < mesh.triangles.size(); ++i) triangle_bounds(triangle(i), out[i], centers[i]);
   auto add = [&](const BvhBox& b) { out.push_back(b), centers.push_back(center_of(b)); };
   for (const auto& s : spheres) add(box_around(s.center, {s.radius, s.radius, s.radius}));
   for (const auto& e : ellipsoids) add(box_around(e.center, e.semi_axes));

@@ -65,6 +65,9 @@ struct Scene {
   [[nodiscard]] std::size_t triangle_bytes() const;
 };
 
+/// A triangle's bounds (float, rounded outward) and split center, as primitive_bounds gives them.
+void triangle_bounds(const Triangle<double>& t, BvhBox& box, Vec3<float>& center);
+
 /// Adds a mesh, transformed by world_from_object, to the scene's mesh.
 void add_mesh(Scene& s, const mesh::Mesh& m, const Transform<double>& world_from_object = {});
 

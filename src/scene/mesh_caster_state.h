@@ -1,0 +1,33 @@
+#pragma once
+/// What a rayproof::MeshCaster holds (internal to rayproof_scene and rayproof_scene_certified):
+/// the vertices (a view of the user's, or a packed double copy), the BVH and the compiled method.
+#include <optional>
+#include <vector>
+
+#include "rayproof/mesh_caster.h"
+#include "scene/accel.h"
+
+namespace rayproof::detail {
+
+struct MeshState {
+  std::vector<Vec3<double>> copy;  ///< the converted vertices, when they could not be read in place
+  bool copied = false;
+  std::optional<scene::Accel> accel;
+  scene::SceneMethod method;
+};
+
+/// Checks the arrays (MeshInputError), converts the vertices when needed and builds the BVH for `m`.
+[[nodiscard]] MeshStatePtr build_mesh_state(const VertexArray& v, const IndexArray& i, scene::SceneMethod m);
+
+/// The method's state: Float and Robust in rayproof_scene, Certified in rayproof_scene_certified.
+[[nodiscard]] MeshStatePtr make_mesh_state(const VertexArray& v, const IndexArray& i, cast::Float);
+[[nodiscard]] MeshStatePtr make_mesh_state(const VertexArray& v, const IndexArray& i, cast::Robust);
+[[nodiscard]] MeshStatePtr make_mesh_state(const VertexArray& v, const IndexArray& i, cast::Certified);
+
+}  // namespace rayproof::detail
+
+namespace rayproof {
+template <class Method>
+MeshCaster<Method>::MeshCaster(const VertexArray& vertices, const IndexArray& indices)
+    : state_(detail::make_mesh_state(vertices, indices, Method{})) {}
+}  // namespace rayproof
