@@ -146,7 +146,7 @@ foreach(_c IN LISTS _rp_components)
         foreach(_n IN LISTS _next)
           if(TARGET ${_n} AND NOT _n IN_LIST _rp_build_only AND NOT _n MATCHES "::")
             get_target_property(_nt ${_n} TYPE)
-            if(_nt STREQUAL "STATIC_LIBRARY" AND NOT _n IN_LIST _rp_component_targets)
+            if(_nt STREQUAL "STATIC_LIBRARY" AND (_n IN_LIST _rp_${_c}_targets OR NOT _n IN_LIST _rp_component_targets))
               list(APPEND _deps_${_t} ${_n})
             endif()
           endif()
@@ -245,7 +245,7 @@ endforeach()
 # include/rayproof/), with every header of the tree they include, found by following their
 # #include "..." lines. Installed under include/rayproof/internal/ with their source-relative paths
 # ("io/case_file.h"); the targets whose interface named a source directory get that include directory.
-set(_rp_internal_entries scene/accel.h verify/check.h)
+set(_rp_internal_entries verify/check.h)
 set(_rp_internal_includedir ${CMAKE_INSTALL_INCLUDEDIR}/rayproof/internal)
 set(_rp_headers)
 set(_rp_todo ${_rp_internal_entries})

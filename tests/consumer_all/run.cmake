@@ -1,9 +1,10 @@
 # The installed package as a downstream project sees it, from the already built tree BUILD (no rebuild):
 #   MODE=prefix: `cmake --install BUILD --prefix WORK/prefix`; the component checks of the config file
 #                (a missing dependency, an unknown component, an optional component); consumer_all
-#                built with find_package against the prefix; a pkg-config build of core + certified.
+#                built with find_package against the prefix; a pkg-config build of all of it.
 #   MODE=deb:    `cpack -G DEB` in BUILD; the .deb's metadata and files; dpkg-deb -x into WORK/root;
-#                consumer_all and the pkg-config build against it; the packaged rayproof tool runs.
+#                consumer_all and a pkg-config build of core + certified against it; the packaged
+#                rayproof tool runs.
 # LIBDIR is the tree's CMAKE_INSTALL_LIBDIR (relative), CXX the compiler the tree was built with.
 # Consumers are built without optimization (a compile check and a run, not a benchmark).
 cmake_minimum_required(VERSION 3.20)
@@ -36,18 +37,19 @@ function(build_consumer prefix dir)
   endforeach()
 endfunction()
 
-# core + certified with pkg-config's flags only (no CMake package).
-function(build_pkgconfig prefix libdir out)
+# A consumer built with pkg-config's flags only (no CMake package): MODULES are the .pc files, MAIN
+# and SOURCES the consumer's files, OUT the program, which must run and pass.
+function(build_pkgconfig prefix libdir modules out main)
   find_program(PKG_CONFIG NAMES pkg-config pkgconf REQUIRED)
   set(ENV{PKG_CONFIG_PATH} ${prefix}/${libdir}/pkgconfig)
-  run(${PKG_CONFIG} --cflags --libs rayproof-certified)
+  run(${PKG_CONFIG} --cflags --libs ${modules})
   string(STRIP "${run_out}" flags)
-  message(STATUS "pkg-config --cflags --libs rayproof-certified: ${flags}")
+  message(STATUS "pkg-config --cflags --libs ${modules}: ${flags}")
   separate_arguments(flags UNIX_COMMAND "${flags}")
-  run(${CXX} -std=c++20 ${CONSUMER}/main_certified.cpp ${CONSUMER}/core.cpp ${CONSUMER}/certified.cpp ${flags}
-      -o ${out})
+  list(TRANSFORM ARGN PREPEND ${CONSUMER}/)
+  run(${CXX} -std=c++20 ${CONSUMER}/${main} ${ARGN} ${flags} -o ${out})
   run(${out})
-  message(STATUS "pkg-config consumer:\n${run_out}")
+  message(STATUS "${out}:\n${run_out}")
 endfunction()
 
 # A consumer project that must fail to configure with a message matching every regex in EXPECT.
@@ -90,7 +92,9 @@ endif()
   run(${CMAKE_COMMAND} -S ${WORK}/optional/src -B ${WORK}/optional/build -DCMAKE_PREFIX_PATH=${WORK}/prefix
       -DCMAKE_DISABLE_FIND_PACKAGE_TBB=ON)
   build_consumer(${WORK}/prefix ${WORK}/consumer)
-  build_pkgconfig(${WORK}/prefix ${LIBDIR} ${WORK}/pkgconfig_consumer)
+  # Every component with pkg-config (the .deb below: core + certified only).
+  build_pkgconfig(${WORK}/prefix ${LIBDIR} "rayproof-certified;rayproof-verify;rayproof-scene"
+                  ${WORK}/pkgconfig_consumer_all main_all.cpp core.cpp certified.cpp verify.cpp scene.cpp)
 elseif(MODE STREQUAL "deb")
   get_filename_component(cmake_bin ${CMAKE_COMMAND} DIRECTORY)
   find_program(CPACK NAMES cpack HINTS ${cmake_bin} REQUIRED)
@@ -121,7 +125,8 @@ elseif(MODE STREQUAL "deb")
   run(${prefix}/bin/rayproof methods)
   message(STATUS "packaged rayproof methods:\n${run_out}")
   build_consumer(${prefix} ${WORK}/consumer)
-  build_pkgconfig(${prefix} ${libdir} ${WORK}/pkgconfig_consumer)
+  build_pkgconfig(${prefix} ${libdir} rayproof-certified ${WORK}/pkgconfig_consumer_certified
+                  main_certified.cpp core.cpp certified.cpp)
 else()
   message(FATAL_ERROR "MODE must be prefix or deb, not '${MODE}'")
 endif()
