@@ -5,10 +5,11 @@
 #   MODE=deb:    `cpack -G DEB` in BUILD; the .deb's metadata and files; dpkg-deb -x into WORK/root;
 #                consumer_all and a pkg-config build of core + certified against it; the packaged
 #                rayproof tool runs.
-# LIBDIR is the tree's CMAKE_INSTALL_LIBDIR (relative), CXX the compiler the tree was built with.
+# LIBDIR is the tree's CMAKE_INSTALL_LIBDIR (relative), CXX the compiler the tree was built with,
+# GMP_LIBRARY the GMP it linked (hidden to test the message for a missing library).
 # Consumers are built without optimization (a compile check and a run, not a benchmark).
 cmake_minimum_required(VERSION 3.20)
-foreach(v SRC BUILD WORK MODE CXX LIBDIR)
+foreach(v SRC BUILD WORK MODE CXX LIBDIR GMP_LIBRARY)
   if(NOT DEFINED ${v})
     message(FATAL_ERROR "run.cmake needs -D${v}=...")
   endif()
@@ -52,33 +53,44 @@ function(build_pkgconfig prefix libdir modules out main)
   message(STATUS "${out}:\n${run_out}")
 endfunction()
 
-# A consumer project that must fail to configure with a message matching every regex in EXPECT.
-function(expect_configure_failure name components expect)
+# A consumer project asking for COMPONENTS after the CMake code PRE (which hides a dependency) must
+# fail to configure, with a message matching every regex after PRE.
+function(expect_configure_failure name components pre)
   set(dir ${WORK}/${name})
   file(MAKE_DIRECTORY ${dir}/src)
   file(WRITE ${dir}/src/CMakeLists.txt
-       "cmake_minimum_required(VERSION 3.20)\nproject(c LANGUAGES CXX)\n"
+       "cmake_minimum_required(VERSION 3.20)\nproject(c LANGUAGES CXX)\n${pre}\n"
        "find_package(rayproof CONFIG REQUIRED COMPONENTS ${components})\n")
-  execute_process(COMMAND ${CMAKE_COMMAND} -S ${dir}/src -B ${dir}/build -DCMAKE_PREFIX_PATH=${WORK}/prefix ${ARGN}
+  execute_process(COMMAND ${CMAKE_COMMAND} -S ${dir}/src -B ${dir}/build -DCMAKE_PREFIX_PATH=${WORK}/prefix
                   RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE err)
   if(rc EQUAL 0)
     message(FATAL_ERROR "${name}: configuring with COMPONENTS ${components} succeeded, it must fail")
   endif()
-  foreach(re IN LISTS expect)
+  string(REGEX REPLACE "[ \n]+" " " err "${err}")
+  foreach(re IN LISTS ARGN)
     if(NOT err MATCHES "${re}")
       message(FATAL_ERROR "${name}: the error does not match '${re}':\n${err}")
     endif()
   endforeach()
-  string(REGEX MATCH "rayproof[^\n]*(component|has no)[^\n]*" line "${err}")
-  message(STATUS "${name}: fails as it should: ${line}")
+  string(FIND "${err}" "Reason given by package: " from)
+  math(EXPR from "${from} + 25")
+  string(SUBSTRING "${err}" ${from} -1 reason)
+  message(STATUS "${name}: fails as it should: ${reason}")
 endfunction()
 
 if(MODE STREQUAL "prefix")
   run(${CMAKE_COMMAND} --install ${BUILD} --prefix ${WORK}/prefix)
-  # A required component whose dependency is missing, and an unknown component.
-  expect_configure_failure(no_tbb "core;scene" "component 'scene'" "TBB" "libtbb-dev"
-                           -DCMAKE_DISABLE_FIND_PACKAGE_TBB=ON)
-  expect_configure_failure(unknown "core;bogus" "no component 'bogus'")
+  # A required component whose dependency is missing (a package, a library), an unknown component.
+  expect_configure_failure(no_tbb "core;scene" "set(CMAKE_DISABLE_FIND_PACKAGE_TBB ON)"
+                           "component 'scene' needs package TBB" "libtbb-dev")
+  get_filename_component(gmp_dir ${GMP_LIBRARY} DIRECTORY)
+  set(hide ${gmp_dir})
+  if(gmp_dir MATCHES "^/usr(/lib.*)$")  # merged /usr: /lib is /usr/lib
+    list(APPEND hide ${CMAKE_MATCH_1})
+  endif()
+  expect_configure_failure(no_gmp "certified" "set(CMAKE_IGNORE_PATH ${hide})"
+                           "component 'certified' needs.* library gmp " "libgmp-dev")
+  expect_configure_failure(unknown "core;bogus" "" "no component 'bogus'")
   # An optional component whose dependency is missing: found FALSE, its target absent, no error.
   file(MAKE_DIRECTORY ${WORK}/optional/src)
   file(WRITE ${WORK}/optional/src/CMakeLists.txt [=[
