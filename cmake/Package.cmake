@@ -7,9 +7,11 @@ set(CPACK_PACKAGE_VERSION ${PROJECT_VERSION})
 set(CPACK_PACKAGE_DESCRIPTION_SUMMARY
     "Ray intersection kernels verified against exact arithmetic (C++20 library and tool)")
 set(CPACK_PACKAGE_DESCRIPTION
-    "Header-only floating-point and certified ray intersection kernels, static libraries for the certified fallback (GMP), exact verification (CGAL, MPFR) and mesh ray casting (TBB), their CMake package and pkg-config files, and the rayproof command-line tool.")
-set(CPACK_PACKAGE_CONTACT "rayproof maintainers <rayproof@localhost>")
-set(CPACK_DEBIAN_PACKAGE_MAINTAINER "rayproof maintainers <rayproof@localhost>")
+    "Header-only floating-point and certified ray intersection kernels; static libraries for certified and exact answers (GMP, MPFR), the checker of a kernel against exact, and mesh ray casting (TBB); their CMake package and pkg-config files; the rayproof command-line tool.")
+set(RAYPROOF_DEB_MAINTAINER "rayproof maintainers <rayproof@localhost>" CACHE STRING
+    "Maintainer field of the .deb (cpack -G DEB)")
+set(CPACK_PACKAGE_CONTACT "${RAYPROOF_DEB_MAINTAINER}")
+set(CPACK_DEBIAN_PACKAGE_MAINTAINER "${RAYPROOF_DEB_MAINTAINER}")
 set(CPACK_DEBIAN_PACKAGE_SECTION libdevel)
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
 set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
