@@ -22,10 +22,12 @@
 #include <vector>
 
 #include "rayproof/box_conservative.h"
+#include "rayproof/certified.h"
 #include "rayproof/certified_box.h"
 #include "rayproof/certified_fma.h"
 #include "rayproof/certified_quadric.h"
 #include "rayproof/certified_triangle.h"
+#include "rayproof/exact.h"
 #include "rayproof/quadric_stable.h"
 #include "rayproof/triangle.h"
 #include "rayproof/triangle_baldwin_weber.h"
@@ -215,6 +217,19 @@ void register_all() {
     add("triangle", in, "baldwin-weber", bw, [](const auto& c) { return int(is_hit(intersect_baldwin_weber(c.first, c.second).contact)); });
     add("triangle", in, "plucker", tri, [](const TriCase& c) { return int(is_hit(intersect_plucker(c.ray, c.tri).contact)); });
     add("triangle", in, "certified", tri, [](const TriCase& c) { return certified_tri(c, nullptr); });
+    // The typed library API (rayproof/certified.h: with barycentrics) and the exact kernels (rayproof/exact.h).
+    add("triangle", in, "certified-api", tri, [](const TriCase& c) {
+      return int(is_hit(certified::intersect(rc<double>(c.ray), tc<double>(c.tri)).contact));
+    });
+    {  // the API's own fallback count (per thread)
+      auto& fa = g_fallback[std::string("triangle/") + name_of(in) + "/api"];
+      const std::uint64_t before = certified::fallback_count();
+      for (const auto& c : tri) benchmark::DoNotOptimize(certified::intersect(rc<double>(c.ray), tc<double>(c.tri)));
+      fa = {certified::fallback_count() - before, tri.size()};
+    }
+    add("triangle", in, "exact-api", tri, [](const TriCase& c) {
+      return int(is_hit(exact::intersect(rc<double>(c.ray), tc<double>(c.tri)).contact));
+    });
     auto& ft = g_fallback[std::string("triangle/") + name_of(in)];
     for (const auto& c : tri) certified_tri(c, &ft.first);
     ft.second = tri.size();
@@ -229,6 +244,18 @@ void register_all() {
       return int(is_hit(intersect_stable(rc<double>(c.ray), Sphere<double>{c.s.center.cast<double>(), c.s.radius}).contact));
     });
     add("sphere", in, "certified", sph, [](const SphCase& c) { return certified_sph(c, nullptr); });
+    add("sphere", in, "certified-api", sph, [](const SphCase& c) {
+      return int(is_hit(certified::intersect(rc<double>(c.ray), Sphere<double>{c.s.center.cast<double>(), c.s.radius}).contact));
+    });
+    {  // the API's own fallback count (per thread)
+      auto& fa = g_fallback[std::string("sphere/") + name_of(in) + "/api"];
+      const std::uint64_t before = certified::fallback_count();
+      for (const auto& c : sph) benchmark::DoNotOptimize(certified::intersect(rc<double>(c.ray), Sphere<double>{c.s.center.cast<double>(), c.s.radius}));
+      fa = {certified::fallback_count() - before, sph.size()};
+    }
+    add("sphere", in, "exact-api", sph, [](const SphCase& c) {
+      return int(is_hit(exact::intersect(rc<double>(c.ray), Sphere<double>{c.s.center.cast<double>(), c.s.radius}).contact));
+    });
     auto& fs = g_fallback[std::string("sphere/") + name_of(in)];
     for (const auto& c : sph) certified_sph(c, &fs.first);
     fs.second = sph.size();
@@ -243,6 +270,18 @@ void register_all() {
       return int(is_hit(intersect_conservative(rc<double>(c.ray), Box<double>{c.b.lo.cast<double>(), c.b.hi.cast<double>()}).contact));
     });
     add("box", in, "certified", box, [](const BoxCase& c) { return certified_box(c, nullptr); });
+    add("box", in, "certified-api", box, [](const BoxCase& c) {
+      return int(is_hit(certified::intersect(rc<double>(c.ray), Box<double>{c.b.lo.cast<double>(), c.b.hi.cast<double>()}).contact));
+    });
+    {  // the API's own fallback count (per thread)
+      auto& fa = g_fallback[std::string("box/") + name_of(in) + "/api"];
+      const std::uint64_t before = certified::fallback_count();
+      for (const auto& c : box) benchmark::DoNotOptimize(certified::intersect(rc<double>(c.ray), Box<double>{c.b.lo.cast<double>(), c.b.hi.cast<double>()}));
+      fa = {certified::fallback_count() - before, box.size()};
+    }
+    add("box", in, "exact-api", box, [](const BoxCase& c) {
+      return int(is_hit(exact::intersect(rc<double>(c.ray), Box<double>{c.b.lo.cast<double>(), c.b.hi.cast<double>()}).contact));
+    });
     auto& fb = g_fallback[std::string("box/") + name_of(in)];
     for (const auto& c : box) certified_box(c, &fb.first);
     fb.second = box.size();
@@ -289,8 +328,8 @@ int main(int argc, char** argv) {
     const auto mine = cost.find(name);
     const double ratio = robust == cost.end() || mine == cost.end() ? 0.0 : mine->second / robust->second;
     std::string fb;
-    if (method == "certified") {
-      const auto& f = g_fallback[group];
+    if (method == "certified" || method == "certified-api") {
+      const auto& f = g_fallback[method == "certified" ? group : group + "/api"];
       fb = std::to_string(f.first) + "/" + std::to_string(f.second);
     }
     const auto cyc = rep.cycles.find(name);

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdint>
 #include <optional>
+#include <thread>
 
 #include "api_cases.h"
 #include "methods/method.h"
@@ -60,6 +61,40 @@ TEST(CertifiedApi, SampleExactClassTWithinOneUlpTryIntersectUndecidedOrEqual) {
   EXPECT_GT(decided, s.cases.size() / 2);  // the filters decide the bulk; otherwise the check above is empty
 }
 
+// Concurrent calls: every thread gets the serial answers, and its own fallback count (thread-local)
+// is the serial count, whatever the other thread does.
+TEST(CertifiedApi, ConcurrentCallsAndPerThreadFallbackCount) {
+  // The sample, and extreme magnitudes (subnormal, near overflow), where the filters leave work for GMP.
+  std::vector<io::Case> cases = api_test::load_sample().cases;
+  for (const char* family : {"tri_extreme_scale", "sph_generic"}) {
+    const gen::Family* f = gen::find_family(family);
+    ASSERT_NE(f, nullptr) << family;
+    const auto more = gen::generate(*f, 200, 3, gen::Precision::float64);
+    cases.insert(cases.end(), more.begin(), more.end());
+  }
+  auto run = [&cases](std::vector<std::string>& out) {
+    const std::uint64_t before = certified::fallback_count();
+    for (const io::Case& c : cases)
+      api_test::visit(c, [&](const auto& ray, const auto& prim) {
+        const auto h = certified::intersect(ray, prim);
+        out.push_back(io::format_result(make_result(c.kind, h.contact, h.t, h.t2)));
+      });
+    return certified::fallback_count() - before;
+  };
+  std::vector<std::string> serial, a, b;
+  const std::uint64_t fb = run(serial);
+  std::uint64_t fa = 0, fbb = 0;
+  std::thread ta([&] { fa = run(a); });
+  std::thread tb([&] { fbb = run(b); });
+  ta.join();
+  tb.join();
+  EXPECT_EQ(a, serial);
+  EXPECT_EQ(b, serial);
+  EXPECT_EQ(fa, fb);
+  EXPECT_EQ(fbb, fb);
+  EXPECT_GT(fb, 0U);  // the sample has cases only the fallback decides: the counts are not trivially 0
+}
+
 // Answers without a t carry NaN; hits carry finite t (and t2 for two-valued kinds).
 TEST(CertifiedApi, UnusedFieldsAreNaN) {
   const Ray<double> ray{{0, 0, -1}, {0, 0, 1}};
@@ -78,8 +113,21 @@ TEST(CertifiedApi, UnusedFieldsAreNaN) {
 }
 
 struct BaryStats {
-  std::size_t contacts = 0, filter_decided = 0;
+  std::size_t contacts = 0, filter_decided = 0, wide_decided = 0, dd_decided = 0, expansion_decided = 0;
 };
+
+/// Each barycentric stage on its own: undecided, or within the bound of the oracle's values.
+void check_stage(bool decided, double x1, double x2, const mpq_class& b1, const mpq_class& b2, Contact k,
+                 const std::string& what) {
+  if (!decided) return;
+  const mpq_class bound(certified::kBarycentricError);
+  EXPECT_LE(abs(mpq_class(x1) - b1), bound) << what << " b1 = " << x1;
+  EXPECT_LE(abs(mpq_class(x2) - b2), bound) << what << " b2 = " << x2;
+  if (k == Contact::edge || k == Contact::vertex) {
+    EXPECT_TRUE(sgn(b1) != 0 || x1 == 0.0) << what;
+    EXPECT_TRUE(sgn(b2) != 0 || x2 == 0.0) << what;
+  }
+}
 
 /// One triangle case: class and t against exact::intersect; b1, b2 against the oracle.
 void check_triangle(const io::Case& c, BaryStats& st) {
@@ -102,6 +150,21 @@ void check_triangle(const io::Case& c, BaryStats& st) {
   ++st.contacts;
   st.filter_decided += core.has_value();
   const auto [b1, b2] = api_test::exact_barycentrics(ray, tri);
+  double w1 = NAN, w2 = NAN, x1 = NAN, x2 = NAN;
+  const bool wide = certified::detail::triangle_barycentrics_wide(ray, tri, k, w1, w2);
+  const bool expn = certified::detail::triangle_barycentrics_expansion(ray, tri, k, x1, x2);
+  st.wide_decided += wide;
+#if RAYPROOF_FMA_PATH != 0
+  if (certified::dd::available()) {
+    double y1 = NAN, y2 = NAN;
+    const bool ddok = certified::detail::triangle_barycentrics_dd(ray, tri, k, y1, y2);
+    st.dd_decided += ddok;
+    check_stage(ddok, y1, y2, b1, b2, k, line + " (double-double stage)");
+  }
+#endif
+  st.expansion_decided += expn;
+  check_stage(wide, w1, w2, b1, b2, k, line + " (Wide stage)");
+  check_stage(expn, x1, x2, b1, b2, k, line + " (expansion stage)");
   const mpq_class bound(certified::kBarycentricError);
   for (const auto& [b, x, name] : {std::tuple{b1, got.b1, "b1"}, std::tuple{b2, got.b2, "b2"}}) {
     ASSERT_FALSE(std::isnan(x)) << line << " " << name;
@@ -130,8 +193,16 @@ TEST(CertifiedApi, TriangleFamiliesBarycentricBound) {
   // The bound is exercised on both paths: the filter's (Wide intervals) and the exact fallback's.
   EXPECT_GT(st.filter_decided, st.contacts / 2);
   EXPECT_LT(st.filter_decided, st.contacts);
+  EXPECT_GT(st.wide_decided, st.contacts / 2);
+  EXPECT_GT(st.expansion_decided, st.contacts / 2);
   RecordProperty("contacts", static_cast<int>(st.contacts));
   RecordProperty("filter_decided", static_cast<int>(st.filter_decided));
+  RecordProperty("wide_decided", static_cast<int>(st.wide_decided));
+  RecordProperty("dd_decided", static_cast<int>(st.dd_decided));
+  if (certified::dd::available()) {
+    EXPECT_GT(st.dd_decided, st.contacts / 2);
+  }
+  RecordProperty("expansion_decided", static_cast<int>(st.expansion_decided));
 }
 
 }  // namespace
