@@ -37,6 +37,10 @@ set(_rp_lib_gmp_deb libgmp-dev)
 set(_rp_lib_gmpxx_deb libgmp-dev)
 set(_rp_lib_mpfr_deb libmpfr-dev)
 
+# Every rule here is in the install component "rayproof" (install components are not find_package
+# components): `cmake --install build --component rayproof` and the .deb take exactly these files,
+# not other install rules of the tree (the Python module goes to the interpreter's site directory).
+set(RAYPROOF_INSTALL_COMPONENT rayproof)
 set(RAYPROOF_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/rayproof)
 set(RAYPROOF_PKGCONFIG_DIR ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
 
@@ -265,7 +269,7 @@ while(_rp_todo)
   endif()
   list(APPEND _rp_headers ${_h})
   get_filename_component(_dir ${_h} DIRECTORY)
-  install(FILES ${_file} DESTINATION ${_rp_internal_includedir}/${_dir})
+  install(FILES ${_file} DESTINATION ${_rp_internal_includedir}/${_dir} COMPONENT ${RAYPROOF_INSTALL_COMPONENT})
   file(STRINGS ${_file} _includes REGEX "^[ \t]*#[ \t]*include[ \t]*\"")
   foreach(_line IN LISTS _includes)
     if(_line MATCHES "\"([^\"]+)\"")
@@ -280,23 +284,25 @@ if(_rp_headers)
   endforeach()
 endif()
 
-install(DIRECTORY ${PROJECT_SOURCE_DIR}/include/rayproof DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/include/rayproof DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}
+        COMPONENT ${RAYPROOF_INSTALL_COMPONENT})
 
 # One export set per component, one for the internal libraries; the config file loads the ones asked for.
 foreach(_c IN LISTS _rp_components)
   install(TARGETS ${_rp_${_c}_targets} EXPORT rayproof_${_c}_targets
-          ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
+          ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT ${RAYPROOF_INSTALL_COMPONENT})
   install(EXPORT rayproof_${_c}_targets NAMESPACE rayproof:: FILE rayproof_${_c}_targets.cmake
-          DESTINATION ${RAYPROOF_CMAKE_DIR})
+          DESTINATION ${RAYPROOF_CMAKE_DIR} COMPONENT ${RAYPROOF_INSTALL_COMPONENT})
 endforeach()
 if(_rp_internal)
   foreach(_t IN LISTS _rp_internal)
     string(REGEX REPLACE "^rayproof_" "" _n ${_t})
     set_target_properties(${_t} PROPERTIES EXPORT_NAME internal_${_n})
   endforeach()
-  install(TARGETS ${_rp_internal} EXPORT rayproof_internal_targets ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
+  install(TARGETS ${_rp_internal} EXPORT rayproof_internal_targets
+          ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT ${RAYPROOF_INSTALL_COMPONENT})
   install(EXPORT rayproof_internal_targets NAMESPACE rayproof:: FILE rayproof_internal_targets.cmake
-          DESTINATION ${RAYPROOF_CMAKE_DIR})
+          DESTINATION ${RAYPROOF_CMAKE_DIR} COMPONENT ${RAYPROOF_INSTALL_COMPONENT})
 endif()
 
 # The config file's component table, in an order where every component follows the ones it needs.
@@ -355,12 +361,12 @@ configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/rayproofConfig.cmake.i
 write_basic_package_version_file(${PROJECT_BINARY_DIR}/rayproofConfigVersion.cmake
   VERSION ${PROJECT_VERSION} COMPATIBILITY SameMajorVersion)
 install(FILES ${PROJECT_BINARY_DIR}/rayproofConfig.cmake ${PROJECT_BINARY_DIR}/rayproofConfigVersion.cmake
-  DESTINATION ${RAYPROOF_CMAKE_DIR})
+  DESTINATION ${RAYPROOF_CMAKE_DIR} COMPONENT ${RAYPROOF_INSTALL_COMPONENT})
 
 include(${CMAKE_CURRENT_LIST_DIR}/InstallPkgConfig.cmake)
 
 if(TARGET rayproof)
-  install(TARGETS rayproof RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+  install(TARGETS rayproof RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT ${RAYPROOF_INSTALL_COMPONENT})
 endif()
 
 # For cmake/Package.cmake: the Debian packages the components need to be found and linked.

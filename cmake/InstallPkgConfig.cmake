@@ -47,5 +47,6 @@ foreach(_c IN LISTS _rp_components)
   endif()
   set(PC_PREFIX_FROM_PCFILEDIR ${_rp_pc_up})
   configure_file(${PROJECT_SOURCE_DIR}/cmake/rayproof.pc.in ${PROJECT_BINARY_DIR}/pkgconfig/${PC_NAME}.pc @ONLY)
-  install(FILES ${PROJECT_BINARY_DIR}/pkgconfig/${PC_NAME}.pc DESTINATION ${RAYPROOF_PKGCONFIG_DIR})
+  install(FILES ${PROJECT_BINARY_DIR}/pkgconfig/${PC_NAME}.pc DESTINATION ${RAYPROOF_PKGCONFIG_DIR}
+          COMPONENT ${RAYPROOF_INSTALL_COMPONENT})
 endforeach()

@@ -16,6 +16,8 @@ set(CPACK_DEBIAN_PACKAGE_SECTION libdevel)
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
 set(CPACK_PACKAGING_INSTALL_PREFIX /usr)
 set(CPACK_GENERATOR DEB)
+# The install component of cmake/Install.cmake only (build dir; project; component; subdirectory).
+set(CPACK_INSTALL_CMAKE_PROJECTS "${PROJECT_BINARY_DIR};${PROJECT_NAME};${RAYPROOF_INSTALL_COMPONENT};/")
 # No dpkg-shlibdeps (dpkg-dev is not a build dependency): the tool's shared libraries listed by hand,
 # then the -dev packages the components' find_package and link lines need (from Install.cmake).
 set(_rp_deb_runtime)

@@ -1,7 +1,8 @@
 # The installed package as a downstream project sees it, from the already built tree BUILD (no rebuild):
-#   MODE=prefix: `cmake --install BUILD --prefix WORK/prefix`; the component checks of the config file
-#                (a missing dependency, an unknown component, an optional component); consumer_all
-#                built with find_package against the prefix; a pkg-config build of all of it.
+#   MODE=prefix: `cmake --install BUILD --prefix WORK/prefix --component rayproof`; the checks of the
+#                config file (a missing package, a missing library, an unknown component, an optional
+#                component); consumer_all built with find_package against the prefix; a pkg-config
+#                build of all of it.
 #   MODE=deb:    `cpack -G DEB` in BUILD; the .deb's metadata and files; dpkg-deb -x into WORK/root;
 #                consumer_all and a pkg-config build of core + certified against it; the packaged
 #                rayproof tool runs.
@@ -79,7 +80,7 @@ function(expect_configure_failure name components pre)
 endfunction()
 
 if(MODE STREQUAL "prefix")
-  run(${CMAKE_COMMAND} --install ${BUILD} --prefix ${WORK}/prefix)
+  run(${CMAKE_COMMAND} --install ${BUILD} --prefix ${WORK}/prefix --component rayproof)
   # A required component whose dependency is missing (a package, a library), an unknown component.
   expect_configure_failure(no_tbb "core;scene" "set(CMAKE_DISABLE_FIND_PACKAGE_TBB ON)"
                            "component 'scene' needs package TBB" "libtbb-dev")
