@@ -380,3 +380,6 @@ foreach(_c IN LISTS _rp_components)
   endforeach()
 endforeach()
 list(REMOVE_DUPLICATES RAYPROOF_DEB_DEV_DEPENDS)
+
+# cpack -G DEB (cmake/Package.cmake).
+include(${CMAKE_CURRENT_LIST_DIR}/Package.cmake)

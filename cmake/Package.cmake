@@ -1,6 +1,6 @@
 # `cpack -G DEB` in the build directory: one .deb with the headers, the component libraries, the CMake
 # package, the pkg-config files and the rayproof tool, for Debian 12 (the package names below are
-# bookworm's). Needs cmake/Install.cmake first (RAYPROOF_DEB_DEV_DEPENDS).
+# bookworm's). Included at the end of cmake/Install.cmake (it needs RAYPROOF_DEB_DEV_DEPENDS).
 set(CPACK_PACKAGE_NAME rayproof)
 set(CPACK_PACKAGE_VENDOR "rayproof")
 set(CPACK_PACKAGE_VERSION ${PROJECT_VERSION})
