@@ -118,6 +118,7 @@ elseif(MODE STREQUAL "deb")
   if(NOT rc EQUAL 0 OR NOT deb)
     message(FATAL_ERROR "cpack -G DEB failed (${rc}):\n${out}\n${err}")
   endif()
+  file(REMOVE_RECURSE ${WORK}/deb/_CPack_Packages)  # cpack's staging copy
   run(${DPKG_DEB} --field ${deb} Package Version Depends)
   message(STATUS "${deb}:\n${run_out}")
   foreach(dep libgmp-dev libmpfr-dev libtbb-dev)
