@@ -34,6 +34,7 @@
 #include "rayproof/triangle_plucker.h"
 #include "rayproof/triangle_watertight.h"
 #include "verify/exact.h"
+#include "verify/fallback.h"
 
 using namespace rayproof;
 
@@ -217,7 +218,8 @@ void register_all() {
     add("triangle", in, "baldwin-weber", bw, [](const auto& c) { return int(is_hit(intersect_baldwin_weber(c.first, c.second).contact)); });
     add("triangle", in, "plucker", tri, [](const TriCase& c) { return int(is_hit(intersect_plucker(c.ray, c.tri).contact)); });
     add("triangle", in, "certified", tri, [](const TriCase& c) { return certified_tri(c, nullptr); });
-    // The typed library API (rayproof/certified.h: with barycentrics) and the exact kernels (rayproof/exact.h).
+    // The typed library API (rayproof/certified.h: with barycentrics), the ground truth (rayproof/exact.h, CGAL)
+    // and the certified tier's exact fallback alone (verify/fallback.h, GMP): the cost of one fallback.
     add("triangle", in, "certified-api", tri, [](const TriCase& c) {
       return int(is_hit(certified::intersect(rc<double>(c.ray), tc<double>(c.tri)).contact));
     });
@@ -229,6 +231,9 @@ void register_all() {
     }
     add("triangle", in, "exact-api", tri, [](const TriCase& c) {
       return int(is_hit(exact::intersect(rc<double>(c.ray), tc<double>(c.tri)).contact));
+    });
+    add("triangle", in, "fallback-api", tri, [](const TriCase& c) {
+      return int(is_hit(certified::fallback::intersect(rc<double>(c.ray), tc<double>(c.tri)).contact));
     });
     auto& ft = g_fallback[std::string("triangle/") + name_of(in)];
     for (const auto& c : tri) certified_tri(c, &ft.first);
@@ -256,6 +261,9 @@ void register_all() {
     add("sphere", in, "exact-api", sph, [](const SphCase& c) {
       return int(is_hit(exact::intersect(rc<double>(c.ray), Sphere<double>{c.s.center.cast<double>(), c.s.radius}).contact));
     });
+    add("sphere", in, "fallback-api", sph, [](const SphCase& c) {
+      return int(is_hit(certified::fallback::intersect(rc<double>(c.ray), Sphere<double>{c.s.center.cast<double>(), c.s.radius}).contact));
+    });
     auto& fs = g_fallback[std::string("sphere/") + name_of(in)];
     for (const auto& c : sph) certified_sph(c, &fs.first);
     fs.second = sph.size();
@@ -281,6 +289,9 @@ void register_all() {
     }
     add("box", in, "exact-api", box, [](const BoxCase& c) {
       return int(is_hit(exact::intersect(rc<double>(c.ray), Box<double>{c.b.lo.cast<double>(), c.b.hi.cast<double>()}).contact));
+    });
+    add("box", in, "fallback-api", box, [](const BoxCase& c) {
+      return int(is_hit(certified::fallback::intersect(rc<double>(c.ray), Box<double>{c.b.lo.cast<double>(), c.b.hi.cast<double>()}).contact));
     });
     auto& fb = g_fallback[std::string("box/") + name_of(in)];
     for (const auto& c : box) certified_box(c, &fb.first);

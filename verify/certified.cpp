@@ -1,11 +1,12 @@
 /// The certified method on case files: rayproof::certified's filters (header-only) first, its exact
-/// fallback (rayproof::exact, GMP, through exact_classify) when they cannot decide: the same
-/// implementation as the rayproof_certified library, on a case's fields.
+/// fallback (certified::fallback, GMP, verify/fallback.h) when they cannot decide: the same
+/// implementation as rayproof::certified::intersect, on a case's fields. It is judged against the
+/// `exact` method (CGAL), a separate implementation.
 #include "verify/certified.h"
 
 #include "methods/primitive_of.h"
 #include "rayproof/certified.h"
-#include "verify/exact.h"
+#include "verify/fallback.h"
 
 namespace rayproof::verify {
 
@@ -33,7 +34,17 @@ std::optional<Hit<double>> certified_filter(const io::Case& c) {
 io::CaseResult certified_classify(const io::Case& c, std::uint64_t* fallbacks) {
   if (const auto h = certified_filter(c)) return make_result(c.kind, h->contact, h->t, h->t2);
   if (fallbacks) ++*fallbacks;
-  return exact_classify(c);
+  const Ray<double> ray = ray_of<double>(c);
+  auto result = [&](const auto& h) { return make_result(c.kind, h.contact, h.t, h.t2); };
+  switch (c.kind) {
+    case io::Kind::plane: return result(certified::fallback::intersect(ray, plane_of<double>(c)));
+    case io::Kind::sphere: return result(certified::fallback::intersect(ray, sphere_of<double>(c)));
+    case io::Kind::ellipsoid: return result(certified::fallback::intersect(ray, ellipsoid_of<double>(c)));
+    case io::Kind::triangle: return result(certified::fallback::intersect(ray, triangle_of<double>(c)));
+    case io::Kind::box: return result(certified::fallback::intersect(ray, box_of<double>(c)));
+    case io::Kind::disk: return result(certified::fallback::intersect(ray, disk_of<double>(c)));
+  }
+  return {Contact::invalid, std::nullopt, std::nullopt};
 }
 
 std::uint64_t certified_fallbacks() { return g_fallbacks; }

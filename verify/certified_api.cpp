@@ -1,8 +1,8 @@
-/// rayproof::certified::intersect (rayproof/certified.h): the header-only filters, then the exact
-/// kernels (rayproof/exact.h, GMP) for what they leave undecided.
+/// rayproof::certified::intersect (rayproof/certified.h): the header-only filters, then the
+/// certified fallback (verify/fallback.h: exact, GMP, no CGAL) for what they leave undecided.
 #include "rayproof/certified.h"
 
-#include "rayproof/exact.h"
+#include "verify/fallback.h"
 
 namespace rayproof::certified {
 
@@ -15,7 +15,7 @@ template <class Prim>
 auto complete(const Ray<double>& ray, const Prim& prim) {
   if (auto h = try_intersect(ray, prim)) return *h;
   ++g_fallbacks;
-  return exact::intersect(ray, prim);
+  return fallback::intersect(ray, prim);
 }
 
 }  // namespace

@@ -1,6 +1,6 @@
 /// The exact method: ground truth of CASES.md, on a case file's fields. The case becomes a typed
 /// ray and primitive (exactly: the fields are doubles) and goes through rayproof::exact::intersect
-/// (rayproof/exact.h: screening, then the per-kind kernels of exact_*.cpp in GMP rationals).
+/// (rayproof/exact.h: screening, then the per-kind kernels of exact_*.cpp in CGAL's Gmpq).
 #include "verify/exact.h"
 
 #include "methods/primitive_of.h"
@@ -24,7 +24,7 @@ io::CaseResult exact_classify(const io::Case& c) {
 
 void register_exact_method(MethodRegistry& reg) {
   reg.add({"exact",
-           "ground truth: exact rationals (GMP) decide the class; T, T2 rounded to nearest (MPFR, "
+           "ground truth: exact rationals (CGAL Gmpq) decide the class; T, T2 rounded to nearest (MPFR, "
            "checked exactly)",
            Precision::float64, std::vector<io::Kind>(io::kAllKinds.begin(), io::kAllKinds.end()), exact_classify, {}});
 }

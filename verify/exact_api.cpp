@@ -1,6 +1,7 @@
-/// rayproof::exact::intersect (rayproof/exact.h): the screening of CASES.md (invalid, then
-/// degenerate), on the doubles themselves, which is exact; then the exact kernel of the kind
-/// (exact_*.cpp, GMP rationals).
+/// rayproof::exact::intersect (rayproof/exact.h), the ground truth: the screening of CASES.md
+/// (invalid, then degenerate), on the doubles themselves, which is exact; then the exact kernel of
+/// the kind (exact_*.cpp: CGAL's Gmpq and Simple_cartesian, MPFR for roundings). The certified
+/// tier's fallback (fallback_*.cpp, gmpxx) is written separately and checked against this.
 #include "rayproof/exact.h"
 
 #include <cmath>

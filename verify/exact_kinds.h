@@ -1,9 +1,8 @@
 #pragma once
-/// The exact kernels per kind (internal to the certified library; rayproof/exact.h is the public
-/// entry). Each takes inputs that rayproof::exact::intersect has already screened: every field
-/// finite, d != 0, no negative size, no inverted box, no zero normal / radius / semi-axis. Only the
-/// triangle's degeneracy (collinear vertices) needs exact arithmetic and is decided by
-/// exact_triangle itself. Fields a class does not carry are NaN (rayproof/hit.h).
+/// The ground truth per kind (internal to rayproof_verify; CGAL exact number types). Each takes
+/// inputs that rayproof::exact::intersect (exact_api.cpp) has already screened: every field finite, d != 0, no negative size, no inverted box, no zero
+/// normal / radius / semi-axis. Only the triangle's degeneracy (collinear vertices) needs exact
+/// arithmetic and is decided by exact_triangle itself. Fields a class does not carry are NaN.
 #include "rayproof/box.h"
 #include "rayproof/disk.h"
 #include "rayproof/ellipsoid.h"

@@ -16,8 +16,8 @@ struct PlaneCrossing {
   [[nodiscard]] int side() const { return sign(num) * sign(den); }  ///< sign of t (den != 0)
 };
 
-PlaneCrossing cross_plane(const QVec& o, const QVec& d, const QVec& on, const QVec& n) {
-  return {dot(on - o, n), dot(d, n)};
+PlaneCrossing cross_plane(const Point& o, const Vector& d, const Point& on, const Vector& n) {
+  return {(on - o) * n, d * n};
 }
 
 /// parallel / coplanar for a ray with d . n = 0.
@@ -28,22 +28,23 @@ Hit<double> in_or_off_plane(const PlaneCrossing& x) {
 }  // namespace
 
 Hit<double> exact_plane(const Ray<double>& ray, const Plane<double>& pl) {
-  const PlaneCrossing x = cross_plane(exact3(ray.o), exact3(ray.d), exact3(pl.point), exact3(pl.normal));
+  const PlaneCrossing x = cross_plane(point_of(ray.o), vector_of(ray.d), point_of(pl.point), vector_of(pl.normal));
   if (sign(x.den) == 0) return in_or_off_plane(x);
-  const double t = round_nearest(Q(x.num / x.den));
+  const double t = round_nearest(x.num / x.den);
   return {x.side() < 0 ? Contact::behind : Contact::hit, t};
 }
 
 Hit<double> exact_disk(const Ray<double>& ray, const Disk<double>& dk) {
-  const QVec o = exact3(ray.o), center = exact3(dk.center), d = exact3(ray.d);
-  const PlaneCrossing x = cross_plane(o, d, center, exact3(dk.normal));
+  const Point o = point_of(ray.o), center = point_of(dk.center);
+  const Vector d = vector_of(ray.d);
+  const PlaneCrossing x = cross_plane(o, d, center, vector_of(dk.normal));
   if (sign(x.den) == 0) return in_or_off_plane(x);
   // den (P - center) = den (o - center) + num d, so |P - c|^2 vs r^2 <=> |that|^2 vs r^2 den^2.
-  const QVec w = x.den * (o - center) + x.num * d;
+  const Vector w = x.den * (o - center) + x.num * d;
   const Q r(dk.radius);
-  const int outside = sign(Q(dot(w, w) - r * r * x.den * x.den));
+  const int outside = sign(w * w - r * r * x.den * x.den);
   if (outside > 0) return {Contact::miss};
-  const double t = round_nearest(Q(x.num / x.den));
+  const double t = round_nearest(x.num / x.den);
   if (x.side() < 0) return {Contact::behind, t};
   return {outside == 0 ? Contact::rim : Contact::hit, t};
 }

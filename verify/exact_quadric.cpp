@@ -37,10 +37,10 @@ RootPair approximate_roots(const Quadratic& q, const Q& disc) {
   constexpr mpfr_prec_t kPrec = 256;
   mpfr_t a, b, c, k, r1, r2;
   mpfr_inits2(kPrec, a, b, c, k, r1, r2, static_cast<mpfr_ptr>(nullptr));
-  mpfr_set_q(a, q.a.get_mpq_t(), MPFR_RNDN);
-  mpfr_set_q(b, q.b.get_mpq_t(), MPFR_RNDN);
-  mpfr_set_q(c, q.c.get_mpq_t(), MPFR_RNDN);
-  mpfr_set_q(k, disc.get_mpq_t(), MPFR_RNDN);
+  mpfr_set_q(a, q.a.mpq(), MPFR_RNDN);
+  mpfr_set_q(b, q.b.mpq(), MPFR_RNDN);
+  mpfr_set_q(c, q.c.mpq(), MPFR_RNDN);
+  mpfr_set_q(k, disc.mpq(), MPFR_RNDN);
   mpfr_sqrt(k, k, MPFR_RNDN);
   if (sign(q.b) >= 0) mpfr_add(k, b, k, MPFR_RNDN);
   else mpfr_sub(k, b, k, MPFR_RNDN);
@@ -58,11 +58,11 @@ Hit<double> solve(const Quadratic& q) {
   const int sd = sign(disc), sb = sign(q.b), sc = sign(q.c);
   if (sd < 0) return {Contact::miss};
   if (sd == 0) {  // double root -b / a, behind when b > 0 (t = 0 when b = 0 is a tangent at 0.0)
-    const double t = round_nearest(Q(-q.b / q.a));
+    const double t = round_nearest(-q.b / q.a);
     return {sb > 0 ? Contact::behind : Contact::tangent, t, t};
   }
   if (sc == 0) {  // roots 0 and -2b / a (b != 0 since disc = b^2 > 0)
-    const double other = round_nearest(Q(Q(-2) * q.b / q.a));
+    const double other = round_nearest(Q(-2) * q.b / q.a);
     // The zero root is the upper one when b > 0; the reference computes it as c / k with k < 0,
     // which is -0.0. As the lower root (b < 0) it is c / k with k > 0: +0.0.
     if (sb > 0) return {Contact::inside, other, -0.0};
@@ -80,25 +80,24 @@ Hit<double> solve(const Quadratic& q) {
 
 Hit<double> exact_sphere(const Ray<double>& ray, const Sphere<double>& s) {
   // |o + t d - center|^2 = r^2 with e = o - center.
-  const QVec d = exact3(ray.d);
-  const QVec e = exact3(ray.o) - exact3(s.center);
+  const Vector d = vector_of(ray.d);
+  const Vector e = point_of(ray.o) - point_of(s.center);
   const Q r(s.radius);
-  return solve({dot(d, d), dot(d, e), Q(dot(e, e) - r * r)});
+  return solve({d * d, d * e, e * e - r * r});
 }
 
 Hit<double> exact_ellipsoid(const Ray<double>& ray, const Ellipsoid<double>& el) {
   // sum_i (e_i + t d_i)^2 / s_i^2 = 1, times P = s_0^2 s_1^2 s_2^2 (> 0): weights w_i = P / s_i^2.
-  const QVec d = exact3(ray.d);
-  const QVec e = exact3(ray.o) - exact3(el.center);
+  const Vector d = vector_of(ray.d);
+  const Vector e = point_of(ray.o) - point_of(el.center);
   const Q s0(el.semi_axes.x), s1(el.semi_axes.y), s2(el.semi_axes.z);
   const Q q0 = s0 * s0, q1 = s1 * s1, q2 = s2 * s2;
   const Q w[3] = {q1 * q2, q0 * q2, q0 * q1};
-  const Q dv[3] = {d.x, d.y, d.z}, ev[3] = {e.x, e.y, e.z};
-  Quadratic q{Q(0), Q(0), Q(-(q0 * w[0]))};
+  Quadratic q{Q(0), Q(0), -(q0 * w[0])};
   for (int i = 0; i < 3; ++i) {
-    q.a += w[i] * dv[i] * dv[i];
-    q.b += w[i] * dv[i] * ev[i];
-    q.c += w[i] * ev[i] * ev[i];
+    q.a += w[i] * d[i] * d[i];
+    q.b += w[i] * d[i] * e[i];
+    q.c += w[i] * e[i] * e[i];
   }
   return solve(q);
 }

@@ -5,8 +5,6 @@
 
 #include <mpfr.h>
 
-#include <cmath>
-
 namespace rayproof::verify {
 
 namespace {
@@ -36,7 +34,7 @@ double round_nearest(const Q& q) {
   const Binary64ExponentRange range;
   mpfr_t r;
   mpfr_init2(r, 53);
-  int inexact = mpfr_set_q(r, q.get_mpq_t(), MPFR_RNDN);     // correctly rounded, over/underflow in range
+  int inexact = mpfr_set_q(r, q.mpq(), MPFR_RNDN);     // correctly rounded, over/underflow in range
   inexact = mpfr_subnormalize(r, inexact, MPFR_RNDN);  // subnormal precision, no double rounding
   const double d = mpfr_get_d(r, MPFR_RNDN);           // exact: r is now a binary64 value
   mpfr_clear(r);

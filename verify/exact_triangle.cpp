@@ -4,7 +4,7 @@
 /// which sum to d . n, so their signs and zeros are exact. Constructions: t = (p0 - o) . n / (d . n)
 /// and, for a contact (interior, edge, vertex, behind), b1 = u_1 / (d . n) and b2 = u_2 / (d . n),
 /// each rounded to nearest. A ray in the plane is clipped against the three closed edge
-/// half-planes, exactly.
+/// half-planes, exactly. CGAL's Gmpq and Simple_cartesian throughout (exact_number.h).
 #include <optional>
 
 #include "verify/exact_kinds.h"
@@ -15,20 +15,18 @@ namespace rayproof::verify {
 
 namespace {
 
-using TH = TriangleHit<double>;
-
 /// Range of t >= 0 with o + t d in the closed triangle, for a ray lying in its plane. Edge j -> k
 /// keeps the points P with det(p_k - p_j, P - p_j, n) >= 0 (the side of the third vertex, where
 /// the determinant is n . n > 0); along the ray that is alpha + t beta >= 0, linear in t.
-TH coplanar_range(const QVec& o, const QVec& d, const QVec (&p)[3], const QVec& n) {
-  constexpr TH kNone{Contact::coplanar};
+TriangleHit<double> coplanar_range(const Point& o, const Vector& d, const Point (&p)[3], const Vector& n) {
+  constexpr TriangleHit<double> kNone{Contact::coplanar};
   Q lo(0);
   std::optional<Q> hi;
   for (int j = 0; j < 3; ++j) {
     const int k = (j + 1) % 3;
-    const QVec edge = p[k] - p[j];
-    const Q alpha = det(edge, o - p[j], n);
-    const Q beta = det(edge, d, n);
+    const Vector edge = p[k] - p[j];
+    const Q alpha = CGAL::determinant(edge, o - p[j], n);
+    const Q beta = CGAL::determinant(edge, d, n);
     if (sign(beta) == 0) {
       if (sign(alpha) < 0) return kNone;  // the ray runs outside this edge's line
       continue;
@@ -48,14 +46,14 @@ TH coplanar_range(const QVec& o, const QVec& d, const QVec (&p)[3], const QVec& 
 }  // namespace
 
 TriangleHit<double> exact_triangle(const Ray<double>& ray, const Triangle<double>& tri) {
-  const QVec o = exact3(ray.o);
-  const QVec d = exact3(ray.d);
-  const QVec p[3] = {exact3(tri.p0), exact3(tri.p1), exact3(tri.p2)};
-  const QVec n = cross(p[1] - p[0], p[2] - p[0]);
-  if (is_zero(n)) return {Contact::degenerate};
+  const Point o = point_of(ray.o);
+  const Vector d = vector_of(ray.d);
+  const Point p[3] = {point_of(tri.p0), point_of(tri.p1), point_of(tri.p2)};
+  const Vector n = CGAL::cross_product(p[1] - p[0], p[2] - p[0]);
+  if (n == CGAL::NULL_VECTOR) return {Contact::degenerate};
 
-  const Q den = dot(d, n);
-  const Q num = dot(p[0] - o, n);
+  const Q den = d * n;
+  const Q num = (p[0] - o) * n;
   const int s_den = sign(den);
   if (s_den == 0) {
     if (sign(num) != 0) return {Contact::parallel};
@@ -63,14 +61,14 @@ TriangleHit<double> exact_triangle(const Ray<double>& ray, const Triangle<double
   }
 
   // Barycentric i has the sign of u_i * den; u_2 follows from the sum.
-  const Q u0 = det(d, p[1] - o, p[2] - o);
-  const Q u1 = det(d, p[2] - o, p[0] - o);
+  const Q u0 = CGAL::determinant(d, p[1] - o, p[2] - o);
+  const Q u1 = CGAL::determinant(d, p[2] - o, p[0] - o);
   const Q u2 = den - u0 - u1;
   const int b[3] = {sign(u0) * s_den, sign(u1) * s_den, sign(u2) * s_den};
   if (b[0] < 0 || b[1] < 0 || b[2] < 0) return {Contact::miss};
 
-  const double t = round_nearest(Q(num / den));
-  const double b1 = round_nearest(Q(u1 / den)), b2 = round_nearest(Q(u2 / den));
+  const double t = round_nearest(num / den);
+  const double b1 = round_nearest(u1 / den), b2 = round_nearest(u2 / den);
   if (sign(num) * s_den < 0) return {Contact::behind, t, kNaN<double>, b1, b2};
   const int zeros = (b[0] == 0) + (b[1] == 0) + (b[2] == 0);
   const Contact contact = zeros == 0 ? Contact::interior : (zeros == 1 ? Contact::edge : Contact::vertex);

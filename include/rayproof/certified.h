@@ -9,7 +9,9 @@
 ///    ulp, a coplanar range, a barycentric they cannot bound), the answer is std::nullopt:
 ///    *undecided*. A decided answer is final: intersect returns exactly that answer.
 ///  - intersect (compiled, link rayproof::certified: GMP and MPFR, no CGAL): try_intersect, then
-///    the exact kernels (rayproof/exact.h) for whatever it left undecided. Always decided.
+///    the certified tier's own exact fallback (GMP rationals, MPFR; verify/fallback_*.cpp, the
+///    contract of rayproof/exact.h but not its CGAL code) for whatever it left undecided. Always
+///    decided.
 ///
 /// What a decided answer guarantees (fields a class does not carry are NaN, as in rayproof/hit.h):
 ///  - contact: the class exact arithmetic on the given doubles gives (rayproof::exact::intersect).
@@ -17,8 +19,9 @@
 ///    neighbouring double). The fallback returns them correctly rounded.
 ///  - triangles, classes interior, edge, vertex and behind: b1 (weight of p1) and b2 (weight of p2)
 ///    of the plane point, each in [0, 1] and within kBarycentricError = 2^-50 (four ulps of 1) of
-///    the exact value; a barycentric that is exactly 0 is 0.0, a vertex hit's barycentric 1 is
-///    exactly 1.0 (proofs at detail::triangle_barycentrics_wide and _expansion). Other classes: NaN.
+///    the exact value; for edge and vertex hits a barycentric that is exactly 0 is 0.0 and a vertex
+///    hit's barycentric 1 is exactly 1.0 (proofs at the detail::triangle_barycentrics_* stages).
+///    Other classes: NaN.
 ///
 /// Thread safety: try_intersect and intersect keep no shared state; concurrent calls are safe. The
 /// fallback count (fallback_count) is per thread.
@@ -46,7 +49,7 @@ inline constexpr double kBarycentricError = 0x1p-50;
 
 namespace detail {
 
-/// The last step of both barycentric stages: w[i] approximates b_i within 2^-50 (already in [0, 1]),
+/// The last step of every barycentric stage: w[i] approximates b_i within 2^-50 (already in [0, 1]),
 /// maybe_zero[i] says that b_i may be 0 (every b_i that is 0 has it set). An edge has exactly one
 /// zero barycentric and a vertex two: when exactly that many are flagged they are the zero ones
 /// (0.0; a vertex's third is then exactly 1.0); when more are flagged, false (undecided). Interior
@@ -265,7 +268,7 @@ inline bool triangle_barycentrics(const Ray<double>& ray, const Triangle<double>
   return out;
 }
 
-/// Compiled, rayproof::certified: always decided (exact fallback, GMP, when the filter is not).
+/// Compiled, rayproof::certified: always decided (the exact fallback, GMP, when the filter is not).
 [[nodiscard]] Hit<double> intersect(const Ray<double>& ray, const Plane<double>& plane);
 [[nodiscard]] Hit<double> intersect(const Ray<double>& ray, const Sphere<double>& sphere);
 [[nodiscard]] Hit<double> intersect(const Ray<double>& ray, const Ellipsoid<double>& ellipsoid);

@@ -2,13 +2,18 @@
 /// Exact answers for one ray against one primitive, typed (no case file): the class of exact real
 /// arithmetic on the given doubles (CASES.md), every t correctly rounded to the nearest double
 /// (ties to even), and for triangles the barycentrics b1, b2 of the contact point correctly
-/// rounded too. This is the ground truth of the `exact` method (the same kernels).
+/// rounded too. This is the ground truth: the `exact` method is these kernels on a case's fields,
+/// and the certified tier (rayproof/certified.h) is judged against it.
 ///
-/// Compiled: link rayproof::certified (GMP, MPFR; no CGAL) or rayproof::verify (which links it).
+/// Compiled, in the verify component: link rayproof::verify (CGAL, GMP, MPFR). The kernels use
+/// CGAL's exact number types (Gmpq in Simple_cartesian) and MPFR for roots and roundings
+/// (verify/exact_*.cpp). rayproof::certified (GMP, MPFR, no CGAL) does not provide this header's
+/// functions: its exact fallback is a separate implementation, checked against this one bit for bit
+/// (tests/exact_crosscheck_test.cpp).
 /// Cost: microseconds per call (GMP rationals; MPFR for roots and roundings), see docs/library.md.
 /// Thread safety: the functions keep no state; concurrent calls from several threads are safe
-/// (GMP and MPFR are reentrant; MPFR's exponent range, changed during a rounding and restored, is
-/// thread-local in Debian's build).
+/// (every CGAL number is local to the call; GMP and MPFR are reentrant; MPFR's exponent range,
+/// changed during a rounding and restored, is thread-local in Debian's build).
 ///
 /// Results (rayproof/hit.h): fields a class does not carry are NaN.
 ///  - invalid: a field NaN or infinite, d = 0, negative radius or semi-axis, box lo > hi.

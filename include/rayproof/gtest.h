@@ -1,7 +1,7 @@
 #pragma once
 /// GoogleTest helpers: check a kernel's answer for one ray and one primitive against the exact answer
-/// (rayproof/exact.h). Header-only; the test links GTest and rayproof::verify (or just
-/// rayproof::certified, which holds the exact kernels).
+/// (rayproof/exact.h, the ground truth on CGAL). Header-only; the test links GTest and
+/// rayproof::verify (CGAL, GMP, MPFR), which provides rayproof::exact::intersect.
 ///
 ///   auto kernel = [](const auto& ray, const auto& prim) { return my::intersect(ray, prim); };
 ///   EXPECT_RAY_HIT_MATCHES_EXACT(kernel, ray, triangle, 2);   // or ASSERT_...

@@ -1,0 +1,63 @@
+#pragma once
+/// Exact real -> double, rounded to nearest with ties to even (IEEE 754 roundTiesToEven),
+/// subnormal and overflowing results included. Two tools:
+///  - round_nearest(q): a rational, rounded by MPFR (one correctly rounded conversion).
+///  - round_by_comparison(candidate, sign_vs): a real known only through exact comparisons with
+///    rationals (a quadric root); the candidate is moved until the real lies inside its rounding
+///    interval, which is then proven by those comparisons.
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+#include "verify/fallback_number.h"
+
+namespace rayproof::certified::fallback {
+
+/// q rounded to nearest double, ties to even; +-inf past the overflow threshold. Zero is +0.0.
+[[nodiscard]] double round_nearest(const Q& q);
+
+/// The value a double stands for when it bounds a rounding interval: itself, and +-2^1024 for
+/// +-inf (IEEE: a real of magnitude >= DBL_MAX + ulp/2 = midpoint(DBL_MAX, 2^1024) rounds to inf).
+[[nodiscard]] Q interval_value(double x);
+
+/// The exact midpoint of two adjacent doubles (infinities standing for +-2^1024).
+[[nodiscard]] Q midpoint(double a, double b);
+
+/// Of two adjacent doubles, the one with an even significand (inf counts as even, as 2^1024).
+[[nodiscard]] inline double even_of(double a, double b) {
+  return (std::bit_cast<std::uint64_t>(a) & 1U) == 0 ? a : b;
+}
+
+/// The double nearest to a real x, ties to even. sign_vs(m) must return the exact sign of x - m for
+/// a rational m. candidate: any double near x (a high-precision approximation); each step moves it
+/// one ulp towards x and never back, so a candidate within an ulp costs at most one step.
+/// Why it is correct: c is the nearest double exactly when x lies strictly between the midpoints
+/// of c with its two neighbours; on a midpoint (a tie) the neighbour with the even significand
+/// wins; +-inf stands for +-2^1024, so a real at or beyond midpoint(DBL_MAX, 2^1024) gives inf as
+/// IEEE 754 prescribes. A zero result carries the sign of x (+0.0 when x is exactly 0).
+template <class SignVs>
+[[nodiscard]] double round_by_comparison(double candidate, SignVs&& sign_vs) {
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  double c = std::isnan(candidate) ? 0.0 : candidate;
+  double r = 0;
+  for (;;) {
+    const double below = std::nextafter(c, -inf), above = std::nextafter(c, inf);
+    if (c != -inf) {  // -inf has no lower midpoint
+      const int s_lo = sign_vs(midpoint(below, c));
+      if (s_lo < 0) { c = below; continue; }
+      if (s_lo == 0) { r = even_of(below, c); break; }
+    }
+    if (c != inf) {  // +inf has no upper midpoint
+      const int s_hi = sign_vs(midpoint(c, above));
+      if (s_hi > 0) { c = above; continue; }
+      if (s_hi == 0) { r = even_of(c, above); break; }
+    }
+    r = c;
+    break;
+  }
+  if (r == 0) r = sign_vs(Q(0)) < 0 ? -0.0 : 0.0;
+  return r;
+}
+
+}  // namespace rayproof::certified::fallback
