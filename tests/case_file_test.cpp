@@ -2,7 +2,11 @@
 
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <random>
 #include <fstream>
 #include <sstream>
 
@@ -97,5 +101,71 @@ TEST(CaseFile, RoundToFloatRoundsEveryField) {
     volatile float r = static_cast<float>(c.v[i]);
     EXPECT_EQ(f.v[i], static_cast<double>(r)) << i;
     EXPECT_NE(f.v[i], c.v[i]) << i;
+  }
+}
+
+TEST(CaseFile, ParsesFullAndCoarseAnswers) {
+  const auto full = parse_answer("edge 2.5 -");
+  ASSERT_TRUE(full);
+  EXPECT_EQ(full->form, AnswerForm::full);
+  EXPECT_EQ(full->contact, Contact::edge);
+  EXPECT_EQ(full->t, 2.5);
+  EXPECT_FALSE(full->t2);
+  const auto sphere = parse_answer("hit 1.0 3.0\r");  // three fields: the full form
+  ASSERT_TRUE(sphere);
+  EXPECT_EQ(sphere->form, AnswerForm::full);
+  EXPECT_EQ(sphere->t2, 3.0);
+
+  const auto bary = parse_answer("hit 0.5 0.25 1e-3");
+  ASSERT_TRUE(bary);
+  EXPECT_EQ(bary->form, AnswerForm::coarse);
+  EXPECT_EQ(bary->contact, Contact::hit);
+  EXPECT_EQ(bary->t, 0.5);
+  EXPECT_EQ(bary->b1, 0.25);
+  EXPECT_EQ(bary->b2, 1e-3);
+  EXPECT_FALSE(bary->t2);
+  const auto t_only = parse_answer("  hit   0x1.8p+1 ");
+  ASSERT_TRUE(t_only);
+  EXPECT_EQ(t_only->form, AnswerForm::coarse);
+  EXPECT_EQ(t_only->t, 3.0);
+  EXPECT_FALSE(t_only->b1);
+  const auto occl = parse_answer("hit");
+  ASSERT_TRUE(occl);
+  EXPECT_EQ(occl->form, AnswerForm::coarse);
+  EXPECT_FALSE(occl->t);
+  const auto miss = parse_answer("miss");
+  ASSERT_TRUE(miss);
+  EXPECT_EQ(miss->form, AnswerForm::coarse);
+  EXPECT_EQ(miss->contact, Contact::miss);
+}
+
+TEST(CaseFile, RejectsAnswersThatAreNeitherForm) {
+  for (const char* bad : {"", "   ", "miss 1", "interior 2.0", "hit x", "hit 1 2 3 4", "hit 1 2 x", "edge", "bogus 1 2",
+                          "hit 1.0.0", "Miss", "hit - - -"})
+    EXPECT_FALSE(parse_answer(bad)) << bad;
+}
+
+TEST(CaseFile, AppendCaseLineMatchesFormatCase) {
+  std::mt19937_64 rng(7);
+  std::string out;
+  for (int i = 0; i < 2000; ++i) {
+    Case c;
+    c.kind = kAllKinds[static_cast<std::size_t>(i) % kAllKinds.size()];
+    for (double& x : c.v) {
+      const std::uint64_t bits = rng();
+      x = i % 3 == 0 ? std::bit_cast<double>(bits) : double(std::int64_t(bits % 2001) - 1000) / 64.0;
+    }
+    out.clear();
+    append_case_line(out, c);
+    EXPECT_EQ(out, format_case(c) + "\n");
+    for (int k = 0; k < field_count(c.kind); ++k) {
+      const double x = c.v[static_cast<std::size_t>(k)];
+      const std::string s = format_double(x);
+      if (std::isnan(x)) {
+        EXPECT_EQ(s, "nan");
+      } else {
+        EXPECT_EQ(std::bit_cast<std::uint64_t>(std::strtod(s.c_str(), nullptr)), std::bit_cast<std::uint64_t>(x)) << s;
+      }
+    }
   }
 }

@@ -18,7 +18,8 @@ std::tuple<int, std::uint64_t> badness(const Judged& j) {
     case Verdict::false_hit: return {3, 0};
     case Verdict::wrong_hit_class: return {2, 0};
     case Verdict::wrong_class: return {1, 0};
-    case Verdict::agree: break;
+    case Verdict::agree:
+    case Verdict::kernel_failure: break;  // failures are listed apart, with the kernel's message
   }
   return {0, j.ulps};
 }
@@ -44,6 +45,53 @@ void keep_worst(std::vector<Candidate>& v, std::size_t n) {
     if (!seen) kept.push_back(std::move(c));
   }
   v = std::move(kept);
+}
+
+/// The method's answers on `inputs` (as it sees them), judged against exact.
+std::vector<Judged> judge_all(const Method& m, const std::vector<io::Case>& inputs) {
+  std::vector<io::CaseResult> got(inputs.size());
+  m.classify_many(inputs, got);
+  std::vector<Judged> out(inputs.size());
+  Stats ignored;
+  for (std::size_t i = 0; i < inputs.size(); ++i) {
+    out[i].input = inputs[i];
+    out[i].want = exact_classify(inputs[i]);
+    out[i].got = got[i];
+    judge_answer(m, out[i], ignored);
+  }
+  return out;
+}
+
+/// Shrinks every class-error reproducer as fuzz does (minimize_cases), all of them in lockstep so
+/// that a kernel behind a pipe answers a few dozen batches, not a call per try.
+void minimize_reproducers(const Method& m, CheckResult& res) {
+  const bool f32 = m.precision == Precision::float32;
+  std::vector<Reproducer*> todo;
+  std::vector<io::Case> inputs;
+  for (auto& f : res.families)
+    for (auto& w : f.worst)
+      if (w.judged.verdict != Verdict::agree) todo.push_back(&w), inputs.push_back(w.judged.input);
+  if (todo.empty()) return;
+  const auto small = minimize_cases(inputs, [&](const std::vector<io::Case>& variants, const std::vector<std::size_t>& owner) {
+    std::vector<io::Case> seen;
+    for (const auto& v : variants) seen.push_back(f32 ? io::round_to_float(v) : v);
+    const auto judged = judge_all(m, seen);
+    std::vector<bool> ok(variants.size());
+    for (std::size_t v = 0; v < variants.size(); ++v)
+      ok[v] = judged[v].verdict == todo[owner[v]]->judged.verdict && judged[v].input.v == variants[v].v;
+    return ok;
+  });
+  std::vector<io::Case> changed;
+  std::vector<Reproducer*> who;
+  for (std::size_t k = 0; k < todo.size(); ++k)
+    if (small[k].v != inputs[k].v) changed.push_back(small[k]), who.push_back(todo[k]);
+  const auto final_judged = judge_all(m, changed);
+  for (std::size_t k = 0; k < who.size(); ++k) {
+    who[k]->judged = final_judged[k];
+    who[k]->minimized = true;
+  }
+  // Failures on the shrunken variants are not part of the tallies.
+  if (m.take_failures) (void)m.take_failures();
 }
 
 }  // namespace
@@ -85,15 +133,8 @@ CheckResult check(const Method& m, const CheckOptions& opt) {
     for (const auto& f : gen::families())
       if (f.every_kind ? !m.kinds.empty() : m.supports(f.kind)) fams.push_back(&f);
 
-  // The judgement is verify's (run_and_tally); the answers come from one classify_many per batch,
-  // replayed to it through a method that returns the batch's answer for the case in hand.
+  // The answers come from one classify_many per batch; the judgement is verify's (judge_answer).
   std::vector<io::CaseResult> got;
-  std::size_t at = 0;
-  Method replay;
-  replay.name = m.name;
-  replay.precision = m.precision;
-  replay.kinds = m.kinds;
-  replay.classify = [&](const io::Case&) { return got[at]; };
 
   CheckProgress progress;
   progress.families_total = fams.size();
@@ -123,8 +164,12 @@ CheckResult check(const Method& m, const CheckOptions& opt) {
       if (m.take_failures)
         for (auto& kf : m.take_failures()) fc.failures.push_back(std::move(kf));
       for (std::size_t i = b; i < e; ++i) {
-        at = i - b;
-        Judged j = run_and_tally(replay, cases[i], exact.as_given[i], exact.float_rounded[i], fc.stats);
+        Judged j;
+        j.input = std::move(seen[i - b]);
+        j.want = f32 ? exact.float_rounded[i] : exact.as_given[i];
+        j.got = got[i - b];
+        judge_answer(m, j, fc.stats);
+        if (j.verdict == Verdict::kernel_failure) continue;
         if (j.verdict == Verdict::agree && j.ulps > opt.ulp_tolerance) ++fc.over_tolerance;
         if (j.verdict != Verdict::agree || j.ulps > opt.ulp_tolerance) {
           worst.push_back({std::move(j), i});
@@ -134,25 +179,14 @@ CheckResult check(const Method& m, const CheckOptions& opt) {
       progress.cases_done += e - b;
     }
     keep_worst(worst, opt.reproducers);
-    for (auto& w : worst) {
-      Reproducer r{f->name, std::move(w.judged), false};
-      if (opt.minimize && r.judged.verdict != Verdict::agree) {
-        const io::Case small = minimize_case(m, r.judged.input, r.judged.verdict);
-        if (small.v != r.judged.input.v) {
-          Stats ignored;
-          r.judged = run_and_tally(m, small, exact_classify(small), exact_classify(io::round_to_float(small)), ignored);
-          r.minimized = true;
-        }
-        // Failures on the shrunken variants are not part of the tallies.
-        if (m.take_failures) (void)m.take_failures();
-      }
-      fc.worst.push_back(std::move(r));
-    }
+    for (auto& w : worst) fc.worst.push_back({f->name, std::move(w.judged), false});
     res.families.push_back(std::move(fc));
     ++progress.families_done;
     progress.family = f->name;
     if (opt.progress) opt.progress(progress);
   }
+
+  if (opt.minimize) minimize_reproducers(m, res);
 
   const Promises& p = opt.promises;
   if (p.watertight) {

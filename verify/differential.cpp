@@ -4,6 +4,7 @@
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <span>
 
 #include "rayproof/float_util.h"
 #include "verify/exact.h"
@@ -34,6 +35,11 @@ std::uint64_t ulps_one(const std::optional<double>& a, const std::optional<doubl
 
 std::uint64_t t_error_ulps(const io::CaseResult& got, const io::CaseResult& want, Precision p) {
   return std::max(ulps_one(got.t, want.t, p), ulps_one(got.t2, want.t2, p));
+}
+
+std::optional<double> first_contact_t(const io::CaseResult& exact) {
+  if (!touches(exact)) return std::nullopt;
+  return exact.contact == Contact::inside ? exact.t2 : exact.t;
 }
 
 std::uint64_t Stats::ulp_quantile(double q) const {
@@ -83,6 +89,49 @@ ExactAnswers exact_answers(const std::vector<io::Case>& cases) {
 
 std::string group_of(const io::Case& c) { return c.family.empty() ? std::string(io::to_string(c.kind)) : c.family; }
 
+void judge_answer(const Method& m, Judged& j, Stats& s) {
+  ++s.cases;
+  j.ulps = 0;
+  j.bary_error.reset();
+  if (m.take_failures && j.got.contact == Contact::error) {
+    j.verdict = Verdict::kernel_failure;
+    ++s.kernel_failures;
+    return;
+  }
+  if (j.got.form == io::AnswerForm::coarse) {
+    ++s.coarse;
+    const bool g = j.got.contact == Contact::hit, w = touches(j.want);
+    j.verdict = g == w ? Verdict::agree : (g ? Verdict::false_hit : Verdict::false_miss);
+    if (j.verdict == Verdict::false_hit) ++s.false_hit;
+    if (j.verdict == Verdict::false_miss) ++s.false_miss;
+    if (j.verdict != Verdict::agree || !g) return;
+    if (j.got.t) s.ulps.push_back(j.ulps = ulps_one(j.got.t, first_contact_t(j.want), m.precision));
+    const bool crossing = j.want.contact == Contact::interior || j.want.contact == Contact::edge ||
+                          j.want.contact == Contact::vertex;
+    if ((j.got.b1 || j.got.b2) && crossing) {
+      if (const auto b = exact_barycentrics(j.input)) {
+        double e = 0;
+        if (j.got.b1) e = std::max(e, std::isnan(*j.got.b1) ? INFINITY : std::fabs(*j.got.b1 - (*b)[0]));
+        if (j.got.b2) e = std::max(e, std::isnan(*j.got.b2) ? INFINITY : std::fabs(*j.got.b2 - (*b)[1]));
+        j.bary_error = e;
+        s.bary_errors.push_back(e);
+      }
+    }
+    return;
+  }
+  j.verdict = judge_class(j.got, j.want);
+  switch (j.verdict) {
+    case Verdict::false_hit: ++s.false_hit; break;
+    case Verdict::false_miss: ++s.false_miss; break;
+    case Verdict::wrong_hit_class: ++s.wrong_hit_class; break;
+    case Verdict::wrong_class: ++s.wrong_class; break;
+    case Verdict::kernel_failure: break;
+    case Verdict::agree:
+      if (j.want.t || j.got.t) s.ulps.push_back(j.ulps = t_error_ulps(j.got, j.want, m.precision));
+      break;
+  }
+}
+
 Judged run_and_tally(const Method& m, const io::Case& c, const io::CaseResult& exact_as_given,
                      const io::CaseResult& exact_float_rounded, Stats& s) {
   const bool f32 = m.precision == Precision::float32;
@@ -92,17 +141,7 @@ Judged run_and_tally(const Method& m, const io::Case& c, const io::CaseResult& e
   const std::uint64_t before = m.fallbacks ? m.fallbacks() : 0;
   j.got = m.classify(j.input);
   if (m.fallbacks) s.fallbacks += m.fallbacks() - before;
-  ++s.cases;
-  j.verdict = judge_class(j.got, j.want);
-  switch (j.verdict) {
-    case Verdict::false_hit: ++s.false_hit; break;
-    case Verdict::false_miss: ++s.false_miss; break;
-    case Verdict::wrong_hit_class: ++s.wrong_hit_class; break;
-    case Verdict::wrong_class: ++s.wrong_class; break;
-    case Verdict::agree:
-      if (j.want.t || j.got.t) s.ulps.push_back(j.ulps = t_error_ulps(j.got, j.want, m.precision));
-      break;
-  }
+  judge_answer(m, j, s);
   return j;
 }
 
@@ -110,17 +149,43 @@ Comparison compare(const std::vector<io::Case>& cases, const ExactAnswers& exact
                    const std::vector<const Method*>& methods, std::size_t max_mismatches,
                    std::uint64_t ulp_tolerance) {
   Comparison cmp;
-  for (const auto& c : cases) {
-    const std::string g = group_of(c);
-    if (std::find(cmp.groups.begin(), cmp.groups.end(), g) == cmp.groups.end()) cmp.groups.push_back(g);
+  std::vector<std::string> group(cases.size());
+  for (std::size_t i = 0; i < cases.size(); ++i) {
+    group[i] = group_of(cases[i]);
+    if (std::find(cmp.groups.begin(), cmp.groups.end(), group[i]) == cmp.groups.end()) cmp.groups.push_back(group[i]);
   }
   for (const Method* m : methods) {
     cmp.methods.push_back(m->name);
-    std::size_t listed = 0;
+    const bool f32 = m->precision == Precision::float32;
+    std::vector<std::size_t> idx;
+    std::vector<io::Case> inputs;
     for (std::size_t i = 0; i < cases.size(); ++i) {
-      const io::Case& c = cases[i];
-      if (!m->supports(c.kind)) continue;
-      const Judged j = run_and_tally(*m, c, exact.as_given[i], exact.float_rounded[i], cmp.stats[{m->name, group_of(c)}]);
+      if (!m->supports(cases[i].kind)) continue;
+      idx.push_back(i);
+      inputs.push_back(f32 ? io::round_to_float(cases[i]) : cases[i]);
+    }
+    std::vector<io::CaseResult> got(inputs.size());
+    // One call over every case; a method that counts exact fallbacks is called once per run of
+    // cases of one group, so its fallbacks land in the right group.
+    for (std::size_t b = 0; b < idx.size();) {
+      std::size_t e = idx.size();
+      if (m->fallbacks) {
+        e = b + 1;
+        while (e < idx.size() && group[idx[e]] == group[idx[b]]) ++e;
+      }
+      const std::uint64_t before = m->fallbacks ? m->fallbacks() : 0;
+      m->classify_many(std::span<const io::Case>(inputs).subspan(b, e - b), std::span<io::CaseResult>(got).subspan(b, e - b));
+      if (m->fallbacks) cmp.stats[{m->name, group[idx[b]]}].fallbacks += m->fallbacks() - before;
+      b = e;
+    }
+    std::size_t listed = 0;
+    for (std::size_t k = 0; k < idx.size(); ++k) {
+      const std::size_t i = idx[k];
+      Judged j;
+      j.input = std::move(inputs[k]);
+      j.want = f32 ? exact.float_rounded[i] : exact.as_given[i];
+      j.got = got[k];
+      judge_answer(*m, j, cmp.stats[{m->name, group[i]}]);
       if ((j.verdict != Verdict::agree || j.ulps > ulp_tolerance) && listed < max_mismatches) {
         cmp.mismatches.push_back({m->name, j.input, j.got, j.want, j.verdict, j.ulps});
         ++listed;
@@ -137,6 +202,7 @@ std::string to_string(Verdict v) {
     case Verdict::false_miss: return "false-miss";
     case Verdict::wrong_hit_class: return "wrong-hit-class";
     case Verdict::wrong_class: return "wrong-class";
+    case Verdict::kernel_failure: return "kernel-failure";
   }
   return "?";
 }

@@ -4,6 +4,7 @@
 /// counted in float ulps (CASES.md, "What correct means").
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -16,13 +17,21 @@ namespace rayproof::verify {
 /// counts when it has a range).
 [[nodiscard]] bool touches(const io::CaseResult& r);
 
-/// How a method's answer relates to the exact one.
-enum class Verdict { agree, false_hit, false_miss, wrong_hit_class, wrong_class };
+/// How a method's answer relates to the exact one (a full answer: by class).
+/// `kernel_failure`: a user kernel (a method with take_failures) crashed, hung or answered garbage
+/// on the case; not a class error.
+enum class Verdict { agree, false_hit, false_miss, wrong_hit_class, wrong_class, kernel_failure };
 [[nodiscard]] Verdict judge_class(const io::CaseResult& got, const io::CaseResult& want);
 
 /// Largest ulp distance of T and T2 in precision p; 0 when the class carries no t.
 /// A t present on one side only counts as the maximum.
 [[nodiscard]] std::uint64_t t_error_ulps(const io::CaseResult& got, const io::CaseResult& want, Precision p);
+
+/// The exact first contact at t >= 0 that a coarse `hit T` is compared with: T2 for `inside` (the
+/// origin is inside the quadric or box: the ray meets the surface at T2 >= 0), T for the other
+/// touching classes (a coplanar triangle: where its range starts); nothing when the ray does not
+/// touch the primitive.
+[[nodiscard]] std::optional<double> first_contact_t(const io::CaseResult& exact);
 
 struct Stats {
   std::size_t cases = 0;
@@ -53,7 +62,16 @@ struct Judged {
   io::CaseResult got, want;
   Verdict verdict = Verdict::agree;
   std::uint64_t ulps = 0;
+  std::optional<double> bary_error{};  ///< coarse triangle hits with barycentrics: max |b - exact b|
 };
+
+/// Judges `j.got`, the answer of `m` on `j.input`, against `j.want`, the exact answer on that input,
+/// and adds it to `s` (fills j.verdict, j.ulps, j.bary_error). A full answer is judged by class; a
+/// coarse one (io::AnswerForm::coarse) by hit or miss against touches(want), its t against
+/// first_contact_t(want) and its barycentrics against the exact ones. Contact::error from a method
+/// with take_failures is a kernel failure: counted in `cases` and `kernel_failures`, not as a class
+/// error. Exact fallbacks are not counted here.
+void judge_answer(const Method& m, Judged& j, Stats& s);
 
 /// Runs `m` on `c` (float-rounded first for float methods), judges the answer against the exact
 /// answer for what the method saw, and adds it to `s`: the case, its class error or t error, and
@@ -80,7 +98,9 @@ struct ExactAnswers {
 /// The group a case is reported under.
 [[nodiscard]] std::string group_of(const io::Case& c);
 
-/// Runs every method on every case it supports. A class mismatch, or a t error above
+/// Runs every method on every case it supports: one Method::classify_many call per method over all
+/// the cases it supports (per run of consecutive cases of one group for methods that count exact
+/// fallbacks, so that they are counted per group). A class mismatch, or a t error above
 /// `ulp_tolerance`, is listed in `mismatches` (the first max_mismatches per method).
 [[nodiscard]] Comparison compare(const std::vector<io::Case>& cases, const ExactAnswers& exact,
                                  const std::vector<const Method*>& methods, std::size_t max_mismatches,

@@ -2,6 +2,9 @@
 /// Exact answers: the class of exact arithmetic on the parsed doubles and T/T2 rounded to nearest
 /// double (CASES.md). CGAL's exact number types decide every class by signs of rational
 /// quantities; square roots (quadric roots) are rounded correctly by MPFR and checked exactly.
+#include <array>
+#include <optional>
+
 #include "io/case_file.h"
 #include "methods/method.h"
 
@@ -9,6 +12,11 @@ namespace rayproof::verify {
 
 /// Ground truth for one case. Never throws on well-formed cases (NaN and infinities are `invalid`).
 [[nodiscard]] io::CaseResult exact_classify(const io::Case& c);
+
+/// The barycentrics of p1 and p2 of the point where a triangle case's line crosses the triangle's
+/// plane, exact and rounded to nearest double; nothing for other kinds, non-finite inputs and lines
+/// that do not cross the plane at one point (degenerate, parallel, coplanar).
+[[nodiscard]] std::optional<std::array<double, 2>> exact_barycentrics(const io::Case& c);
 
 /// Registers the `exact` method.
 void register_exact_method(MethodRegistry& reg);

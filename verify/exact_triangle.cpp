@@ -5,6 +5,8 @@
 /// and, for a contact (interior, edge, vertex, behind), b1 = u_1 / (d . n) and b2 = u_2 / (d . n),
 /// each rounded to nearest. A ray in the plane is clipped against the three closed edge
 /// half-planes, exactly. CGAL's Gmpq and Simple_cartesian throughout (exact_number.h).
+#include <array>
+#include <cmath>
 #include <optional>
 
 #include "verify/exact_kinds.h"
@@ -73,6 +75,27 @@ TriangleHit<double> exact_triangle(const Ray<double>& ray, const Triangle<double
   const int zeros = (b[0] == 0) + (b[1] == 0) + (b[2] == 0);
   const Contact contact = zeros == 0 ? Contact::interior : (zeros == 1 ? Contact::edge : Contact::vertex);
   return {contact, t, kNaN<double>, b1, b2};
+}
+
+}  // namespace rayproof::verify
+
+namespace rayproof::verify {
+
+std::optional<std::array<double, 2>> exact_barycentrics(const io::Case& c) {
+  if (c.kind != io::Kind::triangle) return std::nullopt;
+  for (int i = 0; i < 15; ++i)
+    if (!std::isfinite(c.v[static_cast<std::size_t>(i)])) return std::nullopt;
+  const auto field = [&](int i) { return Vec3<double>{c.v[i], c.v[i + 1], c.v[i + 2]}; };
+  const Point o = point_of(field(0));
+  const Vector d = vector_of(field(3));
+  const Point p[3] = {point_of(field(6)), point_of(field(9)), point_of(field(12))};
+  const Vector n = CGAL::cross_product(p[1] - p[0], p[2] - p[0]);
+  const Q den = d * n;
+  if (sign(den) == 0) return std::nullopt;  // degenerate, parallel or coplanar: no single plane point
+  const Q u1 = CGAL::determinant(d, p[2] - o, p[0] - o);
+  const Q u0 = CGAL::determinant(d, p[1] - o, p[2] - o);
+  const Q u2 = den - u0 - u1;
+  return std::array<double, 2>{round_nearest(u1 / den), round_nearest(u2 / den)};
 }
 
 }  // namespace rayproof::verify

@@ -5,6 +5,8 @@
 #include <chrono>
 #include <cmath>
 #include <mutex>
+#include <optional>
+#include <span>
 #include <thread>
 
 #include "verify/exact.h"
@@ -62,18 +64,51 @@ RoundOutput run_round(const FuzzOptions& opt, std::size_t round) {
   RoundOutput out;
   out.round = round;
   const auto precision = round % 2 == 0 ? gen::Precision::float32 : gen::Precision::float64;
+  std::vector<std::vector<io::Case>> cases;
+  std::vector<ExactAnswers> exact;
   for (const gen::Family* f : opt.families) {
-    const auto cases = gen::generate(*f, opt.batch, round_seed(opt.seed, round), precision);
-    out.cases += cases.size();
-    const ExactAnswers exact = exact_answers(cases);
-    for (const Method* m : opt.methods) {
-      Stats& s = out.stats[{m->name, f->name}];
-      for (std::size_t i = 0; i < cases.size(); ++i) {
-        if (!m->supports(cases[i].kind)) continue;
-        const Judged j = run_and_tally(*m, cases[i], exact.as_given[i], exact.float_rounded[i], s);
-        if (is_mismatch(m->name, j.verdict, j.ulps))
-          out.findings.push_back({m->name, f->name, round, j.input, j.got, j.want, j.verdict, j.ulps, false});
+    cases.push_back(gen::generate(*f, opt.batch, round_seed(opt.seed, round), precision));
+    out.cases += cases.back().size();
+    exact.push_back(exact_answers(cases.back()));
+  }
+  // One classify_many call per method over the round (per family for methods that count exact
+  // fallbacks, so that they land in the right family).
+  for (const Method* m : opt.methods) {
+    const bool f32 = m->precision == Precision::float32;
+    std::vector<io::Case> inputs;
+    std::vector<std::pair<std::size_t, std::size_t>> where;  // (family, case)
+    std::vector<std::size_t> family_start;
+    for (std::size_t fi = 0; fi < opt.families.size(); ++fi) {
+      out.stats[{m->name, opt.families[fi]->name}];
+      family_start.push_back(inputs.size());
+      for (std::size_t i = 0; i < cases[fi].size(); ++i) {
+        if (!m->supports(cases[fi][i].kind)) continue;
+        inputs.push_back(f32 ? io::round_to_float(cases[fi][i]) : cases[fi][i]);
+        where.emplace_back(fi, i);
       }
+    }
+    family_start.push_back(inputs.size());
+    std::vector<io::CaseResult> got(inputs.size());
+    if (m->fallbacks) {
+      for (std::size_t fi = 0; fi < opt.families.size(); ++fi) {
+        const std::size_t b = family_start[fi], e = family_start[fi + 1];
+        const std::uint64_t before = m->fallbacks();
+        m->classify_many(std::span<const io::Case>(inputs).subspan(b, e - b), std::span<io::CaseResult>(got).subspan(b, e - b));
+        out.stats[{m->name, opt.families[fi]->name}].fallbacks += m->fallbacks() - before;
+      }
+    } else {
+      m->classify_many(inputs, got);
+    }
+    for (std::size_t k = 0; k < inputs.size(); ++k) {
+      const auto [fi, i] = where[k];
+      const gen::Family* f = opt.families[fi];
+      Judged j;
+      j.input = std::move(inputs[k]);
+      j.want = f32 ? exact[fi].float_rounded[i] : exact[fi].as_given[i];
+      j.got = got[k];
+      judge_answer(*m, j, out.stats[{m->name, f->name}]);
+      if (is_mismatch(m->name, j.verdict, j.ulps))
+        out.findings.push_back({m->name, f->name, round, j.input, j.got, j.want, j.verdict, j.ulps, false});
     }
   }
   return out;
@@ -81,57 +116,87 @@ RoundOutput run_round(const FuzzOptions& opt, std::size_t round) {
 
 }  // namespace
 
-io::Case minimize_case(const Method& m, const io::Case& input, Verdict verdict) {
-  const int n = io::field_count(input.kind);
-  auto still = [&](const io::Case& c) {
-    const Judged j = judge(m, c);
-    return j.verdict == verdict && is_mismatch(m.name, j.verdict, j.ulps);
+std::vector<io::Case> minimize_cases(const std::vector<io::Case>& inputs, const StillFails& still) {
+  std::vector<io::Case> best = inputs;
+  std::vector<io::Case> variants;
+  std::vector<std::size_t> owner;
+  // Judges every variant in one call; returns, per input, the first variant that still fails.
+  auto first_failing = [&]() {
+    std::vector<std::optional<std::size_t>> pick(best.size());
+    if (variants.empty()) return pick;
+    const std::vector<bool> ok = still(variants, owner);
+    for (std::size_t v = 0; v < variants.size(); ++v)
+      if (ok[v] && !pick[owner[v]]) pick[owner[v]] = v;
+    return pick;
   };
-  io::Case best = input;
   // 1. A common power-of-two scale toward magnitude 1 keeps the geometry (and exact class) and
   //    shows the case at readable magnitudes, when it still disagrees.
-  double big = 0;
-  for (int i = 0; i < n; ++i) big = std::max(big, std::fabs(best.v[static_cast<std::size_t>(i)]));
-  if (big > 0 && std::isfinite(big)) {
+  for (std::size_t k = 0; k < best.size(); ++k) {
+    const int n = io::field_count(best[k].kind);
+    double big = 0;
+    for (int i = 0; i < n; ++i) big = std::max(big, std::fabs(best[k].v[static_cast<std::size_t>(i)]));
+    if (!(big > 0) || !std::isfinite(big)) continue;
     int e;
     std::frexp(big, &e);
-    if (e != 0) {
-      io::Case scaled = best;
-      bool exact_scale = true;
-      for (int i = 0; i < n; ++i) {
-        double& x = scaled.v[static_cast<std::size_t>(i)];
-        const double y = std::ldexp(x, -e);
-        if (std::ldexp(y, e) != x) exact_scale = false;
-        x = y;
-      }
-      if (exact_scale && still(scaled)) best = scaled;
-    }
-  }
-  // 2. Fewer significant bits per field, greedily, twice over.
-  for (int pass = 0; pass < 2; ++pass) {
+    if (e == 0) continue;
+    io::Case scaled = best[k];
+    bool exact_scale = true;
     for (int i = 0; i < n; ++i) {
-      for (int bits : {1, 2, 4, 8, 12, 16, 24, 32, 40}) {
-        io::Case c = best;
-        double& x = c.v[static_cast<std::size_t>(i)];
-        const double y = keep_bits(x, bits);
-        if (y == x) break;  // already that short
-        x = y;
-        if (still(c)) {
-          best = c;
-          break;
+      double& x = scaled.v[static_cast<std::size_t>(i)];
+      const double y = std::ldexp(x, -e);
+      if (std::ldexp(y, e) != x) exact_scale = false;
+      x = y;
+    }
+    if (exact_scale) variants.push_back(scaled), owner.push_back(k);
+  }
+  auto pick = first_failing();
+  for (std::size_t k = 0; k < best.size(); ++k)
+    if (pick[k]) best[k] = variants[*pick[k]];
+  // 2. Fewer significant bits per field, greedily (the fewest bits that still fail), twice over.
+  for (int pass = 0; pass < 2; ++pass) {
+    for (int i = 0; i < 15; ++i) {
+      variants.clear(), owner.clear();
+      for (std::size_t k = 0; k < best.size(); ++k) {
+        if (i >= io::field_count(best[k].kind)) continue;
+        for (int bits : {1, 2, 4, 8, 12, 16, 24, 32, 40}) {
+          io::Case c = best[k];
+          double& x = c.v[static_cast<std::size_t>(i)];
+          const double y = keep_bits(x, bits);
+          if (y == x) break;  // already that short
+          x = y;
+          variants.push_back(std::move(c)), owner.push_back(k);
         }
       }
+      pick = first_failing();
+      for (std::size_t k = 0; k < best.size(); ++k)
+        if (pick[k]) best[k] = variants[*pick[k]];
     }
   }
   return best;
+}
+
+io::Case minimize_case(const Method& m, const io::Case& input, Verdict verdict) {
+  return minimize_cases({input}, [&](const std::vector<io::Case>& variants, const std::vector<std::size_t>&) {
+    std::vector<bool> ok;
+    for (const auto& c : variants) {
+      const Judged j = judge(m, c);
+      ok.push_back(j.verdict == verdict && is_mismatch(m.name, j.verdict, j.ulps));
+    }
+    return ok;
+  }).front();
 }
 
 FuzzResult run_fuzz(const FuzzOptions& opt) {
   using clock = std::chrono::steady_clock;
   const auto start = clock::now();
   const std::size_t per_round = opt.batch * opt.families.size();
-  const std::size_t round_limit =
+  const std::size_t all_rounds =
       opt.max_cases ? (opt.max_cases + per_round - 1) / std::max<std::size_t>(per_round, 1) : SIZE_MAX;
+  // Workers take this shard's rounds in order: local round i is round i * shard_count + shard_index.
+  const std::size_t shards = std::max<std::size_t>(opt.shard_count, 1), shard = opt.shard_index;
+  const std::size_t round_limit = all_rounds == SIZE_MAX ? SIZE_MAX
+                                  : all_rounds > shard   ? (all_rounds - shard + shards - 1) / shards
+                                                         : 0;
   std::atomic<std::size_t> next{0};
   std::atomic<bool> stop{false};
   std::mutex mu;
@@ -143,7 +208,7 @@ FuzzResult run_fuzz(const FuzzOptions& opt) {
     while (!stop.load()) {
       const std::size_t r = next.fetch_add(1);
       if (r >= round_limit) break;
-      RoundOutput out = run_round(opt, r);
+      RoundOutput out = run_round(opt, r * shards + shard);
       std::lock_guard<std::mutex> lock(mu);
       cases_done += out.cases;
       for (const auto& f : out.findings) ++mismatch_count[f.method];
@@ -183,7 +248,8 @@ FuzzResult run_fuzz(const FuzzOptions& opt) {
       const auto key = std::make_pair(f.method, f.family);
       ++res.mismatches[key];
       if (kept[key]++ >= opt.keep_per_group) continue;
-      if (minimized[key]++ < opt.minimize_per_group) {
+      // A kernel failure is not minimized: the kernel is re-run for every try, and may hang each time.
+      if (f.verdict != Verdict::kernel_failure && minimized[key]++ < opt.minimize_per_group) {
         const Method* m = nullptr;
         for (const Method* x : opt.methods)
           if (x->name == f.method) m = x;
@@ -200,6 +266,9 @@ FuzzResult run_fuzz(const FuzzOptions& opt) {
   std::stable_sort(res.findings.begin(), res.findings.end(), [](const FuzzFinding& a, const FuzzFinding& b) {
     return std::tie(a.method, a.family) < std::tie(b.method, b.family);
   });
+  for (const Method* m : opt.methods)
+    if (m->take_failures)
+      for (auto& kf : m->take_failures()) res.kernel_failures.emplace_back(m->name, std::move(kf));
   res.seconds = std::chrono::duration<double>(clock::now() - start).count();
   return res;
 }

@@ -32,6 +32,10 @@ struct FuzzOptions {
   std::size_t keep_per_group = 50;     ///< findings kept per method x family
   std::size_t minimize_per_group = 10; ///< of those, how many are minimized
   std::function<void(const FuzzProgress&)> progress;  ///< called about once a second
+  /// Shard `shard_index` (0-based) of `shard_count` disjoint parts of the campaign: the rounds r with
+  /// r % shard_count == shard_index (round r holds the same cases in every shard and in the whole
+  /// run), so the shards of a --cases campaign add up to exactly the whole run.
+  std::size_t shard_index = 0, shard_count = 1;
 };
 
 struct FuzzFinding {
@@ -45,11 +49,14 @@ struct FuzzFinding {
 };
 
 struct FuzzResult {
-  std::size_t rounds = 0, cases = 0;
+  std::size_t rounds = 0, cases = 0;  ///< rounds and cases this run (or shard) did
   double seconds = 0;
   std::map<std::pair<std::string, std::string>, Stats> stats;  ///< (method, family)
   std::map<std::pair<std::string, std::string>, std::size_t> mismatches;
   std::vector<FuzzFinding> findings;  ///< ordered by method, family, round
+  /// What user kernels (methods with take_failures) reported: crash, hang, early exit, unreadable
+  /// answer, each with its case; (method, failure), in method order.
+  std::vector<std::pair<std::string, KernelFailure>> kernel_failures;
   /// Methods that broke a promise: `certified` (and `exact`) promise the exact class and t
   /// within one ulp.
   [[nodiscard]] std::vector<std::string> broken_promises() const;
@@ -67,5 +74,13 @@ struct FuzzResult {
 /// Shrinks a disagreeing case while it keeps the same verdict for the method: fewer significant
 /// bits per field, magnitudes scaled toward 1 by a common power of two. Bounded work.
 [[nodiscard]] io::Case minimize_case(const Method& m, const io::Case& input, Verdict verdict);
+
+/// Whether each variant still fails as the input it was made from (`owner[v]` indexes the inputs).
+using StillFails = std::function<std::vector<bool>(const std::vector<io::Case>& variants,
+                                                   const std::vector<std::size_t>& owner)>;
+/// The shrinking of minimize_case for many inputs at once: every step's variants of all the inputs
+/// are judged by one call of `still` (a batch for a kernel behind a pipe: 31 calls in all). Each
+/// input ends where minimize_case would take it.
+[[nodiscard]] std::vector<io::Case> minimize_cases(const std::vector<io::Case>& inputs, const StillFails& still);
 
 }  // namespace rayproof::verify

@@ -158,9 +158,13 @@ MeshCheck check_mesh(const Method& kernel, const MeshUnderTest& mt, const MeshCh
         ++res.rays_without_candidates;
         continue;
       }
-      bool hit = false;
-      for (std::size_t k = 0; k < w.prims.size(); ++k) hit = hit || touches(answers[w.first + k]);
-      if (hit) continue;
+      bool hit = false, failed = false;
+      for (std::size_t k = 0; k < w.prims.size(); ++k) {
+        hit = hit || touches(answers[w.first + k]);
+        failed = failed || answers[w.first + k].contact == Contact::error;
+      }
+      // A ray whose kernel failed on a candidate is the failure's finding (listed in `failures`), not a leak.
+      if (hit || (failed && kernel.take_failures)) continue;
       ++res.leaks;
       if (res.reproducers.size() >= opt.keep) continue;
       // The reproducer: the candidates the ray touches at its first crossing (the finder's class),

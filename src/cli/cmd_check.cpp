@@ -37,6 +37,7 @@ struct CheckCliOptions {
   std::size_t meshes = 8;         ///< how many generated meshes `generated` stands for
   std::size_t mesh_targets = 0;
   int interior = 2;
+  bool plugin_in_process = false;
 };
 
 nlohmann::json ulps_json(std::uint64_t u) {
@@ -203,7 +204,7 @@ int run_check(const CheckCliOptions& o) {
     }
   } else {
     UserKernelOptions u = o.user;
-    u.plugin_in_process = false;  // a crashing plugin is a finding, not the end of the check
+    u.plugin_in_process = o.plugin_in_process;  // forked by default: a crashing plugin is a finding, not the end
     auto made = make_user_kernels("check", u);
     if (!made) return 2;
     if (made->size() != 1) {
@@ -299,8 +300,9 @@ int run_check(const CheckCliOptions& o) {
   if (o.json) {
     fmt::print("{}\n", result_json(res).dump(1));
   } else {
-    fmt::print("rayproof check: kernel '{}' ({} precision), {} cases per family, seed {}\n\n", res.method,
-               res.precision == Precision::float32 ? "float" : "double", o.count, o.seed);
+    fmt::print("rayproof check: kernel '{}' ({} precision); {} cases generated per family (half built in float "
+               "precision, half in double), seed {}; the table counts those of the kinds the kernel answers\n\n",
+               res.method, res.precision == Precision::float32 ? "float" : "double", o.count, o.seed);
     fmt::print("{}", check_table(res));
     const auto lines = reproducer_lines(res);
     if (!lines.empty()) {
@@ -319,6 +321,8 @@ Run add_check(CLI::App& app) {
   auto o = std::make_shared<CheckCliOptions>();
   auto* sub = app.add_subcommand("check", "Check one kernel (yours, or a built-in one) against exact on every family");
   add_user_kernel_options(*sub, o->user);
+  sub->add_flag("--plugin-in-process", o->plugin_in_process,
+                "Load --plugin into rayproof itself instead of a forked child (faster; a crash ends the check)");
   sub->add_option("--method", o->method, "Check this built-in method instead of a kernel of yours");
   sub->add_option("--count", o->count, "Cases per family (half built in float precision, half in double)")
       ->check(CLI::Range(std::size_t{2}, std::size_t{10000000}))

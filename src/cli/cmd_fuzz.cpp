@@ -9,12 +9,17 @@
 #include <filesystem>
 #include <fstream>
 #include <memory>
+#include <sstream>
 #include <thread>
 
+#include "cli/check_text.h"
 #include "cli/commands.h"
+#include "cli/fuzz_summary.h"
 #include "cli/registry.h"
+#include "cli/user_kernels.h"
 #include "scene/accel.h"
 #include "verify/fuzz_campaign.h"
+#include "verify/mesh_check.h"
 #include "verify/mesh_fuzz.h"
 
 namespace rayproof::cli {
@@ -28,7 +33,61 @@ struct FuzzCliOptions {
   int jobs = 1;
   std::string out = "fuzz-findings";
   bool mesh = false;
+  std::string shard;    ///< K/N
+  std::string summary;  ///< write the summary as JSON here
+  UserKernelOptions user;
+  std::vector<std::string> merge_files;  ///< fuzz merge SUMMARY...
 };
+
+bool write_text(const std::string& path, const std::string& text) {
+  std::ofstream out(path, std::ios::binary);
+  out << text;
+  return bool(out);
+}
+
+/// fuzz merge: adds the summaries of a sharded campaign and prints the table of the whole run.
+int run_fuzz_merge(const FuzzCliOptions& o) {
+  std::vector<FuzzSummary> parts;
+  for (const auto& f : o.merge_files) {
+    std::ifstream in(f, std::ios::binary);
+    if (!in) {
+      fmt::print(stderr, "rayproof fuzz merge: {}: cannot read\n", f);
+      return 2;
+    }
+    std::stringstream ss;
+    ss << in.rdbuf();
+    std::string error;
+    auto s = summary_from_json(ss.str(), f, error);
+    if (!s) {
+      fmt::print(stderr, "rayproof fuzz merge: {}\n", error);
+      return 2;
+    }
+    parts.push_back(std::move(*s));
+  }
+  std::string error;
+  const auto m = merge_summaries(parts, o.merge_files, error);
+  if (!m) {
+    fmt::print(stderr, "rayproof fuzz merge: {}\n", error);
+    return 2;
+  }
+  fmt::print("{}", fuzz_table(m->campaign.methods, m->campaign.families, m->stats, m->mismatches));
+  fmt::print("\n{} rounds, {} cases from {} shards (slowest {:.1f} s)\n", m->rounds, m->cases, m->campaign.shard_count,
+             m->seconds);
+  if (!o.summary.empty() && !write_text(o.summary, to_json(*m))) {
+    fmt::print(stderr, "rayproof fuzz merge: cannot write {}\n", o.summary);
+    return 2;
+  }
+  bool broken = false;
+  for (const auto& [key, n] : m->mismatches)
+    if (n > 0 && verify::promises_exactness(key.first)) broken = true;
+  for (const auto& name : m->campaign.methods) {
+    std::size_t n = 0;
+    for (const auto& [key, k] : m->mismatches) n += key.first == name ? k : 0;
+    if (n > 0 && verify::promises_exactness(name))
+      fmt::print(stderr, "rayproof fuzz merge: method '{}' broke its exactness promise\n", name);
+  }
+  return broken ? 1 : 0;
+}
 
 /// Methods that must never leak (and, for certified, never fail parity) in mesh mode.
 bool must_not_leak(const std::string& m) { return m == "robust" || m == "certified"; }
@@ -50,16 +109,51 @@ int run_mesh_fuzz_cli(const FuzzCliOptions& o) {
     fmt::print(stderr, "rayproof fuzz: --families does not apply to --mesh\n");
     return 2;
   }
+  if (!o.shard.empty() || !o.summary.empty()) {
+    fmt::print(stderr, "rayproof fuzz: --shard and --summary apply to case campaigns, not to --mesh\n");
+    return 2;
+  }
+  auto user = make_user_kernels("fuzz", o.user);
+  if (!user) return 2;
+  for (const auto& k : *user)
+    if (!k->supports(io::Kind::triangle)) {
+      fmt::print(stderr, "rayproof fuzz: --mesh needs triangle kernels; '{}' answers no triangles\n", k->name);
+      return 2;
+    }
   opt.seconds = o.seconds;
   opt.max_meshes = o.cases;
   if (opt.seconds <= 0 && opt.max_meshes == 0) opt.seconds = 10;
   opt.seed = o.seed;
   opt.threads = o.jobs;
   const auto res = verify::run_mesh_fuzz(opt);
-
   fmt::print("{:<18} {:>10} {:>8} {:>11} {:>15}\n", "method", "leak rays", "leaks", "parity rays", "parity failures");
   for (const auto& st : res.stats)
     fmt::print("{:<18} {:>10} {:>8} {:>11} {:>15}\n", st.method, st.leak_rays, st.leaks, st.parity_rays, st.parity_failures);
+  // Your kernels: the leak rays of the same meshes (verify/mesh_check.h), candidates from certified.
+  int user_bad = 0;
+  if (!user->empty()) {
+    verify::MeshCheckOptions mopt;
+    mopt.finder = scene::find_scene_method("certified", all_methods());
+    for (const auto& k : *user) {
+      std::vector<verify::MeshCheck> checks;
+      for (std::size_t i = 0; i < res.meshes; ++i) {
+        verify::MeshUnderTest mt;
+        std::mt19937_64 rng;
+        verify::MeshShape shape;
+        mt.mesh = verify::fuzz_mesh(opt, i, shape, mt.interior, rng);
+        mt.name = fmt::format("generated #{} ({})", i, shape == verify::MeshShape::star ? "icosphere" : "hull");
+        checks.push_back(verify::check_mesh(*k, mt, mopt));
+      }
+      std::uint64_t rays = 0, leaks = 0;
+      for (const auto& c : checks) rays += c.rays, leaks += c.leaks + c.failures.size();
+      fmt::print("{:<18} {:>10} {:>8}   (your kernel: leak rays only)\n", k->name, rays, leaks);
+      if (leaks > 0) {
+        ++user_bad;
+        for (const auto& l : leak_lines(checks, mopt.finder.name)) fmt::print(stderr, "{}\n", l);
+      }
+    }
+  }
+
   fmt::print("\n{} meshes ({} perturbed icospheres, {} convex hulls), {} triangles in {:.1f} s; "
              "{} parity rays with an exact edge or vertex contact set aside\n",
              res.meshes, res.star_meshes, res.hull_meshes, res.triangles, res.seconds, res.contact_rays_set_aside);
@@ -80,15 +174,27 @@ int run_mesh_fuzz_cli(const FuzzCliOptions& o) {
                    io::format_double(f.ray.d.x), io::format_double(f.ray.d.y), io::format_double(f.ray.d.z),
                    f.leak ? "" : fmt::format(" ({} crossings)", f.crossings));
   }
+  if (user_bad) fmt::print(stderr, "rayproof fuzz: {} of your kernels leaked (the leaks are listed above)\n", user_bad);
   return bad ? 1 : 0;
 }
 
 int run_fuzz_cli(const FuzzCliOptions& o) {
   if (o.mesh) return run_mesh_fuzz_cli(o);
   verify::FuzzOptions opt;
+  if (!o.shard.empty()) {
+    const auto k = parse_shard(o.shard);
+    if (!k) {
+      fmt::print(stderr, "rayproof fuzz: --shard wants K/N with 1 <= K <= N (e.g. 3/8), not '{}'\n", o.shard);
+      return 2;
+    }
+    opt.shard_index = k->first, opt.shard_count = k->second;
+  }
   auto selected = select_methods("fuzz", o.methods, false);
   if (!selected) return 2;
   opt.methods = std::move(*selected);
+  auto user = make_user_kernels("fuzz", o.user);
+  if (!user) return 2;
+  for (const auto& k : *user) opt.methods.push_back(k.get());
   if (o.families.empty()) {
     for (const auto& f : gen::families()) opt.families.push_back(&f);
   } else {
@@ -115,20 +221,17 @@ int run_fuzz_cli(const FuzzCliOptions& o) {
   const auto res = verify::run_fuzz(opt);
   fmt::print(stderr, "\n");
 
-  fmt::print("{:<16} {:<24} {:>9} {:>10} {:>9} {:>9}\n", "method", "family", "cases", "mismatches", "rate %", "fallbacks");
-  for (const Method* m : opt.methods) {
-    std::size_t total = 0, bad = 0;
-    std::uint64_t fb = 0;
-    for (const gen::Family* f : opt.families) {
-      auto it = res.stats.find({m->name, f->name});
-      if (it == res.stats.end() || it->second.cases == 0) continue;
-      const std::size_t n = res.mismatches.at({m->name, f->name});
-      fmt::print("{:<16} {:<24} {:>9} {:>10} {:>9.4f} {:>9}\n", m->name, f->name, it->second.cases, n,
-                 100.0 * double(n) / double(it->second.cases), it->second.fallbacks);
-      total += it->second.cases, bad += n, fb += it->second.fallbacks;
-    }
-    fmt::print("{:<16} {:<24} {:>9} {:>10} {:>9.4f} {:>9}\n", m->name, "(all)", total, bad,
-               total ? 100.0 * double(bad) / double(total) : 0.0, fb);
+  FuzzCampaign campaign;
+  campaign.seed = o.seed;
+  for (const Method* m : opt.methods) campaign.methods.push_back(m->name);
+  for (const gen::Family* f : opt.families) campaign.families.push_back(f->name);
+  campaign.batch = opt.batch;
+  campaign.max_cases = o.cases;
+  campaign.shard_count = opt.shard_count;
+  fmt::print("{}", fuzz_table(campaign.methods, campaign.families, res.stats, res.mismatches));
+  if (!o.summary.empty() && !write_text(o.summary, to_json(summarize(campaign, opt.shard_index, res)))) {
+    fmt::print(stderr, "rayproof fuzz: cannot write {}\n", o.summary);
+    return 2;
   }
   // Findings: one file per method and family, one case line each.
   std::error_code ec;
@@ -154,7 +257,11 @@ int run_fuzz_cli(const FuzzCliOptions& o) {
   }
   fmt::print("\n{} rounds, {} cases in {:.1f} s; {} findings written under {}/\n", res.rounds, res.cases, res.seconds,
              written, o.out);
-  fmt::print("reproduce: rayproof fuzz --seed {} --cases {}{}{}\n", o.seed, res.cases,
+  if (opt.shard_count > 1)
+    fmt::print("shard {}/{}: rounds {}, {}, ... of the campaign\n", opt.shard_index + 1, opt.shard_count,
+               opt.shard_index, opt.shard_index + opt.shard_count);
+  fmt::print("reproduce: rayproof fuzz --seed {} --cases {}{}{}{}\n", o.seed, opt.shard_count > 1 && o.cases ? o.cases : res.cases,
+             opt.shard_count > 1 ? fmt::format(" --shard {}/{}", opt.shard_index + 1, opt.shard_count) : "",
              o.methods.empty() ? "" : " --methods " + fmt::format("{}", fmt::join(o.methods, ",")),
              o.families.empty() ? "" : " --families " + fmt::format("{}", fmt::join(o.families, ",")));
   const auto broken = res.broken_promises();
@@ -176,10 +283,18 @@ Run add_fuzz(CLI::App& app) {
   sub->add_option("--seed", o->seed, "Seed")->capture_default_str();
   sub->add_option("--jobs", o->jobs, "Worker threads")->check(CLI::Range(1, 256))->capture_default_str();
   sub->add_option("--out", o->out, "Directory for the findings")->capture_default_str();
+  sub->add_option("--shard", o->shard,
+                  "K/N: run the K-th of N disjoint parts of the campaign (rounds r with r % N = K-1); merge the "
+                  "--summary files with `rayproof fuzz merge`");
+  sub->add_option("--summary", o->summary, "Write the summary (every method x family tally) as JSON to this file");
+  add_user_kernel_options(*sub, o->user);
+  auto* merge = sub->add_subcommand("merge", "Add up the --summary files of a sharded campaign (the whole run's counts)");
+  merge->add_option("summaries", o->merge_files, "Summary files (fuzz --shard K/N --summary FILE)")->required();
+  merge->add_option("--summary", o->summary, "Write the merged summary as JSON to this file");
   sub->add_flag("--mesh", o->mesh,
                 "Mesh mode: random closed meshes; leak rays at every vertex and edge midpoint and the parity of "
                 "random rays' crossings (--cases counts meshes, --jobs threads per query batch)");
-  return [o] { return run_fuzz_cli(*o); };
+  return [o, merge] { return merge->parsed() ? run_fuzz_merge(*o) : run_fuzz_cli(*o); };
 }
 
 }  // namespace rayproof::cli

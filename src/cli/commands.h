@@ -18,5 +18,7 @@ Run add_cast(CLI::App& app);
 Run add_render(CLI::App& app);
 Run add_bench(CLI::App& app);
 Run add_check(CLI::App& app);
+Run add_serve(CLI::App& app);
+Run add_plugin_host(CLI::App& app);
 
 }  // namespace rayproof::cli

@@ -23,6 +23,8 @@ int main(int argc, char** argv) {
   add(add_render(app));
   add(add_bench(app));
   add(add_check(app));
+  add(add_serve(app));
+  add(add_plugin_host(app));
   auto* methods = app.add_subcommand("methods", "List the registered methods");
   try {
     app.parse(argc, argv);

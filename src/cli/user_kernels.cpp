@@ -3,11 +3,19 @@
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
 
+#include "cli/plugin_host.h"
+#include "cli/registry.h"
+#include "methods/exec_kernel.h"
+
 namespace rayproof::cli {
 
 void add_user_kernel_options(CLI::App& sub, UserKernelOptions& opt) {
   sub.add_option("--exec", opt.exec,
                  "NAME=COMMAND: a kernel of yours answering case lines on stdin (docs/kernel_protocol.md); repeatable");
+  sub.add_option("--exec-timeout", opt.exec_timeout,
+                 "Seconds an --exec kernel may take without answering before it counts as hung")
+      ->check(CLI::Range(0.001, 86400.0))
+      ->capture_default_str();
   sub.add_option("--plugin", opt.plugin, "NAME=PATH.so: a kernel of yours as a shared library (rayproof/plugin.h); repeatable");
 }
 
@@ -15,9 +23,40 @@ std::optional<std::vector<std::unique_ptr<Method>>> make_user_kernels(std::strin
                                                                      const UserKernelOptions& opt) {
   std::vector<std::unique_ptr<Method>> out;
   // Filled in by the exec (src/methods/exec_kernel.h) and plugin (src/methods/plugin_kernel.h) loaders.
-  if (!opt.exec.empty() || !opt.plugin.empty()) {
-    fmt::print(stderr, "rayproof {}: --exec and --plugin are not available yet\n", command);
-    return std::nullopt;
+
+  // --exec: child processes over the line protocol (src/methods/exec_kernel.h).
+  {
+    ExecOptions eo;
+    eo.timeout_seconds = opt.exec_timeout;
+    for (const std::string& spec : opt.exec) {
+      auto made = make_exec_method(spec, eo);
+      if (auto* err = std::get_if<std::string>(&made)) {
+        fmt::print(stderr, "rayproof {}: {}\n", command, *err);
+        return std::nullopt;
+      }
+      Method& m = std::get<Method>(made);
+      bool taken = all_methods().find(m.name) != nullptr;
+      for (const auto& other : out) taken = taken || other->name == m.name;
+      if (taken) {
+        fmt::print(stderr, "rayproof {}: --exec {}: the name '{}' is taken; choose another NAME\n", command, spec, m.name);
+        return std::nullopt;
+      }
+      out.push_back(std::make_unique<Method>(std::move(m)));
+    }
+  }
+
+  // --plugin: in process, or forked through `rayproof plugin-host` (src/cli/plugin_host.h).
+  for (const std::string& spec : opt.plugin) {
+    auto m = make_plugin_kernel(command, spec, opt.plugin_in_process);
+    if (!m) return std::nullopt;
+    bool taken = all_methods().find(m->name) != nullptr;
+    for (const auto& other : out) taken = taken || other->name == m->name;
+    if (taken) {
+      fmt::print(stderr, "rayproof {}: --plugin {}: the name '{}' is taken; choose another (NAME=PATH.so)\n", command,
+                 spec, m->name);
+      return std::nullopt;
+    }
+    out.push_back(std::move(m));
   }
   return out;
 }

@@ -18,6 +18,7 @@ struct UserKernelOptions {
   std::vector<std::string> exec;    ///< NAME=COMMAND
   std::vector<std::string> plugin;  ///< NAME=PATH.so
   bool plugin_in_process = true;    ///< false: each plugin runs in a forked child (check's default)
+  double exec_timeout = 5;          ///< --exec-timeout: seconds without an answer before a kernel counts as hung
 };
 
 /// Adds --exec and --plugin to a subcommand.

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdlib>
 #include <istream>
+#include <system_error>
 
 namespace rayproof::io {
 
@@ -109,47 +110,60 @@ std::vector<CaseEntry> read_cases(std::istream& in, std::size_t max_line) {
   return out;
 }
 
-std::string format_double(double x) {
-  if (std::isnan(x)) return "nan";
-  if (std::isinf(x)) return x < 0 ? "-inf" : "inf";
-  if (x == 0) return std::signbit(x) ? "-0.0" : "0.0";
+void append_double(std::string& out, double x) {
+  if (std::isnan(x)) return void(out += "nan");
+  if (std::isinf(x)) return void(out += x < 0 ? "-inf" : "inf");
+  if (x == 0) return void(out += std::signbit(x) ? "-0.0" : "0.0");
   // Shortest round-trip digits in scientific form, then Python repr's layout:
   // positional when -4 <= exponent < 16, else d.ddde+XX.
   char buf[64];
-  auto res = std::to_chars(buf, buf + sizeof buf, x, std::chars_format::scientific);
-  std::string s(buf, res.ptr);
-  const bool neg = s[0] == '-';
-  if (neg) s.erase(0, 1);
-  const std::size_t e = s.find('e');
-  std::string mant = s.substr(0, e);
-  const int exp10 = std::atoi(s.c_str() + e + 1);
-  std::string digits;
-  for (char c : mant)
-    if (c != '.') digits.push_back(c);
-  std::string out;
+  const char* const end = std::to_chars(buf, buf + sizeof buf, x, std::chars_format::scientific).ptr;
+  const char* p = buf;
+  if (*p == '-') out += '-', ++p;
+  char digits[32];
+  int nd = 0;
+  for (; p < end && *p != 'e'; ++p)
+    if (*p != '.') digits[nd++] = *p;
+  int exp10 = 0;
+  std::from_chars(p + 1 + (p[1] == '+'), end, exp10);
+  const std::string_view dv(digits, static_cast<std::size_t>(nd));
+  char small[48];
+  char* o = small;
   if (exp10 >= -4 && exp10 < 16) {
     const int point = exp10 + 1;  // digits before the decimal point
     if (point <= 0) {
-      out.assign("0.");
-      out.append(static_cast<std::size_t>(-point), '0');
-      out.append(digits);
-    } else if (static_cast<std::size_t>(point) >= digits.size()) {
-      out = digits + std::string(static_cast<std::size_t>(point) - digits.size(), '0') + ".0";
+      *o++ = '0', *o++ = '.';
+      for (int i = 0; i < -point; ++i) *o++ = '0';
+      for (char c : dv) *o++ = c;
+    } else if (point >= nd) {
+      for (char c : dv) *o++ = c;
+      for (int i = nd; i < point; ++i) *o++ = '0';
+      *o++ = '.', *o++ = '0';
     } else {
-      out = digits.substr(0, static_cast<std::size_t>(point)) + "." + digits.substr(static_cast<std::size_t>(point));
+      for (int i = 0; i < nd; ++i) {
+        if (i == point) *o++ = '.';
+        *o++ = digits[i];
+      }
     }
   } else {
-    out = digits.substr(0, 1);
-    if (digits.size() > 1) {
-      out += '.';
-      out.append(digits, 1);
+    *o++ = digits[0];
+    if (nd > 1) {
+      *o++ = '.';
+      for (int i = 1; i < nd; ++i) *o++ = digits[i];
     }
-    char eb[16];
-    std::snprintf(eb, sizeof eb, "e%c%02d", exp10 < 0 ? '-' : '+', exp10 < 0 ? -exp10 : exp10);
-    out += eb;
+    *o++ = 'e';
+    *o++ = exp10 < 0 ? '-' : '+';
+    const int a = exp10 < 0 ? -exp10 : exp10;
+    if (a < 10) *o++ = '0';
+    o = std::to_chars(o, small + sizeof small, a).ptr;
   }
-  if (neg) out.insert(out.begin(), '-');
-  return out;
+  out.append(small, static_cast<std::size_t>(o - small));
+}
+
+std::string format_double(double x) {
+  std::string s;
+  append_double(s, x);
+  return s;
 }
 
 std::string format_result(const CaseResult& r) {
@@ -158,6 +172,17 @@ std::string format_result(const CaseResult& r) {
   s += r.t ? format_double(*r.t) : "-";
   s += ' ';
   s += r.t2 ? format_double(*r.t2) : "-";
+  return s;
+}
+
+std::string format_answer(const CaseResult& r) {
+  if (r.form != AnswerForm::coarse || (r.contact != Contact::hit && r.contact != Contact::miss)) return format_result(r);
+  if (r.contact == Contact::miss) return "miss";
+  std::string s = "hit";
+  if (r.t) {
+    s += ' ' + format_double(*r.t);
+    if (r.b1 && r.b2) s += ' ' + format_double(*r.b1) + ' ' + format_double(*r.b2);
+  }
   return s;
 }
 
@@ -177,13 +202,59 @@ std::optional<CaseResult> parse_result(std::string_view text) {
   return r;
 }
 
+std::optional<CaseResult> parse_answer(std::string_view text) {
+  // Up to five fields without allocating: answers are read at millions per second.
+  std::array<std::string_view, 5> f;
+  std::size_t n = 0, i = 0;
+  while (i < text.size()) {
+    while (i < text.size() && is_space(text[i])) ++i;
+    std::size_t j = i;
+    while (j < text.size() && !is_space(text[j])) ++j;
+    if (j > i) {
+      if (n == f.size()) return std::nullopt;
+      f[n++] = text.substr(i, j - i);
+    }
+    i = j;
+  }
+  if (n == 3) return parse_result(text);
+  if (n == 0 || n > 4) return std::nullopt;
+  CaseResult r;
+  r.form = AnswerForm::coarse;
+  if (f[0] == "miss") {
+    if (n != 1) return std::nullopt;
+    r.contact = Contact::miss;
+    return r;
+  }
+  if (f[0] != "hit") return std::nullopt;
+  r.contact = Contact::hit;
+  double v[3];
+  for (std::size_t k = 1; k < n; ++k) {
+    const char* b = f[k].data();
+    const char* e = b + f[k].size();
+    const auto res = std::from_chars(b, e, v[k - 1]);
+    if ((res.ec != std::errc() || res.ptr != e) && !parse_number(f[k], v[k - 1])) return std::nullopt;
+  }
+  if (n >= 2) r.t = v[0];
+  if (n == 4) r.b1 = v[1], r.b2 = v[2];
+  return r;
+}
+
 std::string format_case(const Case& c) {
   std::string s(to_string(c.kind));
   for (int i = 0; i < field_count(c.kind); ++i) {
     s += ' ';
-    s += format_double(c.v[static_cast<std::size_t>(i)]);
+    append_double(s, c.v[static_cast<std::size_t>(i)]);
   }
   return s;
+}
+
+void append_case_line(std::string& out, const Case& c) {
+  out += to_string(c.kind);
+  for (int i = 0; i < field_count(c.kind); ++i) {
+    out += ' ';
+    append_double(out, c.v[static_cast<std::size_t>(i)]);
+  }
+  out += '\n';
 }
 
 Case round_to_float(const Case& c) {

@@ -72,11 +72,26 @@ struct CaseResult {
 /// `CLASS T T2` with `-` for absent values.
 [[nodiscard]] std::string format_result(const CaseResult& r);
 
+/// An answer as the line protocol writes it (docs/kernel_protocol.md): a coarse answer as `miss`,
+/// `hit`, `hit T` or `hit T B1 B2`, a full one as format_result.
+[[nodiscard]] std::string format_answer(const CaseResult& r);
+
 /// Parses a result line (`CLASS T T2`); nothing on malformed text.
 [[nodiscard]] std::optional<CaseResult> parse_result(std::string_view text);
 
+/// Parses a user kernel's answer line (docs/kernel_protocol.md): the full `CLASS T T2` form
+/// (AnswerForm::full, as parse_result) or a coarse one, AnswerForm::coarse: `hit T B1 B2`, `hit T`,
+/// `hit` (Contact::hit) or `miss` (Contact::miss). Nothing on anything else.
+[[nodiscard]] std::optional<CaseResult> parse_answer(std::string_view text);
+
 /// The case as a case-file line that reads back to the same doubles (a one-line reproducer).
 [[nodiscard]] std::string format_case(const Case& c);
+
+/// Appends format_double(x) to `out` without temporaries (the same text).
+void append_double(std::string& out, double x);
+
+/// Appends format_case(c) and a newline to `out` (the same text; for streaming many cases).
+void append_case_line(std::string& out, const Case& c);
 
 /// The case with every input rounded to float (the input a float method sees; CASES.md).
 [[nodiscard]] Case round_to_float(const Case& c);

@@ -18,7 +18,21 @@ int serve_kernel_protocol(const Method& m, std::istream& in, std::ostream& out, 
     const auto entry = io::parse_case_line(line, ++n, family);
     if (!entry) continue;  // blank or comment: no case, no answer
     const io::Case* c = std::get_if<io::Case>(&*entry);
-    out << (c ? io::format_result(m.run(*c)) : std::string("error - -")) << '\n';
+    if (!c) {
+      out << "error - -\n";
+      continue;
+    }
+    const io::CaseResult r = m.run(*c);
+    // A plugin's answer outside the vocabulary: a line that is no answer, so the --exec side
+    // reports a kernel failure with this case.
+    if (r.contact == Contact::error && m.take_failures) {
+      const auto failures = m.take_failures();
+      if (!failures.empty()) {
+        out << "kernel-failure: " << failures.front().what << '\n';
+        continue;
+      }
+    }
+    out << io::format_answer(r) << '\n';
   }
   out << std::flush;
   return 0;

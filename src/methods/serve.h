@@ -10,8 +10,10 @@ namespace rayproof {
 
 /// Writes the declaration line `rayproof-kernel 1 PRECISION KINDS` when `header`, then answers every
 /// case line of `in` with `m.run` (float methods see float-rounded inputs, as over --exec) as a
-/// full `CLASS T T2` line, until end of input. A line that cannot be read, or a kind the method does
-/// not answer, gets `error - -`. Returns 0.
+/// full `CLASS T T2` line, or a coarse `hit T B1 B2` ... `miss` line for a coarse answer
+/// (io::format_answer), until end of input. A line that cannot be read, or a kind the method does
+/// not answer, gets `error - -`; an answer the method reports as a kernel failure (a plugin's answer
+/// outside the vocabulary, take_failures) gets `kernel-failure: WHAT`, which is no answer. Returns 0.
 int serve_kernel_protocol(const Method& m, std::istream& in, std::ostream& out, bool header = true);
 
 }  // namespace rayproof

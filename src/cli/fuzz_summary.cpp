@@ -1,0 +1,215 @@
+#include "cli/fuzz_summary.h"
+
+#include <fmt/core.h>
+
+#include <algorithm>
+#include <charconv>
+#include <nlohmann/json.hpp>
+
+namespace rayproof::cli {
+
+namespace {
+
+nlohmann::json stats_json(const verify::Stats& s) {
+  std::map<std::uint64_t, std::size_t> hist;
+  for (auto u : s.ulps) ++hist[u];
+  nlohmann::json h = nlohmann::json::array();
+  for (const auto& [u, n] : hist) h.push_back({u, n});
+  return {{"cases", s.cases},           {"false_hit", s.false_hit},
+          {"false_miss", s.false_miss}, {"wrong_hit_class", s.wrong_hit_class},
+          {"wrong_class", s.wrong_class}, {"fallbacks", s.fallbacks},
+          {"kernel_failures", s.kernel_failures}, {"coarse", s.coarse},
+          {"ulps", h},                  {"bary_errors", s.bary_errors}};
+}
+
+verify::Stats stats_from_json(const nlohmann::json& j) {
+  verify::Stats s;
+  s.cases = j.at("cases").get<std::size_t>();
+  s.false_hit = j.at("false_hit").get<std::size_t>();
+  s.false_miss = j.at("false_miss").get<std::size_t>();
+  s.wrong_hit_class = j.at("wrong_hit_class").get<std::size_t>();
+  s.wrong_class = j.at("wrong_class").get<std::size_t>();
+  s.fallbacks = j.at("fallbacks").get<std::uint64_t>();
+  s.kernel_failures = j.at("kernel_failures").get<std::size_t>();
+  s.coarse = j.at("coarse").get<std::size_t>();
+  for (const auto& e : j.at("ulps")) {
+    const auto u = e.at(0).get<std::uint64_t>();
+    const auto n = e.at(1).get<std::size_t>();
+    if (n > s.cases) throw std::runtime_error("a t error count exceeds the cases");
+    s.ulps.insert(s.ulps.end(), n, u);
+  }
+  s.bary_errors = j.at("bary_errors").get<std::vector<double>>();
+  return s;
+}
+
+std::string shards_text(const std::vector<std::size_t>& v) {
+  std::string s;
+  for (auto k : v) s += (s.empty() ? "" : ", ") + std::to_string(k + 1);
+  return s;
+}
+
+}  // namespace
+
+FuzzSummary summarize(const FuzzCampaign& c, std::size_t shard_index, const verify::FuzzResult& r) {
+  FuzzSummary s;
+  s.campaign = c;
+  s.shards = {shard_index};
+  s.rounds = r.rounds, s.cases = r.cases, s.seconds = r.seconds;
+  s.stats = r.stats;
+  s.mismatches = r.mismatches;
+  return s;
+}
+
+std::string to_json(const FuzzSummary& s) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (const auto& [key, st] : s.stats) {
+    auto j = stats_json(st);
+    j["method"] = key.first;
+    j["family"] = key.second;
+    const auto it = s.mismatches.find(key);
+    j["mismatches"] = it == s.mismatches.end() ? 0 : it->second;
+    rows.push_back(j);
+  }
+  const auto& c = s.campaign;
+  nlohmann::json j{{"rayproof_fuzz_summary", 1},
+                   {"campaign",
+                    {{"seed", c.seed},
+                     {"methods", c.methods},
+                     {"families", c.families},
+                     {"batch", c.batch},
+                     {"cases", c.max_cases},
+                     {"shard_count", c.shard_count}}},
+                   {"shards", s.shards},
+                   {"rounds", s.rounds},
+                   {"cases", s.cases},
+                   {"seconds", s.seconds},
+                   {"stats", rows}};
+  return j.dump(1) + "\n";
+}
+
+std::optional<FuzzSummary> summary_from_json(const std::string& text, const std::string& file, std::string& error) {
+  try {
+    const auto j = nlohmann::json::parse(text);
+    if (!j.is_object() || !j.contains("rayproof_fuzz_summary")) {
+      error = file + ": not a rayproof fuzz summary (written by `rayproof fuzz --summary`)";
+      return std::nullopt;
+    }
+    if (j.at("rayproof_fuzz_summary").get<int>() != 1) {
+      error = file + ": summary version " + j.at("rayproof_fuzz_summary").dump() + " is not 1";
+      return std::nullopt;
+    }
+    FuzzSummary s;
+    const auto& c = j.at("campaign");
+    s.campaign.seed = c.at("seed").get<std::uint64_t>();
+    s.campaign.methods = c.at("methods").get<std::vector<std::string>>();
+    s.campaign.families = c.at("families").get<std::vector<std::string>>();
+    s.campaign.batch = c.at("batch").get<std::size_t>();
+    s.campaign.max_cases = c.at("cases").get<std::size_t>();
+    s.campaign.shard_count = c.at("shard_count").get<std::size_t>();
+    s.shards = j.at("shards").get<std::vector<std::size_t>>();
+    for (auto k : s.shards)
+      if (k >= s.campaign.shard_count) {
+        error = fmt::format("{}: shard {} of a campaign in {} shards", file, k + 1, s.campaign.shard_count);
+        return std::nullopt;
+      }
+    s.rounds = j.at("rounds").get<std::size_t>();
+    s.cases = j.at("cases").get<std::size_t>();
+    s.seconds = j.at("seconds").get<double>();
+    for (const auto& row : j.at("stats")) {
+      const auto key = std::make_pair(row.at("method").get<std::string>(), row.at("family").get<std::string>());
+      s.stats[key] = stats_from_json(row);
+      s.mismatches[key] = row.at("mismatches").get<std::size_t>();
+    }
+    return s;
+  } catch (const std::exception& e) {
+    error = file + ": malformed summary (" + e.what() + ")";
+    return std::nullopt;
+  }
+}
+
+std::optional<FuzzSummary> merge_summaries(const std::vector<FuzzSummary>& parts, const std::vector<std::string>& files,
+                                           std::string& error) {
+  if (parts.empty()) {
+    error = "no summaries to merge";
+    return std::nullopt;
+  }
+  FuzzSummary m;
+  m.campaign = parts.front().campaign;
+  std::map<std::size_t, std::string> seen;  // shard -> file
+  for (std::size_t i = 0; i < parts.size(); ++i) {
+    const auto& p = parts[i];
+    const auto& a = m.campaign;
+    const auto& b = p.campaign;
+    std::string diff;
+    if (a.seed != b.seed) diff = fmt::format("seed {} and {}", a.seed, b.seed);
+    else if (a.methods != b.methods) diff = "methods differ";
+    else if (a.families != b.families) diff = "families differ";
+    else if (a.batch != b.batch) diff = fmt::format("cases per round {} and {}", a.batch, b.batch);
+    else if (a.max_cases != b.max_cases) diff = fmt::format("--cases {} and {}", a.max_cases, b.max_cases);
+    else if (a.shard_count != b.shard_count) diff = fmt::format("{} and {} shards", a.shard_count, b.shard_count);
+    if (!diff.empty()) {
+      error = fmt::format("{} and {} are summaries of different campaigns ({})", files.front(), files[i], diff);
+      return std::nullopt;
+    }
+    for (auto k : p.shards) {
+      if (auto it = seen.find(k); it != seen.end()) {
+        error = fmt::format("shard {}/{} is in both {} and {}", k + 1, a.shard_count, it->second, files[i]);
+        return std::nullopt;
+      }
+      seen[k] = files[i];
+      m.shards.push_back(k);
+    }
+    m.rounds += p.rounds, m.cases += p.cases, m.seconds = std::max(m.seconds, p.seconds);
+    for (const auto& [k, st] : p.stats) m.stats[k].merge(st);
+    for (const auto& [k, n] : p.mismatches) m.mismatches[k] += n;
+  }
+  std::sort(m.shards.begin(), m.shards.end());
+  std::vector<std::size_t> missing;
+  for (std::size_t k = 0; k < m.campaign.shard_count; ++k)
+    if (!seen.count(k)) missing.push_back(k);
+  if (!missing.empty()) {
+    error = fmt::format("the merge lacks {} {} of the campaign's {} (given: {})",
+                        missing.size() == 1 ? "shard" : "shards", shards_text(missing), m.campaign.shard_count,
+                        shards_text(m.shards));
+    return std::nullopt;
+  }
+  return m;
+}
+
+std::string fuzz_table(const std::vector<std::string>& methods, const std::vector<std::string>& families,
+                       const std::map<std::pair<std::string, std::string>, verify::Stats>& stats,
+                       const std::map<std::pair<std::string, std::string>, std::size_t>& mismatches) {
+  std::string s = fmt::format("{:<16} {:<24} {:>9} {:>10} {:>9} {:>9}\n", "method", "family", "cases", "mismatches",
+                              "rate %", "fallbacks");
+  for (const auto& m : methods) {
+    std::size_t total = 0, bad = 0;
+    std::uint64_t fb = 0;
+    for (const auto& f : families) {
+      auto it = stats.find({m, f});
+      if (it == stats.end() || it->second.cases == 0) continue;
+      const auto mm = mismatches.find({m, f});
+      const std::size_t n = mm == mismatches.end() ? 0 : mm->second;
+      s += fmt::format("{:<16} {:<24} {:>9} {:>10} {:>9.4f} {:>9}\n", m, f, it->second.cases, n,
+                       100.0 * double(n) / double(it->second.cases), it->second.fallbacks);
+      total += it->second.cases, bad += n, fb += it->second.fallbacks;
+    }
+    s += fmt::format("{:<16} {:<24} {:>9} {:>10} {:>9.4f} {:>9}\n", m, "(all)", total, bad,
+                     total ? 100.0 * double(bad) / double(total) : 0.0, fb);
+  }
+  return s;
+}
+
+std::optional<std::pair<std::size_t, std::size_t>> parse_shard(const std::string& text) {
+  const auto slash = text.find('/');
+  if (slash == std::string::npos) return std::nullopt;
+  std::size_t k = 0, n = 0;
+  const char* b = text.data();
+  const char* e = b + text.size();
+  auto r1 = std::from_chars(b, b + slash, k);
+  auto r2 = std::from_chars(b + slash + 1, e, n);
+  if (r1.ec != std::errc{} || r1.ptr != b + slash || r2.ec != std::errc{} || r2.ptr != e) return std::nullopt;
+  if (n < 1 || n > 1000000 || k < 1 || k > n) return std::nullopt;
+  return std::make_pair(k - 1, n);
+}
+
+}  // namespace rayproof::cli

@@ -1,0 +1,179 @@
+#include "methods/plugin_kernel.h"
+
+#include <dlfcn.h>
+
+#include <algorithm>
+#include <array>
+#include <filesystem>
+#include <memory>
+#include <mutex>
+#include <string_view>
+#include <system_error>
+#include <vector>
+
+namespace rayproof {
+
+namespace {
+
+/// What classify needs: the kind functions and the failures not yet taken.
+struct PluginState {
+  Precision precision = Precision::float64;
+  std::array<rayproof_double_fn, 6> on_double{};
+  std::array<rayproof_float_fn, 6> on_float{};
+  std::mutex mutex;
+  std::vector<KernelFailure> failures;  ///< at most kMaxKept between two takes; later ones are not kept
+};
+
+constexpr std::size_t kMaxKept = 10000;
+
+bool good_name(std::string_view s) {
+  if (s.empty() || s.size() > 64) return false;
+  return std::all_of(s.begin(), s.end(), [](char ch) {
+    return (ch >= 'a' && ch <= 'z') || (ch >= 'A' && ch <= 'Z') || (ch >= '0' && ch <= '9') || ch == '_' ||
+           ch == '.' || ch == '+' || ch == '-';
+  });
+}
+
+/// The declared name, read only up to 65 characters (a pointer to garbage must not run away).
+std::string bounded_name(const char* p) {
+  std::string s;
+  if (!p) return s;
+  for (std::size_t i = 0; i <= 64 && p[i]; ++i) s += p[i];
+  return s;
+}
+
+std::string printable(std::string_view s) {
+  std::string out;
+  for (char ch : s) out += (ch >= 0x20 && ch < 0x7f) ? ch : '?';
+  return out;
+}
+
+io::CaseResult call(PluginState& st, const io::Case& c) {
+  rayproof_answer a{RAYPROOF_NO_ANSWER, 0, 0.0, 0.0, 0.0, 0.0};
+  const auto k = static_cast<std::size_t>(c.kind);
+  if (st.precision == Precision::float64) {
+    if (!st.on_double[k]) return {Contact::error};  // a kind the plugin does not answer
+    st.on_double[k](c.v.data(), &a);
+  } else {
+    if (!st.on_float[k]) return {Contact::error};
+    std::array<float, 15> in{};
+    for (std::size_t i = 0; i < in.size(); ++i) in[i] = static_cast<float>(c.v[i]);
+    st.on_float[k](in.data(), &a);
+  }
+  auto r = plugin_answer_to_result(c.kind, a);
+  if (auto* ok = std::get_if<io::CaseResult>(&r)) return *ok;
+  std::lock_guard lock(st.mutex);
+  if (st.failures.size() < kMaxKept) st.failures.push_back({std::get<std::string>(r), c});
+  return {Contact::error};
+}
+
+}  // namespace
+
+std::variant<io::CaseResult, std::string> plugin_answer_to_result(io::Kind kind, const rayproof_answer& a) {
+  io::CaseResult r;
+  const int known_bits = RAYPROOF_HAS_T | RAYPROOF_HAS_T2 | RAYPROOF_HAS_B;
+  if (a.has & ~known_bits) return "answer outside the vocabulary: unknown bits in has (" + std::to_string(a.has) + ")";
+  const bool has_t = a.has & RAYPROOF_HAS_T, has_t2 = a.has & RAYPROOF_HAS_T2, has_b = a.has & RAYPROOF_HAS_B;
+  if (a.cls >= RAYPROOF_INVALID && a.cls <= RAYPROOF_RIM) {
+    if (has_b) return "answer outside the vocabulary: barycentrics on a full answer (" +
+                      std::string(to_string(static_cast<Contact>(a.cls))) + ")";
+    r.contact = static_cast<Contact>(a.cls);
+    if (has_t) r.t = a.t;
+    if (has_t2) r.t2 = a.t2;
+    return r;
+  }
+  r.form = io::AnswerForm::coarse;
+  if (a.cls == RAYPROOF_COARSE_MISS) {
+    if (a.has) return std::string("answer outside the vocabulary: a coarse miss with values");
+    r.contact = Contact::miss;
+    return r;
+  }
+  if (a.cls == RAYPROOF_COARSE_HIT) {
+    if (has_t2) return std::string("answer outside the vocabulary: T2 on a coarse hit");
+    if (has_b && !has_t) return std::string("answer outside the vocabulary: barycentrics without t on a coarse hit");
+    if (has_b && kind != io::Kind::triangle)
+      return "answer outside the vocabulary: barycentrics on a " + std::string(io::to_string(kind)) + " hit";
+    r.contact = Contact::hit;
+    if (has_t) r.t = a.t;
+    if (has_b) r.b1 = a.b1, r.b2 = a.b2;
+    return r;
+  }
+  if (a.cls == RAYPROOF_NO_ANSWER) return std::string("no answer written (cls left at RAYPROOF_NO_ANSWER)");
+  return "answer outside the vocabulary: unknown class " + std::to_string(a.cls);
+}
+
+std::variant<Method, std::string> load_plugin_method(const std::string& path, const std::string& name) {
+  const std::string where = "plugin " + path;
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) return where + ": no such file";
+  if (std::filesystem::is_directory(path, ec)) return where + ": is a directory, not a shared library";
+  // A bare file name would make dlopen search the library path: always name the file itself.
+  const std::string open_path = path.find('/') == std::string::npos ? "./" + path : path;
+  dlerror();
+  void* lib = dlopen(open_path.c_str(), RTLD_NOW | RTLD_LOCAL);
+  if (!lib) {
+    const char* why = dlerror();
+    return where + ": cannot load it as a shared library (" + (why ? why : "unknown reason") + ")";
+  }
+  dlerror();
+  void* sym = dlsym(lib, RAYPROOF_PLUGIN_ENTRY_NAME);
+  if (!sym) {
+    dlclose(lib);
+    return where + ": no entry point " RAYPROOF_PLUGIN_ENTRY_NAME
+                   " (see rayproof/plugin.h; in C++ declare it with RAYPROOF_PLUGIN_EXPORT for C linkage)";
+  }
+  // The library stays loaded from here on: its functions are called until rayproof exits.
+  auto entry = reinterpret_cast<rayproof_plugin_entry_fn>(sym);
+  const rayproof_plugin* p = entry();
+  if (!p) return where + ": " RAYPROOF_PLUGIN_ENTRY_NAME " returned no description (a null pointer)";
+  if (p->abi_version != RAYPROOF_PLUGIN_ABI_VERSION)
+    return where + ": built for plugin ABI version " + std::to_string(p->abi_version) + ", this rayproof loads version " +
+           std::to_string(RAYPROOF_PLUGIN_ABI_VERSION) + " (rebuild it against this rayproof's rayproof/plugin.h)";
+  const std::string declared = bounded_name(p->name);
+  if (!good_name(declared))
+    return where + ": bad name '" + printable(declared) + "' (1 to 64 characters of A-Z a-z 0-9 _ . + -)";
+  if (p->precision != RAYPROOF_FLOAT && p->precision != RAYPROOF_DOUBLE)
+    return where + ": bad precision " + std::to_string(p->precision) + " (RAYPROOF_FLOAT or RAYPROOF_DOUBLE)";
+  if (p->kind_count < 1 || p->kind_count > 6 || !p->kinds)
+    return where + ": bad kind list (kind_count " + std::to_string(p->kind_count) + "; 1 to 6 kinds)";
+
+  auto st = std::make_shared<PluginState>();
+  st->precision = p->precision == RAYPROOF_FLOAT ? Precision::float32 : Precision::float64;
+  std::vector<io::Kind> kinds;
+  for (int i = 0; i < p->kind_count; ++i) {
+    const rayproof_kind_fn& k = p->kinds[i];
+    if (k.kind < RAYPROOF_KIND_PLANE || k.kind > RAYPROOF_KIND_DISK)
+      return where + ": bad kind " + std::to_string(k.kind) + " (RAYPROOF_KIND_PLANE .. RAYPROOF_KIND_DISK)";
+    const auto kind = static_cast<io::Kind>(k.kind);
+    if (std::find(kinds.begin(), kinds.end(), kind) != kinds.end())
+      return where + ": kind " + std::string(io::to_string(kind)) + " declared twice";
+    const bool has_fn = st->precision == Precision::float64 ? k.on_double != nullptr : k.on_float != nullptr;
+    if (!has_fn)
+      return where + ": kind " + std::string(io::to_string(kind)) + " has no " +
+             (st->precision == Precision::float64 ? "on_double" : "on_float") + " function (the plugin is " +
+             (st->precision == Precision::float64 ? "double" : "float") + ")";
+    if (st->precision == Precision::float64) {
+      st->on_double[static_cast<std::size_t>(kind)] = k.on_double;
+    } else {
+      st->on_float[static_cast<std::size_t>(kind)] = k.on_float;
+    }
+    kinds.push_back(kind);
+  }
+  std::sort(kinds.begin(), kinds.end());
+
+  Method m;
+  m.name = name.empty() ? declared : name;
+  m.summary = "plugin " + path + (declared == m.name ? std::string() : " ('" + declared + "')");
+  m.precision = st->precision;
+  m.kinds = std::move(kinds);
+  m.classify = [st](const io::Case& c) { return call(*st, c); };
+  m.take_failures = [st] {
+    std::vector<KernelFailure> out;
+    std::lock_guard lock(st->mutex);
+    out.swap(st->failures);
+    return out;
+  };
+  return m;
+}
+
+}  // namespace rayproof
