@@ -9,6 +9,7 @@
 #include <cmath>
 #include <optional>
 
+#include "verify/exact.h"
 #include "verify/exact_kinds.h"
 #include "verify/exact_number.h"
 #include "verify/exact_rounding.h"
