@@ -11,13 +11,13 @@
 #include <type_traits>
 #include <vector>
 
+#include "rayproof/certified.h"
 #include "rayproof/certified_triangle.h"
 #include "rayproof/mesh_caster.h"
 #include "rayproof/triangle_moller_trumbore.h"
 #include "rayproof/triangle_watertight.h"
 #include "scene/scene.h"
 #include "scene/watertight.h"
-#include "verify/exact.h"
 
 using namespace rayproof;
 
@@ -68,17 +68,10 @@ std::optional<Crossing> brute_one(cast::Robust, const Ray<double>& r, const Tria
       intersect_watertight<float, double>(rf, Triangle<float>{t.p0.cast<float>(), t.p1.cast<float>(), t.p2.cast<float>()});
   return crossing_of(h, h.b1, h.b2);
 }
-/// certified: the filter, else the exact answer (GMP), as the caster's fallback.
+/// certified: the filter, else certified::intersect (the filter again, then the exact fallback).
 std::optional<Crossing> brute_one(cast::Certified, const Ray<double>& r, const Triangle<double>& t) {
   if (const auto h = certified::triangle(r, t)) return crossing_of(*h, kNaN<double>, kNaN<double>);
-  io::Case c;
-  c.kind = io::Kind::triangle;
-  const Vec3<double> p[5] = {r.o, r.d, t.p0, t.p1, t.p2};
-  for (int i = 0; i < 5; ++i)
-    for (int k = 0; k < 3; ++k) c.v[3 * i + k] = p[i][k];
-  const io::CaseResult e = verify::exact_classify(c);
-  return crossing_of(Hit<double>{e.contact, e.t.value_or(kNaN<double>), e.t2.value_or(kNaN<double>)}, kNaN<double>,
-                     kNaN<double>);
+  return crossing_of(certified::intersect(r, t), kNaN<double>, kNaN<double>);
 }
 
 /// Every crossing in [tmin, tmax], sorted by t then triangle.
@@ -285,7 +278,7 @@ TEST(MeshCaster, CertifiedUsesTheExactFallbackWhereTheFilterCannotDecide) {
     ASSERT_FALSE(certified::triangle(r, t)) << c[0] << ": the filter decides this case now: pick one that needs the fallback";
     const std::vector<std::uint32_t> f = {0, 1, 2};
     const MeshCaster<cast::Certified> caster(VertexArray(c + 6, 3), IndexArray{f.data(), 1});
-    const auto exact = brute_one(cast::Certified{}, r, t);  // the exact answer, through verify::exact_classify
+    const auto exact = brute_one(cast::Certified{}, r, t);  // the exact answer, through certified::intersect
     ASSERT_TRUE(exact);
     const MeshHit h = caster.closest(r);
     EXPECT_EQ(h.triangle, 0u);

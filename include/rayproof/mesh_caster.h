@@ -5,35 +5,44 @@
 /// Contract:
 /// - Input: vertices as float or double triples (pointer, count, stride in bytes) and 32-bit
 ///   indices (pointer, triangle count, stride in bytes). The arrays are checked when the caster is
-///   built; bad input throws MeshInputError with a message (null pointer with a nonzero count,
+///   built; bad input throws MeshInputError with a message: a null pointer with a nonzero count, a
 ///   stride smaller than one element or larger than 65536 bytes, more than 2^32 - 2 triangles or
-///   vertices, an array that would run past the end of the address space, an index out of range, a NaN or infinite coordinate in a triangle's vertex).
-///   Vertices no triangle uses are not checked. Zero triangles is a valid, empty mesh.
+///   vertices, an array that would run past the end of the address space, an index out of range,
+///   a NaN or infinite coordinate in a vertex that a triangle uses (unused vertices are not read).
+///   Zero triangles is a valid, empty mesh.
 /// - Copies: double vertices packed 24 bytes apart at an 8-byte aligned address are read in place:
-///   the array must outlive the caster and stay unchanged. Float vertices and other strides are
+///   that array must outlive the caster and stay unchanged. Float vertices and other strides are
 ///   converted once into a packed double copy (copies_vertices() tells). Indices are read once,
 ///   while building: the BVH's leaf records keep them, so the index array may be freed afterwards.
-/// - Method, chosen at compile time (the kernel of the same name in `rayproof methods`):
+/// - Method, chosen at compile time (the kernels of `rayproof cast --method NAME`):
 ///   cast::Float      Möller–Trumbore on the float-rounded ray and vertices, textbook slab test.
-///                    Fast; rays can slip through shared edges and vertices (leaks).
-///   cast::Robust     watertight test (Woop, Benthin, Wald 2013) on float inputs in double
-///                    arithmetic, conservative traversal (Ize 2013): no ray leaks between
-///                    triangles that share an edge or vertex.
-///   cast::Certified  certified filter in double, exact class and t within 1 ulp of the exact t of
-///                    the double inputs; conservative traversal. Its exact fallback (GMP) lives in
-///                    the library `rayproof_scene_certified`, which a program using
-///                    MeshCaster<cast::Certified> must link (else: an undefined reference to
-///                    MeshCaster<cast::Certified>'s constructor).
+///                    Fast, not watertight: rays slip through shared edges and vertices. A crossing
+///                    that the float kernel places, by its rounding, just outside its triangle's
+///                    box may be dropped by the box test (so near edges and vertices brute force
+///                    over every triangle can find crossings all() does not, and closest() can
+///                    differ from all()'s first).
+///   cast::Robust     watertight test (Woop, Benthin, Wald 2013) on the float-rounded inputs in
+///                    double arithmetic, conservative traversal (Ize 2013): exactly the crossings
+///                    of that test on every triangle; no ray leaks between triangles that share an
+///                    edge or vertex.
+///   cast::Certified  certified filter in double (rayproof/certified_triangle.h): the exact class,
+///                    t within 1 ulp of the exact t of the double inputs, conservative traversal.
+///                    Where the filter cannot decide: rayproof::certified::intersect (its exact
+///                    fallback: GMP, MPFR; no CGAL). A program using MeshCaster<cast::Certified>
+///                    links rayproof_scene_certified, which brings rayproof_certified (else: an
+///                    undefined reference to MeshCaster<cast::Certified>'s constructor).
 /// - Results (MeshHit): triangle number (its position in the index array), t, contact class
 ///   (interior / edge / vertex / coplanar, CASES.md) and barycentrics b1 (weight of the triangle's
-///   second vertex) and b2 (third) as the Float and Robust kernels compute them; Certified has no
-///   barycentrics (NaN), nor has a coplanar touch (a segment). A miss has triangle == kNoTriangle.
+///   second vertex) and b2 (third) as the Float and Robust kernels compute them. Certified's
+///   traversal decides class and t only: its b1, b2 are NaN (for barycentrics within 2^-50 of the
+///   exact ones, call rayproof::certified::intersect, rayproof/certified.h, on the hit triangle).
+///   A coplanar touch (a segment) has none either. A miss has triangle == kNoTriangle.
 /// - Ranges: a crossing counts when tmin <= t <= tmax. closest(): the least t, ties to the lower
 ///   triangle number. any(): whether a crossing exists. all(): every crossing sorted by t, then
 ///   triangle. A ray with a NaN or infinite component or a zero direction has no crossing
 ///   (closest() gives contact `invalid`). Degenerate (zero-area) triangles are never hit.
-/// - Threads: queries are const and may run concurrently; the batch calls use TBB on `threads`
-///   threads (0: all hardware threads).
+/// - Threads: a caster is move-only; its queries are const and may run concurrently. The batch
+///   calls run on a TBB arena of `threads` threads (0: TBB's default, all hardware threads).
 #include <cstddef>
 #include <cstdint>
 #include <limits>

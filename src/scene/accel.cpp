@@ -47,7 +47,10 @@ decltype(auto) with_kernel(const Scene& s, const Vec3<double>* v, std::uint32_t 
     case FastKernel::watertight_float: { CompiledKernel<float, TriAlgo::watertight> k{s, v, n}; return f(k); }
     case FastKernel::watertight_double: { CompiledKernel<double, TriAlgo::watertight> k{s, v, n}; return f(k); }
     case FastKernel::robust: { CompiledKernel<float, TriAlgo::robust> k{s, v, n, g}; return f(k); }
-    case FastKernel::certified: { CompiledKernel<double, TriAlgo::certified> k{s, v, n, g, m.triangle_fallback}; return f(k); }
+    case FastKernel::certified: {
+      CompiledKernel<double, TriAlgo::certified> k{s, v, n, g, m.triangle_fallback};
+      return f(k);
+    }
     case FastKernel::none: break;
   }
   detail::GenericKernel k{s, *m.generic};
@@ -168,11 +171,13 @@ double Accel::bytes_per_primitive() const {
 }
 
 PrimHit Accel::closest(const Ray<double>& r, const SceneMethod& m, QueryRange q) const {
-  return with_kernel(scene_, verts_, ntri_, m, [&](auto& k) { return closest_with(bvh_, leaf_prims_.data(), k, r, m.traversal, q); });
+  return with_kernel(scene_, verts_, ntri_, m,
+                     [&](auto& k) { return closest_with(bvh_, leaf_prims_.data(), k, r, m.traversal, q); });
 }
 
 bool Accel::any(const Ray<double>& r, const SceneMethod& m, QueryRange q) const {
-  return with_kernel(scene_, verts_, ntri_, m, [&](auto& k) { return any_with(bvh_, leaf_prims_.data(), k, r, m.traversal, q); });
+  return with_kernel(scene_, verts_, ntri_, m,
+                     [&](auto& k) { return any_with(bvh_, leaf_prims_.data(), k, r, m.traversal, q); });
 }
 
 std::vector<PrimHit> Accel::all(const Ray<double>& r, const SceneMethod& m, QueryRange q) const {

@@ -40,7 +40,8 @@ struct PrimHit {
 
 /// Kernels compiled into the traversal (no per-primitive dispatch through the registry).
 /// robust and certified are compiled for triangles and reach the registry method (`generic`) for
-/// other kinds and, for certified, when the filter cannot decide (the exact fallback).
+/// other kinds and, for certified, when the filter cannot decide (the exact fallback; the typed
+/// SceneMethod::triangle_fallback instead when set, as MeshCaster<cast::Certified> does).
 enum class FastKernel { none, mt_float, mt_double, cramer_float, cramer_double, watertight_float, watertight_double,
                         robust, certified };
 

@@ -108,8 +108,8 @@ struct GenericKernel {
 };
 
 /// The robust and certified methods' triangle kernels, compiled: `robust` is the watertight test
-/// on float inputs in double arithmetic; `certified` the certified filter with the registry's
-/// exact fallback when it cannot decide.
+/// on float inputs in double arithmetic; `certified` the certified filter with an exact fallback
+/// when it cannot decide (SceneMethod::triangle_fallback when given, else the registry method).
 enum class TriAlgo { moller_trumbore, cramer, watertight, robust, certified };
 
 template <class T, TriAlgo A>
