@@ -4,8 +4,8 @@
 #                component); consumer_all built with find_package against the prefix; a pkg-config
 #                build of all of it.
 #   MODE=deb:    `cpack -G DEB` in BUILD; the .deb's metadata and files; dpkg-deb -x into WORK/root;
-#                consumer_all and a pkg-config build of core + certified against it; the packaged
-#                rayproof tool runs.
+#                consumer_all, and pkg-config builds of core + certified and of scene alone, against
+#                it; the packaged rayproof tool runs.
 # LIBDIR is the tree's CMAKE_INSTALL_LIBDIR (relative), CXX the compiler the tree was built with,
 # GMP_LIBRARY the GMP it linked (hidden to test the message for a missing library).
 # Consumers are built without optimization (a compile check and a run, not a benchmark).
@@ -141,6 +141,7 @@ elseif(MODE STREQUAL "deb")
   build_consumer(${prefix} ${WORK}/consumer)
   build_pkgconfig(${prefix} ${libdir} rayproof-certified ${WORK}/pkgconfig_consumer_certified
                   main_certified.cpp core.cpp certified.cpp)
+  build_pkgconfig(${prefix} ${libdir} rayproof-scene ${WORK}/pkgconfig_consumer_scene main_scene.cpp scene.cpp)
 else()
   message(FATAL_ERROR "MODE must be prefix or deb, not '${MODE}'")
 endif()
