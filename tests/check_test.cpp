@@ -328,3 +328,38 @@ TEST(CheckMesh, CgalSphereRobustZeroFloatLeaks) {
   EXPECT_EQ(f.status, 1) << f.err;
   EXPECT_GT(nlohmann::json::parse(f.out)["meshes"][0]["leaks"].get<int>(), 0);
 }
+
+#if defined(RAYPROOF_PLUGIN_DIR) && defined(RAYPROOF_EXAMPLES_DIR)
+// Users' kernels through --exec and --plugin: the naive Möller–Trumbore in Python (a child process
+// over the line protocol) and in C (a plugin) leak alike on the generated meshes; robust wrapped as a
+// plugin does not leak; the Python kernel breaks --expect watertight on the families.
+TEST(CheckUserKernels, ExecAndPluginOnMeshesAndFamilies) {
+  const std::string py = std::string("'mt-py=python3 ") + RAYPROOF_EXAMPLES_DIR + "/python/moller_trumbore.py'";
+  const std::string c = std::string("mt-c=") + RAYPROOF_PLUGIN_DIR + "/moller_trumbore_c.so";
+  const std::string robust = std::string("robust-plugin=") + RAYPROOF_PLUGIN_DIR + "/plugin_robust.so";
+  const std::string meshes = " --mesh generated --meshes 4 --seed 11 --json";
+  auto leaks = [](const std::string& out) {
+    int n = 0;
+    const auto j = nlohmann::json::parse(out);
+    for (const auto& m : j["meshes"]) n += m["leaks"].get<int>();
+    return n;
+  };
+  auto p = run_rayproof("check --exec " + py + meshes);
+  ASSERT_EQ(p.status, 1) << p.err;
+  auto cp = run_rayproof("check --plugin-in-process --plugin " + c + meshes);
+  ASSERT_EQ(cp.status, 1) << cp.err;
+  EXPECT_GT(leaks(p.out), 0);
+  EXPECT_EQ(leaks(p.out), leaks(cp.out));  // the same algorithm in the same arithmetic
+  auto r = run_rayproof("check --plugin-in-process --plugin " + robust + meshes);
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(leaks(r.out), 0);
+
+  auto f = run_rayproof("check --exec " + py + " --families tri_edge,tri_vertex --count 60 --expect watertight --reproducers 0");
+  EXPECT_EQ(f.status, 1) << f.err;
+  EXPECT_NE(f.out.find("Promise watertight: BROKEN by "), std::string::npos) << f.out;
+
+  auto z = run_rayproof("fuzz --mesh --cases 2 --seed 11 --methods robust --exec " + py);
+  EXPECT_EQ(z.status, 0) << z.err;  // a user kernel's leaks are findings
+  EXPECT_NE(z.out.find("mt-py"), std::string::npos) << z.out;
+}
+#endif
