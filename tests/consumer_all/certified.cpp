@@ -2,7 +2,13 @@
 // (an edge, a tangent, a graze, a rim), each built so that its t is an exact double.
 #include <rayproof/certified.h>
 
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <vector>
 
 #include "checks.h"
 
@@ -37,5 +43,78 @@ int check_certified() {
   const auto disk = certified::intersect(Ray<double>{V{3, 4, 2}, V{0, 0, -1}}, Disk<double>{V{0, 0, 0}, V{0, 0, 1}, 5});
   failures += expect("disk", disk.contact, disk.t, Contact::rim, 2);
   std::printf("certified: 6 kinds checked, %d failures\n", failures);
+  return failures + check_certified_sample();
+}
+
+namespace {
+
+bool within_one_ulp(double got, const std::string& want_text) {
+  if (want_text == "-") return true;  // the class carries no such value
+  const double want = std::strtod(want_text.c_str(), nullptr);
+  return got == want || got == std::nextafter(want, INFINITY) || got == std::nextafter(want, -INFINITY);
+}
+
+}  // namespace
+
+// The shared sample (the tree's data/sample.txt, a copy of shared/cases/sample.txt, with its
+// independently computed sample.expected) through certified::intersect, read by this program's own
+// few lines of parsing: the expected class on every case, t and t2 within one ulp.
+int check_certified_sample() {
+  using namespace rayproof;
+  using V = Vec3<double>;
+  const char* dir = std::getenv("RAYPROOF_SAMPLE_DIR");
+  if (!dir) {
+    std::printf("certified sample: RAYPROOF_SAMPLE_DIR is not set\n");
+    return 1;
+  }
+  std::ifstream cases(std::string(dir) + "/sample.txt"), expected(std::string(dir) + "/sample.expected");
+  if (!cases || !expected) {
+    std::printf("certified sample: cannot read %s/sample.txt and sample.expected\n", dir);
+    return 1;
+  }
+  int n = 0, failures = 0;
+  std::string line, want_line;
+  while (std::getline(cases, line)) {
+    std::istringstream in(line.substr(0, line.find('#')));
+    std::string kind, tok;
+    if (!(in >> kind)) continue;
+    std::vector<double> v;
+    while (in >> tok) v.push_back(std::strtod(tok.c_str(), nullptr));
+    if (!std::getline(expected, want_line)) {
+      std::printf("certified sample: sample.expected ends before case %d\n", n + 1);
+      return failures + 1;
+    }
+    ++n;
+    v.resize(15, 0.0);
+    auto at = [&](int i) { return V{v[i], v[i + 1], v[i + 2]}; };
+    const Ray<double> ray{at(0), at(3)};
+    Hit<double> h;
+    if (kind == "plane") h = certified::intersect(ray, Plane<double>{at(6), at(9)});
+    else if (kind == "sphere") h = certified::intersect(ray, Sphere<double>{at(6), v[9]});
+    else if (kind == "ellipsoid") h = certified::intersect(ray, Ellipsoid<double>{at(6), at(9)});
+    else if (kind == "box") h = certified::intersect(ray, Box<double>{at(6), at(9)});
+    else if (kind == "disk") h = certified::intersect(ray, Disk<double>{at(6), at(9), v[12]});
+    else if (kind == "triangle") {
+      const auto th = certified::intersect(ray, Triangle<double>{at(6), at(9), at(12)});
+      h = {th.contact, th.t, th.t2};
+    } else {
+      std::printf("certified sample: case %d: unknown kind '%s'\n", n, kind.c_str());
+      ++failures;
+      continue;
+    }
+    std::istringstream w(want_line);
+    std::string cls, t, t2;
+    w >> cls >> t >> t2;
+    if (to_string(h.contact) != cls || !within_one_ulp(h.t, t) || !within_one_ulp(h.t2, t2)) {
+      std::printf("certified sample: case %d (%s): got %s %.17g %.17g, expected %s\n", n, kind.c_str(),
+                  to_string(h.contact).data(), h.t, h.t2, want_line.c_str());
+      ++failures;
+    }
+  }
+  if (n < 100) {
+    std::printf("certified sample: only %d cases read\n", n);
+    ++failures;
+  }
+  std::printf("certified sample: %d cases, %d failures\n", n, failures);
   return failures;
 }

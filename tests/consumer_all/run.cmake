@@ -16,6 +16,8 @@ foreach(v SRC BUILD WORK MODE CXX LIBDIR GMP_LIBRARY)
   endif()
 endforeach()
 set(CONSUMER ${SRC}/tests/consumer_all)
+# The consumers check certified::intersect over the shared sample (data/sample.txt, sample.expected).
+set(ENV{RAYPROOF_SAMPLE_DIR} ${SRC}/data)
 file(REMOVE_RECURSE ${WORK})
 file(MAKE_DIRECTORY ${WORK})
 
