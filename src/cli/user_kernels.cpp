@@ -11,7 +11,8 @@ namespace rayproof::cli {
 
 void add_user_kernel_options(CLI::App& sub, UserKernelOptions& opt) {
   sub.add_option("--exec", opt.exec,
-                 "NAME=COMMAND: a kernel of yours answering case lines on stdin (docs/kernel_protocol.md); repeatable");
+                 "NAME=COMMAND: a kernel of yours answering case lines on stdin (docs/kernel_protocol.md); repeatable")
+      ->allow_extra_args(false);  // one command per --exec: the case files that follow stay positional
   sub.add_option("--exec-timeout", opt.exec_timeout,
                  "Seconds an --exec kernel may take without answering before it counts as hung")
       ->check(CLI::Range(0.001, 86400.0))
