@@ -22,6 +22,7 @@ Method sloppy_certified() {
   register_fast_methods(reg);
   Method m = *reg.find("double");
   m.name = "certified-sloppy";
+  m.promises = exact_promises();  // it claims what certified claims
   m.classify = [](const io::Case& c) {
     io::CaseResult r = verify::exact_classify(c);
     if (r.t) r.t = static_cast<double>(static_cast<float>(*r.t));

@@ -53,7 +53,8 @@ void register_certified_method(MethodRegistry& reg) {
   reg.add({"certified",
            "exact class, T within 1 ulp: error-bounded filters in extended precision, exact (GMP) fallback",
            Precision::float64, std::vector<io::Kind>(io::kAllKinds.begin(), io::kAllKinds.end()),
-           [](const io::Case& c) { return certified_classify(c, &g_fallbacks); }, certified_fallbacks});
+           [](const io::Case& c) { return certified_classify(c, &g_fallbacks); }, certified_fallbacks, {}, {},
+           exact_promises()});
 }
 
 }  // namespace rayproof::verify

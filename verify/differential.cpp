@@ -61,6 +61,30 @@ void Stats::merge(const Stats& o) {
   kernel_failures += o.kernel_failures;
   coarse += o.coarse;
   bary_errors.insert(bary_errors.end(), o.bary_errors.begin(), o.bary_errors.end());
+  promised += o.promised;
+  promise_broken += o.promise_broken;
+  if (o.worst && (!worst || o.worst->ulps > worst->ulps)) worst = o.worst;
+}
+
+std::string promise_status(const Stats& s) {
+  if (s.promised == 0) return "none made";
+  if (s.promise_broken == 0) return "kept on " + std::to_string(s.promised);
+  return "broken on " + std::to_string(s.promise_broken) + " of " + std::to_string(s.promised);
+}
+
+bool breaks_promise(const Promise& p, Verdict v, std::uint64_t ulps, const io::CaseResult& want) {
+  switch (v) {
+    case Verdict::kernel_failure: return false;
+    case Verdict::agree: return p.t_ulps && ulps > *p.t_ulps;
+    case Verdict::false_miss:
+      if (p.exact_class || p.no_false_miss == Promise::NoFalseMiss::all) return true;
+      if (p.no_false_miss == Promise::NoFalseMiss::ahead) {
+        const auto t = first_contact_t(want);
+        return want.contact != Contact::coplanar && t && *t > 0;
+      }
+      return false;
+    default: return p.exact_class;
+  }
 }
 
 Stats Comparison::total(const std::string& method) const {
@@ -89,7 +113,23 @@ ExactAnswers exact_answers(const std::vector<io::Case>& cases) {
 
 std::string group_of(const io::Case& c) { return c.family.empty() ? std::string(io::to_string(c.kind)) : c.family; }
 
+namespace {
+void judge_answer_raw(const Method& m, Judged& j, Stats& s);
+}  // namespace
+
 void judge_answer(const Method& m, Judged& j, Stats& s) {
+  judge_answer_raw(m, j, s);
+  const Promise p = m.promise(j.input.kind);
+  if (p.any()) {
+    ++s.promised;
+    if (breaks_promise(p, j.verdict, j.ulps, j.want)) ++s.promise_broken;
+  }
+  if (j.verdict == Verdict::agree && j.ulps > 0 && (!s.worst || j.ulps > s.worst->ulps))
+    s.worst = Stats::Worst{j.ulps, j.input, j.got, j.want};
+}
+
+namespace {
+void judge_answer_raw(const Method& m, Judged& j, Stats& s) {
   ++s.cases;
   j.ulps = 0;
   j.bary_error.reset();
@@ -131,6 +171,8 @@ void judge_answer(const Method& m, Judged& j, Stats& s) {
       break;
   }
 }
+
+}  // namespace
 
 Judged run_and_tally(const Method& m, const io::Case& c, const io::CaseResult& exact_as_given,
                      const io::CaseResult& exact_float_rounded, Stats& s) {

@@ -41,6 +41,15 @@ struct Stats {
   std::size_t kernel_failures = 0;     ///< a user kernel crashed, hung or answered garbage (not a class error)
   std::size_t coarse = 0;              ///< answered coarsely (hit/miss, t, barycentrics; docs/kernel_protocol.md)
   std::vector<double> bary_errors;     ///< coarse triangle hits with barycentrics: max |b - exact b| of b1, b2
+  std::size_t promised = 0;            ///< cases on which the method promised something (Method::promises)
+  std::size_t promise_broken = 0;      ///< of those, the answers that broke the promise
+  /// The class-correct answer with the largest t error (the first one met), to show beside "max".
+  struct Worst {
+    std::uint64_t ulps = 0;
+    io::Case input;
+    io::CaseResult got, want;
+  };
+  std::optional<Worst> worst{};
   [[nodiscard]] std::size_t class_errors() const { return false_hit + false_miss + wrong_hit_class + wrong_class; }
   [[nodiscard]] double class_error_rate() const { return cases ? double(class_errors()) / double(cases) : 0.0; }
   /// q-quantile of the t errors (0 when none), nearest-rank.
@@ -65,12 +74,22 @@ struct Judged {
   std::optional<double> bary_error{};  ///< coarse triangle hits with barycentrics: max |b - exact b|
 };
 
+/// Does the judged answer break `p`? (a class error under exact_class; a false miss under
+/// no_false_miss, `ahead` excepting an exact first contact at t <= 0 or a coplanar ray; a
+/// class-correct t beyond t_ulps). A kernel failure breaks nothing.
+[[nodiscard]] bool breaks_promise(const Promise& p, Verdict v, std::uint64_t ulps, const io::CaseResult& want);
+
+/// "kept on N", "broken on N of M" or "none made" (no case of a kind the method promises anything on):
+/// the promise column of verify, report and fuzz.
+[[nodiscard]] std::string promise_status(const Stats& s);
+
 /// Judges `j.got`, the answer of `m` on `j.input`, against `j.want`, the exact answer on that input,
 /// and adds it to `s` (fills j.verdict, j.ulps, j.bary_error). A full answer is judged by class; a
 /// coarse one (io::AnswerForm::coarse) by hit or miss against touches(want), its t against
 /// first_contact_t(want) and its barycentrics against the exact ones. Contact::error from a method
 /// with take_failures is a kernel failure: counted in `cases` and `kernel_failures`, not as a class
-/// error. Exact fallbacks are not counted here.
+/// error. Exact fallbacks are not counted here. Counts `promised` and `promise_broken` against
+/// m.promise(kind) and keeps the worst t error.
 void judge_answer(const Method& m, Judged& j, Stats& s);
 
 /// Runs `m` on `c` (float-rounded first for float methods), judges the answer against the exact

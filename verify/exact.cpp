@@ -37,7 +37,8 @@ void register_exact_method(MethodRegistry& reg) {
   reg.add({"exact",
            "ground truth: exact rationals (CGAL Gmpq) decide the class; T, T2 rounded to nearest (MPFR, "
            "checked exactly)",
-           Precision::float64, std::vector<io::Kind>(io::kAllKinds.begin(), io::kAllKinds.end()), exact_classify, {}});
+           Precision::float64, std::vector<io::Kind>(io::kAllKinds.begin(), io::kAllKinds.end()), exact_classify, {}, {}, {},
+           exact_promises()});
 }
 
 }  // namespace rayproof::verify

@@ -13,20 +13,19 @@
 
 namespace rayproof::verify {
 
-bool promises_exactness(const std::string& method) { return method == "exact" || method.rfind("certified", 0) == 0; }
-
-bool is_mismatch(const std::string& method, Verdict v, std::uint64_t ulps) {
-  if (v != Verdict::agree) return true;
-  return promises_exactness(method) && ulps > 1;
+bool is_mismatch(const Method& m, const Judged& j) {
+  if (j.verdict != Verdict::agree) return true;
+  return breaks_promise(m.promise(j.input.kind), j.verdict, j.ulps, j.want);
 }
 
-std::vector<std::string> FuzzResult::broken_promises() const {
+std::vector<std::string> broken_promises(const std::map<std::pair<std::string, std::string>, Stats>& stats) {
   std::vector<std::string> out;
-  for (const auto& [key, n] : mismatches)
-    if (n > 0 && promises_exactness(key.first) && std::find(out.begin(), out.end(), key.first) == out.end())
-      out.push_back(key.first);
+  for (const auto& [key, s] : stats)
+    if (s.promise_broken > 0 && std::find(out.begin(), out.end(), key.first) == out.end()) out.push_back(key.first);
   return out;
 }
+
+std::vector<std::string> FuzzResult::broken_promises() const { return verify::broken_promises(stats); }
 
 namespace {
 
@@ -107,7 +106,7 @@ RoundOutput run_round(const FuzzOptions& opt, std::size_t round) {
       j.want = f32 ? exact[fi].float_rounded[i] : exact[fi].as_given[i];
       j.got = got[k];
       judge_answer(*m, j, out.stats[{m->name, f->name}]);
-      if (is_mismatch(m->name, j.verdict, j.ulps))
+      if (is_mismatch(*m, j))
         out.findings.push_back({m->name, f->name, round, j.input, j.got, j.want, j.verdict, j.ulps, false});
     }
   }
@@ -193,7 +192,7 @@ io::Case minimize_case(const Method& m, const io::Case& input, Verdict verdict) 
       j.want = exact_classify(seen[k]);
       j.got = got[k];
       judge_answer(m, j, ignored);
-      ok.push_back(j.verdict == verdict && is_mismatch(m.name, j.verdict, j.ulps));
+      ok.push_back(j.verdict == verdict && is_mismatch(m, j));
     }
     return ok;
   }).front();

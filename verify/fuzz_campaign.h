@@ -57,17 +57,16 @@ struct FuzzResult {
   /// What user kernels (methods with take_failures) reported: crash, hang, early exit, unreadable
   /// answer, each with its case; (method, failure), in method order.
   std::vector<std::pair<std::string, KernelFailure>> kernel_failures;
-  /// Methods that broke a promise: `certified` (and `exact`) promise the exact class and t
-  /// within one ulp.
+  /// Methods that broke a promise they declare (Method::promises), in (method, family) order.
   [[nodiscard]] std::vector<std::string> broken_promises() const;
 };
 
-/// True when a method promises exact classes and t within 1 ulp.
-[[nodiscard]] bool promises_exactness(const std::string& method);
+/// Methods with a broken promise (Stats::promise_broken > 0) in a tally, each once.
+[[nodiscard]] std::vector<std::string> broken_promises(const std::map<std::pair<std::string, std::string>, Stats>& stats);
 
-/// Does this answer count as a mismatch for the method? (class error; or t beyond 1 ulp for a
-/// method that promises exactness)
-[[nodiscard]] bool is_mismatch(const std::string& method, Verdict v, std::uint64_t ulps);
+/// Does this judged answer count as a mismatch for the method? (a class error; or a t error beyond
+/// the tolerance the method promises on the case's kind)
+[[nodiscard]] bool is_mismatch(const Method& m, const Judged& j);
 
 [[nodiscard]] FuzzResult run_fuzz(const FuzzOptions& opt);
 

@@ -42,6 +42,8 @@ nlohmann::json stats_json(const verify::Stats& s) {
           {"fallbacks", s.fallbacks},
           {"kernel_failures", s.kernel_failures},
           {"coarse", s.coarse},
+          {"promised", s.promised},
+          {"promise_broken", s.promise_broken},
           {"bary_error_max", s.bary_errors.empty() ? 0.0 : *std::max_element(s.bary_errors.begin(), s.bary_errors.end())}};
 }
 
@@ -110,11 +112,11 @@ int run_verify(const VerifyOptions& opt) {
                  s.class_errors(), s.false_hit, s.false_miss, s.wrong_hit_class, s.wrong_class, ulps(s.ulp_quantile(0.5)),
                  ulps(s.ulp_quantile(0.99)), ulps(s.ulp_quantile(1.0)), s.fallbacks);
       if (extra) fmt::print(" {:>8} {:>7}", s.kernel_failures, s.coarse);
-      fmt::print("\n");
+      fmt::print("  {}\n", verify::promise_status(s));
     };
     fmt::print("{:<16} {:<24} {:>7} {:>7} {:>8} {:>9} {:>9} {:>6} {:>8} {:>8} {:>10} {:>9}", "method", "family", "cases",
                "errors", "falsehit", "falsemiss", "wronghit", "other", "ulp_med", "ulp_p99", "ulp_max", "fallbacks");
-    fmt::print("{}\n", extra ? fmt::format(" {:>8} {:>7}", "kfail", "coarse") : "");
+    fmt::print("{}  promise\n", extra ? fmt::format(" {:>8} {:>7}", "kfail", "coarse") : "");
     for (const auto& m : cmp.methods) {
       for (const auto& g : cmp.groups) {
         auto it = cmp.stats.find({m, g});

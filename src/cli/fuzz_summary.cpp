@@ -19,7 +19,8 @@ nlohmann::json stats_json(const verify::Stats& s) {
           {"false_miss", s.false_miss}, {"wrong_hit_class", s.wrong_hit_class},
           {"wrong_class", s.wrong_class}, {"fallbacks", s.fallbacks},
           {"kernel_failures", s.kernel_failures}, {"coarse", s.coarse},
-          {"ulps", h},                  {"bary_errors", s.bary_errors}};
+          {"ulps", h},                  {"bary_errors", s.bary_errors},
+          {"promised", s.promised},     {"promise_broken", s.promise_broken}};
 }
 
 verify::Stats stats_from_json(const nlohmann::json& j) {
@@ -39,6 +40,9 @@ verify::Stats stats_from_json(const nlohmann::json& j) {
     s.ulps.insert(s.ulps.end(), n, u);
   }
   s.bary_errors = j.at("bary_errors").get<std::vector<double>>();
+  s.promised = j.value("promised", std::size_t{0});
+  s.promise_broken = j.value("promise_broken", std::size_t{0});
+  if (s.promise_broken > s.promised || s.promised > s.cases) throw std::runtime_error("promise counts exceed the cases");
   return s;
 }
 
@@ -179,22 +183,25 @@ std::optional<FuzzSummary> merge_summaries(const std::vector<FuzzSummary>& parts
 std::string fuzz_table(const std::vector<std::string>& methods, const std::vector<std::string>& families,
                        const std::map<std::pair<std::string, std::string>, verify::Stats>& stats,
                        const std::map<std::pair<std::string, std::string>, std::size_t>& mismatches) {
-  std::string s = fmt::format("{:<16} {:<24} {:>9} {:>10} {:>9} {:>9}\n", "method", "family", "cases", "mismatches",
-                              "rate %", "fallbacks");
+  std::string s = fmt::format("{:<16} {:<24} {:>9} {:>10} {:>9} {:>9}  {}\n", "method", "family", "cases", "mismatches",
+                              "rate %", "fallbacks", "promise");
   for (const auto& m : methods) {
     std::size_t total = 0, bad = 0;
     std::uint64_t fb = 0;
+    verify::Stats all;
     for (const auto& f : families) {
       auto it = stats.find({m, f});
       if (it == stats.end() || it->second.cases == 0) continue;
       const auto mm = mismatches.find({m, f});
       const std::size_t n = mm == mismatches.end() ? 0 : mm->second;
-      s += fmt::format("{:<16} {:<24} {:>9} {:>10} {:>9.4f} {:>9}\n", m, f, it->second.cases, n,
-                       100.0 * double(n) / double(it->second.cases), it->second.fallbacks);
+      s += fmt::format("{:<16} {:<24} {:>9} {:>10} {:>9.4f} {:>9}  {}\n", m, f, it->second.cases, n,
+                       100.0 * double(n) / double(it->second.cases), it->second.fallbacks,
+                       verify::promise_status(it->second));
+      all.promised += it->second.promised, all.promise_broken += it->second.promise_broken;
       total += it->second.cases, bad += n, fb += it->second.fallbacks;
     }
-    s += fmt::format("{:<16} {:<24} {:>9} {:>10} {:>9.4f} {:>9}\n", m, "(all)", total, bad,
-                     total ? 100.0 * double(bad) / double(total) : 0.0, fb);
+    s += fmt::format("{:<16} {:<24} {:>9} {:>10} {:>9.4f} {:>9}  {}\n", m, "(all)", total, bad,
+                     total ? 100.0 * double(bad) / double(total) : 0.0, fb, verify::promise_status(all));
   }
   return s;
 }

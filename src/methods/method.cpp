@@ -6,6 +6,27 @@
 
 namespace rayproof {
 
+std::string Promise::describe() const {
+  std::string s;
+  auto add = [&](const std::string& part) { s += (s.empty() ? "" : ", ") + part; };
+  if (exact_class) add("exact class");
+  if (!exact_class && no_false_miss == NoFalseMiss::all) add("no false miss");
+  if (!exact_class && no_false_miss == NoFalseMiss::ahead) add("no false miss ahead of the origin (coplanar rays excepted)");
+  if (t_ulps) add(*t_ulps == 1 ? std::string("t within 1 ulp") : "t within " + std::to_string(*t_ulps) + " ulps");
+  return s.empty() ? "nothing" : s;
+}
+
+std::map<io::Kind, Promise> exact_promises() {
+  std::map<io::Kind, Promise> m;
+  for (io::Kind k : io::kAllKinds) m[k] = Promise{true, Promise::NoFalseMiss::all, 1};
+  return m;
+}
+
+Promise Method::promise(io::Kind k) const {
+  const auto it = promises.find(k);
+  return it == promises.end() ? Promise{} : it->second;
+}
+
 bool Method::supports(io::Kind k) const { return std::find(kinds.begin(), kinds.end(), k) != kinds.end(); }
 
 io::CaseResult Method::run(const io::Case& c) const {

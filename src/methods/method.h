@@ -4,6 +4,8 @@
 /// without knowing them.
 #include <cstdint>
 #include <functional>
+#include <map>
+#include <optional>
 #include <span>
 #include <string>
 #include <vector>
@@ -20,6 +22,21 @@ enum class Precision { float32, float64 };
 struct KernelFailure {
   std::string what;  ///< "crashed (signal 11)", "timed out after 5 s", "exited early (status 3)", "unreadable answer 'x'"
   io::Case input;    ///< the case that caused it, as the kernel saw it
+};
+
+/// What a method promises on one kind, checked by verify, report and fuzz against exact.
+struct Promise {
+  /// No false miss: `all` everywhere; `ahead` wherever the exact first contact is at t > 0 and the
+  /// ray does not lie in the primitive's plane (a ray starting on the surface, or a coplanar ray,
+  /// may be missed).
+  enum class NoFalseMiss : std::uint8_t { none, ahead, all };
+  bool exact_class = false;                  ///< the exact contact class on every case
+  NoFalseMiss no_false_miss = NoFalseMiss::none;
+  std::optional<std::uint64_t> t_ulps{};    ///< class-correct t (and t2) within this many ulps
+
+  [[nodiscard]] bool any() const { return exact_class || no_false_miss != NoFalseMiss::none || t_ulps.has_value(); }
+  /// "exact class, t within 1 ulp", "no false miss", "nothing", ...
+  [[nodiscard]] std::string describe() const;
 };
 
 struct Method {
@@ -40,6 +57,11 @@ struct Method {
   /// kernel since the last call, each with the case that caused it. The failing case's answer is
   /// Contact::error; the kernel is restarted and the run goes on.
   std::function<std::vector<KernelFailure>()> take_failures{};
+  /// What the method promises per kind; a kind not listed: nothing.
+  std::map<io::Kind, Promise> promises{};
+
+  /// The promise on kind k (nothing when none is declared).
+  [[nodiscard]] Promise promise(io::Kind k) const;
 
   [[nodiscard]] bool supports(io::Kind k) const;
   /// Runs the method as a user would: rounds to float first for float32 methods.
@@ -66,6 +88,9 @@ void register_fast_methods(MethodRegistry& reg);
 /// Registers the robust methods (robust, robust-double) and the triangle alternatives (mt-double,
 /// baldwin-weber, plucker): floating point only, no exact arithmetic.
 void register_robust_methods(MethodRegistry& reg);
+
+/// The promise of an exact method on every kind: exact class, no false miss, t within 1 ulp.
+[[nodiscard]] std::map<io::Kind, Promise> exact_promises();
 
 /// Which classes carry T and T2, per kind (CASES.md), to turn a kernel result into a CaseResult.
 [[nodiscard]] io::CaseResult make_result(io::Kind kind, Contact c, double t, double t2);
