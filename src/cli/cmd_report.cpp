@@ -13,6 +13,7 @@
 #include "cli/user_kernels.h"
 #include "gen/families.h"
 #include "report/report.h"
+#include "report/report_text.h"
 #include "report/irradiance_sweep.h"
 
 namespace rayproof::cli {
@@ -27,6 +28,7 @@ struct ReportOptions {
   std::string input;
   UserKernelOptions user;
   std::uint64_t irradiance_samples = 16384;
+  std::uint64_t ulp_tolerance = 1;
 };
 
 std::string cpu_model() {
@@ -107,6 +109,7 @@ int run_report(const ReportOptions& opt) {
 
   auto rep = report::build_report(cases, methods, progress);
   rep.notes = notes;
+  rep.ulp_tolerance = opt.ulp_tolerance;
   const double secs = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   rep.notes.push_back(fmt::format("run time of the whole report: {:.1f} s", secs));
   if (auto err = report::write_report(rep, opt.out); !err.empty()) {
@@ -122,7 +125,7 @@ int run_report(const ReportOptions& opt) {
   fmt::print("{:<16} {:>10} {:>12} {:>12} {:>10}\n", "method", "ns/case", "class err %", "max ulps", "fallback %");
   for (const auto& p : rep.points)
     fmt::print("{:<16} {:>10.1f} {:>12.4f} {:>12} {:>10.3f}\n", p.method, p.ns_per_case, 100 * p.class_error_rate,
-               p.max_ulps == std::numeric_limits<std::uint64_t>::max() ? std::string("NaN t") : std::to_string(p.max_ulps),
+               report::ulp_text(p.max_ulps, p.precision),
                100 * p.fallback_rate);
   return 0;
 }
@@ -134,6 +137,10 @@ Run add_report(CLI::App& app) {
   sub->add_option("--count", opt->count, "Cases per family")->check(CLI::Range(std::size_t{2}, std::size_t{1000000}))
       ->capture_default_str();
   sub->add_option("--seed", opt->seed, "Seed of the case families")->capture_default_str();
+  sub->add_option("--ulp-tolerance", opt->ulp_tolerance,
+                  "Error-free: no class error and t within this many ulps (a method's promised tolerance wins)")
+      ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 62))
+      ->capture_default_str();
   sub->add_option("--out", opt->out, "Output directory")->capture_default_str();
   sub->add_option("--methods", opt->methods, "Methods (default: all registered)")->delimiter(',')->allow_extra_args(false);
   sub->add_option("--families", opt->families, "Families (default: all)")->delimiter(',')->allow_extra_args(false);

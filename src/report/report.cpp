@@ -8,20 +8,11 @@
 #include <map>
 #include <set>
 
+#include "report/report_text.h"
 #include "report/timing.h"
 #include "verify/exact.h"
 
 namespace rayproof::report {
-
-namespace {
-
-std::string ulp_text(std::uint64_t u) {
-  if (u == std::numeric_limits<std::uint64_t>::max()) return "NaN t";
-  if (u >= 1000000) return fmt::format("{:.2g}", double(u));
-  return std::to_string(u);
-}
-
-}  // namespace
 
 Report build_report(const std::vector<io::Case>& given, const std::vector<const Method*>& methods,
                     const std::function<void(const std::string&)>& progress) {
@@ -58,6 +49,7 @@ Report build_report(const std::vector<io::Case>& given, const std::vector<const 
       row.kind = gc.front().kind;
       row.precision = m->precision;
       row.stats = cmp.stats.at({m->name, g});
+      row.promise = m->promise(row.kind);
       row.ns_per_case = ns_per_case(*m, m->precision == Precision::float32 ? rounded : gc);
       rep.rows.push_back(std::move(row));
     }
@@ -80,6 +72,9 @@ Report build_report(const std::vector<io::Case>& given, const std::vector<const 
     p.class_error_rate = total.class_error_rate();
     p.max_ulps = total.ulp_quantile(1.0);
     p.fallback_rate = double(total.fallbacks) / double(n);
+    p.precision = m->precision;
+    p.promised = total.promised;
+    p.promise_broken = total.promise_broken;
     rep.points.push_back(p);
   }
   std::vector<double> time, err;
@@ -110,7 +105,9 @@ std::string to_markdown(const Report& r) {
        "(exact says it does), *wrong hit class* (both touch, different class, e.g. `interior` for `edge`), "
        "*other* (neither touches, different class, e.g. `miss` for `parallel`). t error in ulps of the method's "
        "own precision, over class-correct cases. Run time: median of repeated batches, every method in this "
-       "run, through the same registry call.\n\n";
+       "run, through the same registry call. *Promise*: what the method promises on the kind (exact class, no "
+       "false miss, t within N ulps), checked on every case: kept on all N cases, broken on B of N, or none made.\n\n";
+  s += error_free_definition(r.ulp_tolerance) + "\n\n";
   s += "![error against run time](error_vs_time.svg)\n\n";
   if (!r.kernel_failures.empty()) {
     s += "## Kernel failures\n\nYour kernels crashed, hung, exited early or answered garbage on these cases "
@@ -119,11 +116,19 @@ std::string to_markdown(const Report& r) {
     s += "```\n\n";
   }
 
-  s += "## Summary per method\n\n| method | ns/case | class error rate | max t error (ulps) | fallback rate | Pareto |\n"
-       "|---|---:|---:|---:|---:|:---:|\n";
-  for (const auto& p : r.points)
-    s += fmt::format("| {} | {:.1f} | {:.4f}% | {} | {:.3f}% | {} |\n", p.method, p.ns_per_case,
-                     100 * p.class_error_rate, ulp_text(p.max_ulps), 100 * p.fallback_rate, p.pareto ? "yes" : "");
+  s += "## Summary per method\n\n| method | ns/case | class error rate | max t error (ulps) | fallback rate | Pareto | "
+       "promise |\n|---|---:|---:|---:|---:|:---:|---|\n";
+  for (const auto& p : r.points) {
+    verify::Stats ps;
+    ps.promised = p.promised, ps.promise_broken = p.promise_broken;
+    s += fmt::format("| {} | {:.1f} | {:.4f}% | {} | {:.3f}% | {} | {} |\n", p.method, p.ns_per_case,
+                     100 * p.class_error_rate, ulp_text(p.max_ulps, p.precision), 100 * p.fallback_rate,
+                     p.pareto ? "yes" : "", promise_cell(ps));
+  }
+  if (const auto ps = promise_sentences(r.rows); !ps.empty()) {
+    s += "\n## Promises\n\n";
+    for (const auto& x : ps) s += "- " + x + "\n";
+  }
 
   for (io::Kind k : io::kAllKinds) {
     std::vector<const Row*> rows;
@@ -139,50 +144,27 @@ std::string to_markdown(const Report& r) {
       if (std::find(groups.begin(), groups.end(), row->group) == groups.end()) groups.push_back(row->group);
     }
     s += "| method | ns/case | cases | class errors | false hit | false miss | wrong hit class | other | "
-         "t ulps median | p99 | max | fallbacks |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+         "t ulps median | p99 | max | fallbacks | promise |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---|\n";
     std::map<std::string, std::pair<double, verify::Stats>> per_method;
+    std::map<std::string, Precision> precision_of;
     for (const Row* row : rows) {
       auto& [ns, st] = per_method[row->method];
       ns += row->ns_per_case * double(row->stats.cases);
       st.merge(row->stats);
+      precision_of[row->method] = row->precision;
     }
     for (const auto& m : methods) {
       const auto& [ns, st] = per_method[m];
-      s += fmt::format("| {} | {:.1f} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", m, ns / double(st.cases),
+      const Precision p = precision_of[m];
+      s += fmt::format("| {} | {:.1f} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", m, ns / double(st.cases),
                        st.cases, st.class_errors(), st.false_hit, st.false_miss, st.wrong_hit_class, st.wrong_class,
-                       ulp_text(st.ulp_quantile(0.5)), ulp_text(st.ulp_quantile(0.99)), ulp_text(st.ulp_quantile(1.0)),
-                       st.fallbacks);
-    }
-    // Which method is the cheapest with no class error, overall and per family.
-    std::string cheapest_all;
-    double cheapest_all_ns = 0;
-    for (const auto& m : methods) {
-      const auto& [ns, st] = per_method[m];
-      const double per = ns / double(st.cases);
-      if (st.class_errors() == 0 && (cheapest_all.empty() || per < cheapest_all_ns)) cheapest_all = m, cheapest_all_ns = per;
+                       ulp_text(st.ulp_quantile(0.5), p), ulp_text(st.ulp_quantile(0.99), p),
+                       ulp_text(st.ulp_quantile(1.0), p), st.fallbacks, promise_cell(st));
     }
     s += "\n";
-    if (cheapest_all.empty())
-      s += fmt::format("No method made zero class errors on every {} family. ", io::to_string(k));
-    else
-      s += fmt::format("The cheapest method with no class error on every {} family ({}) is `{}` at {:.1f} ns per case. ",
-                       io::to_string(k), groups.size(), cheapest_all, cheapest_all_ns);
-    std::map<std::string, std::vector<std::string>> cheapest_for;  // method -> families
-    for (const auto& g : groups) {
-      const Row* best = nullptr;
-      for (const Row* row : rows)
-        if (row->group == g && row->stats.class_errors() == 0 && (!best || row->ns_per_case < best->ns_per_case)) best = row;
-      cheapest_for[best ? best->method : "(none)"].push_back(g);
-    }
-    s += "Family by family, the cheapest error-free method is ";
-    bool first = true;
-    for (const auto& [m, gs] : cheapest_for) {
-      std::string list;
-      for (const auto& g : gs) list += (list.empty() ? "" : ", ") + g;
-      s += fmt::format("{}`{}` on {}", first ? "" : "; ", m, list);
-      first = false;
-    }
-    s += ".\n\n";
+    std::string said;
+    for (const auto& x : kind_sentences(k, r.rows, r.ulp_tolerance)) said += (said.empty() ? "" : " ") + x;
+    s += said + "\n\nPer family, each cell: class errors / cases, and t followed by the largest t error in ulps.\n\n";
     // Per family detail: class errors and max ulps per method.
     s += "| family |";
     for (const auto& m : methods) s += " " + m + " |";
@@ -199,11 +181,15 @@ std::string to_markdown(const Report& r) {
           s += " |";
           continue;
         }
-        s += fmt::format(" {}/{} err, {} ulp |", cell->stats.class_errors(), cell->stats.cases,
-                         ulp_text(cell->stats.ulp_quantile(1.0)));
+        s += fmt::format(" {}/{} err, t {} |", cell->stats.class_errors(), cell->stats.cases,
+                         ulp_text(cell->stats.ulp_quantile(1.0), cell->precision));
       }
       s += "\n";
     }
+  }
+  if (const auto ts = t_error_sentences(r.rows); !ts.empty()) {
+    s += "\n## t errors that need a word\n\n";
+    for (const auto& x : ts) s += "- " + x + "\n";
   }
   return s;
 }

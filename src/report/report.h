@@ -20,6 +20,7 @@ struct Row {
   Precision precision = Precision::float64;
   verify::Stats stats;
   double ns_per_case = 0;
+  Promise promise;  ///< what the method promises on this kind
 };
 
 /// One method over all it answers: one point of the chart.
@@ -29,6 +30,8 @@ struct Point {
   double class_error_rate = 0;
   std::uint64_t max_ulps = 0;
   double fallback_rate = 0;
+  Precision precision = Precision::float64;
+  std::size_t promised = 0, promise_broken = 0;  ///< cases under a promise; of those, broken
   bool pareto = false;        ///< no other method is at least as fast and at least as accurate
 };
 
@@ -39,6 +42,8 @@ struct Report {
   std::vector<Point> points;
   /// What user kernels reported while being compared (not while timed): (method, failure).
   std::vector<std::pair<std::string, KernelFailure>> kernel_failures;
+  /// Error-free: no class error and every t within the method's promised tolerance, else this.
+  std::uint64_t ulp_tolerance = 1;
   std::string highlight;  ///< a method drawn marked in the chart (the kernel `rayproof check` checks)
 };
 
