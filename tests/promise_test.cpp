@@ -112,3 +112,19 @@ TEST(Promise, FuzzExitsNonZeroOnlyWhenADeclaredPromiseBreaks) {
   EXPECT_NE(ok.out.find("kept on"), std::string::npos) << ok.out;
   EXPECT_NE(ok.out.find("none made"), std::string::npos) << ok.out;
 }
+
+TEST(Promise, ShardSummariesCarryThePromiseCountsThroughMerge) {
+  const auto dir = rayproof::testing::scratch_dir() / "promise_merge";
+  std::filesystem::create_directories(dir);
+  std::string files;
+  for (int k = 1; k <= 2; ++k) {
+    const auto sum = (dir / ("s" + std::to_string(k) + ".json")).string();
+    auto r = rayproof::testing::run_rayproof("fuzz --methods robust --families box_graze --cases 512 --shard " +
+                                             std::to_string(k) + "/2 --summary " + sum + " --out " + dir.string());
+    ASSERT_EQ(r.status, 0) << r.err;
+    files += " " + sum;
+  }
+  auto m = rayproof::testing::run_rayproof("fuzz merge" + files);
+  EXPECT_EQ(m.status, 0) << m.err;
+  EXPECT_NE(m.out.find("kept on 512"), std::string::npos) << m.out;
+}

@@ -67,4 +67,11 @@ TEST(Report, NumbersAreReproducibleFromGenAndVerify) {
   const std::string md = slurp(dir / "report.md");
   EXPECT_NE(md.find("## triangle"), std::string::npos);
   EXPECT_NE(md.find("Family by family, the cheapest error-free method is"), std::string::npos);
+  // Each method's promise beside its counts (robust promises no false miss ahead on triangles).
+  EXPECT_NE(md.find("| promise |"), std::string::npos);
+  EXPECT_NE(md.find("`robust` promises no false miss ahead of the origin (coplanar rays excepted) on triangle: kept on all"),
+            std::string::npos);
+  if (md.find("NaN t |") != std::string::npos) {  // a NaN t in a table is explained, with a reproducer
+    EXPECT_NE(md.find("the class was right but t was NaN"), std::string::npos);
+  }
 }
