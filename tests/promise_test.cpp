@@ -71,6 +71,9 @@ TEST(Promise, EveryMethodDeclaresWhatItPromisesPerKind) {
   for (io::Kind k : {io::Kind::sphere, io::Kind::ellipsoid, io::Kind::plane, io::Kind::disk})
     EXPECT_FALSE(robust.promise(k).any()) << io::to_string(k);
   for (io::Kind k : io::kAllKinds) EXPECT_FALSE(reg.find("float")->promise(k).any());
+  const Method& rd = *reg.find("robust-double");
+  EXPECT_EQ(rd.promise(io::Kind::box).no_false_miss, Promise::NoFalseMiss::all);
+  EXPECT_FALSE(rd.promise(io::Kind::triangle).any());
 }
 
 TEST(Promise, TallyCountsPromisedCasesAndBreaks) {

@@ -49,7 +49,10 @@ void register_robust_methods(MethodRegistry& reg) {
            // rounded in float miss near tangency and rims, so nothing is promised there.
            {{io::Kind::triangle, Promise{false, Promise::NoFalseMiss::ahead, {}}},
             {io::Kind::box, Promise{false, Promise::NoFalseMiss::all, {}}}}});
-  reg.add({"robust-double", "the robust kernels in double", Precision::float64, all, robust<double>, {}});
+  // In double the watertight test misses triangles at t > 0 (measured: `gen all`), so only the
+  // conservative slabs' promise carries over.
+  reg.add({"robust-double", "the robust kernels in double", Precision::float64, all, robust<double>, {}, {}, {},
+           {{io::Kind::box, Promise{false, Promise::NoFalseMiss::all, {}}}}});
   reg.add({"watertight-float", "Woop, Benthin & Wald 2013 entirely in float (robust runs it in double)",
            Precision::float32, tri,
            [](const io::Case& c) { return result_of(c, intersect_watertight<float, float>(ray_of<float>(c), triangle_of<float>(c))); },
