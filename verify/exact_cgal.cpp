@@ -26,7 +26,7 @@ struct CgalKernel {
   static Vector cross(const Vector& a, const Vector& b) { return CGAL::cross_product(a, b); }
   static Q det(const Vector& a, const Vector& b, const Vector& c) { return CGAL::determinant(a, b, c); }
   static bool is_zero(const Vector& a) { return a == CGAL::NULL_VECTOR; }
-  static const Q& coord(const Vector& a, int i) { return a[i]; }
+  static Q coord(const Vector& a, int i) { return a[i]; }  // a handle copy (Gmpq is reference counted)
   static int sign(const Q& q) { return mpq_sgn(q.mpq()); }
   static mpq_srcptr mpq(const Q& q) { return q.mpq(); }
 };
