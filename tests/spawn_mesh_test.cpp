@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <string>
 
 #include "gen/rng.h"
@@ -68,6 +69,14 @@ TEST(SpawnMesh, FixedEpsilonLeaksThroughASlabThinnerThanIt) {
     }
   }
 }
+
+#ifdef RAYPROOF_CGAL_MESHES
+TEST(SpawnMesh, Bunny) {
+  const std::string path = std::string(RAYPROOF_CGAL_MESHES) + "/bunny00.off";
+  if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " not extracted";
+  expect_robust_strategies_clean(mesh::read_mesh(path), 300, 8, "bunny00");
+}
+#endif
 
 TEST(SpawnMesh, EmptyMeshIsAnError) {
   EXPECT_THROW((void)light::count_mesh_spawn(mesh::Mesh{}, 10, 1, 1e-4), std::invalid_argument);

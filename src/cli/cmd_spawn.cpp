@@ -53,7 +53,13 @@ int run_spawn_mesh(const SpawnOptions& opt) {
       fmt::print(stderr, "{}: {} has no triangles\n", kCmd, name);
       return 2;
     }
-    const auto rows = light::count_mesh_spawn(m, opt.trials, opt.seed, opt.epsilon);
+    std::vector<light::MeshSpawnCount> rows;
+    try {
+      rows = light::count_mesh_spawn(m, opt.trials, opt.seed, opt.epsilon);
+    } catch (const std::exception& e) {
+      fmt::print(stderr, "{}: {}: {}\n", kCmd, name, e.what());
+      return 2;
+    }
     for (const auto& r : rows)
       fmt::print("{:<20} {:<14} {:<10} {:>8} {:>7} {:>10} {:>10} {:>7} {:>9} {:>6}\n", name, light::to_string(r.strategy),
                  r.method, r.spawned, r.primary_misses, r.self_hits, r.exact_self_hits, r.shadow, r.false_occlusions, r.leaks);
