@@ -1,10 +1,12 @@
-/// The two exact implementations against each other: the ground truth rayproof::exact::intersect
-/// (rayproof_verify, CGAL's Gmpq and Simple_cartesian kernel) and the certified tier's exact
-/// fallback rayproof::certified::fallback::intersect (rayproof_certified, gmpxx, no CGAL). They are
-/// separate code for one contract, so that "certified agrees with exact" is not the fallback judged
-/// by itself. Every field must agree bit for bit: the class, t, t2, the triangle barycentrics b1, b2
-/// (NaN where the class carries none, +0.0 and -0.0 told apart), on every generator family
-/// (float- and double-built, fixed seed and count) and on data/sample.txt.
+/// The two instantiations of the exact algorithm (verify/exact_algorithms.h) against each other:
+/// the ground truth rayproof::exact::intersect (rayproof_verify, on CGAL's Gmpq and Simple_cartesian
+/// kernel) and the certified tier's exact fallback rayproof::certified::fallback::intersect
+/// (rayproof_certified, on gmpxx's mpq_class and its own vector operations, no CGAL). The algorithm
+/// and the MPFR rounding are one code, so this checks the kernels: the number type and the point /
+/// vector operations (dot, cross, determinant, sign, comparison). Every field must agree bit for
+/// bit: the class, t, t2, the triangle barycentrics b1, b2 (NaN where the class carries none, +0.0
+/// and -0.0 told apart), on every generator family (float- and double-built, fixed seed and count)
+/// and on data/sample.txt.
 #include <gtest/gtest.h>
 
 #include <cstddef>

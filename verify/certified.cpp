@@ -1,7 +1,8 @@
 /// The certified method on case files: rayproof::certified's filters (header-only) first, its exact
 /// fallback (certified::fallback, GMP, verify/fallback.h) when they cannot decide: the same
 /// implementation as rayproof::certified::intersect, on a case's fields. It is judged against the
-/// `exact` method (CGAL), a separate implementation.
+/// `exact` method (CGAL): separate filters, and for the fallback the same exact algorithm
+/// (verify/exact_algorithms.h) on CGAL's kernel instead of gmpxx.
 #include "verify/certified.h"
 
 #include "methods/primitive_of.h"

@@ -1,6 +1,6 @@
 /// The exact method: ground truth of CASES.md, on a case file's fields. The case becomes a typed
 /// ray and primitive (exactly: the fields are doubles) and goes through rayproof::exact::intersect
-/// (rayproof/exact.h: screening, then the per-kind kernels of exact_*.cpp in CGAL's Gmpq).
+/// (rayproof/exact.h: the exact algorithm of exact_algorithms.h on CGAL's kernel, exact_cgal.cpp).
 #include "verify/exact.h"
 
 #include <cmath>

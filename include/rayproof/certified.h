@@ -9,9 +9,9 @@
 ///    ulp, a coplanar range, a barycentric they cannot bound), the answer is std::nullopt:
 ///    *undecided*. A decided answer is final: intersect returns exactly that answer.
 ///  - intersect (compiled, link rayproof::certified: GMP and MPFR, no CGAL): try_intersect, then
-///    the certified tier's own exact fallback (GMP rationals, MPFR; verify/fallback_*.cpp, the
-///    contract of rayproof/exact.h but not its CGAL code) for whatever it left undecided. Always
-///    decided.
+///    the certified tier's exact fallback (GMP rationals, MPFR; verify/fallback.cpp: the exact
+///    algorithm of rayproof/exact.h, verify/exact_algorithms.h, on gmpxx instead of CGAL's kernel)
+///    for whatever it left undecided. Always decided.
 ///
 /// What a decided answer guarantees (fields a class does not carry are NaN, as in rayproof/hit.h):
 ///  - contact: the class exact arithmetic on the given doubles gives (rayproof::exact::intersect).

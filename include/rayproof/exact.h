@@ -5,10 +5,11 @@
 /// rounded too. This is the ground truth: the `exact` method is these kernels on a case's fields,
 /// and the certified tier (rayproof/certified.h) is judged against it.
 ///
-/// Compiled, in the verify component: link rayproof::verify (CGAL, GMP, MPFR). The kernels use
-/// CGAL's exact number types (Gmpq in Simple_cartesian) and MPFR for roots and roundings
-/// (verify/exact_*.cpp). rayproof::certified (GMP, MPFR, no CGAL) does not provide this header's
-/// functions: its exact fallback is a separate implementation, checked against this one bit for bit
+/// Compiled, in the verify component: link rayproof::verify (CGAL, GMP, MPFR). The exact algorithm
+/// (verify/exact_algorithms.h) runs on CGAL's exact kernel (Gmpq in Simple_cartesian), with MPFR
+/// for roots and roundings (verify/exact_cgal.cpp, verify/exact_rounding.cpp). rayproof::certified
+/// (GMP, MPFR, no CGAL) does not provide this header's functions: its exact fallback is the same
+/// algorithm on gmpxx's mpq_class, checked against this one bit for bit
 /// (tests/exact_crosscheck_test.cpp).
 /// Cost: microseconds per call (GMP rationals; MPFR for roots and roundings), see docs/library.md.
 /// Thread safety: the functions keep no state; concurrent calls from several threads are safe

@@ -1,10 +1,11 @@
 // rayproof::verify: exact::intersect agrees with certified::intersect (same class, t within one ulp)
-// on seeded random rays against every kind; verify::check runs a user's callable (here
-// certified::intersect on triangles) over the built-in triangle families and its promises hold.
+// on seeded random rays against every kind; verify::check (rayproof/check.h) runs a user's typed
+// kernel (here certified::intersect on triangles) over the built-in triangle families and its
+// promises hold.
 #include <rayproof/certified.h>
 #include <rayproof/exact.h>
 #include <rayproof/float_util.h>
-#include <verify/check.h>
+#include <rayproof/check.h>
 
 #include <cmath>
 #include <cstdint>
@@ -61,28 +62,20 @@ int check_verify() {
   }
   std::printf("verify: %d cases compared with exact, %d failures\n", compared, failures);
 
-  // The checker on a user's kernel: an io::Case in, an io::CaseResult out.
-  const auto kernel = [](const io::Case& c) {
-    const auto& v = c.v;
-    const auto h = certified::intersect(Ray<double>{{v[0], v[1], v[2]}, {v[3], v[4], v[5]}},
-                                        Triangle<double>{{v[6], v[7], v[8]}, {v[9], v[10], v[11]}, {v[12], v[13], v[14]}});
-    io::CaseResult r;
-    r.contact = h.contact;
-    if (!std::isnan(h.t)) r.t = h.t;
-    if (!std::isnan(h.t2)) r.t2 = h.t2;
-    return r;
-  };
-  verify::CheckOptions opt;
+  // The checker on a user's kernel, typed: certified::intersect as a double triangle kernel.
+  verify::KernelCheckOptions opt;
   opt.count = 16;
   opt.seed = 3;
-  opt.promises.exact_class = true;
-  opt.promises.max_ulps = 1;
-  const auto result = verify::check(kernel, Precision::float64, {io::Kind::triangle}, opt, "certified-triangle");
-  const auto total = result.total();
+  opt.exact_class = true;
+  opt.max_ulps = 1;
+  const auto result = verify::check(verify::TriangleKernel<double>([](const Ray<double>& r, const Triangle<double>& t) {
+                                      return certified::intersect(r, t);
+                                    }),
+                                    opt);
   std::printf("verify: check over %zu triangle families, %zu cases, %zu class errors, promises %s\n",
-              result.families.size(), total.cases, total.class_errors(), result.promises_kept() ? "kept" : "broken");
+              result.families.size(), result.cases(), result.class_errors(), result.promises_kept() ? "kept" : "broken");
   for (const auto& p : result.promises)
     if (!p.kept) std::printf("verify: promise %s broken on %zu cases\n", p.promise.c_str(), p.violations);
-  if (result.families.empty() || total.cases == 0 || !result.promises_kept()) ++failures;
+  if (result.families.empty() || result.cases() == 0 || !result.promises_kept()) ++failures;
   return failures;
 }

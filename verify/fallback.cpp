@@ -1,0 +1,61 @@
+/// rayproof::certified::fallback::intersect (verify/fallback.h): the certified tier's exact
+/// fallback, the exact algorithm (exact_algorithms.h) instantiated on gmpxx's mpq_class and a small
+/// vector of them, with the shared MPFR rounding (exact_rounding.h). GMP and MPFR only, no CGAL:
+/// rayproof_certified links without it. The ground truth (exact_cgal.cpp) is the same algorithm
+/// on CGAL's kernel.
+#include "verify/fallback.h"
+
+#include <gmpxx.h>
+
+#include "verify/exact_algorithms.h"
+
+namespace rayproof::certified::fallback {
+
+namespace {
+
+/// A point or vector with rational coordinates. The arithmetic is spelled out, each product
+/// materialized, so that no gmpxx expression template outlives its operands.
+struct QVec {
+  mpq_class x, y, z;
+};
+
+[[nodiscard]] QVec operator-(const QVec& a, const QVec& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+[[nodiscard]] QVec operator+(const QVec& a, const QVec& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+[[nodiscard]] QVec operator*(const mpq_class& s, const QVec& a) { return {s * a.x, s * a.y, s * a.z}; }
+
+/// The kernel of exact_algorithms.h over gmpxx. Every finite double is a rational, so an input
+/// converts exactly (mpq_set_d); the algorithm screens NaN and infinities out first.
+struct GmpxxKernel {
+  using Q = mpq_class;
+  using Point = QVec;
+  using Vector = QVec;
+
+  static QVec point(const Vec3<double>& v) { return {Q(v.x), Q(v.y), Q(v.z)}; }
+  static QVec vector(const Vec3<double>& v) { return point(v); }
+  static Q dot(const QVec& a, const QVec& b) { return Q(a.x * b.x) + Q(a.y * b.y) + Q(a.z * b.z); }
+  static QVec cross(const QVec& a, const QVec& b) {
+    return {Q(a.y * b.z) - Q(a.z * b.y), Q(a.z * b.x) - Q(a.x * b.z), Q(a.x * b.y) - Q(a.y * b.x)};
+  }
+  /// det[a; b; c] = a . (b x c).
+  static Q det(const QVec& a, const QVec& b, const QVec& c) { return dot(a, cross(b, c)); }
+  static int sign(const Q& q) { return sgn(q); }
+  static bool is_zero(const QVec& a) { return sign(a.x) == 0 && sign(a.y) == 0 && sign(a.z) == 0; }
+  static const Q& coord(const QVec& a, int i) { return i == 0 ? a.x : (i == 1 ? a.y : a.z); }
+  static mpq_srcptr mpq(const Q& q) { return q.get_mpq_t(); }
+};
+
+}  // namespace
+
+template <Primitive P>
+HitOf<P> intersect(const Ray<double>& ray, const P& p) {
+  return exact_algo::intersect<GmpxxKernel>(ray, p);
+}
+
+template Hit<double> intersect(const Ray<double>&, const Plane<double>&);
+template Hit<double> intersect(const Ray<double>&, const Sphere<double>&);
+template Hit<double> intersect(const Ray<double>&, const Ellipsoid<double>&);
+template Hit<double> intersect(const Ray<double>&, const Box<double>&);
+template Hit<double> intersect(const Ray<double>&, const Disk<double>&);
+template TriangleHit<double> intersect(const Ray<double>&, const Triangle<double>&);
+
+}  // namespace rayproof::certified::fallback
