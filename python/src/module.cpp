@@ -3,22 +3,12 @@
 #include <fmt/core.h>
 
 #include "bindings.h"
-#include "verify/certified.h"
-#include "verify/exact.h"
+#include "cli/registry.h"
 
 namespace rayproof::python {
 
-const MethodRegistry& registry() {
-  static const MethodRegistry reg = [] {
-    MethodRegistry r;
-    register_fast_methods(r);
-    verify::register_exact_method(r);
-    register_robust_methods(r);
-    verify::register_certified_method(r);
-    return r;
-  }();
-  return reg;
-}
+// The tool's registry: the module answers with exactly the methods `rayproof methods` lists.
+const MethodRegistry& registry() { return cli::all_methods(); }
 
 const Method& method_named(const std::string& name) {
   if (const Method* m = registry().find(name)) return *m;
