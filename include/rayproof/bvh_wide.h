@@ -1,7 +1,7 @@
 #pragma once
 /// Four-wide BVH: the binary tree of bvh_build.h collapsed into nodes of up to four children whose
-/// boxes are tested together with SSE (the core is compiled without -mavx, so four float lanes is
-/// the widest safe unit). Children are visited nearest first; the stack holds (child, entry t) so
+/// boxes are tested together with SSE (the path for CPUs without AVX2; bvh_wide8.h has the eight-wide
+/// AVX2 one). Closest hit visits children nearest first (any and all hits in slot order); the stack holds (child, entry t) so
 /// closest hit drops popped children whose entry lies beyond the best t so far.
 ///
 /// Node layout (128 bytes, two cache lines): per axis the four children's lo then hi planes
@@ -308,8 +308,9 @@ template <class T>
   for (int i = 0; i < m; ++i) stack[top++] = e[i];
 }
 
-/// The traversal loop, for the float (T = float) and double (T = double) box tests. `leaf(j)`
-/// gets the leaf-order slot j (an index into prim_ids, or into the caller's own leaf-order data).
+/// The traversal loop, for the float (T = float) and double (T = double) box tests. `leaf(first,
+/// count)` gets the leaf-order slots [first, first + count) (indices into prim_ids, or into the
+/// caller's own leaf-order data) and returns true to stop (any hit).
 template <class T, bool Conservative, BvhQuery Query, class Leaf>
 void bvh4_traverse_impl(const Bvh4& bvh, const Ray<double>& ray, double tmin, const double& tmax, Leaf& leaf) {
   using Entry = Bvh4Entry<T>;
@@ -351,8 +352,7 @@ void bvh4_traverse_impl(const Bvh4& bvh, const Ray<double>& ray, double tmin, co
   if (Query == BvhQuery::closest && !(e.t <= tmax_cur)) return;  // NaN tmax
   for (;;) {
     if (e.count) {
-      for (std::uint32_t i = e.ref, end = e.ref + e.count; i < end; ++i)
-        if (leaf(i) && Query == BvhQuery::any) return;
+      if (leaf(e.ref, e.count) && Query == BvhQuery::any) return;
       if constexpr (Query == BvhQuery::closest) tmax_cur = tmax_t();
     } else {
       const Bvh4Node& n = nodes[e.ref];
@@ -369,8 +369,14 @@ void bvh4_traverse_impl(const Bvh4& bvh, const Ray<double>& ray, double tmin, co
         if ((mask & (mask - 1)) == 0) {  // one child: straight to it
           const int i = __builtin_ctz(static_cast<unsigned>(mask));
           e = Entry{n.child[i], n.count[i], t[i]};
-        } else {  // several: the farther ones on the stack, the nearest next
+        } else if constexpr (Query == BvhQuery::closest) {  // several: the nearest next, the farther ones on the stack
           bvh4_push_sorted(n, nodes, mask, t, stack, top);
+          e = stack[--top];
+        } else {  // any / all: no order needed, slot order
+          for (int m = mask; m; m &= m - 1) {
+            const int i = __builtin_ctz(static_cast<unsigned>(m));
+            stack[top++] = Entry{n.child[i], n.count[i], t[i]};
+          }
           e = stack[--top];
         }
         continue;
@@ -394,15 +400,31 @@ void bvh4_traverse_query(const Bvh4& bvh, const Ray<double>& ray, double tmin, c
 
 }  // namespace detail
 
+/// The traversal with whole leaves: `leaf_range(first, count)` gets the leaf-order slots
+/// [first, first + count) of one leaf and returns true to stop (honoured for any hit); for closest
+/// hit it lowers `tmax` to the best t so far. Any hit stops at the first leaf that returns true and
+/// does not sort children (slot order); closest hit visits them nearest first.
+template <class LeafRange>
+void bvh4_traverse_leaves(const Bvh4& bvh, const Ray<double>& ray, double tmin, const double& tmax, BvhTraversal mode,
+                          BvhQuery query, LeafRange&& leaf_range) {
+  if (bvh.empty()) return;
+  // The float box test, or the double one for rays out of its range (decided per ray inside).
+  if (mode == BvhTraversal::conservative)
+    return detail::bvh4_traverse_query<float, true>(bvh, ray, tmin, tmax, query, leaf_range);
+  return detail::bvh4_traverse_query<float, false>(bvh, ray, tmin, tmax, query, leaf_range);
+}
+
 /// bvh4_traverse calling `leaf(j)` with the leaf-order slot j instead of the primitive prim_ids[j]:
 /// for callers that keep their primitive data in leaf order (and may drop prim_ids).
 template <class Leaf>
 void bvh4_traverse_slots(const Bvh4& bvh, const Ray<double>& ray, double tmin, const double& tmax, BvhTraversal mode,
                          BvhQuery query, Leaf&& leaf) {
-  if (bvh.empty()) return;
-  // The float box test, or the double one for rays out of its range (decided per ray inside).
-  if (mode == BvhTraversal::conservative) return detail::bvh4_traverse_query<float, true>(bvh, ray, tmin, tmax, query, leaf);
-  return detail::bvh4_traverse_query<float, false>(bvh, ray, tmin, tmax, query, leaf);
+  const bool any = query == BvhQuery::any;
+  bvh4_traverse_leaves(bvh, ray, tmin, tmax, mode, query, [&](std::uint32_t first, std::uint32_t count) {
+    for (std::uint32_t j = first, end = first + count; j < end; ++j)
+      if (leaf(j) && any) return true;
+    return false;
+  });
 }
 
 /// Visits the leaves' primitives the query needs, as bvh_traverse (bvh_traverse.h) does: `leaf(prim)`

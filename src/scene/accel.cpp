@@ -62,37 +62,53 @@ const Scene& empty_scene() {
   return s;
 }
 
-template <class K>
-PrimHit closest_with(const Bvh4& bvh, const LeafPrim* prims, K& k, const Ray<double>& r, BvhTraversal mode, QueryRange q) {
+/// The wide tree's traversal with whole leaves: leaf(first, count), true to stop (any hit).
+template <class LeafRange>
+void traverse_leaves(const Bvh4& bvh, const Ray<double>& r, double tmin, const double& tmax, BvhTraversal mode,
+                     BvhQuery query, LeafRange&& leaf) {
+  bvh4_traverse_leaves(bvh, r, tmin, tmax, mode, query, leaf);
+}
+template <class LeafRange>
+void traverse_leaves(const Bvh8& bvh, const Ray<double>& r, double tmin, const double& tmax, BvhTraversal mode,
+                     BvhQuery query, LeafRange&& leaf) {
+  bvh8_traverse_leaves(bvh, r, tmin, tmax, mode, query, leaf);
+}
+
+template <class Tree, class K>
+PrimHit closest_with(const Tree& bvh, const LeafPrim* prims, K& k, const Ray<double>& r, BvhTraversal mode, QueryRange q) {
   if (!r.valid()) return {Contact::invalid};
   k.prepare(r);
   PrimHit best;
   double tmax = q.tmax;
-  bvh4_traverse_slots(bvh, k.traversal_ray(), q.tmin, tmax, mode, BvhQuery::closest, [&](std::uint32_t j) {
-    const LeafPrim& p = prims[j];
-    const std::uint32_t id = p.id;
-    Crossing c[2];
-    const int n = k.crossings(p, c);
-    for (int i = 0; i < n; ++i)
-      if (c[i].t >= q.tmin && (c[i].t < tmax || (c[i].t == tmax && id < best.prim))) {
-        tmax = c[i].t;
-        best = {c[i].contact, c[i].t, id, c[i].b1, c[i].b2};
-      }
+  traverse_leaves(bvh, k.traversal_ray(), q.tmin, tmax, mode, BvhQuery::closest, [&](std::uint32_t first, std::uint32_t count) {
+    for (std::uint32_t j = first; j < first + count; ++j) {
+      const LeafPrim& p = prims[j];
+      const std::uint32_t id = p.id;
+      Crossing c[2];
+      const int n = k.crossings(p, c);
+      for (int i = 0; i < n; ++i)
+        if (c[i].t >= q.tmin && (c[i].t < tmax || (c[i].t == tmax && id < best.prim))) {
+          tmax = c[i].t;
+          best = {c[i].contact, c[i].t, id, c[i].b1, c[i].b2};
+        }
+    }
     return false;
   });
   return best;
 }
 
-template <class K>
-bool any_with(const Bvh4& bvh, const LeafPrim* prims, K& k, const Ray<double>& r, BvhTraversal mode, QueryRange q) {
+template <class Tree, class K>
+bool any_with(const Tree& bvh, const LeafPrim* prims, K& k, const Ray<double>& r, BvhTraversal mode, QueryRange q) {
   if (!r.valid()) return false;
   k.prepare(r);
   bool hit = false;
-  bvh4_traverse_slots(bvh, k.traversal_ray(), q.tmin, q.tmax, mode, BvhQuery::any, [&](std::uint32_t j) {
-    Crossing c[2];
-    const int n = k.crossings(prims[j], c);
-    for (int i = 0; i < n; ++i)
-      if (c[i].t >= q.tmin && c[i].t <= q.tmax) return hit = true;
+  traverse_leaves(bvh, k.traversal_ray(), q.tmin, q.tmax, mode, BvhQuery::any, [&](std::uint32_t first, std::uint32_t count) {
+    for (std::uint32_t j = first; j < first + count; ++j) {
+      Crossing c[2];
+      const int n = k.crossings(prims[j], c);
+      for (int i = 0; i < n; ++i)
+        if (c[i].t >= q.tmin && c[i].t <= q.tmax) return hit = true;
+    }
     return false;
   });
   return hit;
@@ -120,9 +136,9 @@ std::vector<std::string> fast_scene_method_names() {
   return out;
 }
 
-Accel::Accel(const Scene& s, const BvhBuildOptions& opt)
+Accel::Accel(const Scene& s, const BvhBuildOptions& opt, BvhSimd simd)
     : scene_(s), verts_(s.mesh.vertices.data()), ntri_(std::uint32_t(s.mesh.triangles.size())),
-      triangle_bytes_(s.triangle_bytes()) {
+      triangle_bytes_(s.triangle_bytes()), simd_(bvh_simd_path(simd)) {
   const auto start = std::chrono::steady_clock::now();
   std::vector<BvhBox> boxes;
   std::vector<Vec3<float>> centers;
@@ -133,9 +149,9 @@ Accel::Accel(const Scene& s, const BvhBuildOptions& opt)
   build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-Accel::Accel(const MeshRef& m, const BvhBuildOptions& opt)
+Accel::Accel(const MeshRef& m, const BvhBuildOptions& opt, BvhSimd simd)
     : scene_(empty_scene()), verts_(m.vertices), ntri_(std::uint32_t(m.triangle_count)),
-      triangle_bytes_(m.vertex_count * sizeof(Vec3<double>)) {
+      triangle_bytes_(m.vertex_count * sizeof(Vec3<double>)), simd_(bvh_simd_path(simd)) {
   const auto start = std::chrono::steady_clock::now();
   std::vector<BvhBox> boxes(m.triangle_count);
   std::vector<Vec3<float>> centers(m.triangle_count);
@@ -158,11 +174,26 @@ void Accel::build(const std::vector<BvhBox>& boxes, const std::vector<Vec3<float
   Bvh bin = build_bvh(boxes, centers, opt, [](std::size_t n, const auto& f) {
     tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) { f(i); });
   });
-  bvh_ = collapse_bvh4(std::move(bin), boxes);
   // prim_ids folded into leaf-order records (the constructors add the triangles' vertex indices).
-  leaf_prims_.resize(bvh_.prim_ids.size());
-  for (std::size_t j = 0; j < leaf_prims_.size(); ++j) leaf_prims_[j] = {{0, 0, 0}, bvh_.prim_ids[j]};
-  std::vector<std::uint32_t>().swap(bvh_.prim_ids);
+  auto fold = [&](std::vector<std::uint32_t>& ids) {
+    leaf_prims_.resize(ids.size());
+    for (std::size_t j = 0; j < leaf_prims_.size(); ++j) leaf_prims_[j] = {{0, 0, 0}, ids[j]};
+    std::vector<std::uint32_t>().swap(ids);
+  };
+  if (simd_ == BvhSimd::avx2) {
+    bvh8_ = collapse_bvh8(std::move(bin), boxes);
+    fold(bvh8_.prim_ids);
+  } else {
+    bvh_ = collapse_bvh4(std::move(bin), boxes);
+    fold(bvh_.prim_ids);
+  }
+}
+
+/// Runs `f(tree)` with the wide tree the accel's path traverses.
+template <class F>
+decltype(auto) Accel::with_tree(F&& f) const {
+  if (simd_ == BvhSimd::avx2) return f(bvh8_);
+  return f(bvh_);
 }
 
 double Accel::bytes_per_primitive() const {
@@ -171,29 +202,39 @@ double Accel::bytes_per_primitive() const {
 }
 
 PrimHit Accel::closest(const Ray<double>& r, const SceneMethod& m, QueryRange q) const {
-  return with_kernel(scene_, verts_, ntri_, m,
-                     [&](auto& k) { return closest_with(bvh_, leaf_prims_.data(), k, r, m.traversal, q); });
+  return with_tree([&](const auto& tree) {
+    return with_kernel(scene_, verts_, ntri_, m,
+                       [&](auto& k) { return closest_with(tree, leaf_prims_.data(), k, r, m.traversal, q); });
+  });
 }
 
 bool Accel::any(const Ray<double>& r, const SceneMethod& m, QueryRange q) const {
-  return with_kernel(scene_, verts_, ntri_, m,
-                     [&](auto& k) { return any_with(bvh_, leaf_prims_.data(), k, r, m.traversal, q); });
+  return with_tree([&](const auto& tree) {
+    return with_kernel(scene_, verts_, ntri_, m,
+                       [&](auto& k) { return any_with(tree, leaf_prims_.data(), k, r, m.traversal, q); });
+  });
 }
 
 std::vector<PrimHit> Accel::all(const Ray<double>& r, const SceneMethod& m, QueryRange q) const {
   std::vector<PrimHit> out;
   if (!r.valid()) return out;
-  with_kernel(scene_, verts_, ntri_, m, [&](auto& k) {
-    k.prepare(r);
-    bvh4_traverse_slots(bvh_, k.traversal_ray(), q.tmin, q.tmax, m.traversal, BvhQuery::all, [&](std::uint32_t j) {
-      const std::uint32_t id = leaf_prims_[j].id;
-      Crossing c[2];
-      const int n = k.crossings(leaf_prims_[j], c);
-      for (int i = 0; i < n; ++i)
-        if (c[i].t >= q.tmin && c[i].t <= q.tmax) out.push_back({c[i].contact, c[i].t, id, c[i].b1, c[i].b2});
-      return false;
+  with_tree([&](const auto& tree) {
+    return with_kernel(scene_, verts_, ntri_, m, [&](auto& k) {
+      k.prepare(r);
+      traverse_leaves(tree, k.traversal_ray(), q.tmin, q.tmax, m.traversal, BvhQuery::all,
+                      [&](std::uint32_t first, std::uint32_t count) {
+                        for (std::uint32_t j = first; j < first + count; ++j) {
+                          const std::uint32_t id = leaf_prims_[j].id;
+                          Crossing c[2];
+                          const int n = k.crossings(leaf_prims_[j], c);
+                          for (int i = 0; i < n; ++i)
+                            if (c[i].t >= q.tmin && c[i].t <= q.tmax)
+                              out.push_back({c[i].contact, c[i].t, id, c[i].b1, c[i].b2});
+                        }
+                        return false;
+                      });
+      return 0;
     });
-    return 0;
   });
   std::sort(out.begin(), out.end(), [](const PrimHit& a, const PrimHit& b) { return a.t < b.t || (a.t == b.t && a.prim < b.prim); });
   return out;
@@ -215,9 +256,11 @@ void parallel_rays(std::size_t n, int threads, Body&& body) {
 void Accel::closest_batch(std::span<const Ray<double>> rays, std::span<PrimHit> out, const SceneMethod& m, int threads,
                           QueryRange q) const {
   parallel_rays(rays.size(), threads, [&](std::size_t b, std::size_t e) {
-    with_kernel(scene_, verts_, ntri_, m, [&](auto& k) {
-      for (std::size_t i = b; i < e; ++i) out[i] = closest_with(bvh_, leaf_prims_.data(), k, rays[i], m.traversal, q);
-      return 0;
+    with_tree([&](const auto& tree) {
+      return with_kernel(scene_, verts_, ntri_, m, [&](auto& k) {
+        for (std::size_t i = b; i < e; ++i) out[i] = closest_with(tree, leaf_prims_.data(), k, rays[i], m.traversal, q);
+        return 0;
+      });
     });
   });
 }
@@ -237,10 +280,12 @@ QueryRange range_of(std::span<const QueryRange> ranges, std::size_t i) {
 void Accel::closest_batch(std::span<const Ray<double>> rays, std::span<const QueryRange> ranges, HitSink sink,
                           void* context, const SceneMethod& m, int threads) const {
   parallel_rays(rays.size(), threads, [&](std::size_t b, std::size_t e) {
-    with_kernel(scene_, verts_, ntri_, m, [&](auto& k) {
-      for (std::size_t i = b; i < e; ++i)
-        sink(context, i, closest_with(bvh_, leaf_prims_.data(), k, rays[i], m.traversal, range_of(ranges, i)));
-      return 0;
+    with_tree([&](const auto& tree) {
+      return with_kernel(scene_, verts_, ntri_, m, [&](auto& k) {
+        for (std::size_t i = b; i < e; ++i)
+          sink(context, i, closest_with(tree, leaf_prims_.data(), k, rays[i], m.traversal, range_of(ranges, i)));
+        return 0;
+      });
     });
   });
 }
@@ -248,10 +293,12 @@ void Accel::closest_batch(std::span<const Ray<double>> rays, std::span<const Que
 void Accel::any_batch(std::span<const Ray<double>> rays, std::span<const QueryRange> ranges,
                       std::span<std::uint8_t> out, const SceneMethod& m, int threads) const {
   parallel_rays(rays.size(), threads, [&](std::size_t b, std::size_t e) {
-    with_kernel(scene_, verts_, ntri_, m, [&](auto& k) {
-      for (std::size_t i = b; i < e; ++i)
-        out[i] = any_with(bvh_, leaf_prims_.data(), k, rays[i], m.traversal, range_of(ranges, i));
-      return 0;
+    with_tree([&](const auto& tree) {
+      return with_kernel(scene_, verts_, ntri_, m, [&](auto& k) {
+        for (std::size_t i = b; i < e; ++i)
+          out[i] = any_with(tree, leaf_prims_.data(), k, rays[i], m.traversal, range_of(ranges, i));
+        return 0;
+      });
     });
   });
 }
