@@ -105,8 +105,16 @@ Answers brute(const Soup& soup, const Ray<double>& ray, double tmin, double tmax
 
 TEST(Bvh8, CollapseKeepsEveryPrimitiveAndNestsBounds) {
   const Soup soup = random_soup(3000, 4);
-  for (auto [builder, leaf] : {std::pair{BvhBuilder::median, 4u}, {BvhBuilder::sah, 4u}, {BvhBuilder::median, 1u << 30}}) {
-    const Bvh8 w = collapse_bvh8(build_bvh(soup.boxes, soup.centers, {builder, leaf}), soup.boxes);
+  struct Case {
+    BvhBuilder builder;
+    std::uint32_t leaf, merge;
+  };
+  for (auto [builder, leaf, merge] : {Case{BvhBuilder::median, 4u, 0}, {BvhBuilder::sah, 4u, 0}, {BvhBuilder::sah, 4u, 6},
+                                      {BvhBuilder::median, 1u << 30, 0}, {BvhBuilder::median, 1u << 30, 300}}) {
+    Bvh bin = build_bvh(soup.boxes, soup.centers, {builder, leaf});
+    std::uint32_t bin_largest = 0, largest_leaf = 0;
+    for (const BvhNode& n : bin.nodes) bin_largest = std::max(bin_largest, n.count);
+    const Bvh8 w = collapse_bvh8(std::move(bin), soup.boxes, merge);
     std::vector<int> seen(soup.tris.size(), 0);
     for (const Bvh8Node& n : w.nodes)
       for (int i = 0; i < 8; ++i) {
@@ -116,6 +124,7 @@ TEST(Bvh8, CollapseKeepsEveryPrimitiveAndNestsBounds) {
         }
         const BvhBox b = n.box(i);
         if (n.count[i]) {
+          largest_leaf = std::max<std::uint32_t>(largest_leaf, n.count[i]);
           for (std::uint32_t j = n.child[i]; j < n.child[i] + n.count[i]; ++j) {
             ++seen[w.prim_ids[j]];
             for (int k = 0; k < 3; ++k) {
@@ -137,6 +146,15 @@ TEST(Bvh8, CollapseKeepsEveryPrimitiveAndNestsBounds) {
     for (int s : seen) ASSERT_EQ(s, 1);
     if (leaf == 4u) {
       EXPECT_LT(w.nodes.size(), soup.tris.size() / 4);  // wider than the four-wide tree's bound (tris / 3)
+      // Merged subtrees: at most `merge` primitives; without merging the binary tree's leaves.
+      EXPECT_LE(largest_leaf, std::max(merge, bin_largest));
+      if (merge) {
+        EXPECT_GT(largest_leaf, bin_largest);
+      } else {
+        EXPECT_EQ(largest_leaf, bin_largest);
+      }
+    } else {
+      EXPECT_LE(largest_leaf, Bvh8::kMaxLeaf);          // one big leaf: split into chunks
     }
   }
 }
@@ -199,13 +217,17 @@ TEST(Bvh8, ConservativeVisitsBoxesTouchedAtACornerByNonFloatOrigins) {
     for (int k = 0; k < 3; ++k) d[k] = std::ldexp(std::round(std::ldexp(u(rng), 40)), -40);
     if (r % 4 == 0) d[r / 4 % 3] = r % 8 ? 0.0 : -0.0;  // axis-parallel: origin on that axis's slab planes
     if (is_zero(d)) continue;
+    // The touch at t = T: T = 1024 makes distances large, so that the widening of the float
+    // distances (not only the origin's bounds) is needed.
+    const double T = r % 3 == 2 ? 1024.0 : 1.0;
     const double s = r % 10 == 7 ? 0x1p-80 : 1.0;  // tiny d: the double path, t scaled by 2^80
-    const Ray<double> ray{corner - d, d * s};
-    for (double tmin : {0.0, 1.0 / s})
-      for (double tmax0 : {1.0 / s, 1e300}) {
+    const Ray<double> ray{corner - d * T, d * s};
+    if (ray.o + d * T != corner) continue;  // o not exact: no exact touch
+    for (double tmin : {0.0, T / s})
+      for (double tmax0 : {T / s, 1e300}) {
         ++total;
         bool seen = false, seen_closest = false;
-        double tm = tmax0, tc = 1.0 / s;
+        double tm = tmax0, tc = T / s;
         bvh8_traverse(wide, ray, tmin, tm, BvhTraversal::conservative, BvhQuery::all, [&](std::uint32_t i) {
           seen |= i == p;
           return false;

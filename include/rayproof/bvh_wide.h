@@ -191,7 +191,7 @@ inline float round_up_f(double x) { return bvh_float_up(x); }
 /// to the nearest float. That float is <= o (resp. >= o): the offset is at least one float ulp of o
 /// (ulp(o) <= |o| 2^-23 for normal floats, 2^-149 below them), and rounding to nearest moves by at
 /// most half an ulp; the double operations' own roundings (2^-53 relative) are far inside that.
-inline bool make_bvh4_ray(const Ray<double>& r, bool conservative, double tmin, Bvh4RayF& out) {
+[[gnu::always_inline]] inline bool make_bvh4_ray(const Ray<double>& r, bool conservative, double tmin, Bvh4RayF& out) {
   const __m128d sign = _mm_set1_pd(-0.0);
   const __m128d oxy = _mm_loadu_pd(&r.o.x), oz = _mm_load_sd(&r.o.z);
   const __m128d dxy = _mm_loadu_pd(&r.d.x), dz = _mm_load_sd(&r.d.z);

@@ -116,7 +116,9 @@ enum class BvhSimd { automatic, sse4, avx2 };
   if (!e || !*e || std::strcmp(e, "auto") == 0) return BvhSimd::automatic;
   if (std::strcmp(e, "sse") == 0) return BvhSimd::sse4;
   if (std::strcmp(e, "avx2") == 0) return BvhSimd::avx2;
-  throw std::invalid_argument(std::string("RAYPROOF_SIMD='") + e + "': expected sse, avx2 or auto");
+  std::string msg = "RAYPROOF_SIMD='";
+  msg.append(e).append("': expected sse, avx2 or auto");
+  throw std::invalid_argument(msg);
 }
 
 /// The path actually taken for a request: automatic follows RAYPROOF_SIMD, then the CPU; avx2 on a
@@ -165,11 +167,39 @@ inline std::uint32_t bvh8_chunk(Bvh8& w, std::span<const BvhBox> prim_boxes, std
 
 /// Collapses a binary BVH into an eight-wide one: each wide node takes a binary node's children and
 /// opens the inner child of largest surface area until it has eight (or only leaves are left).
+/// An inner binary node whose subtree holds at most `merge_leaf` primitives becomes one leaf (its
+/// primitives are contiguous in prim_ids): fewer, fuller nodes at the bottom; 0 keeps every leaf.
 /// `prim_boxes` (indexed by primitive) bound leaves of more than Bvh8::kMaxLeaf primitives, which
 /// are split. The binary tree's prim_ids become the wide tree's (moved out of `bin`).
-[[nodiscard]] inline Bvh8 collapse_bvh8(Bvh&& bin, std::span<const BvhBox> prim_boxes) {
+[[nodiscard]] inline Bvh8 collapse_bvh8(Bvh&& bin, std::span<const BvhBox> prim_boxes, std::uint32_t merge_leaf = 0) {
   Bvh8 w;
   if (bin.empty()) return w;
+  // Per binary node: its subtree's primitives [first, first + size) when contiguous (else size 0).
+  std::vector<std::uint32_t> first, size;
+  if (merge_leaf > 0) {
+    first.assign(bin.nodes.size(), 0), size.assign(bin.nodes.size(), 0);
+    std::vector<std::pair<std::uint32_t, bool>> order{{0, false}};  // post-order: children first
+    while (!order.empty()) {
+      const auto [i, done] = order.back();
+      order.pop_back();
+      const BvhNode& n = bin.nodes[i];
+      if (n.is_leaf()) {
+        first[i] = n.index, size[i] = n.count;
+      } else if (!done) {
+        order.push_back({i, true}), order.push_back({n.index, false}), order.push_back({n.index + 1, false});
+      } else {
+        const std::uint32_t a = n.index, b = n.index + 1;
+        const bool contiguous = size[a] && size[b] && (first[a] + size[a] == first[b] || first[b] + size[b] == first[a]);
+        first[i] = std::min(first[a], first[b]), size[i] = contiguous ? size[a] + size[b] : 0;
+      }
+    }
+  }
+  // A binary child taken as one leaf of the wide tree: (first, count), or count 0.
+  auto as_leaf = [&](const BvhNode& c, std::uint32_t i) -> std::pair<std::uint32_t, std::uint32_t> {
+    if (c.is_leaf()) return {c.index, c.count};
+    if (merge_leaf > 0 && size[i] && size[i] <= merge_leaf) return {first[i], size[i]};
+    return {0, 0};
+  };
   w.prim_ids = std::move(bin.prim_ids);
   if (w.prim_ids.size() >= (std::size_t(1) << 31)) throw std::length_error("BVH: too many primitives");
   w.nodes.reserve(bin.nodes.size() / 7 + 2);
@@ -204,20 +234,21 @@ inline std::uint32_t bvh8_chunk(Bvh8& w, std::span<const BvhBox> prim_boxes, std
       float best_area = -1;
       for (int i = 0; i < nk; ++i) {
         const BvhNode& c = bin.nodes[kids[i]];
-        if (!c.is_leaf() && c.box.half_area() > best_area) best = i, best_area = c.box.half_area();
+        if (!as_leaf(c, kids[i]).second && c.box.half_area() > best_area) best = i, best_area = c.box.half_area();
       }
       if (best < 0) break;
-      const std::uint32_t first = bin.nodes[kids[best]].index;
-      kids[best] = first, kids[nk++] = first + 1;
+      const std::uint32_t first_kid = bin.nodes[kids[best]].index;
+      kids[best] = first_kid, kids[nk++] = first_kid + 1;
     }
     for (int i = 0; i < nk; ++i) {
       const BvhNode& c = bin.nodes[kids[i]];
+      const auto [leaf_first, leaf_count] = as_leaf(c, kids[i]);
       std::uint32_t ref = 0;
       std::uint8_t cnt = 0;
-      if (c.is_leaf() && c.count <= Bvh8::kMaxLeaf) {
-        ref = c.index, cnt = static_cast<std::uint8_t>(c.count);
-      } else if (c.is_leaf()) {
-        ref = detail::bvh8_chunk(w, prim_boxes, c.index, c.count, t.depth + 1, max_depth);
+      if (leaf_count && leaf_count <= Bvh8::kMaxLeaf) {
+        ref = leaf_first, cnt = static_cast<std::uint8_t>(leaf_count);
+      } else if (leaf_count) {
+        ref = detail::bvh8_chunk(w, prim_boxes, leaf_first, leaf_count, t.depth + 1, max_depth);
       } else {
         ref = static_cast<std::uint32_t>(w.nodes.size());
         w.nodes.emplace_back();
