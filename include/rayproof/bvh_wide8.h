@@ -335,17 +335,28 @@ template <bool Sort, class T>
     }
     return;
   }
+  auto prefetch = [&](const Bvh4Entry<T>& x) {
+    if (x.count) return;
+    const char* p = reinterpret_cast<const char*>(nodes + x.ref);
+    _mm_prefetch(p, _MM_HINT_T0), _mm_prefetch(p + 64, _MM_HINT_T0);
+    _mm_prefetch(p + 128, _MM_HINT_T0), _mm_prefetch(p + 192, _MM_HINT_T0);
+  };
+  if (__builtin_popcount(static_cast<unsigned>(mask)) == 2) {  // the common case: one comparison
+    const int i = __builtin_ctz(static_cast<unsigned>(mask)), j = __builtin_ctz(static_cast<unsigned>(mask & (mask - 1)));
+    const Bvh4Entry<T> a{n.child[i], n.count[i], t[i]}, b{n.child[j], n.count[j], t[j]};
+    prefetch(a), prefetch(b);
+    const bool a_near = a.t <= t[j];
+    stack[top++] = a_near ? b : a;
+    stack[top++] = a_near ? a : b;
+    return;
+  }
   Bvh4Entry<T> e[8];
   int m = 0;
   while (mask) {
     const int i = __builtin_ctz(static_cast<unsigned>(mask));
     mask &= mask - 1;
     Bvh4Entry<T> x{n.child[i], n.count[i], t[i]};
-    if (!x.count) {
-      const char* p = reinterpret_cast<const char*>(nodes + x.ref);
-      _mm_prefetch(p, _MM_HINT_T0), _mm_prefetch(p + 64, _MM_HINT_T0);
-      _mm_prefetch(p + 128, _MM_HINT_T0), _mm_prefetch(p + 192, _MM_HINT_T0);
-    }
+    prefetch(x);
     int j = m++;
     for (; j > 0 && e[j - 1].t < x.t; --j) e[j] = e[j - 1];  // descending t
     e[j] = x;
