@@ -187,6 +187,7 @@ int run_bench(const BenchOptions& opt) {
   fmt::print("BVH build ({} threads, Embree's too): sah {:.3f} s, median {:.3f} s; {:.1f} bytes/triangle (BVH {:.1f} + triangles {:.1f})\n",
              threads, accel.build_seconds(), median.build_seconds(), bytes, double(accel.bvh_bytes()) / std::max<std::size_t>(1, s.size()),
              double(s.triangle_bytes()) / std::max<std::size_t>(1, s.size()));
+  fmt::print("BVH traversal: {} (RAYPROOF_SIMD=sse|avx2|auto)\n", rayproof::to_string(accel.simd()));
   fmt::print("{:<18} {:<8} {:>8} {:>10} {:>9} {:>10} {:>14}\n", "method", "rays", "count", "Mrays/s", "build s", "x embree-r", "leaks");
   for (const auto& r : rows) {
     const auto er = embree_robust.find(r.rays);
