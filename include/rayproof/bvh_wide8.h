@@ -25,9 +25,11 @@
 ///    n u / (1 - n u), u = 2^-24), plus underflow, bounded absolutely by far less than 2^-120 for
 ///    the distances that matter (|d| <= 2^64, boxes and origins <= 2^64 after the range check).
 ///  - The largest near distance is scaled by 1 - 8u (when >= 0) or 1 + 8u (when < 0) and lowered by
-///    2^-120; the smallest far distance scaled by 1 + 8u / 1 - 8u and raised by 2^-120. 8u = 2 gamma(4)
-///    up to terms of order u^2 that the product's own rounding (u) and the extra factor leave room
-///    for. The widening is monotonic, so widening max_k near_k equals max_k of the widened distances.
+///    2^-120; the smallest far distance scaled by 1 + 8u / 1 - 8u and raised by 2^-120 (the constants
+///    1 -/+ 8u are exact floats). What must be covered is gamma(4) ~ 4u + 16u^2 of the distance
+///    plus the rounding of the scaling product itself (u), about 5u + O(u^2) < 8u; the absolute
+///    2^-120 covers underflow, as in bvh_wide.h. The widening is monotonic in float, so
+///    widening max_k near_k equals max_k of the widened distances.
 ///  - tmin is rounded down and tmax up to float; a box passes when widened near <= widened far.
 ///    Hence every box the exact double segment [tmin, tmax] touches (even at one point) passes.
 ///  - An axis with d_k = 0 and the origin on a slab plane gives 0 * inf = NaN: vmaxps / vminps return
