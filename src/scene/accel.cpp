@@ -126,7 +126,14 @@ Accel::Accel(const Scene& s, const BvhBuildOptions& opt)
   const auto start = std::chrono::steady_clock::now();
   std::vector<BvhBox> boxes;
   std::vector<Vec3<float>> centers;
-  s.primitive_bounds(boxes, centers);
+  if (s.size() == s.mesh.triangles.size()) {  // triangles only: their bounds over TBB's threads
+    boxes.resize(s.size()), centers.resize(s.size());
+    tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, ntri_, 4096), [&](const auto& r) {
+      for (std::uint32_t i = r.begin(); i < r.end(); ++i) triangle_bounds(s.triangle(i), boxes[i], centers[i]);
+    });
+  } else {
+    s.primitive_bounds(boxes, centers);
+  }
   build(boxes, centers, opt);
   for (LeafPrim& p : leaf_prims_)
     for (int k = 0; k < 3; ++k) p.v[k] = p.id < ntri_ ? s.mesh.triangles[p.id][k] : 0;
