@@ -8,6 +8,8 @@
 ///    traversal cost 2 counts the two child box tests each inner node costs (bvh_traverse.h); it
 ///    also keeps leaves at 2-4 primitives, which halves the node memory of a cost of 1 (and keeps
 ///    the collapsed four-wide tree of bvh_wide.h within 64 bytes per triangle with its records).
+/// Both split by the centers of the primitives' boxes (on bunny00, refined_elephant and the
+/// generated 1.31M-triangle mesh that gave a 1-3% lower SAH cost than triangle centroids).
 /// Both work in place on one array of primitive references (bounds, id, center: 48 bytes, three
 /// aligned SSE loads) partitioned node by node: per SAH node one pass bins all three axes (two
 /// interleaved bin sets) and one partitions, gathering both children's bounds and centroid bounds
@@ -343,11 +345,11 @@ inline constexpr std::uint32_t kParallelGrain = 1u << 12;
 
 }  // namespace detail
 
-/// Builds a BVH over primitives with the given bounds and centers (the builders' split keys:
-/// triangle centroids for meshes). Bounds must not be empty. `for_each(n, f)` may run f(i) for
+/// Builds a BVH over primitives with the given bounds. Bounds must not be empty. `centers` is
+/// kept for source compatibility and not read (the builders split by box centers; see above). `for_each(n, f)` may run f(i) for
 /// i < n concurrently (default: in order on this thread); the tree does not depend on it.
 template <class ForEach = detail::Sequential>
-[[nodiscard]] Bvh build_bvh(std::span<const BvhBox> bounds, std::span<const Vec3<float>> centers,
+[[nodiscard]] Bvh build_bvh(std::span<const BvhBox> bounds, [[maybe_unused]] std::span<const Vec3<float>> centers,
                             const BvhBuildOptions& opt = {}, ForEach&& for_each = {}) {
   using detail::BuildTask;
   using detail::PrimRef;
@@ -362,8 +364,9 @@ template <class ForEach = detail::Sequential>
     for (std::size_t i = c * detail::kBinChunk; i < e; ++i) {
       PrimRef& r = refs[i];
       const BvhBox& b = bounds[i];
+      // Halves first: no overflow near the float range's ends.
       r = {{b.lo[0], b.lo[1], b.lo[2]}, std::uint32_t(i), {b.hi[0], b.hi[1], b.hi[2]}, 0.0f,
-           {centers[i].x, centers[i].y, centers[i].z}, 0.0f};
+           {b.lo[0] * 0.5f + b.hi[0] * 0.5f, b.lo[1] * 0.5f + b.hi[1] * 0.5f, b.lo[2] * 0.5f + b.hi[2] * 0.5f}, 0.0f};
     }
   });
   const std::uint32_t max_leaf = std::max<std::uint32_t>(1, opt.max_leaf);
