@@ -1,9 +1,9 @@
 #pragma once
 /// BVH builders behind one front door, build_bvh(bounds, centers, BvhBuilder):
 ///  - median: the worked problems' builder. Split the node across the longest axis of its box at
-///    the median primitive centroid, so both halves hold the same count (a balanced tree).
+///    the median box center, so both halves hold the same count (a balanced tree).
 ///  - sah: binned surface area heuristic (Wald 2007, "On fast construction of SAH-based BVHs"):
-///    16 bins over the centroid bounds per axis (8 below 64 primitives, 4 below 16), the split of
+///    16 bins over the bounds of the centers per axis (8 below 64 primitives, 4 below 16), the split of
 ///    least cost C = 2 + (A_l N_l + A_r N_r) / A, or a leaf when that is not cheaper than N. The
 ///    traversal cost 2 counts the two child box tests each inner node costs (bvh_traverse.h); it
 ///    also keeps leaves at 2-4 primitives, which halves the node memory of a cost of 1 (and keeps
@@ -12,8 +12,9 @@
 /// generated 1.31M-triangle mesh that gave a 1-3% lower SAH cost than triangle centroids).
 /// Both work in place on one array of primitive references (bounds, id, center: 48 bytes, three
 /// aligned SSE loads) partitioned node by node: per SAH node one pass bins all three axes (two
-/// interleaved bin sets) and one partitions, gathering both children's bounds and centroid bounds
-/// on the way; no allocation per node. Both are iterative and never produce an empty child.
+/// interleaved bin sets from 64 references up) and one partitions, gathering both children's
+/// bounds and center bounds on the way; no allocation per node. Both are iterative and never
+/// produce an empty child.
 ///
 /// Parallel build: the caller passes `for_each(n, f)` that may run f(0) .. f(n-1) concurrently
 /// (bvh_build.h stays dependency-free; the scene layer passes TBB). Nodes of more than

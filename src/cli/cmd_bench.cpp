@@ -144,7 +144,7 @@ int bench_scene(const BenchOptions& opt, const std::string& path, int threads, s
         for (int t : counts) {
           if (t > 1 && !threaded) continue;
           const double sec = best_seconds(cap ? 1 : opt.repeat, [&] { run(rays, query[0] == 'c', t); });
-          (t == 1 ? row.mrays : row.mrays_scaled) = rays.size() / sec / 1e6;
+          (t == 1 ? row.mrays : row.mrays_scaled) = rays.size() / std::max(sec, 1e-9) / 1e6;  // never inf
           if (t > 1) row.scaled_threads = t;
         }
         rows.push_back(row);
