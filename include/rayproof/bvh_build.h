@@ -342,7 +342,7 @@ int build_range(Nodes& nodes, std::span<PrimRef> refs, const BuildTask& root, co
 
 /// Nodes of more primitives than this are split level by level with the work spread over tasks;
 /// subtrees of at most this many are built as one task each.
-inline constexpr std::uint32_t kParallelGrain = 1u << 12;
+inline constexpr std::uint32_t kParallelGrain = 1u << 14;
 
 }  // namespace detail
 
