@@ -38,10 +38,12 @@ TEST(BenchTarget, VerdictFollowsThePrintedValue) {
   t = check_target("m", "bytes", "", "", 64.04, 64.0, Goal::at_most, 1);
   EXPECT_EQ(t.value, "64.0");
   EXPECT_TRUE(t.met);
+  t = check_target("m", "bytes", "", "", 64.1, 64.0, Goal::at_most, 1);
+  EXPECT_EQ(t.verdict, "missed by 0.1 (0.16% of the goal)");
   t = check_target("m", "robust leaks", "", "", 186, 0.0, Goal::at_most, 0);
   EXPECT_EQ(t.verdict, "missed by 186");
   t = check_target("m", "scaling", "", "", 1.86, 1.9, Goal::at_least, 2);
-  EXPECT_EQ(t.verdict, "missed by 0.04 (2% of the goal)");
+  EXPECT_EQ(t.verdict, "missed by 0.04 (2.1% of the goal)");
 }
 
 TEST(BenchTarget, TargetsFromRowsAndBuilds) {
@@ -71,7 +73,7 @@ TEST(BenchTarget, TargetsFromRowsAndBuilds) {
   EXPECT_EQ(by["certified / embree-robust (1 thread)|closest"]->value, "1.00");
   EXPECT_EQ(by["float / embree (1 thread)|closest"]->verdict, "missed by 0.25 (25% of the goal)");
   EXPECT_EQ(by["robust 2 threads / 1 thread|closest"]->value, "1.94");
-  EXPECT_EQ(by["certified 2 threads / 1 thread|any"]->verdict, "missed by 0.15 (8% of the goal)");
+  EXPECT_EQ(by["certified 2 threads / 1 thread|any"]->verdict, "missed by 0.15 (7.9% of the goal)");
   EXPECT_EQ(by["build / Embree's build (1 thread)|"]->value, "1.20");
   EXPECT_FALSE(by["build / Embree's build (1 thread)|"]->met);
   EXPECT_TRUE(by["build / Embree's build (2 threads)|"]->met);

@@ -43,7 +43,10 @@ BenchTarget check_target(const std::string& mesh, const std::string& what, const
   } else {
     const double miss = kind == Goal::at_least ? g - shown : shown - g;
     t.verdict = "missed by " + fixed(miss, decimals);
-    if (g > 0) t.verdict += fmt::format(" ({:.0f}% of the goal)", 100.0 * miss / g);
+    if (g > 0) {
+      const double pct = 100.0 * miss / g;
+      t.verdict += pct >= 10 ? fmt::format(" ({:.0f}% of the goal)", pct) : fmt::format(" ({:.2g}% of the goal)", pct);
+    }
   }
   return t;
 }
