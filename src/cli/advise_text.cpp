@@ -58,6 +58,9 @@ std::vector<std::string> geometry_sentences(const scene::SceneAnalysis& a) {
     out.push_back(a.degenerate ? fmt::format("{} of {} have zero area (collinear vertices, decided exactly).",
                                              count(a.degenerate, "triangle", "triangles"), a.triangles)
                                : std::string("No triangle has zero area (decided exactly)."));
+    if (a.undecided)
+      out.push_back(fmt::format("For {} it was not decided (a coordinate not finite, or coordinates more than 2^400 apart).",
+                                count(a.undecided, "triangle", "triangles")));
     const std::string ratio = a.max_aspect > 0 ? fmt::format("; the largest ratio is {:.3g}", a.max_aspect) : "";
     out.push_back(a.slivers ? fmt::format("{} are slivers (longest edge over its altitude above {:g}){}.",
                                           count(a.slivers, "triangle", "triangles"), a.sliver_aspect, ratio)
@@ -234,9 +237,11 @@ std::vector<std::string> advise_sentences(const scene::AdviseResult& r) {
     out.push_back(fmt::format("Triangle-only against the same triangles plus one sphere ({} random rays, best of {}): {}.",
                               r.random_rays_for_kind_cost, count(std::uint64_t(reps), "run", "runs"), and_list(parts)));
     double slowest = 0, fastest = 0;  // the largest slowdown and speed-up with the sphere
+    double lo = 1e300, hi = -1e300;   // the signed changes' range
     std::string slowed;
     for (const auto& k : r.kind_cost) {
       const double change = k.triangles_only > 0 ? k.with_sphere / k.triangles_only - 1 : 0;
+      lo = std::min(lo, change), hi = std::max(hi, change);
       if (-change > slowest) slowest = -change, slowed = k.method;
       fastest = std::max(fastest, change);
     }
@@ -247,7 +252,7 @@ std::vector<std::string> advise_sentences(const scene::AdviseResult& r) {
                       ? fmt::format("No method is slower with one sphere more by more than these timings' noise (changes "
                                     "from {:+.1f}% to {:+.1f}%; 5% at least): leaving the other kinds out saves nothing "
                                     "measurable here.",
-                                    -100 * slowest, 100 * fastest)
+                                    100 * lo, 100 * hi)
                       : fmt::format("One sphere more slows `{}` by {:.1f}%, beyond these timings' noise ({:.1f}%): leaving "
                                     "the other kinds out saves about that here.",
                                     slowed, 100 * slowest, 100 * floor));
@@ -262,7 +267,7 @@ std::string advise_json(const scene::AdviseResult& r, const std::string& scene_n
   j["scene"] = scene_name;
   j["analysis"] = {{"vertices", a.vertices}, {"triangles", a.triangles}, {"spheres", a.spheres},
                    {"ellipsoids", a.ellipsoids}, {"disks", a.disks}, {"boxes", a.boxes}, {"lights", a.lights},
-                   {"has_camera", a.has_camera}, {"degenerate", a.degenerate}, {"slivers", a.slivers},
+                   {"has_camera", a.has_camera}, {"degenerate", a.degenerate}, {"degenerate_undecided", a.undecided}, {"slivers", a.slivers},
                    {"sliver_aspect", a.sliver_aspect}, {"max_aspect", a.max_aspect}, {"welded_vertices", a.welded},
                    {"edges", a.edges}, {"open_edges", a.open_edges}, {"non_manifold_edges", a.non_manifold_edges},
                    {"components", a.components}, {"closed_components", a.closed_components},

@@ -357,13 +357,16 @@ AdviseResult advise(const Scene& s, const MethodRegistry& reg, const AdviseOptio
     const double diag = std::max(length(hi - lo), 1e-300);
     plus.spheres.push_back({hi + (0.02 * diag) * Vec3<double>{1, 1, 1}, 0.01 * diag});
     const Accel with_sphere(plus);
-    RaySet r("random", random_rays(b, std::min<std::size_t>(opt.rays, 100000), opt.seed + 1));
+    RaySet r("random", random_rays(b, std::clamp<std::size_t>(opt.rays, 20000, 100000), opt.seed + 1));
     r.ranges = {QueryRange{}};
     res.random_rays_for_kind_cost = r.rays.size();
     for (const char* name : {"float", "robust", "certified"}) {
       say(std::string("triangle-only against one sphere more: ") + name);
       const SceneMethod m = find_scene_method(name, reg);
       KindCost kc{name, 0, 0, 5};
+      double warm = 0;
+      (void)cast(accel, m, r, nullptr, opt.threads, warm);
+      (void)cast(with_sphere, m, r, nullptr, opt.threads, warm);
       for (int rep = 0; rep < kc.repeats; ++rep) {
         double a = 0, w = 0;
         (void)cast(accel, m, r, nullptr, opt.threads, a);

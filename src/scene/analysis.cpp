@@ -10,21 +10,35 @@
 
 namespace rayproof::scene {
 
-bool collinear_exact(const Vec3<double>& p0, const Vec3<double>& p1, const Vec3<double>& p2) {
+std::optional<bool> collinear_exact(Vec3<double> p0, Vec3<double> p1, Vec3<double> p2) {
+  // Collinearity does not change under scaling by a power of 2: bring the largest coordinate near
+  // 1 (exact while no coordinate becomes subnormal). Then differences are exact in two doubles
+  // (two_sum) and products of their parts exact with an FMA while every nonzero coordinate is at
+  // least 2^-400 (products stay above 2^-906, far from underflow). Else: not decided here.
+  double m = 0;
+  for (const auto* p : {&p0, &p1, &p2}) m = std::max({m, std::fabs(p->x), std::fabs(p->y), std::fabs(p->z)});
+  if (!std::isfinite(m)) return std::nullopt;
+  if (m == 0) return true;
+  const int e = -std::ilogb(m);
+  for (auto* p : {&p0, &p1, &p2})
+    for (int k = 0; k < 3; ++k) {
+      const double x = std::ldexp((*p)[k], e);
+      if (x != 0 && std::fabs(x) < 0x1p-400) return std::nullopt;
+      (*p)[k] = x;
+    }
   const Vec3<double> a = p1 - p0, b = p2 - p0;
   const Vec3<double> n = cross(a, b);
   // Filter: each component of the computed cross product is within gamma(4) of the sum of its
   // products' magnitudes from the exact one (differences, products and their difference each round
-  // once; the margin covers it). Clearly nonzero somewhere: not collinear. Tiny sums (possible
-  // underflow) and everything else go to exact expansions.
+  // once). Clearly nonzero somewhere: not collinear. Else exact expansions decide.
   const double s[3] = {std::fabs(a.y * b.z) + std::fabs(a.z * b.y), std::fabs(a.z * b.x) + std::fabs(a.x * b.z),
                        std::fabs(a.x * b.y) + std::fabs(a.y * b.x)};
   for (int k = 0; k < 3; ++k)
-    if (s[k] > 0x1p-900 && std::fabs(n[k]) > gamma<double>(4) * s[k]) return false;
+    if (std::fabs(n[k]) > gamma<double>(4) * s[k]) return false;
   using certified::Expansion;
   const certified::ExpVec3 ea = certified::diff3(p1, p0), eb = certified::diff3(p2, p0);
   const Expansion nx = ea.y * eb.z - ea.z * eb.y, ny = ea.z * eb.x - ea.x * eb.z, nz = ea.x * eb.y - ea.y * eb.x;
-  if (nx.bad || ny.bad || nz.bad) return false;  // not decidable here (needs > 120 components): counted as not degenerate
+  if (nx.bad || ny.bad || nz.bad) return std::nullopt;
   return nx.n == 0 && ny.n == 0 && nz.n == 0;
 }
 
@@ -90,10 +104,13 @@ SceneAnalysis analyse_scene(const Scene& s, double sliver_aspect) {
   // Degenerate and sliver triangles.
   for (const auto& t : T) {
     const Vec3<double> &p0 = V[t[0]], &p1 = V[t[1]], &p2 = V[t[2]];
-    if (!is_finite(p0) || !is_finite(p1) || !is_finite(p2) || collinear_exact(p0, p1, p2)) {
+    const std::optional<bool> line = collinear_exact(p0, p1, p2);
+    if (!line) ++a.undecided;
+    if (line.value_or(false)) {
       ++a.degenerate;
       continue;
     }
+    if (!line) continue;
     const double l2 = std::max({length_squared(p1 - p0), length_squared(p2 - p1), length_squared(p0 - p2)});
     const double aspect = l2 / length(cross(p1 - p0, p2 - p0));
     if (aspect > sliver_aspect) ++a.slivers;

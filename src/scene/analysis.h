@@ -4,6 +4,7 @@
 /// its coordinates, whether they are floats, and which analytic kinds it holds.
 #include <cstddef>
 #include <cstdint>
+#include <optional>
 #include <vector>
 
 #include "scene/scene.h"
@@ -17,6 +18,8 @@ struct SceneAnalysis {
 
   /// Triangles whose three vertices are collinear (or repeated), decided in exact arithmetic.
   std::size_t degenerate = 0;
+  /// Triangles whose collinearity is not decided (collinear_exact: non-finite or hugely spread coordinates).
+  std::size_t undecided = 0;
   /// Non-degenerate triangles whose aspect (longest edge squared over twice the area: the longest
   /// edge over the altitude onto it; 1.15 for an equilateral triangle) exceeds `sliver_aspect`.
   std::size_t slivers = 0;
@@ -52,8 +55,9 @@ struct SceneAnalysis {
 /// The analysis of `s` with slivers counted above `sliver_aspect` (> 1).
 [[nodiscard]] SceneAnalysis analyse_scene(const Scene& s, double sliver_aspect = 1000);
 
-/// Whether p0, p1, p2 are collinear (a zero-area triangle), exactly. Exposed for tests.
-[[nodiscard]] bool collinear_exact(const Vec3<double>& p0, const Vec3<double>& p1, const Vec3<double>& p2);
+/// Whether p0, p1, p2 are collinear (a zero-area triangle), exactly; nothing for a non-finite
+/// coordinate or coordinates spread over more than 2^400 within the triangle (not decided here).
+[[nodiscard]] std::optional<bool> collinear_exact(Vec3<double> p0, Vec3<double> p1, Vec3<double> p2);
 
 /// The triangles of component `c` as a mesh of their own (vertices shared as in `s`), for leak rays.
 [[nodiscard]] mesh::Mesh component_mesh(const Scene& s, const SceneAnalysis& a, std::uint32_t c);
