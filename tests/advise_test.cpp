@@ -208,10 +208,11 @@ TEST(Advise, CgalBunny) {
 TEST(Advise, TriangleOnlyKindCost) {
   auto o = small_options();
   o.methods = {"float", "certified"};
+  o.kind_cost_rays = 3000;
   const auto r = scene::advise(scene_of(cube()), cli::all_methods(), o);
   ASSERT_EQ(r.kind_cost.size(), 3u);
   for (const auto& k : r.kind_cost) EXPECT_TRUE(k.triangles_only > 0 && k.with_sphere > 0) << k.method;
-  EXPECT_EQ(r.random_rays_for_kind_cost, 20000u);
+  EXPECT_EQ(r.random_rays_for_kind_cost, 3000u);
   expect_consistent(r);
 }
 
@@ -257,7 +258,7 @@ TEST(AdviseText, SentencesFromKnownTallies) {
       "No triangle has zero area (decided exactly).",
       "No triangle is a sliver (longest edge over its altitude above 1000); the largest ratio is 2.",
       "Of 18 edges, 0 open (one triangle) and 0 non-manifold (three or more triangles).",
-      "1 connected component (1 closed: every edge shared by exactly two triangles).",
+      "1 connected component, 1 of them closed (every edge shared by exactly two triangles).",
       "Nonzero coordinates range from 1 to 1 in magnitude (0 binades); 12 of 24 are zero.",
       "Every coordinate is exactly a float: float methods see the scene as it is.",
       "Rays: 100 primary, 26 leak (from inside 1 closed component toward vertices and edge midpoints) and 100 random.",
@@ -270,7 +271,7 @@ TEST(AdviseText, SentencesFromKnownTallies) {
       "a hair's difference hits another surface.",
       "`float` made 6 errors on 226 rays: 3 of 26 leak rays leaked, 1 false hit and 2 wrong primitives on leak rays (grazes).",
       "`watertight` made 1 error on 226 rays: 1 wrong primitive on leak rays (grazes).",
-      "The cheapest method with no error on this scene is `certified` at 1 Mrays/s: every faster method made an error.",
+      "The cheapest method with no error on this scene is `certified` at 1 Mrays/s: every faster compiled method made an error.",
       "Not counting grazes, the cheapest is `watertight` at 3 Mrays/s (1 graze on leak rays).",
       "`watertight` promises nothing: it made no such error on these rays, but other rays may find one; for a guarantee "
       "use `robust` (no false miss on triangles ahead of the origin) or `certified` (exact class, t within 1 ulp).",
@@ -308,6 +309,13 @@ TEST(AdviseText, SentencesThatChangeWithTheNumbers) {
                   "28. It disagreed on 2: the comparisons below are in doubt."));
   EXPECT_TRUE(has("No error on any ray compared: `watertight`."));
   EXPECT_TRUE(has("The cheapest method with no error on this scene is `watertight` at 3 Mrays/s (`certified`: 1 Mrays/s)."));
+  r.methods[0].seconds = r.methods[1].seconds = 1;  // both now slower than certified: certified is the fastest
+  r.recommended = "certified";
+  EXPECT_EQ(cli::advise_sentences(r)[12], "The cheapest method with no error on this scene is `certified` at 1 Mrays/s, the "
+                                          "fastest compiled method measured here.");
+  r.analysis.closed_components = 0;
+  EXPECT_EQ(cli::advise_sentences(r)[7], "Rays: 100 primary, 26 leak (from inside 0 closed components toward vertices and "
+                                         "edge midpoints) and 100 random (no closed component: no leak rays).");
   EXPECT_TRUE(has("`watertight` needs no exact arithmetic: GMP, MPFR and CGAL are not needed for this scene's queries."));
   EXPECT_TRUE(has("No method is slower with one sphere more by more than these timings' noise (changes from -2.5% to "
                   "+20.0%; 5% at least): leaving the other kinds out saves nothing measurable here."));

@@ -294,18 +294,18 @@ AdviseResult advise(const Scene& s, const MethodRegistry& reg, const AdviseOptio
     res.methods.push_back(std::move(t));
   }
 
-  // The candidates for the recommendation (compiled, no error but perhaps grazes on leak rays) and
-  // certified timed twice more, the fastest of the three runs kept (the machine may be shared).
-  for (std::size_t mi = 0; mi < methods.size(); ++mi) {
-    MethodTally& t = res.methods[mi];
-    if (!t.compiled || !t.error_free(false)) continue;
-    for (int rep = 0; rep < 2; ++rep) {
+  // The candidates for the recommendation (compiled, no error but perhaps grazes on leak rays,
+  // certified among them) timed twice more, in rounds over the candidates so that a change in the
+  // machine's load falls on all of them; the fastest of the three runs is kept.
+  for (int rep = 0; rep < 2; ++rep)
+    for (std::size_t mi = 0; mi < methods.size(); ++mi) {
+      MethodTally& t = res.methods[mi];
+      if (!t.compiled || !t.error_free(false)) continue;
       say("timing " + t.name + " again (" + std::to_string(rep + 2) + "/3)");
       double sec = 0;
       for (const auto& set : sets) (void)cast(accel, methods[mi], set, nullptr, opt.threads, sec);
       t.seconds = std::min(t.seconds, sec);
     }
-  }
 
   // Which of certified's and robust's paths the rays reach: the registry methods wrapped with
   // counters, on the same BVH and conservative traversal, one thread (the fallback counter is
@@ -357,7 +357,7 @@ AdviseResult advise(const Scene& s, const MethodRegistry& reg, const AdviseOptio
     const double diag = std::max(length(hi - lo), 1e-300);
     plus.spheres.push_back({hi + (0.02 * diag) * Vec3<double>{1, 1, 1}, 0.01 * diag});
     const Accel with_sphere(plus);
-    RaySet r("random", random_rays(b, std::clamp<std::size_t>(opt.rays, 20000, 100000), opt.seed + 1));
+    RaySet r("random", random_rays(b, opt.kind_cost_rays ? opt.kind_cost_rays : std::clamp<std::size_t>(opt.rays, 20000, 100000), opt.seed + 1));
     r.ranges = {QueryRange{}};
     res.random_rays_for_kind_cost = r.rays.size();
     for (const char* name : {"float", "robust", "certified"}) {
