@@ -274,7 +274,8 @@ TEST(AdviseText, SentencesFromKnownTallies) {
       "The cheapest method with no error on this scene is `certified` at 1 Mrays/s: every faster compiled method made an error.",
       "Not counting grazes, the cheapest is `watertight` at 3 Mrays/s (1 graze on leak rays).",
       "`watertight` promises nothing: it made no such error on these rays, but other rays may find one; for a guarantee "
-      "use `robust` (no false miss on triangles ahead of the origin) or `certified` (exact class, t within 1 ulp).",
+      "use `robust` (no false miss on triangles ahead of the origin, nor on boxes) or `certified` (exact class, t within "
+      "1 ulp).",
       "`certified` needs the certified tier (rayproof::scene_certified: GMP and MPFR).",
       "The scene has no spheres, ellipsoids, disks and boxes: their kernels are never run on it.",
       "On a sample of 50 rays, `certified` ran 400 triangle tests: its floating-point filter decided 397 and the exact "
@@ -313,6 +314,13 @@ TEST(AdviseText, SentencesThatChangeWithTheNumbers) {
   r.recommended = "certified";
   EXPECT_EQ(cli::advise_sentences(r)[12], "The cheapest method with no error on this scene is `certified` at 1 Mrays/s, the "
                                           "fastest compiled method measured here.");
+  r.timing_runs = 3;
+  EXPECT_EQ(cli::advise_sentences(r)[12], "The cheapest method with no error on this scene is `certified` at 1 Mrays/s (the "
+                                          "fastest of 3 runs each), the fastest compiled method measured here.");
+  r.recommended = "watertight", r.methods[1].seconds = 226 / 3e6;
+  EXPECT_EQ(cli::advise_sentences(r)[12], "The cheapest method with no error on this scene is `watertight` at 3 Mrays/s "
+                                          "(`certified`: 1 Mrays/s; the fastest of 3 runs each), the fastest compiled "
+                                          "method measured here.");
   r.analysis.closed_components = 0;
   EXPECT_EQ(cli::advise_sentences(r)[7], "Rays: 100 primary, 26 leak (from inside 0 closed components toward vertices and "
                                          "edge midpoints) and 100 random (no closed component: no leak rays).");
@@ -347,6 +355,8 @@ TEST(AdviseText, JsonHasTheSameContent) {
   EXPECT_EQ(j["kind_cost"].size(), 2u);
   EXPECT_EQ(j["recommended"], "certified");
   EXPECT_EQ(j["recommended_except_grazes"], "watertight");
+  EXPECT_EQ(j["timing_runs"], 1);
+  EXPECT_EQ(j["same_point_distance"], 0x1p-20);
   EXPECT_EQ(j["sentences"], nlohmann::json(cli::advise_sentences(r)));
 }
 

@@ -31,7 +31,7 @@ const char* kKindNames[5] = {"triangle", "sphere", "ellipsoid", "disk", "box"};
 std::string advise_table(const scene::AdviseResult& r) {
   std::string s = fmt::format("{:<17} {:>8} {:>13} {:>7} {:>7} {:>7} {:>7} {:>7} {:>7} {:>9} {:>9}  {}\n", "method", "rays",
                               "leaks", "graze", "f.hit", "f.miss", "w.prim", "w.class", "t>tol", "max ulps", "Mrays/s",
-                              "promise (triangles)");
+                              "promise");
   for (const auto& m : r.methods) {
     const std::string leaks = m.leak_rays ? fmt::format("{}/{}", m.leaks, m.leak_rays) : std::string("-");
     s += fmt::format("{:<17} {:>8} {:>13} {:>7} {:>7} {:>7} {:>7} {:>7} {:>7} {:>9} {:>9}  {}{}\n", m.name, m.rays, leaks,
@@ -49,9 +49,9 @@ std::vector<std::string> geometry_sentences(const scene::SceneAnalysis& a) {
   if (a.ellipsoids) kinds.push_back(count(a.ellipsoids, "ellipsoid", "ellipsoids"));
   if (a.disks) kinds.push_back(count(a.disks, "disk", "disks"));
   if (a.boxes) kinds.push_back(count(a.boxes, "box", "boxes"));
-  out.push_back(fmt::format("The scene has {} ({}) and {}; {}, {}.", count(a.triangles, "triangle", "triangles"),
+  out.push_back(fmt::format("The scene has {} ({}){}; {}, {}.", count(a.triangles, "triangle", "triangles"),
                             count(a.vertices, "vertex", "vertices"),
-                            kinds.empty() ? std::string("no analytic primitive") : and_list(kinds),
+                            kinds.empty() ? std::string(" and no analytic primitive") : ", " + and_list(kinds),
                             a.has_camera ? "its own camera" : "no camera (a default view is used)",
                             a.lights ? count(a.lights, "light", "lights") : std::string("no light")));
   if (a.triangles) {
@@ -169,7 +169,10 @@ std::vector<std::string> advise_sentences(const scene::AdviseResult& r) {
   } else {
     std::string s = fmt::format("The cheapest method with no error on this scene is `{}` at {} Mrays/s", rec->name,
                                 mrays(rec->mrays()));
-    if (cert && cert != rec) s += fmt::format(" (`certified`: {} Mrays/s)", mrays(cert->mrays()));
+    std::vector<std::string> notes;
+    if (cert && cert != rec) notes.push_back(fmt::format("`certified`: {} Mrays/s", mrays(cert->mrays())));
+    if (r.timing_runs > 1) notes.push_back(fmt::format("the fastest of {} runs each", r.timing_runs));
+    if (!notes.empty()) s += " (" + notes[0] + (notes.size() > 1 ? "; " + notes[1] : "") + ")";
     bool faster = false;  // a compiled method measured faster (each made an error: rec is the fastest without)
     for (const auto& m : r.methods) faster = faster || (m.compiled && m.mrays() > rec->mrays());
     s += !faster ? ", the fastest compiled method measured here." : rec->name == "certified" ? ": every faster compiled method made an error." : ".";
@@ -181,9 +184,11 @@ std::vector<std::string> advise_sentences(const scene::AdviseResult& r) {
   const scene::MethodTally* fastest_ok = loose ? loose : rec;
   if (fastest_ok && fastest_ok->promise == "nothing")
     out.push_back(fmt::format("`{}` promises nothing: it made no such error on these rays, but other rays may find one; "
-                              "for a guarantee use `robust` (no false miss on triangles ahead of the origin) or "
-                              "`certified` (exact class, t within 1 ulp).",
-                              fastest_ok->name));
+                              "for a guarantee use {}`certified` (exact class, t within 1 ulp).",
+                              fastest_ok->name,
+                              a.spheres + a.ellipsoids + a.disks == 0
+                                  ? "`robust` (no false miss on triangles ahead of the origin, nor on boxes) or "
+                                  : ""));
   if (rec) {
     if (rec->name == "certified")
       out.push_back("`certified` needs the certified tier (rayproof::scene_certified: GMP and MPFR).");
@@ -309,6 +314,7 @@ std::string advise_json(const scene::AdviseResult& r, const std::string& scene_n
   j["sentences"] = advise_sentences(r);
   j["t_tolerance_ulps"] = r.t_tolerance ? json(*r.t_tolerance) : json(nullptr);
   j["same_point_distance"] = r.same_point;
+  j["timing_runs"] = r.timing_runs;
   j["seconds"] = r.seconds;
   return j.dump(2);
 }

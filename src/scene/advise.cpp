@@ -2,6 +2,7 @@
 #include "scene/advise.h"
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <random>
@@ -107,8 +108,25 @@ bool is_tie(const Accel& a, const SceneMethod& certified, const Ray<double>& r, 
   return false;
 }
 
-void compare(const Accel& a, const SceneMethod& certified, const RaySet& set, const std::vector<std::size_t>* idx,
-             const std::vector<PrimHit>& got, double same_point, MethodTally& m) {
+/// The t tolerance per kind (triangle, sphere, ellipsoid, disk, box); none: t error not counted.
+using Tolerances = std::array<std::optional<std::uint64_t>, 5>;
+
+/// A primitive's kind as kind_index numbers it.
+std::size_t kind_slot(const Scene& s, std::uint32_t prim) {
+  std::uint32_t local;
+  switch (s.kind_of(prim, local)) {
+    case PrimKind::triangle: return 0;
+    case PrimKind::sphere: return 1;
+    case PrimKind::ellipsoid: return 2;
+    case PrimKind::disk: return 3;
+    case PrimKind::box: return 4;
+  }
+  return 0;
+}
+
+void compare(const Scene& s, const Accel& a, const SceneMethod& certified, const RaySet& set,
+             const std::vector<std::size_t>* idx, const std::vector<PrimHit>& got, double same_point,
+             const Tolerances& tol, MethodTally& m) {
   const bool leak = set.name == "leak";
   for (std::size_t k = 0; k < got.size(); ++k) {
     const std::size_t i = idx ? (*idx)[k] : k;
@@ -142,7 +160,8 @@ void compare(const Accel& a, const SceneMethod& certified, const RaySet& set, co
     }
     ++m.t_compared;
     m.max_ulps = std::max(m.max_ulps, u);
-    m.t_over += m.tolerance && u > *m.tolerance;
+    const auto& t_tol = tol[kind_slot(s, ref.prim)];
+    m.t_over += t_tol && u > *t_tol;
   }
 }
 
@@ -272,9 +291,23 @@ AdviseResult advise(const Scene& s, const MethodRegistry& reg, const AdviseOptio
     t.compiled = sm.fast != FastKernel::none;
     const Method* rm = sm.generic ? sm.generic : reg.find(sm.name);
     t.float_precision = rm ? rm->precision == Precision::float32 : sm.name.find("float") != std::string::npos;
-    const Promise pr = rm ? rm->promise(io::Kind::triangle) : Promise{};
-    t.promise = pr.describe();
-    t.tolerance = pr.t_ulps ? pr.t_ulps : opt.t_tolerance;
+    // The promise on each of the scene's kinds: one text when they agree, else "kind: text; ...";
+    // the t tolerance per kind (the promised ulps, else the options').
+    std::vector<std::pair<io::Kind, std::string>> said;
+    Tolerances tol;
+    for (io::Kind k : kinds) {
+      const Promise pr = rm ? rm->promise(k) : Promise{};
+      said.emplace_back(k, pr.describe());
+      tol[std::size_t(kind_index(k))] = pr.t_ulps ? pr.t_ulps : opt.t_tolerance;
+    }
+    bool same = true;
+    for (const auto& [k, d] : said) same = same && d == said.front().second;
+    for (const auto& [k, d] : said) {
+      if (same && !t.promise.empty()) break;
+      t.promise += (t.promise.empty() ? "" : "; ") + (same ? d : std::string(io::to_string(k)) + ": " + d);
+    }
+    t.tolerance = tol[std::size_t(kind_index(kinds.front()))];
+    for (const auto& x : tol) t.tolerance = x == t.tolerance ? t.tolerance : std::nullopt;
     if (!t.compiled && sm.generic)
       for (io::Kind k : kinds)
         if (!sm.generic->supports(k)) t.unsupported.emplace_back(io::to_string(k));
@@ -288,24 +321,31 @@ AdviseResult advise(const Scene& s, const MethodRegistry& reg, const AdviseOptio
       std::vector<std::size_t> idx;
       if (!t.compiled) idx = strided(set.rays.size(), opt.slow_rays);
       const auto got = cast(accel, sm, set, t.compiled ? nullptr : &idx, opt.threads, t.seconds);
-      compare(accel, certified, set, t.compiled ? nullptr : &idx, got, same_point_distance(an), t);
+      compare(s, accel, certified, set, t.compiled ? nullptr : &idx, got, same_point_distance(an), tol, t);
     }
     if (sm.name == "certified") t.seconds = cert_seconds;
     res.methods.push_back(std::move(t));
   }
 
   // The candidates for the recommendation (compiled, no error but perhaps grazes on leak rays,
-  // certified among them) timed twice more, in rounds over the candidates so that a change in the
-  // machine's load falls on all of them; the fastest of the three runs is kept.
-  for (int rep = 0; rep < 2; ++rep)
+  // certified among them) timed again in rounds over the candidates, so that a change in the
+  // machine's load falls on all of them, and the fastest run of each kept: 2 rounds more, up to 20
+  // when a run is short (under 0.1 s for the quickest, where noise weighs most).
+  double shortest = 1e300;
+  for (const auto& t : res.methods)
+    if (t.compiled && t.error_free(false)) shortest = std::min(shortest, t.seconds);
+  const int rounds = shortest < 1e300 ? int(std::clamp(std::ceil(0.1 / std::max(shortest, 1e-6)), 2.0, 20.0)) : 0;
+  for (int rep = 0; rep < rounds; ++rep) {
+    say("timing the candidates again (" + std::to_string(rep + 2) + "/" + std::to_string(rounds + 1) + ")");
     for (std::size_t mi = 0; mi < methods.size(); ++mi) {
       MethodTally& t = res.methods[mi];
       if (!t.compiled || !t.error_free(false)) continue;
-      say("timing " + t.name + " again (" + std::to_string(rep + 2) + "/3)");
       double sec = 0;
       for (const auto& set : sets) (void)cast(accel, methods[mi], set, nullptr, opt.threads, sec);
       t.seconds = std::min(t.seconds, sec);
     }
+  }
+  res.timing_runs = rounds + 1;
 
   // Which of certified's and robust's paths the rays reach: the registry methods wrapped with
   // counters, on the same BVH and conservative traversal, one thread (the fallback counter is

@@ -45,8 +45,12 @@ struct MethodTally {
   std::string name;
   bool compiled = false;        ///< a kernel compiled into the traversal (else the registry method, per case)
   bool float_precision = false; ///< t errors in float ulps
-  std::string promise;          ///< the method's promise on triangles (Promise::describe), "nothing" when none
-  std::optional<std::uint64_t> tolerance;  ///< the t error allowed: its promised ulps, else the options' tolerance
+  /// The method's promise on the scene's kinds (Promise::describe): one text when the kinds share it,
+  /// else "triangle: ...; sphere: ..."; "nothing" when none.
+  std::string promise;
+  /// The t error allowed on every kind of the scene (its promised ulps, else the options' tolerance);
+  /// none when it differs between kinds or is not set.
+  std::optional<std::uint64_t> tolerance;
   std::vector<std::string> unsupported;  ///< kinds in the scene the method has no code for ("sphere", ...)
   std::uint64_t rays = 0;       ///< rays compared (a strided subset for registry methods)
   std::uint64_t leak_rays = 0, leaks = 0;  ///< leak rays compared; those missed where certified hits
@@ -61,7 +65,9 @@ struct MethodTally {
   std::uint64_t wrong_class = 0;  ///< the right primitive with another contact class (edge as interior, ...)
   std::uint64_t t_compared = 0, t_over = 0;  ///< right primitive (or a tie): t beyond `tolerance`
   std::uint64_t max_ulps = 0;     ///< the largest t error (ulps of its precision) on the right primitive
-  double seconds = 0;             ///< casting time of its rays
+  /// Casting time of its rays (candidates for the recommendation: the fastest of
+  /// AdviseResult::timing_runs runs).
+  double seconds = 0;
   [[nodiscard]] double mrays() const { return seconds > 0 ? double(rays) / seconds / 1e6 : 0; }
   /// Every error above; without the wrong primitives on leak rays when !count_leak_grazes.
   [[nodiscard]] std::uint64_t errors(bool count_leak_grazes = true) const {
@@ -105,6 +111,7 @@ struct AdviseResult {
   std::optional<std::uint64_t> t_tolerance;  ///< AdviseOptions::t_tolerance
   double same_point = 0;                     ///< same_point_distance() of the scene
   double seconds = 0;
+  int timing_runs = 1;  ///< runs of each candidate for the recommendation (the fastest kept)
 };
 
 /// How far apart two hit points may lie along a ray and count as the same point: 2^-20 of the
