@@ -143,7 +143,7 @@ TEST(AdviseAnalysis, CoordinatesNotFloatsAndTheirSpread) {
 
 scene::AdviseOptions small_options() {
   scene::AdviseOptions o;
-  o.rays = 600, o.slow_rays = 40, o.exact_sample = 25, o.threads = 2;
+  o.rays = 600, o.slow_rays = 40, o.exact_sample = 25, o.threads = 2, o.max_timing_runs = 3;
   return o;
 }
 

@@ -329,12 +329,12 @@ AdviseResult advise(const Scene& s, const MethodRegistry& reg, const AdviseOptio
 
   // The candidates for the recommendation (compiled, no error but perhaps grazes on leak rays,
   // certified among them) timed again in rounds over the candidates, so that a change in the
-  // machine's load falls on all of them, and the fastest run of each kept: 2 rounds more, up to 20
-  // when a run is short (under 0.1 s for the quickest, where noise weighs most).
+  // machine's load falls on all of them, and the fastest run of each kept: 2 rounds more, more (up
+  // to max_timing_runs in all) when a run is short (under 0.1 s for the quickest: noise weighs most).
   double shortest = 1e300;
   for (const auto& t : res.methods)
     if (t.compiled && t.error_free(false)) shortest = std::min(shortest, t.seconds);
-  const int rounds = shortest < 1e300 ? int(std::clamp(std::ceil(0.1 / std::max(shortest, 1e-6)), 2.0, 20.0)) : 0;
+  const int rounds = shortest < 1e300 ? int(std::clamp(std::ceil(0.1 / std::max(shortest, 1e-6)), 2.0, std::max(2.0, opt.max_timing_runs - 1.0))) : 0;
   for (int rep = 0; rep < rounds; ++rep) {
     say("timing the candidates again (" + std::to_string(rep + 2) + "/" + std::to_string(rounds + 1) + ")");
     for (std::size_t mi = 0; mi < methods.size(); ++mi) {

@@ -29,6 +29,7 @@ struct AdviseOptions {
   std::vector<std::string> methods;
   /// Measure the triangle-only scene against the same plus one sphere: only on triangle-only scenes,
   /// on `rays` random rays clamped to [20000, 100000], each method warmed up once, best of 5.
+  int max_timing_runs = 21;  ///< runs of each candidate for the recommendation, at most (at least 3)
   bool compare_kinds = true;
   std::size_t kind_cost_rays = 0;  ///< random rays for that (0: `rays` clamped to [20000, 100000])
   std::function<void(const std::string&)> progress;  ///< one line of progress (may be empty)
