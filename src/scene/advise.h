@@ -3,6 +3,7 @@
 /// compare each closest hit with `certified` (proven equal to exact), check a sample of certified
 /// against `exact`, count which code paths the rays reached, and measure what a triangle-only scene
 /// saves. The numbers only; the sentences are in cli/advise_text.h.
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -96,11 +97,19 @@ struct KindCost {
   std::string method;
   double triangles_only = 0, with_sphere = 0;  ///< Mrays/s, the best of `repeats`
   int repeats = 0;
+  /// The triangle-only scene timed again in each round, after the sphere: its difference from
+  /// `triangles_only` is the noise of the timings themselves.
+  double triangles_only_again = 0;
+  /// The timing noise: |triangles_only_again / triangles_only - 1|.
+  [[nodiscard]] double noise() const {
+    return triangles_only > 0 ? std::abs(triangles_only_again / triangles_only - 1) : 0;
+  }
 };
 
 struct AdviseResult {
   SceneAnalysis analysis;
   std::vector<RaySetInfo> sets;
+  std::size_t leak_components = 0;  ///< closed components the leak rays start in (at most AdviseOptions::rays)
   std::vector<MethodTally> methods;
   std::uint64_t reference_misses_on_leak_rays = 0;  ///< leak rays certified itself misses (origin not inside)
   std::uint64_t exact_checked = 0, exact_agree = 0;  ///< certified against exact: same primitive, class, t within 1 ulp

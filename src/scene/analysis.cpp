@@ -2,6 +2,7 @@
 #include "scene/analysis.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <numeric>
 
@@ -189,20 +190,32 @@ SceneAnalysis analyse_scene(const Scene& s, double sliver_aspect) {
   return a;
 }
 
-mesh::Mesh component_mesh(const Scene& s, const SceneAnalysis& a, std::uint32_t c) {
-  mesh::Mesh m;
-  std::vector<std::uint32_t> remap(s.mesh.vertices.size(), 0xffffffffu);
+std::vector<mesh::Mesh> closed_component_meshes(const Scene& s, const SceneAnalysis& a, std::size_t limit) {
+  // Slot of each closed component kept (or none), then every triangle appended to its slot's mesh,
+  // vertices renumbered per slot through one map (a vertex belongs to one component unless the
+  // mesh shares it between components: then it is copied into each).
+  std::vector<std::uint32_t> slot(a.components, 0xffffffffu);
+  std::size_t n = 0;
+  for (std::uint32_t c = 0; c < a.components; ++c)
+    if (a.component_closed[c] && (limit == 0 || n < limit)) slot[c] = std::uint32_t(n++);
+  std::vector<mesh::Mesh> out(n);
+  std::vector<std::uint32_t> remap_slot(s.mesh.vertices.size(), 0xffffffffu), remap(s.mesh.vertices.size(), 0);
   for (std::size_t i = 0; i < s.mesh.triangles.size(); ++i) {
-    if (a.component_of[i] != c) continue;
+    const std::uint32_t k = slot[a.component_of[i]];
+    if (k == 0xffffffffu) continue;
+    mesh::Mesh& m = out[k];
     std::array<std::uint32_t, 3> t;
-    for (int k = 0; k < 3; ++k) {
-      std::uint32_t& r = remap[s.mesh.triangles[i][k]];
-      if (r == 0xffffffffu) r = std::uint32_t(m.vertices.size()), m.vertices.push_back(s.mesh.vertices[s.mesh.triangles[i][k]]);
-      t[k] = r;
+    for (int j = 0; j < 3; ++j) {
+      const std::uint32_t v = s.mesh.triangles[i][j];
+      if (remap_slot[v] != k) {
+        remap_slot[v] = k, remap[v] = std::uint32_t(m.vertices.size());
+        m.vertices.push_back(s.mesh.vertices[v]);
+      }
+      t[j] = remap[v];
     }
     m.triangles.push_back(t);
   }
-  return m;
+  return out;
 }
 
 }  // namespace rayproof::scene

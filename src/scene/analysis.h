@@ -59,7 +59,9 @@ struct SceneAnalysis {
 /// coordinate or coordinates spread over more than 2^400 within the triangle (not decided here).
 [[nodiscard]] std::optional<bool> collinear_exact(Vec3<double> p0, Vec3<double> p1, Vec3<double> p2);
 
-/// The triangles of component `c` as a mesh of their own (vertices shared as in `s`), for leak rays.
-[[nodiscard]] mesh::Mesh component_mesh(const Scene& s, const SceneAnalysis& a, std::uint32_t c);
+/// The closed components as meshes of their own (at most `limit`, in component order; 0: all), for
+/// leak rays: one pass over the triangles.
+[[nodiscard]] std::vector<mesh::Mesh> closed_component_meshes(const Scene& s, const SceneAnalysis& a,
+                                                              std::size_t limit = 0);
 
 }  // namespace rayproof::scene
