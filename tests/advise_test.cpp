@@ -161,6 +161,9 @@ void expect_consistent(const scene::AdviseResult& r) {
   for (const auto& s : r.sets) all_rays += s.rays;
   bool saw_certified = false;
   for (const auto& m : r.methods) {
+    std::uint64_t by_set = 0;
+    for (const auto& [set, n] : m.errors_by_set) by_set += n;
+    EXPECT_EQ(by_set, m.errors()) << m.name;
     if (m.compiled) {
       EXPECT_EQ(m.rays, all_rays) << m.name;
     }
@@ -242,8 +245,10 @@ scene::AdviseResult known() {
   f.name = "float", f.compiled = true, f.float_precision = true, f.promise = "nothing";
   f.rays = 226, f.leak_rays = 26, f.leaks = 3, f.false_hits = 1, f.leak_wrong_prims = 2, f.max_ulps = 7;
   f.seconds = 226 / 4e6;
+  f.errors_by_set = {{"leak", 5}, {"random", 1}};
   scene::MethodTally w = f;
   w.name = "watertight", w.float_precision = false, w.leaks = 0, w.false_hits = 0, w.leak_wrong_prims = 1;
+  w.errors_by_set = {{"leak", 1}};
   w.seconds = 226 / 3e6;
   scene::MethodTally c;
   c.name = "certified", c.compiled = true, c.promise = "exact class, t within 1 ulp", c.tolerance = 1;
@@ -276,8 +281,9 @@ TEST(AdviseText, SentencesFromKnownTallies) {
       "9.54e-07 along the ray: a neighbour at a shared edge or vertex) are counted apart, not as errors. A graze is a "
       "wrong primitive on a leak ray: aimed exactly at a vertex or edge midpoint, the ray grazes the surface there, and "
       "a hair's difference hits another surface.",
-      "`float` made 6 errors on 226 rays: 3 of 26 leak rays leaked, 1 false hit and 2 wrong primitives on leak rays (grazes).",
-      "`watertight` made 1 error on 226 rays: 1 wrong primitive on leak rays (grazes).",
+      "`float` made 6 errors on 226 rays: 3 of 26 leak rays leaked, 1 false hit and 2 wrong primitives on leak rays "
+      "(grazes) (by ray set: 5 leak and 1 random).",
+      "`watertight` made 1 error on 226 rays: 1 wrong primitive on leak rays (grazes) (by ray set: 1 leak).",
       "The cheapest method with no error on this scene is `certified` at 1 Mrays/s: every faster compiled method made an error.",
       "Not counting grazes, the cheapest is `watertight` at 3 Mrays/s (1 graze on leak rays).",
       "`watertight` promises nothing: it made no such error on these rays, but other rays may find one; for a guarantee "
@@ -360,6 +366,8 @@ TEST(AdviseText, JsonHasTheSameContent) {
   EXPECT_EQ(j["methods"][0]["false_hits"], 1);
   EXPECT_EQ(j["methods"][0]["wrong_primitives_on_leak_rays"], 2);
   EXPECT_EQ(j["methods"][0]["errors"], 6);
+  EXPECT_EQ(j["methods"][0]["errors_by_set"]["leak"], 5);
+  EXPECT_EQ(j["methods"][0]["errors_by_set"]["random"], 1);
   EXPECT_EQ(j["methods"][0]["error_free"], false);
   EXPECT_EQ(j["methods"][1]["error_free_except_grazes"], true);
   EXPECT_EQ(j["methods"][0]["tolerance_ulps"], nullptr);

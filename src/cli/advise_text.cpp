@@ -150,8 +150,11 @@ std::vector<std::string> advise_sentences(const scene::AdviseResult& r) {
     if (m.t_over)
       parts.push_back(fmt::format("{} with t beyond {} (up to {:.3g} {} ulps)", m.t_over, count(m.tolerance.value_or(0), "ulp", "ulps"),
                                   double(m.max_ulps), m.float_precision ? "float" : "double"));
-    out.push_back(fmt::format("`{}` made {} on {}{}: {}.", m.name, count(m.errors(), "error", "errors"),
-                              count(m.rays, "ray", "rays"), m.compiled ? "" : " (a sample)", and_list(parts)));
+    std::vector<std::string> where;
+    for (const auto& [set, n] : m.errors_by_set) where.push_back(fmt::format("{} {}", n, set));
+    out.push_back(fmt::format("`{}` made {} on {}{}: {}{}.", m.name, count(m.errors(), "error", "errors"),
+                              count(m.rays, "ray", "rays"), m.compiled ? "" : " (a sample)", and_list(parts),
+                              where.size() > 0 ? " (by ray set: " + and_list(where) + ")" : std::string()));
   }
   if (!clean.empty()) out.push_back("No error on any ray compared: " + and_list(clean) + ".");
 
@@ -299,6 +302,11 @@ std::string advise_json(const scene::AdviseResult& r, const std::string& scene_n
                             {"wrong_class", m.wrong_class}, {"t_compared", m.t_compared}, {"t_over_tolerance", m.t_over},
                             {"max_ulps", m.max_ulps}, {"seconds", m.seconds}, {"mrays_per_s", m.mrays()},
                             {"errors", m.errors()}, {"error_free", m.error_free()},
+                            {"errors_by_set", [&] {
+                               json e = json::object();
+                               for (const auto& [set, n] : m.errors_by_set) e[set] = n;
+                               return e;
+                             }()},
                             {"error_free_except_grazes", m.error_free(false)}});
   const auto& p = r.paths;
   json cert = json::object();

@@ -322,7 +322,9 @@ AdviseResult advise(const Scene& s, const MethodRegistry& reg, const AdviseOptio
       std::vector<std::size_t> idx;
       if (!t.compiled) idx = strided(set.rays.size(), opt.slow_rays);
       const auto got = cast(accel, sm, set, t.compiled ? nullptr : &idx, opt.threads, t.seconds);
+      const std::uint64_t before = t.errors();
       compare(s, accel, certified, set, t.compiled ? nullptr : &idx, got, same_point_distance(an), tol, t);
+      if (t.errors() > before) t.errors_by_set.emplace_back(set.name, t.errors() - before);
     }
     if (sm.name == "certified") t.seconds = cert_seconds;
     res.methods.push_back(std::move(t));
@@ -432,5 +434,6 @@ AdviseResult advise(const Scene& s, const MethodRegistry& reg, const AdviseOptio
 }
 
 }  // namespace rayproof::scene
+
 
 

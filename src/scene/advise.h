@@ -8,6 +8,7 @@
 #include <functional>
 #include <optional>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "methods/method.h"
@@ -66,7 +67,9 @@ struct MethodTally {
   std::uint64_t ties = 0;
   std::uint64_t wrong_class = 0;  ///< the right primitive with another contact class (edge as interior, ...)
   std::uint64_t t_compared = 0, t_over = 0;  ///< right primitive (or a tie): t beyond `tolerance`
-  std::uint64_t max_ulps = 0;     ///< the largest t error (ulps of its precision) on the right primitive
+  std::uint64_t max_ulps = 0;
+  /// errors() per ray set, for the sets with any, in set order.
+  std::vector<std::pair<std::string, std::uint64_t>> errors_by_set;     ///< the largest t error (ulps of its precision) on the right primitive
   /// Casting time of its rays (candidates for the recommendation: the fastest of
   /// AdviseResult::timing_runs runs).
   double seconds = 0;
