@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <array>
 #include <chrono>
+#include <limits>
 #include <cmath>
 #include <random>
 
@@ -101,6 +102,12 @@ std::vector<io::Kind> scene_kinds(const SceneAnalysis& a) {
   return k;
 }
 
+/// x rounded to float, beyond float's range: infinity (the conversion itself would be undefined).
+float to_float(double x) {
+  if (std::fabs(x) > double(std::numeric_limits<float>::max())) return std::copysign(std::numeric_limits<float>::infinity(), float(x > 0 ? 1 : -1));
+  return float(x);
+}
+
 /// Whether certified also crosses primitive `prim` at exactly the reference t (a tie at a shared edge or vertex).
 bool is_tie(const Accel& a, const SceneMethod& certified, const Ray<double>& r, const PrimHit& ref, std::uint32_t prim) {
   for (const PrimHit& h : a.all(r, certified, {ref.t, ref.t}))
@@ -144,7 +151,7 @@ void compare(const Scene& s, const Accel& a, const SceneMethod& certified, const
       ++(leak ? m.leaks : m.false_misses);
       continue;
     }
-    const std::uint64_t u = m.float_precision ? ulp_distance(float(h.t), float(ref.t)) : ulp_distance(h.t, ref.t);
+    const std::uint64_t u = m.float_precision ? ulp_distance(to_float(h.t), to_float(ref.t)) : ulp_distance(h.t, ref.t);
     if (h.prim != ref.prim) {
       // Another primitive: at the same point (the two hit points within `same_point` along the ray:
       // a neighbour meeting there, as at a shared edge or vertex), or one certified also crosses at
@@ -417,9 +424,10 @@ AdviseResult advise(const Scene& s, const MethodRegistry& reg, const AdviseOptio
         (void)cast(accel, m, r, nullptr, opt.threads, a);
         (void)cast(with_sphere, m, r, nullptr, opt.threads, w);
         (void)cast(accel, m, r, nullptr, opt.threads, b);
-        kc.triangles_only = std::max(kc.triangles_only, double(r.rays.size()) / a / 1e6);
-        kc.with_sphere = std::max(kc.with_sphere, double(r.rays.size()) / w / 1e6);
-        kc.triangles_only_again = std::max(kc.triangles_only_again, double(r.rays.size()) / b / 1e6);
+        const double n = double(r.rays.size()) / 1e6;
+        kc.triangles_only = std::max(kc.triangles_only, n / std::max(a, 1e-9));
+        kc.with_sphere = std::max(kc.with_sphere, n / std::max(w, 1e-9));
+        kc.triangles_only_again = std::max(kc.triangles_only_again, n / std::max(b, 1e-9));
       }
       res.kind_cost.push_back(kc);
     }
