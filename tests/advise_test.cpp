@@ -225,6 +225,29 @@ TEST(Advise, TriangleOnlyKindCost) {
   expect_consistent(r);
 }
 
+TEST(Advise, ExtremeMagnitudes) {
+  // A cube at 1e300 (cubes of coordinates overflow: the leak rays' centroid is computed scaled) and
+  // one at 1e-300 (below float: robust sees degenerate triangles, certified falls back to GMP).
+  auto o = small_options();
+  o.rays = 200, o.methods = {"robust", "certified"}, o.compare_kinds = false;
+  const auto big = scene::advise(scene_of(cube(1e300)), cli::all_methods(), o);
+  ASSERT_EQ(big.sets.size(), 3u);
+  EXPECT_EQ(big.sets[1].name, "leak");
+  EXPECT_EQ(big.sets[1].invalid, 0u);
+  EXPECT_EQ(big.sets[1].reference_hits, big.sets[1].rays);
+  EXPECT_EQ(big.exact_checked, big.exact_agree);
+  const auto tiny = scene::advise(scene_of(cube(1e-300)), cli::all_methods(), o);
+  EXPECT_EQ(tiny.sets[1].reference_hits, tiny.sets[1].rays);
+  EXPECT_EQ(tiny.paths.robust_degenerate, tiny.paths.robust_tests);
+  EXPECT_GT(tiny.paths.certified_fallbacks[0], 0u);
+  EXPECT_EQ(tiny.exact_checked, tiny.exact_agree);
+  const auto s = cli::advise_sentences(big);
+  EXPECT_NE(std::find(s.begin(), s.end(),
+                      "Some coordinates are beyond float's range (3.4e38): float methods see infinities there, and the "
+                      "BVH's bounds (floats, rounded outward) are infinite."),
+            s.end());
+}
+
 TEST(Advise, EmptySceneAndUnknownMethod) {
   EXPECT_THROW((void)scene::advise(Scene{}, cli::all_methods(), small_options()), scene::SceneError);
   auto o = small_options();
@@ -238,7 +261,7 @@ scene::AdviseResult known() {
   auto& a = r.analysis;
   a.vertices = 8, a.triangles = 12, a.edges = 18, a.components = 1, a.closed_components = 1;
   a.max_aspect = 2, a.sliver_aspect = 1000, a.min_abs = 1, a.max_abs = 1, a.coordinates = 24, a.zero_coordinates = 12;
-  r.sets = {{"primary", 100}, {"leak", 26}, {"random", 100}};
+  r.sets = {{"primary", 100, 60}, {"leak", 26, 26}, {"random", 100, 55, 2}};
   r.leak_components = 1;
   r.exact_checked = 30, r.exact_agree = 30;
   scene::MethodTally f;
@@ -273,7 +296,8 @@ TEST(AdviseText, SentencesFromKnownTallies) {
       "1 connected component, 1 of them closed (every edge shared by exactly two triangles).",
       "Nonzero coordinates range from 1 to 1 in magnitude (0 binades); 12 of 24 are zero.",
       "Every coordinate is exactly a float: float methods see the scene as it is.",
-      "Rays: 100 primary, 26 leak (from inside 1 closed component toward vertices and edge midpoints) and 100 random.",
+      "Rays: 100 primary (60 hit by `certified`), 26 leak (26 hit by `certified`) from inside 1 closed component toward "
+      "vertices and edge midpoints and 100 random (55 hit by `certified`, 2 invalid: a non-finite origin or direction).",
       "`certified` is the reference (proven equal to exact); checked against `exact` on 30 rays, it agreed on all.",
       "An error below is a leak, a false hit, a false miss or a wrong primitive against `certified`, or a t beyond what "
       "the method promises (a method that promises nothing about t: its largest t error is shown, not counted); another "
@@ -328,16 +352,17 @@ TEST(AdviseText, SentencesThatChangeWithTheNumbers) {
   r.recommended = "certified";
   EXPECT_EQ(cli::advise_sentences(r)[12], "The cheapest method with no error on this scene is `certified` at 1 Mrays/s, the "
                                           "fastest compiled method measured here.");
-  r.timing_runs = 3;
+  r.methods[2].timing_runs = 3;
   EXPECT_EQ(cli::advise_sentences(r)[12], "The cheapest method with no error on this scene is `certified` at 1 Mrays/s (the "
-                                          "fastest of 3 runs each), the fastest compiled method measured here.");
-  r.recommended = "watertight", r.methods[1].seconds = 226 / 3e6;
+                                          "fastest of 3 runs), the fastest compiled method measured here.");
+  r.recommended = "watertight", r.methods[1].seconds = 226 / 3e6, r.methods[1].timing_runs = 3;
   EXPECT_EQ(cli::advise_sentences(r)[12], "The cheapest method with no error on this scene is `watertight` at 3 Mrays/s "
-                                          "(`certified`: 1 Mrays/s; the fastest of 3 runs each), the fastest compiled "
+                                          "(`certified`: 1 Mrays/s; the fastest of 3 runs), the fastest compiled "
                                           "method measured here.");
   r.analysis.closed_components = 0, r.leak_components = 0;
-  r.sets = {{"primary", 100}, {"random", 100}};
-  EXPECT_EQ(cli::advise_sentences(r)[7], "Rays: 100 primary and 100 random (no closed component: no leak rays).");
+  r.sets = {{"primary", 100, 7}, {"random", 100, 0}};
+  EXPECT_EQ(cli::advise_sentences(r)[7], "Rays: 100 primary (7 hit by `certified`) and 100 random (0 hit by `certified`) "
+                                         "(no closed component: no leak rays).");
   EXPECT_TRUE(has("`watertight` needs no exact arithmetic: GMP, MPFR and CGAL are not needed for this scene's queries."));
   EXPECT_TRUE(has("No method is slower with one sphere more by more than these timings' noise (20.0%: the largest of 5%, "
                   "the triangle-only scene against itself and any speed-up with the sphere): leaving the other kinds out "
@@ -377,7 +402,9 @@ TEST(AdviseText, JsonHasTheSameContent) {
   EXPECT_EQ(j["kind_cost"].size(), 2u);
   EXPECT_EQ(j["recommended"], "certified");
   EXPECT_EQ(j["recommended_except_grazes"], "watertight");
-  EXPECT_EQ(j["timing_runs"], 1);
+  EXPECT_EQ(j["methods"][0]["timing_runs"], 1);
+  EXPECT_EQ(j["ray_sets"][2]["invalid"], 2);
+  EXPECT_EQ(j["ray_sets"][2]["reference_hits"], 55);
   EXPECT_EQ(j["same_point_distance"], 0x1p-20);
   EXPECT_EQ(j["sentences"], nlohmann::json(cli::advise_sentences(r)));
 }

@@ -80,6 +80,9 @@ std::vector<std::string> geometry_sentences(const scene::SceneAnalysis& a) {
                               a.zero_coordinates ? fmt::format("; {} of {} are zero", a.zero_coordinates, a.coordinates) : ""));
   else
     out.push_back(fmt::format("Every coordinate ({}) is zero.", a.coordinates));
+  if (a.max_abs > 3.4028234663852886e38)
+    out.push_back("Some coordinates are beyond float's range (3.4e38): float methods see infinities there, and the BVH's "
+                  "bounds (floats, rounded outward) are infinite.");
   if (a.all_float())
     out.push_back("Every coordinate is exactly a float: float methods see the scene as it is.");
   else
@@ -96,11 +99,12 @@ std::vector<std::string> advise_sentences(const scene::AdviseResult& r) {
   // The rays.
   std::vector<std::string> sets;
   for (const auto& s : r.sets) {
-    std::string what = fmt::format("{} {}", s.rays, s.name);
+    std::string what = fmt::format("{} {} ({} hit by `certified`{})", s.rays, s.name, s.reference_hits,
+                                   s.invalid ? fmt::format(", {} invalid: a non-finite origin or direction", s.invalid) : "");
     if (s.name == "leak")
-      what += fmt::format(" (from inside {} toward vertices and edge midpoints)",
+      what += fmt::format(" from inside {} toward vertices and edge midpoints",
                           count(r.leak_components, "closed component", "closed components"));
-    if (s.name == "shadow") what += " (from a point on a light to each primary hit)";
+    if (s.name == "shadow") what += " from a point on a light to each primary hit";
     sets.push_back(what);
   }
   out.push_back("Rays: " + and_list(sets) + (a.triangles && !a.closed_components ? " (no closed component: no leak rays)" : "") + ".");
@@ -174,7 +178,7 @@ std::vector<std::string> advise_sentences(const scene::AdviseResult& r) {
                                 mrays(rec->mrays()));
     std::vector<std::string> notes;
     if (cert && cert != rec) notes.push_back(fmt::format("`certified`: {} Mrays/s", mrays(cert->mrays())));
-    if (r.timing_runs > 1) notes.push_back(fmt::format("the fastest of {} runs each", r.timing_runs));
+    if (rec->timing_runs > 1) notes.push_back(fmt::format("the fastest of {} runs", rec->timing_runs));
     if (!notes.empty()) s += " (" + notes[0] + (notes.size() > 1 ? "; " + notes[1] : "") + ")";
     bool faster = false;  // a compiled method measured faster (each made an error: rec is the fastest without)
     for (const auto& m : r.methods) faster = faster || (m.compiled && m.mrays() > rec->mrays());
@@ -287,7 +291,8 @@ std::string advise_json(const scene::AdviseResult& r, const std::string& scene_n
                    {"zero_coordinates", a.zero_coordinates}, {"coordinates", a.coordinates},
                    {"non_float_vertices", a.non_float_vertices}, {"non_float_analytic", a.non_float_analytic}};
   j["ray_sets"] = json::array();
-  for (const auto& s : r.sets) j["ray_sets"].push_back({{"name", s.name}, {"rays", s.rays}});
+  for (const auto& s : r.sets)
+    j["ray_sets"].push_back({{"name", s.name}, {"rays", s.rays}, {"reference_hits", s.reference_hits}, {"invalid", s.invalid}});
   j["reference"] = {{"method", "certified"}, {"exact_checked", r.exact_checked}, {"exact_agree", r.exact_agree},
                     {"misses_on_leak_rays", r.reference_misses_on_leak_rays}};
   j["leak_components"] = r.leak_components;
@@ -300,7 +305,7 @@ std::string advise_json(const scene::AdviseResult& r, const std::string& scene_n
                             {"false_misses", m.false_misses}, {"wrong_primitives", m.wrong_prims},
                             {"wrong_primitives_on_leak_rays", m.leak_wrong_prims}, {"ties", m.ties},
                             {"wrong_class", m.wrong_class}, {"t_compared", m.t_compared}, {"t_over_tolerance", m.t_over},
-                            {"max_ulps", m.max_ulps}, {"seconds", m.seconds}, {"mrays_per_s", m.mrays()},
+                            {"max_ulps", m.max_ulps}, {"seconds", m.seconds}, {"timing_runs", m.timing_runs}, {"mrays_per_s", m.mrays()},
                             {"errors", m.errors()}, {"error_free", m.error_free()},
                             {"errors_by_set", [&] {
                                json e = json::object();
@@ -326,7 +331,6 @@ std::string advise_json(const scene::AdviseResult& r, const std::string& scene_n
   j["sentences"] = advise_sentences(r);
   j["t_tolerance_ulps"] = r.t_tolerance ? json(*r.t_tolerance) : json(nullptr);
   j["same_point_distance"] = r.same_point;
-  j["timing_runs"] = r.timing_runs;
   j["seconds"] = r.seconds;
   return j.dump(2);
 }

@@ -102,6 +102,20 @@ std::vector<io::Kind> scene_kinds(const SceneAnalysis& a) {
   return k;
 }
 
+/// volume_centroid() computed on the mesh scaled by a power of 2 that brings its largest coordinate
+/// near 1 (the signed volumes are cubes of coordinates: they overflow or underflow in place), then
+/// scaled back.
+Vec3<double> scaled_centroid(const mesh::Mesh& m) {
+  double big = 0;
+  for (const auto& v : m.vertices) big = std::max({big, std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)});
+  if (!(big > 0) || !std::isfinite(big)) return volume_centroid(m);
+  const int e = std::ilogb(big);
+  mesh::Mesh scaled = m;
+  for (auto& v : scaled.vertices) v = {std::ldexp(v.x, -e), std::ldexp(v.y, -e), std::ldexp(v.z, -e)};
+  const Vec3<double> c = volume_centroid(scaled);
+  return {std::ldexp(c.x, e), std::ldexp(c.y, e), std::ldexp(c.z, e)};
+}
+
 /// x rounded to float, beyond float's range: infinity (the conversion itself would be undefined).
 float to_float(double x) {
   if (std::fabs(x) > double(std::numeric_limits<float>::max())) return std::copysign(std::numeric_limits<float>::infinity(), float(x > 0 ? 1 : -1));
@@ -230,7 +244,7 @@ AdviseResult advise(const Scene& s, const MethodRegistry& reg, const AdviseOptio
     const auto meshes = closed_component_meshes(s, an, opt.rays);
     const std::size_t per = std::max<std::size_t>(1, opt.rays / meshes.size());
     for (const auto& m : meshes) {
-      const auto rays = leak_rays(volume_centroid(m), leak_targets(m, per));
+      const auto rays = leak_rays(scaled_centroid(m), leak_targets(m, per));
       for (const auto& r : rays)
         if (r.valid()) l.rays.push_back(r);
     }
@@ -271,7 +285,12 @@ AdviseResult advise(const Scene& s, const MethodRegistry& reg, const AdviseOptio
     }
   }
   for (const auto& set : sets) {
-    res.sets.push_back({set.name, set.rays.size()});
+    RaySetInfo info{set.name, set.rays.size()};
+    for (std::size_t i = 0; i < set.rays.size(); ++i) {
+      info.invalid += !set.rays[i].valid();
+      info.reference_hits += set.reference[i].prim != PrimHit::kNoPrim;
+    }
+    res.sets.push_back(info);
     if (set.name == "leak")
       for (const auto& h : set.reference) res.reference_misses_on_leak_rays += h.prim == PrimHit::kNoPrim;
   }
@@ -341,21 +360,25 @@ AdviseResult advise(const Scene& s, const MethodRegistry& reg, const AdviseOptio
   // certified among them) timed again in rounds over the candidates, so that a change in the
   // machine's load falls on all of them, and the fastest run of each kept: 2 rounds more, more (up
   // to max_timing_runs in all) when a run is short (under 0.1 s for the quickest: noise weighs most).
-  double shortest = 1e300;
-  for (const auto& t : res.methods)
-    if (t.compiled && t.error_free(false)) shortest = std::min(shortest, t.seconds);
-  const int rounds = shortest < 1e300 ? int(std::clamp(std::ceil(0.1 / std::max(shortest, 1e-6)), 2.0, std::max(2.0, opt.max_timing_runs - 1.0))) : 0;
+  std::vector<int> extra(methods.size(), 0);
+  int rounds = 0;
+  for (std::size_t mi = 0; mi < methods.size(); ++mi) {
+    const MethodTally& t = res.methods[mi];
+    if (!t.compiled || !t.error_free(false)) continue;
+    extra[mi] = int(std::clamp(std::ceil(0.1 / std::max(t.seconds, 1e-6)), 2.0, std::max(2.0, opt.max_timing_runs - 1.0)));
+    rounds = std::max(rounds, extra[mi]);
+  }
   for (int rep = 0; rep < rounds; ++rep) {
     say("timing the candidates again (" + std::to_string(rep + 2) + "/" + std::to_string(rounds + 1) + ")");
     for (std::size_t mi = 0; mi < methods.size(); ++mi) {
       MethodTally& t = res.methods[mi];
-      if (!t.compiled || !t.error_free(false)) continue;
+      if (rep >= extra[mi]) continue;
       double sec = 0;
       for (const auto& set : sets) (void)cast(accel, methods[mi], set, nullptr, opt.threads, sec);
       t.seconds = std::min(t.seconds, sec);
+      t.timing_runs = extra[mi] + 1;
     }
   }
-  res.timing_runs = rounds + 1;
 
   // Which of certified's and robust's paths the rays reach: the registry methods wrapped with
   // counters, on the same BVH and conservative traversal, one thread (the fallback counter is
@@ -417,6 +440,7 @@ AdviseResult advise(const Scene& s, const MethodRegistry& reg, const AdviseOptio
       double warm = 0;
       (void)cast(accel, m, r, nullptr, opt.threads, warm);
       (void)cast(with_sphere, m, r, nullptr, opt.threads, warm);
+      if (warm > 2) kc.repeats = 1;  // a slow method (over a second a run): one round of three
       // Triangle-only, with the sphere, triangle-only again: the two triangle-only series measure
       // the noise of the timings themselves.
       for (int rep = 0; rep < kc.repeats; ++rep) {

@@ -31,7 +31,8 @@ struct AdviseOptions {
   std::vector<std::string> methods;
   /// Measure the triangle-only scene against the same plus one sphere: only on triangle-only scenes,
   /// on `rays` random rays clamped to [20000, 100000], each method warmed up once, best of 5.
-  int max_timing_runs = 21;  ///< runs of each candidate for the recommendation, at most (at least 3)
+  /// Runs of each candidate for the recommendation: 3, more (up to this) while a run is under 0.1 s.
+  int max_timing_runs = 21;
   bool compare_kinds = true;
   std::size_t kind_cost_rays = 0;  ///< random rays for that (0: `rays` clamped to [20000, 100000])
   std::function<void(const std::string&)> progress;  ///< one line of progress (may be empty)
@@ -41,6 +42,8 @@ struct AdviseOptions {
 struct RaySetInfo {
   std::string name;
   std::size_t rays = 0;
+  std::size_t reference_hits = 0;  ///< rays certified finds a hit for
+  std::size_t invalid = 0;         ///< rays with a non-finite origin or direction, or d = 0 (no method hits them)
 };
 
 /// One method's closest hits against certified's on the scene's rays.
@@ -70,9 +73,9 @@ struct MethodTally {
   std::uint64_t max_ulps = 0;
   /// errors() per ray set, for the sets with any, in set order.
   std::vector<std::pair<std::string, std::uint64_t>> errors_by_set;     ///< the largest t error (ulps of its precision) on the right primitive
-  /// Casting time of its rays (candidates for the recommendation: the fastest of
-  /// AdviseResult::timing_runs runs).
+  /// Casting time of its rays (candidates for the recommendation: the fastest of `timing_runs`).
   double seconds = 0;
+  int timing_runs = 1;
   [[nodiscard]] double mrays() const { return seconds > 0 ? double(rays) / seconds / 1e6 : 0; }
   /// Every error above; without the wrong primitives on leak rays when !count_leak_grazes.
   [[nodiscard]] std::uint64_t errors(bool count_leak_grazes = true) const {
@@ -124,7 +127,6 @@ struct AdviseResult {
   std::optional<std::uint64_t> t_tolerance;  ///< AdviseOptions::t_tolerance
   double same_point = 0;                     ///< same_point_distance() of the scene
   double seconds = 0;
-  int timing_runs = 1;  ///< runs of each candidate for the recommendation (the fastest kept)
 };
 
 /// How far apart two hit points may lie along a ray and count as the same point: 2^-20 of the
