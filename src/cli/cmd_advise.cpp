@@ -27,8 +27,8 @@ struct AdviseCliOptions {
 };
 
 int run_advise(AdviseCliOptions& o) {
-  if (o.opt.rays == 0) {
-    fmt::print(stderr, "rayproof advise: --rays must be at least 1\n");
+  if (o.opt.rays == 0 || o.opt.rays > 100000000) {
+    fmt::print(stderr, "rayproof advise: --rays must be between 1 and 100000000\n");
     return 2;
   }
   if (!(o.opt.sliver_aspect > 1)) {
