@@ -373,6 +373,9 @@ TEST(AdviseText, SentencesThatChangeWithTheNumbers) {
             "triangle-only scene against itself and any speed-up with the sphere): leaving the other kinds out saves "
             "nothing measurable here.");
   for (const auto& x : s) EXPECT_EQ(x.find("Not counting grazes"), std::string::npos) << x;
+  r.exact_checked = r.exact_agree = 0;
+  EXPECT_EQ(cli::advise_sentences(r)[8], "`certified` is the reference (proven equal to exact); no ray was checked against "
+                                         "`exact` (--exact-sample 0).");
   EXPECT_NE(s[9].find("(else beyond 4 ulps of its precision)"), std::string::npos) << s[9];
 }
 

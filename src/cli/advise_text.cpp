@@ -110,13 +110,16 @@ std::vector<std::string> advise_sentences(const scene::AdviseResult& r) {
   out.push_back("Rays: " + and_list(sets) + (a.triangles && !a.closed_components ? " (no closed component: no leak rays)" : "") + ".");
 
   // The reference.
-  std::string ref = fmt::format("`certified` is the reference (proven equal to exact); checked against `exact` on {}, "
+  if (r.exact_checked == 0)
+    out.push_back("`certified` is the reference (proven equal to exact); no ray was checked against `exact` "
+                  "(--exact-sample 0).");
+  std::string ref = r.exact_checked == 0 ? std::string() : fmt::format("`certified` is the reference (proven equal to exact); checked against `exact` on {}, "
                                 "it agreed on {}.",
                                 count(r.exact_checked, "ray", "rays"), r.exact_checked == r.exact_agree ? std::string("all")
                                                                                                          : std::to_string(r.exact_agree));
   if (r.exact_checked != r.exact_agree)
     ref += fmt::format(" It disagreed on {}: the comparisons below are in doubt.", r.exact_checked - r.exact_agree);
-  out.push_back(ref);
+  if (!ref.empty()) out.push_back(ref);
   if (r.reference_misses_on_leak_rays)
     out.push_back(fmt::format("`certified` itself finds no hit for {} of the leak rays: their origin (the volume centroid) "
                               "is not inside its component, so a method's miss there is no leak.",
