@@ -34,7 +34,8 @@ struct ReportOptions {
   std::uint64_t irradiance_samples = 16384;
   std::uint64_t ulp_tolerance = 1;
   bool stability_only = false;        ///< --stability: only the stability part
-  std::size_t stability_count = 100;  ///< cases per knob step (0: no stability part)
+  std::size_t stability_count = 200;  ///< cases per knob step (0: no stability part)
+  bool stability_count_given = false; ///< --stability-count on the command line
 };
 
 std::string cpu_model() {
@@ -152,7 +153,10 @@ int run_report(const ReportOptions& opt) {
     return 2;
   }
   progress(fmt::format("wrote {0}/report.md, {0}/report.csv, {0}/error_vs_time.svg", opt.out));
-  if (opt.stability_count > 0)
+  // The stability part belongs to the main job (every family); a focused run (--input, --families)
+  // gets it only when --stability-count asks for it.
+  const bool focused = !opt.input.empty() || !opt.families.empty();
+  if (opt.stability_count > 0 && (!focused || opt.stability_count_given))
     if (auto err = run_stability_part(opt, methods, progress, opt.out + "/report.md"); !err.empty()) {
       fmt::print(stderr, "rayproof report: {}\n", err);
       return 2;
@@ -187,15 +191,18 @@ Run add_report(CLI::App& app) {
   sub->add_option("--input", opt->input, "Use the cases of this file instead of generated families");
   sub->add_flag("--stability", opt->stability_only,
                  "Only the stability part: every method along each stiffness knob (stability.md, .csv, .svg)");
-  sub->add_option("--stability-count", opt->stability_count,
-                  "Cases per step of each stiffness knob (0: no stability part)")
+  auto* stability_count = sub->add_option("--stability-count", opt->stability_count,
+                  "Cases per step of each stiffness knob (0: no stability part; with --input or --families, only when given)")
       ->check(CLI::Range(std::size_t{0}, std::size_t{100000}))
       ->capture_default_str();
   add_user_kernel_options(*sub, opt->user);
   sub->add_option("--irradiance-samples", opt->irradiance_samples,
                   "Largest sample count of the irradiance section's sweep (0: no irradiance section)")
       ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 24))->capture_default_str();
-  return [opt] { return run_report(*opt); };
+  return [opt, stability_count] {
+    opt->stability_count_given = stability_count->count() > 0;
+    return run_report(*opt);
+  };
 }
 
 }  // namespace rayproof::cli

@@ -28,7 +28,8 @@ void put_ivec(io::Case& c, std::size_t at, I3 v, int e) {
 
 /// offset: a lattice triangle with |coordinates| <= 2^12 (the size), hit at t = s (1..8, or
 /// behind, 1 in 8) at a point with barycentrics in 1/256ths (interior two times in three, else
-/// outside), the whole case (origin and vertices) translated by +-2^(k+12) on every axis. Each
+/// outside: the origin's lattice coordinates stay below 2^15), the whole case (origin and
+/// vertices) translated by +-2^(k+12) on every axis. Each
 /// emitted coordinate is the double nearest to offset + lattice value (exact while k + 13 <= 53).
 io::Case knob_offset(Rng& r, int k) {
   std::array<I3, 3> t;
