@@ -307,7 +307,7 @@ TEST(StabilityText, TableAndSentencesWordForWord) {
   verify::StabilityRun run;
   run.count = 100;
   run.seed = 1;
-  run.knobs = {"tilt_triangle", "sliver", "tangency", "magnitude_large"};
+  run.knobs = {"tilt_triangle", "sliver", "tangency", "magnitude_large", "offset"};
   run.curves = {
       curve("tilt_triangle", "float", Precision::float32, {step(-15, 100, 0, {0}), step(-17, 100, 5, {4})}),
       curve("tilt_triangle", "baldwin-weber", Precision::float32, {step(-13, 100, 0, {0}), step(-15, 100, 8, {0})}),
@@ -316,6 +316,8 @@ TEST(StabilityText, TableAndSentencesWordForWord) {
       curve("sliver", "exact", Precision::float64, {step(0, 100, 0), step(40, 100, 0)}, exactness()),
       curve("tangency", "robust", Precision::float32, {step(-21, 100, 0, {0}), step(-24, 100, 3, {0})}),
       curve("magnitude_large", "watertight-float", Precision::float32, {step(16, 100, 0, {0}), step(32, 100, 22, {0})}),
+      curve("offset", "float", Precision::float32, {step(16, 200, 0, {0}), step(20, 200, 1, {0})}),
+      curve("offset", "baldwin-weber", Precision::float32, {step(4, 200, 0, {9}), step(8, 200, 1, {9})}),
   };
   EXPECT_EQ(report::breaks_table(run),
             "| knob | method | class errors > 0.1% from | median t error > 1 ulp from | predicted class break | measured |\n"
@@ -328,9 +330,12 @@ TEST(StabilityText, TableAndSentencesWordForWord) {
             "| tangency | robust | 2^-24 | never up to 2^-60 | never in range | earlier: past 2^-24 its 24-bit input "
             "cannot hold the gap: R (1 + 2^k) rounds to R, an exact tangent |\n"
             "| magnitude_large | watertight-float | 2^32 | never up to 2^1000 | 2^34 .. 2^43 | earlier: as for a product "
-            "of four coordinates (2^24 .. 2^32) |\n");
+            "of four coordinates (2^24 .. 2^32) |\n"
+            "| offset | float | 2^20 | never up to 2^60 | never in range | earlier: past 2^11 its 24-bit input rounds the "
+            "case's lattice beside the offset, so it sees a coarser case, not the translated one (1 of 200 cases) |\n"
+            "| offset | baldwin-weber | 2^8 | 2^4 | 2^0 .. 2^16 | as predicted |\n");
   const auto s = report::prediction_sentences(run);
-  ASSERT_EQ(s.size(), 3u);  // sliver has no derivation: only the exact-class promise
+  ASSERT_EQ(s.size(), 4u);  // sliver has no derivation: only the exact-class promise
   EXPECT_EQ(s[0],
             "**tilt_triangle** (tilt (|d_z| / max(|d_x|, |d_y|), triangle in a plane with n_z != 0), first class errors "
             "above 0.1%): 24-bit arithmetic: the determinant n . d is 2^k times its terms (up to the normal's slant and "
@@ -346,6 +351,13 @@ TEST(StabilityText, TableAndSentencesWordForWord) {
             "**magnitude_large** (coordinate magnitude, first class errors above 0.1%): 24-bit arithmetic: a product of "
             "three coordinates overflows past 2^128, predicted 2^34 .. 2^43; measured watertight-float 2^32 (earlier: as "
             "for a product of four coordinates (2^24 .. 2^32)).");
+  EXPECT_EQ(s[3],
+            "**offset** (offset / size, first class errors above 0.1%): 24-bit arithmetic on differences of the inputs: "
+            "they are exact at any offset (Sterbenz), predicted never in range; measured float 2^20 (earlier: past 2^11 "
+            "its 24-bit input rounds the case's lattice beside the offset, so it sees a coarser case, not the translated "
+            "one (1 of 200 cases)); 24-bit arithmetic on absolute positions: an error of 2^-p of the offset reaches the "
+            "hits' margin of 2^-8 of the size by an offset of 2^(p-8), predicted 2^0 .. 2^16; measured baldwin-weber 2^8 "
+            "(as predicted).");
 }
 
 TEST(StabilityReport, SvgHasAPanelPairPerKnobAndNoNaN) {

@@ -76,7 +76,7 @@ std::string panel(double x0, double y0, double w, double h, const gen::Knob& k, 
       for (const auto& st : c->steps) {
         if (st.stats.cases == 0) continue;
         const auto [f, zero] = value(st.stats);
-        pts += fmt::format("{:.1f},{:.1f} ", X(st.exponent), point(f, zero));
+        pts += fmt::format("{:.0f},{:.0f} ", X(st.exponent), point(f, zero));
       }
       if (!pts.empty())
         s += fmt::format("<polyline points='{}' fill='none' stroke='{}' stroke-width='1.6' stroke-opacity='0.85'{}/>\n",

@@ -48,6 +48,16 @@ std::string reason(const gen::Knob& k, const verify::StabilityCurve& c, const ve
   if (k.name == "tangency" && a == Agreement::earlier && e <= -in_bits)
     return fmt::format("past 2^-{} its {}-bit input cannot hold the gap: R (1 + 2^k) rounds to R, an exact tangent",
                        in_bits, in_bits);
+  if (k.name == "offset" && a == Agreement::earlier && e > in_bits - 13) {
+    // The lattice values reach 2^12 (vertices) beside an offset of 2^(k+12): a p-bit input holds
+    // them exactly only while k + 13 <= p.
+    std::size_t errors = 0, n = 0;
+    for (const auto& st : c.steps)
+      if (st.exponent == e) errors = st.stats.class_errors(), n = st.stats.cases;
+    return fmt::format("past 2^{} its {}-bit input rounds the case's lattice beside the offset, so it sees a coarser "
+                       "case, not the translated one ({} of {} cases)",
+                       in_bits - 13, in_bits, errors, n);
+  }
   if ((k.name == "magnitude_large" || k.name == "magnitude_small") && a == Agreement::earlier) {
     // The same window for a product of four coordinates (watertight's scaled differences).
     const int bits = arithmetic_bits(c.method, c.precision, k.kind);
