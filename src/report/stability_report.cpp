@@ -72,12 +72,17 @@ std::string panel(double x0, double y0, double w, double h, const gen::Knob& k, 
   for (const auto* c : curves) {
     const char* col = kColours[colour.at(c->method) % 12];
     auto polyline = [&](auto&& value, const char* dash) {
-      std::string pts;
+      std::vector<std::pair<double, double>> xy;
       for (const auto& st : c->steps) {
         if (st.stats.cases == 0) continue;
         const auto [f, zero] = value(st.stats);
-        pts += fmt::format("{:.0f},{:.0f} ", X(st.exponent), point(f, zero));
+        xy.emplace_back(std::round(X(st.exponent)), std::round(point(f, zero)));
       }
+      // A point between two at the same height adds nothing to the line: left out (keeps the file small).
+      std::string pts;
+      for (std::size_t i = 0; i < xy.size(); ++i)
+        if (i == 0 || i + 1 == xy.size() || xy[i - 1].second != xy[i].second || xy[i + 1].second != xy[i].second)
+          pts += fmt::format("{:.0f},{:.0f} ", xy[i].first, xy[i].second);
       if (!pts.empty())
         s += fmt::format("<polyline points='{}' fill='none' stroke='{}' stroke-width='1.6' stroke-opacity='0.85'{}/>\n",
                          pts, col, dash);
