@@ -339,7 +339,7 @@ TEST(StabilityText, TableAndSentencesWordForWord) {
   EXPECT_EQ(s[0],
             "**tilt_triangle** (tilt (|d_z| / max(|d_x|, |d_y|), triangle in a plane with n_z != 0), first class errors "
             "above 0.1%): 24-bit arithmetic: the determinant n . d is 2^k times its terms (up to the normal's slant and "
-            "the triangle's shape, 2^8 together) and is rounded at 2^-p of them, predicted 2^-16 .. 2^-24; measured float "
+            "the triangle's shape, typically 2^8 together) and is rounded at 2^-p of them, predicted 2^-16 .. 2^-24; measured float "
             "2^-17 (as predicted), baldwin-weber 2^-15 (earlier); promises the exact class, predicted never in range; "
             "measured certified never up to 2^-59 (as predicted).");
   EXPECT_EQ(s[1],

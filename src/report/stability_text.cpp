@@ -95,10 +95,11 @@ std::optional<Prediction> predict(const gen::Knob& knob, const std::string& meth
     // det = e1 . (d x e2) = d . (e1 x e2) is about 2^k |e1 x e2| |d| n_z / |n|, computed from
     // products as large as |e1| |e2| |d|; its rounding error, a few 2^-p of those, swamps it when
     // 2^k is 2^-p times the slant |n| / n_z (up to 2^4 here) and the shape factor |e1||e2| / |e1 x e2|
-    // (up to about 2^4): the first class errors between 2^-(p-8) and 2^-p.
+    // (typically up to 2^4; thinner lattice triangles exist): the first class errors between
+    // 2^-(p-8) and 2^-p.
     p.mild = -(bits - 8), p.stiff = -bits;
     p.why = arith + ": the determinant n . d is 2^k times its terms (up to the normal's slant and the "
-                    "triangle's shape, 2^8 together) and is rounded at 2^-p of them";
+                    "triangle's shape, typically 2^8 together) and is rounded at 2^-p of them";
     return p;
   }
   if (knob.name == "tilt_plane") {
