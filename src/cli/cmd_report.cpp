@@ -193,7 +193,7 @@ Run add_report(CLI::App& app) {
                  "Only the stability part: every method along each stiffness knob (stability.md, .csv, .svg)");
   auto* stability_count = sub->add_option("--stability-count", opt->stability_count,
                   "Cases per step of each stiffness knob (0: no stability part; with --input or --families, only when given)")
-      ->check(CLI::Range(std::size_t{0}, std::size_t{100000}))
+      ->check(CLI::Range(std::size_t{0}, std::size_t{5000}))
       ->capture_default_str();
   add_user_kernel_options(*sub, opt->user);
   sub->add_option("--irradiance-samples", opt->irradiance_samples,
