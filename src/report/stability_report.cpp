@@ -43,10 +43,14 @@ std::string panel(double x0, double y0, double w, double h, const gen::Knob& k, 
   s += fmt::format("<text x='{:.0f}' y='{:.0f}' font-size='13' font-weight='bold'>{}: {}</text>\n", ox, y0 + 14, esc(k.name),
                    rate ? "class error rate" : "t error (median solid, max dashed)");
   s += fmt::format("<rect x='{:.0f}' y='{:.0f}' width='{:.0f}' height='{:.0f}' fill='none' stroke='#888'/>\n", ox, oy, pw, ph);
-  // x ticks: about eight labels.
+  // x ticks: about eight labels, none closer than 44 px to the previous one (the magnitude knobs'
+  // steps are denser near 2^0 than far out).
   const std::size_t every = std::max<std::size_t>(1, (k.exponents.size() + 7) / 8);
+  double last_x = -1e9;
   for (std::size_t i = 0; i < k.exponents.size(); i += every) {
     const double x = X(k.exponents[i]);
+    if (x - last_x < 44) continue;
+    last_x = x;
     s += fmt::format("<line x1='{:.1f}' y1='{:.0f}' x2='{:.1f}' y2='{:.0f}' stroke='#ddd'/>", x, oy, x, oy + ph);
     s += fmt::format("<text x='{:.1f}' y='{:.0f}' font-size='10' text-anchor='middle'>2^{}</text>\n", x,
                      oy + ph + band + 12, k.exponents[i]);
