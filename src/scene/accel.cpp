@@ -74,7 +74,8 @@ struct Leaves {
 
 template <class G>
 Leaves leaves_of(const Bvh4& bvh, const std::vector<LeafPrim>& prims, const G& groups) {
-  return {bvh, prims.data(), groups.empty() ? nullptr : groups.data(), detail::leaf_simd()};
+  const detail::LeafSimd simd = detail::leaf_simd();
+  return {bvh, prims.data(), groups.empty() || simd == detail::LeafSimd::off ? nullptr : groups.data(), simd};
 }
 
 /// The kernels with group versions (leaf_simd.h): `float` and `robust`.
@@ -286,10 +287,7 @@ void Accel::build_groups() {
         const Vec3<float> q[3] = {t.p0, t.p1, t.p2};
         for (int v = 0; v < 3; ++v)
           for (int a = 0; a < 3; ++a) g.p[v][a][i] = q[v][a];
-        // robust's ray-independent screens (kernels.h): invalid, or a zero double normal.
-        const Vec3<double> p0 = t.p0.cast<double>(), p1 = t.p1.cast<double>(), p2 = t.p2.cast<double>();
-        const bool dead = !triangle_finite(t) || is_zero(cross(p1 - p0, p2 - p0));
-        g.tag[i] = (dead ? kDeadLane : 0u) | p.id;
+        g.tag[i] = triangle_lane_tag(t, p.id);
       }
     }
   });

@@ -20,6 +20,7 @@ LeafSimd from_environment() {
   const LeafSimd best = cpu_has_avx2() ? LeafSimd::avx2 : LeafSimd::sse;
   const char* e = std::getenv("RAYPROOF_SIMD");
   if (!e) return best;
+  if (std::strcmp(e, "off") == 0) return LeafSimd::off;
   if (std::strcmp(e, "scalar") == 0) return LeafSimd::scalar;
   if (std::strcmp(e, "sse") == 0) return LeafSimd::sse;
   return best;  // "avx2" or anything else: the best the CPU has
@@ -46,6 +47,7 @@ void unforce_leaf_simd() { forced.store(-1, std::memory_order_relaxed); }
 
 const char* to_string(LeafSimd s) {
   switch (s) {
+    case LeafSimd::off: return "off";
     case LeafSimd::scalar: return "scalar";
     case LeafSimd::sse: return "sse";
     case LeafSimd::avx2: return "avx2";

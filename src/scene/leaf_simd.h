@@ -25,8 +25,9 @@
 /// kernel does.
 ///
 /// Path selection: AVX2 when the CPU has it, unless the environment variable RAYPROOF_SIMD is
-/// `sse` (robust lane by lane, float screen in SSE) or `scalar` (every lane through the scalar
-/// kernel). Tests force a path with force_leaf_simd.
+/// `sse` (robust lane by lane, float screen in SSE), `scalar` (every lane through the scalar
+/// kernel) or `off` (no groups: slot by slot, as before them). Tests force a path with
+/// force_leaf_simd.
 #include <algorithm>
 #include <cstdint>
 #include <span>
@@ -35,6 +36,7 @@
 #include "rayproof/bvh.h"
 #include "rayproof/contact.h"
 #include "rayproof/ray.h"
+#include "rayproof/triangle_common.h"
 
 namespace rayproof::scene::detail {
 
@@ -52,7 +54,19 @@ struct alignas(32) TriGroup {
 };
 static_assert(sizeof(TriGroup) == 160);
 
-enum class LeafSimd { scalar, sse, avx2 };
+/// off: no groups, the queries go slot by slot through the per-primitive kernels (the reference);
+/// scalar: the groups, every lane through the per-primitive kernel; sse: float's screen in SSE,
+/// robust lane by lane; avx2: both in lanes.
+/// A triangle lane's tag: `id`, with kDeadLane when robust classes the triangle invalid or
+/// degenerate for every ray (its screens in kernels.h: a non-finite float vertex, or the double
+/// normal cross(p1 - p0, p2 - p0) of the float vertices is zero).
+[[nodiscard]] inline std::uint32_t triangle_lane_tag(const Triangle<float>& t, std::uint32_t id) {
+  if (!triangle_finite(t)) return kDeadLane | id;
+  const Vec3<double> p0 = t.p0.cast<double>(), p1 = t.p1.cast<double>(), p2 = t.p2.cast<double>();
+  return is_zero(cross(p1 - p0, p2 - p0)) ? kDeadLane | id : id;
+}
+
+enum class LeafSimd { off, scalar, sse, avx2 };
 
 /// The path the queries use: forced by force_leaf_simd, else RAYPROOF_SIMD, else the best the CPU has.
 [[nodiscard]] LeafSimd leaf_simd();
