@@ -164,6 +164,43 @@ TEST(LeafSimd, RobustLanesMatchTheScalarKernelBitForBit) {
   EXPECT_GT(dead, 200);
 }
 
+TEST(LeafSimd, CertifiedStageOneMissesInLanesAreTheScalarStagesMisses) {
+  if (!cpu_avx2()) GTEST_SKIP() << "no AVX2 on this CPU";
+  Family f(9);
+  std::uniform_real_distribution<double> jitter(-1e-9, 1e-9);
+  int misses = 0, others = 0;
+  for (int r = 0; r < 10000; ++r) {
+    Ray<double> ray = f.ray(r);
+    if (r % 2) ray.o.x += jitter(f.rng);  // not float-exact
+    Triangle<double> t[kLanes];
+    alignas(32) double p[3][3][kLanes] = {};
+    const int n = 1 + int(f.rng() % kLanes);
+    for (int i = 0; i < n; ++i) {
+      const Triangle<float> tf = f.triangle(r, ray);
+      t[i] = {tf.p0.cast<double>(), tf.p1.cast<double>(), tf.p2.cast<double>()};
+      if (r % 3 == 0) t[i].p2.y += jitter(f.rng);
+      const Vec3<double> q[3] = {t[i].p0, t[i].p1, t[i].p2};
+      for (int v = 0; v < 3; ++v)
+        for (int a = 0; a < 3; ++a) p[v][a][i] = q[v][a];
+    }
+    const unsigned live = (1u << n) - 1;
+    const unsigned miss = certified_group_misses_avx2(ray, p, live);
+    EXPECT_EQ(miss & ~live, 0u);
+    for (int i = 0; i < n; ++i) {
+      const bool finite = triangle_finite(t[i]);
+      const auto stage1 = certified::detail::triangle_fast(ray, t[i], [] { return std::optional<Hit<double>>{}; });
+      const bool scalar_miss = finite && stage1 && stage1->contact == Contact::miss;
+      EXPECT_EQ(bool(miss >> i & 1), scalar_miss) << "ray " << r << " lane " << i;
+      if (miss >> i & 1) {
+        EXPECT_EQ(certified::triangle(ray, t[i])->contact, Contact::miss);
+      }
+      (miss >> i & 1) ? ++misses : ++others;
+    }
+  }
+  EXPECT_GT(misses, 1000);
+  EXPECT_GT(others, 1000);
+}
+
 TEST(LeafSimd, FloatScreenLanesMatchTheScalarScreen) {
   const Scene empty;
   CompiledKernel<float, TriAlgo::moller_trumbore> k{empty, nullptr, 0};
@@ -232,7 +269,7 @@ bool same_hit(const PrimHit& a, const PrimHit& b) {
 /// closest, any and all through the groups on `path`, against the slot-by-slot queries.
 void expect_same_queries(const Accel& a, const std::vector<Ray<double>>& rays, LeafSimd path, int& hits) {
   hits = 0;
-  for (const char* name : {"float", "robust"}) {
+  for (const char* name : {"float", "robust", "certified"}) {
     const SceneMethod m = method(name);
     for (std::size_t i = 0; i < rays.size(); ++i) {
       const QueryRange q = i % 4 == 1 ? QueryRange{0.25, 1.5} : QueryRange{};
@@ -292,6 +329,7 @@ TEST(LeafSimd, BunnyLeakRaysMatchAndRobustDoesNotLeak) {
     EXPECT_GT(hits, 2000) << to_string(p);
     ForceSimd f(p);
     EXPECT_EQ(count_leaks(a, method("robust"), rays).misses, 0u) << to_string(p);
+    EXPECT_EQ(count_leaks(a, method("certified"), rays).misses, 0u) << to_string(p);
   }
 }
 #endif

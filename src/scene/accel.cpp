@@ -78,10 +78,11 @@ Leaves leaves_of(const Bvh4& bvh, const std::vector<LeafPrim>& prims, const G& g
   return {bvh, prims.data(), groups.empty() || simd == detail::LeafSimd::off ? nullptr : groups.data(), simd};
 }
 
-/// The kernels with group versions (leaf_simd.h): `float` and `robust`.
+/// The kernels with group versions (leaf_simd.h): `float`, `robust` and `certified`.
 template <class K>
 constexpr bool kGroupKernel = std::is_same_v<K, detail::CompiledKernel<float, TriAlgo::moller_trumbore>> ||
-                              std::is_same_v<K, detail::CompiledKernel<float, TriAlgo::robust>>;
+                              std::is_same_v<K, detail::CompiledKernel<float, TriAlgo::robust>> ||
+                              std::is_same_v<K, detail::CompiledKernel<double, TriAlgo::certified>>;
 
 /// Lane i of group g as a float triangle.
 inline Triangle<float> lane_triangle(const detail::TriGroup& g, int i) {
@@ -95,6 +96,7 @@ template <class K, class Emit>
 bool group_leaf(const K& k, const Leaves& L, std::uint32_t first, std::uint32_t count, Emit& emit) {
   using namespace detail;
   constexpr bool kRobust = std::is_same_v<K, CompiledKernel<float, TriAlgo::robust>>;
+  constexpr bool kCertified = std::is_same_v<K, CompiledKernel<double, TriAlgo::certified>>;
   const std::uint32_t end = first + count;
   for (std::uint32_t g0 = first; g0 < end; g0 += kLanes) {
     const TriGroup& g = L.groups[g0 / kLanes];
@@ -121,6 +123,23 @@ bool group_leaf(const K& k, const Leaves& L, std::uint32_t first, std::uint32_t 
       } else {
         finish = tri;  // dead lanes: the scalar kernel reports nothing for them either
       }
+    } else if constexpr (kCertified) {
+      // The double vertices through the leaf records; stage 1's proven misses in lanes.
+      finish = tri | dead;
+      if (L.simd == LeafSimd::avx2 && finish) {
+        alignas(32) double p[3][3][kLanes] = {};
+        for (unsigned m = finish; m; m &= m - 1) {
+          const int i = __builtin_ctz(m);
+          const LeafPrim& lp = L.prims[g0 + i];
+          for (int v = 0; v < 3; ++v) {
+            const Vec3<double>& x = k.verts[lp.v[v]];
+            p[v][0][i] = x.x, p[v][1][i] = x.y, p[v][2][i] = x.z;
+          }
+        }
+        finish &= ~certified_group_misses_avx2(k.ray_d, p, finish);
+      }
+      scalar |= finish;  // certified::triangle on the double vertices, as slot by slot
+      finish = 0;
     } else {
       finish = L.simd == LeafSimd::scalar ? tri | dead : mt_group_survivors(k.ray, g, tri | dead);
     }
@@ -133,8 +152,10 @@ bool group_leaf(const K& k, const Leaves& L, std::uint32_t first, std::uint32_t 
       } else if (lanes.hit >> i & 1) {
         c[0] = {static_cast<Contact>(lanes.contact[i]), double(lanes.t[i]), double(lanes.b1[i]), double(lanes.b2[i])};
         n = 1;
-      } else {
+      } else if constexpr (!kCertified) {
         n = k.triangle_crossings(lane_triangle(g, i), c);
+      } else {
+        n = 0;  // not reached: certified finishes every lane through the leaf records
       }
       if (n && emit(id, c, n)) return true;
     }

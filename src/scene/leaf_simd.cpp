@@ -5,6 +5,7 @@
 #include <immintrin.h>
 
 #include <atomic>
+#include <cmath>
 #include <cstdlib>
 #include <cstring>
 
@@ -120,6 +121,62 @@ __attribute__((target("avx2"))) void robust_group_avx2(const RobustLaneRay& r, c
     const int zeros = (U[i] == 0.0) + (V[i] == 0.0) + (W[i] == 0.0);
     out.contact[i] = static_cast<std::uint8_t>(zeros == 0 ? Contact::interior : zeros == 1 ? Contact::edge : Contact::vertex);
   }
+}
+
+// triangle_stage1 (certified_triangle.h) up to `return H{Contact::miss}`, line by line in lanes:
+// a = p0 - o, b = p1 - o, c = p2 - o; u0 = (d x b) . c, u1 = (d x c) . a, u2 = (d x a) . b; the
+// bounds e_i and eden; a lane is a miss when |den| > eden, eden < 2^1020 and a u_i is clearly of
+// the sign opposite to den. Same operations in the same order as the scalar stage (no FMA here, and
+// the project compiles with -ffp-contract=off, so the scalar stage does not contract either); and
+// whatever the rounding, a lane reported here is a miss proven by stage 1's error bound, so the
+// exact class certified::triangle returns for it is miss.
+__attribute__((target("avx2"))) unsigned certified_group_misses_avx2(const Ray<double>& ray, const double (&p)[3][3][kLanes],
+                                                                    unsigned live) {
+  if (!live) return 0;
+  const __m256d sign = _mm256_set1_pd(-0.0);
+  __m256d rel[3][3];  // rel[vertex][axis] = p - o
+  for (int v = 0; v < 3; ++v)
+    for (int k = 0; k < 3; ++k) rel[v][k] = _mm256_sub_pd(_mm256_loadu_pd(p[v][k]), _mm256_set1_pd(ray.o[k]));
+  const __m256d dx = _mm256_set1_pd(ray.d.x), dy = _mm256_set1_pd(ray.d.y), dz = _mm256_set1_pd(ray.d.z);
+  __m256d u[3], mx[3];
+  // u0 from (b, c) = (rel[1], rel[2]), u1 from (c, a), u2 from (a, b): dot(cross(d, q), r).
+  const int q_of[3] = {1, 2, 0}, r_of[3] = {2, 0, 1};
+  for (int i = 0; i < 3; ++i) {
+    const __m256d* q = rel[q_of[i]];
+    const __m256d* r = rel[r_of[i]];
+    const __m256d cx = _mm256_sub_pd(_mm256_mul_pd(dy, q[2]), _mm256_mul_pd(dz, q[1]));
+    const __m256d cy = _mm256_sub_pd(_mm256_mul_pd(dz, q[0]), _mm256_mul_pd(dx, q[2]));
+    const __m256d cz = _mm256_sub_pd(_mm256_mul_pd(dx, q[1]), _mm256_mul_pd(dy, q[0]));
+    u[i] = _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(cx, r[0]), _mm256_mul_pd(cy, r[1])), _mm256_mul_pd(cz, r[2]));
+  }
+  for (int v = 0; v < 3; ++v) {  // norm_inf: m = x > y ? x : y; m > z ? m : z
+    const __m256d x = _mm256_andnot_pd(sign, rel[v][0]), y = _mm256_andnot_pd(sign, rel[v][1]), z = _mm256_andnot_pd(sign, rel[v][2]);
+    const __m256d m = _mm256_blendv_pd(y, x, _mm256_cmp_pd(x, y, _CMP_GT_OQ));
+    mx[v] = _mm256_blendv_pd(z, m, _mm256_cmp_pd(m, z, _CMP_GT_OQ));
+  }
+  const double d1 = std::fabs(ray.d.x) + std::fabs(ray.d.y) + std::fabs(ray.d.z);
+  const __m256d k = _mm256_set1_pd(0x1p-49 * d1), tiny = _mm256_set1_pd(0x1p-1000), one = _mm256_set1_pd(1.0);
+  // e0 = k mb mc + 2^-1000 (mc + 1), e1 = k mc ma + 2^-1000 (ma + 1), e2 = k ma mb + 2^-1000 (mb + 1)
+  __m256d e[3];
+  for (int i = 0; i < 3; ++i) {
+    const __m256d f = mx[q_of[i]], g = mx[r_of[i]];
+    e[i] = _mm256_add_pd(_mm256_mul_pd(_mm256_mul_pd(k, f), g), _mm256_mul_pd(tiny, _mm256_add_pd(g, one)));
+  }
+  const __m256d den = _mm256_add_pd(_mm256_add_pd(u[0], u[1]), u[2]);
+  const __m256d au = _mm256_add_pd(_mm256_add_pd(_mm256_andnot_pd(sign, u[0]), _mm256_andnot_pd(sign, u[1])),
+                                   _mm256_andnot_pd(sign, u[2]));
+  const __m256d eden = _mm256_add_pd(_mm256_mul_pd(_mm256_add_pd(_mm256_add_pd(e[0], e[1]), e[2]), _mm256_set1_pd(1 + 0x1p-50)),
+                                     _mm256_mul_pd(_mm256_set1_pd(0x1p-51), au));
+  const __m256d decided = _mm256_and_pd(_mm256_cmp_pd(_mm256_andnot_pd(sign, den), eden, _CMP_GT_OQ),
+                                        _mm256_cmp_pd(eden, _mm256_set1_pd(0x1p1020), _CMP_LT_OQ));
+  const __m256d den_pos = _mm256_cmp_pd(den, _mm256_setzero_pd(), _CMP_GT_OQ);
+  __m256d neg = _mm256_setzero_pd();
+  for (int i = 0; i < 3; ++i) {  // den > 0 ? u < -e : u > e
+    const __m256d below = _mm256_cmp_pd(u[i], _mm256_xor_pd(sign, e[i]), _CMP_LT_OQ);
+    const __m256d above = _mm256_cmp_pd(u[i], e[i], _CMP_GT_OQ);
+    neg = _mm256_or_pd(neg, _mm256_blendv_pd(above, below, den_pos));
+  }
+  return unsigned(_mm256_movemask_pd(_mm256_and_pd(decided, neg))) & live;
 }
 
 // mt_surely_no_crossing (kernels.h) in four float lanes; a lane survives unless the scalar screen

@@ -15,7 +15,10 @@
 /// classes invalid or degenerate whatever the ray (a non-finite float vertex, or the double normal
 /// of the float vertices is zero): robust reports nothing for it, other kernels test it as usual.
 ///
-/// Kernels. `float` (Möller–Trumbore): the miss screen mt_surely_no_crossing in four float lanes
+/// Kernels. `certified`: stage 1's volumes u0, u1, u2 and their static error bounds in four double
+/// lanes (AVX2), from the double vertices (read through the leaf records' vertex indices: the groups
+/// hold only floats); the lanes it proves missed report nothing, the others go to
+/// certified::triangle. `float` (Möller–Trumbore): the miss screen mt_surely_no_crossing in four float lanes
 /// (SSE, the x86-64 baseline), the full scalar kernel only for the lanes that pass it. `robust`:
 /// the prepared watertight test in double, four lanes (AVX2 at run time, else lane by lane with the
 /// scalar kernel): the same operations on the same values in the same order, no fused multiply-add
@@ -119,6 +122,12 @@ struct RobustLanes {
 /// The AVX2 robust group kernel over the lanes in `live` (no pad, scalar or dead lanes).
 /// Only call when leaf_simd() == LeafSimd::avx2.
 void robust_group_avx2(const RobustLaneRay& r, const TriGroup& g, unsigned live, RobustLanes& out);
+
+/// certified's stage 1 (certified_triangle.h, triangle_stage1) up to its miss decision, in four
+/// double lanes (AVX2): bit i set when lane i is a proven miss (the scalar stage 1 returns miss for
+/// it, so certified::triangle does). `p[vertex][axis][lane]` are the triangles' double vertices.
+/// Only call when leaf_simd() == LeafSimd::avx2.
+[[nodiscard]] unsigned certified_group_misses_avx2(const Ray<double>& ray, const double (&p)[3][3][kLanes], unsigned live);
 
 /// Möller–Trumbore's miss screen in four float lanes (SSE): bit i set when lane i may cross (the
 /// scalar screen mt_surely_no_crossing is false); only lanes in `live` are considered.
