@@ -13,6 +13,8 @@
 #include <string>
 #include <vector>
 
+#include "cli/registry.h"
+#include "rayproof/certified_triangle.h"
 #include "scene/accel.h"
 #include "scene/kernels.h"
 #include "scene/leaf_simd.h"
@@ -115,6 +117,39 @@ int main(int argc, char** argv) {
                       }
                       return s;
                     }, n_tri});
+    std::vector<Triangle<double>> tris_d(tris.size());
+    for (std::size_t i = 0; i < tris.size(); ++i)
+      tris_d[i] = {tris[i].p0.cast<double>(), tris[i].p1.cast<double>(), tris[i].p2.cast<double>()};
+    vs.push_back({"certified scalar (certified::triangle)", [&] {
+                    std::uint64_t s = 0;
+                    for (int r = 0; r < kRays; ++r)
+                      for (int j = 0; j < kGroups * kLanes; ++j) {
+                        const auto h = certified::triangle(rays[r], tris_d[r * kGroups * kLanes + j]);
+                        s += h ? unsigned(h->contact) : 99u;
+                      }
+                    return s;
+                  }, n_tri});
+    if (avx2)
+      vs.push_back({"certified group (AVX2 stage-1 misses)", [&] {
+                      std::uint64_t s = 0;
+                      alignas(32) double p[3][3][kLanes];
+                      for (int r = 0; r < kRays; ++r)
+                        for (int g = 0; g < kGroups; ++g) {
+                          const Triangle<double>* t = &tris_d[(r * kGroups + g) * kLanes];
+                          for (int i = 0; i < kLanes; ++i) {
+                            const Vec3<double> q[3] = {t[i].p0, t[i].p1, t[i].p2};
+                            for (int v = 0; v < 3; ++v)
+                              for (int a = 0; a < 3; ++a) p[v][a][i] = q[v][a];
+                          }
+                          const unsigned miss = certified_group_misses_avx2(rays[r], p, 0xf);
+                          for (unsigned b = 0xf & ~miss; b; b &= b - 1) {
+                            const auto h = certified::triangle(rays[r], t[__builtin_ctz(b)]);
+                            s += h ? unsigned(h->contact) : 99u;
+                          }
+                          s += unsigned(__builtin_popcount(miss));
+                        }
+                      return s;
+                    }, n_tri});
     vs.push_back({"float scalar (screen + kernel)", [&] {
                     CompiledKernel<float, TriAlgo::moller_trumbore> k{empty, nullptr, 0};
                     std::uint64_t s = 0;
@@ -171,11 +206,8 @@ int main(int argc, char** argv) {
     const Vec3<double> o = in_box();
     random.push_back({o, in_box() - o});
   }
-  for (const char* mname : {"robust", "float"}) {
-    SceneMethod m;
-    m.name = mname;
-    m.fast = std::string(mname) == "robust" ? FastKernel::robust : FastKernel::mt_float;
-    m.traversal = std::string(mname) == "robust" ? BvhTraversal::conservative : BvhTraversal::standard;
+  for (const char* mname : {"robust", "certified", "float"}) {
+    const SceneMethod m = find_scene_method(mname, cli::all_methods());
     for (const char* set : {"primary", "random"}) {
       const auto& rays = std::string(set) == "primary" ? primary : random;
       for (const char* query : {"closest", "any"}) {

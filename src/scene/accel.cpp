@@ -5,6 +5,8 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include <emmintrin.h>
+
 #include <algorithm>
 #include <chrono>
 #include <type_traits>
@@ -90,26 +92,58 @@ inline Triangle<float> lane_triangle(const detail::TriGroup& g, int i) {
   return {p(0), p(1), p(2)};
 }
 
-/// One leaf's slots [first, first + count) through the group kernels: emit(id, crossings, n) for
+/// certified's leaves: the group's float data is not certified's, so the leaf records only (ids
+/// and vertex indices), the double vertices, stage 1's proven misses in lanes (AVX2), the other
+/// lanes through the per-primitive kernel.
+template <class K, class Emit>
+bool certified_leaf(const K& k, const Leaves& L, std::uint32_t first, std::uint32_t count, Emit& emit) {
+  using namespace detail;
+  const std::uint32_t end = first + count;
+  for (std::uint32_t g0 = first; g0 < end; g0 += kLanes) {
+    const unsigned in = end - g0 >= std::uint32_t(kLanes) ? (1u << kLanes) - 1 : (1u << (end - g0)) - 1;
+    Crossing c[2];
+    unsigned miss = 0;
+    if (L.simd == LeafSimd::avx2) {
+      alignas(32) double p[3][3][kLanes];
+      unsigned tri = 0;
+      for (int i = 0; i < kLanes; ++i) {
+        const LeafPrim& lp = L.prims[g0 + i];
+        const bool is_tri = (in >> i & 1) && lp.id < k.ntri;
+        tri |= unsigned(is_tri) << i;
+        for (int v = 0; v < 3; ++v) {
+          const Vec3<double>& x = k.verts[is_tri ? lp.v[v] : 0];
+          p[v][0][i] = x.x, p[v][1][i] = x.y, p[v][2][i] = x.z;
+        }
+      }
+      miss = certified_group_misses_avx2(k.ray_d, p, tri);
+    }
+    for (unsigned m = in & ~miss; m; m &= m - 1) {
+      const LeafPrim& lp = L.prims[g0 + __builtin_ctz(m)];
+      const int n = k.crossings(lp, c);
+      if (n && emit(lp.id, c, n)) return true;
+    }
+  }
+  return false;
+}
+
+/// One leaf's slots [first, first + count) through the group kernels (float, robust): emit(id, crossings, n) for
 /// every primitive with crossings, in slot order within each group; true when emit asks to stop.
 template <class K, class Emit>
 bool group_leaf(const K& k, const Leaves& L, std::uint32_t first, std::uint32_t count, Emit& emit) {
   using namespace detail;
   constexpr bool kRobust = std::is_same_v<K, CompiledKernel<float, TriAlgo::robust>>;
-  constexpr bool kCertified = std::is_same_v<K, CompiledKernel<double, TriAlgo::certified>>;
   const std::uint32_t end = first + count;
   for (std::uint32_t g0 = first; g0 < end; g0 += kLanes) {
-    const TriGroup& g = L.groups[g0 / kLanes];
     const unsigned in = end - g0 >= std::uint32_t(kLanes) ? (1u << kLanes) - 1 : (1u << (end - g0)) - 1;
-    unsigned tri = 0, dead = 0, scalar = 0;
-    for (int i = 0; i < kLanes; ++i) {
-      if (!(in >> i & 1)) continue;
-      const std::uint32_t tag = g.tag[i];
-      if (tag & kScalarLane) scalar |= 1u << i;
-      else if (tag & kDeadLane) dead |= 1u << i;
-      else tri |= 1u << i;
-    }
     Crossing c[2];
+    const TriGroup& g = L.groups[g0 / kLanes];
+    // The lanes' kinds from the tags' two top bits (padding lies past `in`: leaves end before it).
+    static_assert(kLanes == 4 && kScalarLane == 0x80000000u && kDeadLane == 0x40000000u);
+    const __m128i tags = _mm_load_si128(reinterpret_cast<const __m128i*>(g.tag));
+    const unsigned bit31 = unsigned(_mm_movemask_ps(_mm_castsi128_ps(tags)));
+    const unsigned bit30 = unsigned(_mm_movemask_ps(_mm_castsi128_ps(_mm_slli_epi32(tags, 1))));
+    const unsigned scalar = in & bit31;
+    const unsigned dead = in & ~bit31 & bit30, tri = in & ~bit31 & ~bit30;
     // Lanes that the per-primitive kernel finishes (in slot order with the lane results).
     unsigned finish;
     RobustLanes lanes;
@@ -123,23 +157,6 @@ bool group_leaf(const K& k, const Leaves& L, std::uint32_t first, std::uint32_t 
       } else {
         finish = tri;  // dead lanes: the scalar kernel reports nothing for them either
       }
-    } else if constexpr (kCertified) {
-      // The double vertices through the leaf records; stage 1's proven misses in lanes.
-      finish = tri | dead;
-      if (L.simd == LeafSimd::avx2 && finish) {
-        alignas(32) double p[3][3][kLanes] = {};
-        for (unsigned m = finish; m; m &= m - 1) {
-          const int i = __builtin_ctz(m);
-          const LeafPrim& lp = L.prims[g0 + i];
-          for (int v = 0; v < 3; ++v) {
-            const Vec3<double>& x = k.verts[lp.v[v]];
-            p[v][0][i] = x.x, p[v][1][i] = x.y, p[v][2][i] = x.z;
-          }
-        }
-        finish &= ~certified_group_misses_avx2(k.ray_d, p, finish);
-      }
-      scalar |= finish;  // certified::triangle on the double vertices, as slot by slot
-      finish = 0;
     } else {
       finish = L.simd == LeafSimd::scalar ? tri | dead : mt_group_survivors(k.ray, g, tri | dead);
     }
@@ -152,10 +169,8 @@ bool group_leaf(const K& k, const Leaves& L, std::uint32_t first, std::uint32_t 
       } else if (lanes.hit >> i & 1) {
         c[0] = {static_cast<Contact>(lanes.contact[i]), double(lanes.t[i]), double(lanes.b1[i]), double(lanes.b2[i])};
         n = 1;
-      } else if constexpr (!kCertified) {
-        n = k.triangle_crossings(lane_triangle(g, i), c);
       } else {
-        n = 0;  // not reached: certified finishes every lane through the leaf records
+        n = k.triangle_crossings(lane_triangle(g, i), c);
       }
       if (n && emit(id, c, n)) return true;
     }
@@ -171,7 +186,13 @@ void traverse_with(const Leaves& L, const K& k, QueryRange q, const double& tmax
   if constexpr (kGroupKernel<K>) {
     if (L.groups) {
       bvh4_traverse_ranges(L.bvh, k.traversal_ray(), q.tmin, tmax, mode, query,
-                           [&](std::uint32_t first, std::uint32_t count) { return group_leaf(k, L, first, count, emit); });
+                           [&](std::uint32_t first, std::uint32_t count) {
+                             if constexpr (std::is_same_v<K, detail::CompiledKernel<double, TriAlgo::certified>>) {
+                               return certified_leaf(k, L, first, count, emit);
+                             } else {
+                               return group_leaf(k, L, first, count, emit);
+                             }
+                           });
       return;
     }
   }
