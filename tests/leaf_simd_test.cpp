@@ -314,6 +314,28 @@ TEST(LeafSimd, QueriesThroughGroupsMatchSlotBySlotOnEveryPath) {
   }
 }
 
+TEST(LeafSimd, SceneWithoutTrianglesGoesPerPrimitive) {
+  // No triangles (no vertex array): every lane is the per-primitive kernels'.
+  Scene s;
+  std::mt19937 rng(23);
+  std::uniform_real_distribution<double> u(-3, 3);
+  for (int i = 0; i < 40; ++i) {
+    s.spheres.push_back({{u(rng), u(rng), u(rng)}, 0.3});
+    const Vec3<double> lo{u(rng), u(rng), u(rng)};
+    s.boxes.push_back({lo, lo + Vec3<double>{0.4, 0.5, 0.6}});
+  }
+  const Accel a(s);
+  expect_aligned(a);
+  std::vector<Ray<double>> rays;
+  for (int i = 0; i < 200; ++i) rays.push_back({{u(rng), u(rng), u(rng)}, {u(rng), u(rng), u(rng)}});
+  for (LeafSimd p : {LeafSimd::scalar, LeafSimd::sse, LeafSimd::avx2}) {
+    if (p == LeafSimd::avx2 && !cpu_avx2()) continue;
+    int hits = 0;
+    expect_same_queries(a, rays, p, hits);
+    EXPECT_GT(hits, 50) << to_string(p);
+  }
+}
+
 #ifdef RAYPROOF_CGAL_MESHES
 TEST(LeafSimd, BunnyLeakRaysMatchAndRobustDoesNotLeak) {
   const std::string path = std::string(RAYPROOF_CGAL_MESHES) + "/bunny00.off";

@@ -111,7 +111,7 @@ bool certified_leaf(const K& k, const Leaves& L, std::uint32_t first, std::uint3
         const bool is_tri = (in >> i & 1) && lp.id < k.ntri;
         tri |= unsigned(is_tri) << i;
         for (int v = 0; v < 3; ++v) {
-          const Vec3<double>& x = k.verts[is_tri ? lp.v[v] : 0];
+          const Vec3<double> x = is_tri ? k.verts[lp.v[v]] : Vec3<double>{};  // (no vertex array without triangles)
           p[v][0][i] = x.x, p[v][1][i] = x.y, p[v][2][i] = x.z;
         }
       }
