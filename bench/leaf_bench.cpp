@@ -3,7 +3,9 @@
 /// Accel::any on a mesh with the groups on each path against the slot-by-slot queries
 /// (RAYPROOF_SIMD=off). The variants run interleaved, round after round, and each reports its
 /// fastest round, so ratios taken in one run are comparable on a busy machine.
-/// Run: leaf_bench [mesh.off] [rounds]  (default: a generated closed mesh of ~80k triangles, 7 rounds)
+/// Run: leaf_bench [mesh.off] [rounds] [rays] [path]  (default: a generated closed mesh of ~80k
+/// triangles, 7 rounds, 100000 rays per set, every path; a path (off, scalar, sse, avx2) runs only
+/// the queries on that path, e.g. under valgrind --tool=callgrind for instructions per ray).
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
@@ -57,6 +59,8 @@ void print(const char* title, const char* unit, const std::vector<Variant>& vs) 
 
 int main(int argc, char** argv) {
   const int rounds = argc > 2 ? std::max(1, std::atoi(argv[2])) : 7;
+  const int nrays = argc > 3 ? std::max(1, std::atoi(argv[3])) : 100000;
+  const std::string only = argc > 4 ? argv[4] : "";
   const bool avx2 = [] {
     force_leaf_simd(LeafSimd::avx2);
     const bool ok = leaf_simd() == LeafSimd::avx2;
@@ -65,7 +69,7 @@ int main(int argc, char** argv) {
   }();
 
   // Kernels on groups of 4 triangles near random rays (about a third hit), 4096 rays x 4 groups.
-  {
+  if (only.empty()) {
     std::mt19937 rng(5);
     std::uniform_real_distribution<float> u(-1, 1);
     constexpr int kRays = 4096, kGroups = 4;
@@ -180,7 +184,7 @@ int main(int argc, char** argv) {
 
   // Whole queries on a mesh.
   Scene s;
-  if (argc > 1) {
+  if (argc > 1 && std::string(argv[1]) != "-") {
     s = load_scene(argv[1]);
   } else {
     add_mesh(s, bumpy_sphere(80000));
@@ -200,7 +204,7 @@ int main(int argc, char** argv) {
   for (int k = 0; k < 3; ++k) center[k] = 0.5 * (double(b.lo[k]) + double(b.hi[k])), ext[k] = double(b.hi[k]) - double(b.lo[k]);
   const double radius = length(ext);
   std::vector<Ray<double>> primary, random;
-  for (int i = 0; i < 100000; ++i) {
+  for (int i = 0; i < nrays; ++i) {
     const Vec3<double> eye = center + Vec3<double>{0.2 * radius, 0.3 * radius, 1.5 * radius};
     primary.push_back({eye, in_box() - eye});
     const Vec3<double> o = in_box();
@@ -214,7 +218,7 @@ int main(int argc, char** argv) {
         const bool closest = std::string(query) == "closest";
         std::vector<Variant> vs;
         for (LeafSimd p : {LeafSimd::off, LeafSimd::scalar, LeafSimd::sse, LeafSimd::avx2}) {
-          if (p == LeafSimd::avx2 && !avx2) continue;
+          if ((p == LeafSimd::avx2 && !avx2) || (!only.empty() && only != to_string(p))) continue;
           vs.push_back({std::string(mname) + " " + query + " " + to_string(p), [&, p, closest] {
                           force_leaf_simd(p);
                           std::uint64_t n = 0;
