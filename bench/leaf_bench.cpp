@@ -3,7 +3,7 @@
 /// Accel::any on a mesh with the groups on each path against the slot-by-slot queries
 /// (RAYPROOF_SIMD=off). The variants run interleaved, round after round, and each reports its
 /// fastest round, so ratios taken in one run are comparable on a busy machine.
-/// Run: leaf_bench [mesh.off] [rounds] [rays] [path]  (default: a generated closed mesh of ~80k
+/// Run: leaf_bench [mesh.off] [rounds] [rays] [path] [method]  (default: a generated closed mesh of ~80k
 /// triangles, 7 rounds, 100000 rays per set, every path; a path (off, scalar, sse, avx2) runs only
 /// the queries on that path, e.g. under valgrind --tool=callgrind for instructions per ray).
 #include <algorithm>
@@ -61,6 +61,7 @@ int main(int argc, char** argv) {
   const int rounds = argc > 2 ? std::max(1, std::atoi(argv[2])) : 7;
   const int nrays = argc > 3 ? std::max(1, std::atoi(argv[3])) : 100000;
   const std::string only = argc > 4 ? argv[4] : "";
+  const std::string only_method = argc > 5 ? argv[5] : "";
   const bool avx2 = [] {
     force_leaf_simd(LeafSimd::avx2);
     const bool ok = leaf_simd() == LeafSimd::avx2;
@@ -211,6 +212,7 @@ int main(int argc, char** argv) {
     random.push_back({o, in_box() - o});
   }
   for (const char* mname : {"robust", "certified", "float"}) {
+    if (!only_method.empty() && only_method != mname) continue;
     const SceneMethod m = find_scene_method(mname, cli::all_methods());
     for (const char* set : {"primary", "random"}) {
       const auto& rays = std::string(set) == "primary" ? primary : random;
