@@ -32,6 +32,7 @@
 #include <limits>
 #include <span>
 #include <stdexcept>
+#include <type_traits>
 #include <vector>
 
 #include "rayproof/bvh.h"
@@ -308,6 +309,16 @@ template <class T>
   for (int i = 0; i < m; ++i) stack[top++] = e[i];
 }
 
+/// A leaf visitor called once per leaf with its slot range (bvh4_traverse_ranges).
+template <class F>
+struct LeafRange {
+  F& f;
+};
+template <class L>
+struct is_leaf_range : std::false_type {};
+template <class F>
+struct is_leaf_range<LeafRange<F>> : std::true_type {};
+
 /// The traversal loop, for the float (T = float) and double (T = double) box tests. `leaf(j)`
 /// gets the leaf-order slot j (an index into prim_ids, or into the caller's own leaf-order data).
 template <class T, bool Conservative, BvhQuery Query, class Leaf>
@@ -351,8 +362,12 @@ void bvh4_traverse_impl(const Bvh4& bvh, const Ray<double>& ray, double tmin, co
   if (Query == BvhQuery::closest && !(e.t <= tmax_cur)) return;  // NaN tmax
   for (;;) {
     if (e.count) {
-      for (std::uint32_t i = e.ref, end = e.ref + e.count; i < end; ++i)
-        if (leaf(i) && Query == BvhQuery::any) return;
+      if constexpr (is_leaf_range<Leaf>::value) {
+        if (leaf.f(e.ref, e.count) && Query == BvhQuery::any) return;
+      } else {
+        for (std::uint32_t i = e.ref, end = e.ref + e.count; i < end; ++i)
+          if (leaf(i) && Query == BvhQuery::any) return;
+      }
       if constexpr (Query == BvhQuery::closest) tmax_cur = tmax_t();
     } else {
       const Bvh4Node& n = nodes[e.ref];
@@ -403,6 +418,17 @@ void bvh4_traverse_slots(const Bvh4& bvh, const Ray<double>& ray, double tmin, c
   // The float box test, or the double one for rays out of its range (decided per ray inside).
   if (mode == BvhTraversal::conservative) return detail::bvh4_traverse_query<float, true>(bvh, ray, tmin, tmax, query, leaf);
   return detail::bvh4_traverse_query<float, false>(bvh, ray, tmin, tmax, query, leaf);
+}
+
+/// bvh4_traverse_slots with one call per leaf: `leaf_range(first, count)` gets the leaf's slots
+/// [first, first + count) and returns true to stop (any hit); closest hit lowers `tmax` in it.
+template <class LeafRangeFn>
+void bvh4_traverse_ranges(const Bvh4& bvh, const Ray<double>& ray, double tmin, const double& tmax, BvhTraversal mode,
+                          BvhQuery query, LeafRangeFn&& leaf_range) {
+  if (bvh.empty()) return;
+  detail::LeafRange<std::remove_reference_t<LeafRangeFn>> r{leaf_range};
+  if (mode == BvhTraversal::conservative) return detail::bvh4_traverse_query<float, true>(bvh, ray, tmin, tmax, query, r);
+  return detail::bvh4_traverse_query<float, false>(bvh, ray, tmin, tmax, query, r);
 }
 
 /// Visits the leaves' primitives the query needs, as bvh_traverse (bvh_traverse.h) does: `leaf(prim)`

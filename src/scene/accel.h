@@ -16,6 +16,7 @@
 #include "rayproof/bvh_traverse.h"
 #include "rayproof/bvh_wide.h"
 #include "rayproof/mesh_caster.h"
+#include "scene/leaf_simd.h"
 #include "scene/scene.h"
 
 namespace rayproof::scene {
@@ -107,10 +108,21 @@ class Accel {
   [[nodiscard]] double build_seconds() const { return build_seconds_; }
   /// BVH plus triangle data, per triangle (analytic primitives counted as triangles).
   [[nodiscard]] double bytes_per_primitive() const;
-  /// Bytes of the BVH: its nodes and the leaf-order primitive records.
-  [[nodiscard]] std::size_t bvh_bytes() const { return bvh_.bytes() + leaf_prims_.size() * sizeof(LeafPrim); }
-  /// The leaf-order primitive records (slot j of the BVH's leaves).
+  /// Bytes of the BVH: its nodes, the leaf-order primitive records and the packed leaf groups.
+  [[nodiscard]] std::size_t bvh_bytes() const {
+    return bvh_.bytes() + leaf_prims_.size() * sizeof(LeafPrim) + groups_.size() * sizeof(detail::TriGroup);
+  }
+  /// Bytes the `float` and `robust` queries read: the nodes and the packed leaf groups (they do
+  /// not touch the leaf records or the vertex array for triangles), per primitive.
+  [[nodiscard]] double group_bytes_per_primitive() const;
+  /// The leaf-order primitive records (slot j of the BVH's leaves; every leaf starts on a multiple
+  /// of detail::kLanes, the slots between leaves are padding with id = PrimHit::kNoPrim).
   [[nodiscard]] const std::vector<LeafPrim>& leaf_prims() const { return leaf_prims_; }
+  /// The primitives in the BVH (the leaf records without the padding).
+  [[nodiscard]] std::size_t primitive_count() const { return primitive_count_; }
+  /// The packed leaf groups (leaf_simd.h): group g holds slots [g kLanes, (g + 1) kLanes); empty
+  /// when the scene has too many primitives for the lane tags (then every query goes slot by slot).
+  [[nodiscard]] std::span<const detail::TriGroup> leaf_groups() const { return groups_; }
 
   /// Closest crossing in [tmin, tmax] (ties: the lower primitive number); `invalid` for a ray
   /// with a NaN or infinite component or d = 0.
@@ -134,12 +146,16 @@ class Accel {
  private:
   /// The BVH over `boxes` and leaf records with ids (vertex indices filled by the constructor).
   void build(const std::vector<BvhBox>& boxes, const std::vector<Vec3<float>>& centers, const BvhBuildOptions& opt);
+  /// The packed leaf groups from the leaf records (after the vertex indices are in).
+  void build_groups();
   const Scene& scene_;
   const Vec3<double>* verts_ = nullptr;  ///< the triangles' vertices
   std::uint32_t ntri_ = 0;
   std::size_t triangle_bytes_ = 0;  ///< bytes of triangle data held for the queries
   Bvh4 bvh_;  ///< nodes only: prim_ids is folded into leaf_prims_
   std::vector<LeafPrim> leaf_prims_;
+  std::vector<detail::TriGroup, AlignedAllocator<detail::TriGroup, 32>> groups_;
+  std::size_t primitive_count_ = 0;
   double build_seconds_ = 0;
 };
 
