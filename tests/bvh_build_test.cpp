@@ -125,9 +125,9 @@ void expect_valid(const Bvh& bvh, const Soup& s) {
 }  // namespace
 
 TEST(BvhBuild, ParallelTreeIsValidAndTheSameForAnyThreadsAndOrder) {
-  // Above kParallelGrain and two bin chunks, so the top is split level by level over tasks.
+  // Above the grain and two bin chunks, so the top is split level by level over tasks.
   const std::size_t n = 5 * detail::kBinChunk + 123;
-  ASSERT_GT(n, 2 * std::size_t(detail::kParallelGrain));
+  ASSERT_GT(n, 2 * std::size_t(detail::parallel_grain(std::uint32_t(n))));
   const Soup s = soup(n, 7);
   for (BvhBuilder builder : {BvhBuilder::sah, BvhBuilder::median}) {
     SCOPED_TRACE(builder == BvhBuilder::sah ? "sah" : "median");

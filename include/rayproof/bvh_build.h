@@ -18,7 +18,7 @@
 ///
 /// Parallel build: the caller passes `for_each(n, f)` that may run f(0) .. f(n-1) concurrently
 /// (bvh_build.h stays dependency-free; the scene layer passes TBB). Nodes of more than
-/// kParallelGrain primitives (the top of the tree) are split level by level: the nodes of a level
+/// parallel_grain(n) primitives (the top of the tree) are split level by level: the nodes of a level
 /// concurrently, and each one's binning over fixed chunks of kBinChunk references concurrently
 /// (bins merge by min, max and sums: exact, in any order). Children are numbered in a sequential
 /// pass after each level. The subtrees below the grain are then built concurrently, each into its
@@ -343,6 +343,10 @@ int build_range(Nodes& nodes, std::span<PrimRef> refs, const BuildTask& root, co
 /// Nodes of more primitives than this are split level by level with the work spread over tasks;
 /// subtrees of at most this many are built as one task each.
 inline constexpr std::uint32_t kParallelGrain = 1u << 14;
+/// The grain for n primitives: n / 32 within [4096, kParallelGrain], so that a small mesh still
+/// gives some 32 subtree tasks to balance over the threads and a big one not too many (it
+/// depends on n only: the tree does not depend on the threads).
+inline std::uint32_t parallel_grain(std::uint32_t n) { return std::clamp<std::uint32_t>(n / 32, 4096, kParallelGrain); }
 
 }  // namespace detail
 
@@ -375,7 +379,8 @@ template <class ForEach = detail::Sequential>
   bvh.nodes.resize(2);  // the root, and its copy that puts the pairs at even indices
   const BuildTask root{0, 0, n, 1, detail::bounds_of(std::span<const PrimRef>(refs), for_each)};
   int max_depth = 0;
-  if (n <= detail::kParallelGrain) {
+  const std::uint32_t grain = detail::parallel_grain(n);
+  if (n <= grain) {
     max_depth = detail::build_range(bvh.nodes, refs, root, opt);
   } else {
     // The top, level by level: each level's nodes split concurrently, then numbered in order.
@@ -407,7 +412,7 @@ template <class ForEach = detail::Sequential>
         bvh.nodes.emplace_back(), bvh.nodes.emplace_back();
         for (const BuildTask& c : {BuildTask{left, t.begin, mid, t.depth + 1, res[i].l},
                                    BuildTask{left + 1, mid, t.end, t.depth + 1, res[i].r}})
-          (c.end - c.begin > detail::kParallelGrain ? next : deferred).push_back(c);
+          (c.end - c.begin > grain ? next : deferred).push_back(c);
       }
       level.swap(next);
     }

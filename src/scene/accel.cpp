@@ -270,8 +270,10 @@ Accel::Accel(const Scene& s, const BvhBuildOptions& opt)
     s.primitive_bounds(boxes, centers);
   }
   build(boxes, centers, opt);
-  for (LeafPrim& p : leaf_prims_)
-    for (int k = 0; k < 3; ++k) p.v[k] = p.id < ntri_ ? s.mesh.triangles[p.id][k] : 0;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, leaf_prims_.size(), 4096), [&](const auto& r) {
+    for (std::size_t j = r.begin(); j < r.end(); ++j)
+      for (LeafPrim& p = leaf_prims_[j]; int k : {0, 1, 2}) p.v[k] = p.id < ntri_ ? s.mesh.triangles[p.id][k] : 0;
+  });
   build_groups();
   build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -289,11 +291,14 @@ Accel::Accel(const MeshRef& m, const BvhBuildOptions& opt)
     }
   });
   build(boxes, centers, opt);
-  for (LeafPrim& p : leaf_prims_) {
-    if (p.id == PrimHit::kNoPrim) continue;  // padding
-    const auto t = m.triangle(p.id);
-    for (int k = 0; k < 3; ++k) p.v[k] = t[k];
-  }
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, leaf_prims_.size(), 4096), [&](const auto& r) {
+    for (std::size_t j = r.begin(); j < r.end(); ++j) {
+      LeafPrim& p = leaf_prims_[j];
+      if (p.id == PrimHit::kNoPrim) continue;  // padding
+      const auto t = m.triangle(p.id);
+      for (int k = 0; k < 3; ++k) p.v[k] = t[k];
+    }
+  });
   build_groups();
   build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
