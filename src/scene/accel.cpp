@@ -261,10 +261,19 @@ Accel::Accel(const Scene& s, const BvhBuildOptions& opt)
   const auto start = std::chrono::steady_clock::now();
   std::vector<BvhBox> boxes;
   std::vector<Vec3<float>> centers;
-  s.primitive_bounds(boxes, centers);
+  if (s.size() == s.mesh.triangles.size()) {  // triangles only: their bounds over TBB's threads
+    boxes.resize(s.size()), centers.resize(s.size());
+    tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, ntri_, 4096), [&](const auto& r) {
+      for (std::uint32_t i = r.begin(); i < r.end(); ++i) triangle_bounds(s.triangle(i), boxes[i], centers[i]);
+    });
+  } else {
+    s.primitive_bounds(boxes, centers);
+  }
   build(boxes, centers, opt);
-  for (LeafPrim& p : leaf_prims_)
-    for (int k = 0; k < 3; ++k) p.v[k] = p.id < ntri_ ? s.mesh.triangles[p.id][k] : 0;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, leaf_prims_.size(), 4096), [&](const auto& r) {
+    for (std::size_t j = r.begin(); j < r.end(); ++j)
+      for (LeafPrim& p = leaf_prims_[j]; int k : {0, 1, 2}) p.v[k] = p.id < ntri_ ? s.mesh.triangles[p.id][k] : 0;
+  });
   build_groups();
   build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -282,11 +291,14 @@ Accel::Accel(const MeshRef& m, const BvhBuildOptions& opt)
     }
   });
   build(boxes, centers, opt);
-  for (LeafPrim& p : leaf_prims_) {
-    if (p.id == PrimHit::kNoPrim) continue;  // padding
-    const auto t = m.triangle(p.id);
-    for (int k = 0; k < 3; ++k) p.v[k] = t[k];
-  }
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, leaf_prims_.size(), 4096), [&](const auto& r) {
+    for (std::size_t j = r.begin(); j < r.end(); ++j) {
+      LeafPrim& p = leaf_prims_[j];
+      if (p.id == PrimHit::kNoPrim) continue;  // padding
+      const auto t = m.triangle(p.id);
+      for (int k = 0; k < 3; ++k) p.v[k] = t[k];
+    }
+  });
   build_groups();
   build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
