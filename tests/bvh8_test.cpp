@@ -313,6 +313,8 @@ TEST(BvhSimd, PathChoiceAndEnvironment) {
   ::setenv("RAYPROOF_SIMD", "sse", 1);
   EXPECT_EQ(bvh_simd_path(), BvhSimd::sse4);
   EXPECT_EQ(bvh_simd_path(BvhSimd::avx2), cpu_has_avx2() ? BvhSimd::avx2 : BvhSimd::sse4);  // explicit wins
+  ::setenv("RAYPROOF_SIMD", "scalar", 1);
+  EXPECT_EQ(bvh_simd_path(), BvhSimd::sse4);
   ::setenv("RAYPROOF_SIMD", "auto", 1);
   EXPECT_EQ(bvh_simd_path(), cpu_has_avx2() ? BvhSimd::avx2 : BvhSimd::sse4);
   ::setenv("RAYPROOF_SIMD", "avx512", 1);
@@ -320,7 +322,7 @@ TEST(BvhSimd, PathChoiceAndEnvironment) {
     (void)bvh_simd_path();
     ADD_FAILURE() << "no error for RAYPROOF_SIMD=avx512";
   } catch (const std::invalid_argument& e) {
-    EXPECT_STREQ(e.what(), "RAYPROOF_SIMD='avx512': expected sse, avx2 or auto");
+    EXPECT_STREQ(e.what(), "RAYPROOF_SIMD='avx512': expected auto, avx2, sse, scalar or off");
   }
   if (old) {
     ::setenv("RAYPROOF_SIMD", saved.c_str(), 1);

@@ -19,6 +19,7 @@
 
 #include "cli/user_kernels.h"
 #include "cli_support.h"
+#include "stats_support.h"
 #include "gen/families.h"
 #include "io/case_file.h"
 #include "methods/plugin_kernel.h"
@@ -28,6 +29,7 @@ namespace rayproof {
 namespace {
 
 using testing::run_rayproof;
+using testing::expect_same_tallies;
 using testing::scratch_dir;
 using testing::slurp;
 
@@ -63,15 +65,6 @@ std::vector<io::Case> all_families(std::size_t n) {
     all.insert(all.end(), c.begin(), c.end());
   }
   return all;
-}
-
-void expect_same_stats(const verify::Stats& a, const verify::Stats& b, const std::string& where) {
-  EXPECT_EQ(a.cases, b.cases) << where;
-  EXPECT_EQ(a.false_hit, b.false_hit) << where;
-  EXPECT_EQ(a.false_miss, b.false_miss) << where;
-  EXPECT_EQ(a.wrong_hit_class, b.wrong_hit_class) << where;
-  EXPECT_EQ(a.wrong_class, b.wrong_class) << where;
-  EXPECT_EQ(a.ulps, b.ulps) << where;
 }
 
 // --- the header ----------------------------------------------------------------------------------
@@ -263,7 +256,7 @@ TEST(PluginMethods, FloatPluginGivesTheBuiltInFloatTallies) {
   for (const auto& g : cmp.groups) {
     const auto a = cmp.stats.find({"float", g}), b = cmp.stats.find({"plugin-float", g});
     ASSERT_TRUE(a != cmp.stats.end() && b != cmp.stats.end()) << g;
-    expect_same_stats(a->second, b->second, g);
+    expect_same_tallies(a->second, b->second, g);
   }
   // Not vacuous: the float method does make class errors on these families.
   EXPECT_GT(cmp.total("float").class_errors(), 0u);

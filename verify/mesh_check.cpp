@@ -5,6 +5,8 @@
 #include <cmath>
 #include <map>
 
+#include <fmt/core.h>
+
 #include "scene/watertight.h"
 #include "verify/differential.h"
 
@@ -179,6 +181,15 @@ MeshCheck check_mesh(const Method& kernel, const MeshUnderTest& mt, const MeshCh
     }
   }
   return res;
+}
+
+MeshUnderTest generated_mesh(const MeshFuzzOptions& opt, std::size_t i) {
+  MeshUnderTest mt;
+  std::mt19937_64 rng;
+  MeshShape shape;
+  mt.mesh = fuzz_mesh(opt, i, shape, mt.interior, rng);
+  mt.name = fmt::format("generated #{} ({})", i, shape == MeshShape::star ? "icosphere" : "hull");
+  return mt;
 }
 
 }  // namespace rayproof::verify

@@ -23,6 +23,7 @@
 #include "mesh/mesh.h"
 #include "methods/method.h"
 #include "scene/accel.h"
+#include "verify/mesh_fuzz.h"
 
 namespace rayproof::verify {
 
@@ -74,5 +75,9 @@ struct MeshCheckOptions {
 /// no edge, vertex or coplanar contact on three rays from it. Deterministic for a seed.
 [[nodiscard]] std::vector<Vec3<double>> interior_points(const mesh::Mesh& m, const scene::SceneMethod& finder,
                                                         int count, std::uint64_t seed);
+
+/// The i-th generated mesh of a mesh fuzz campaign (verify/mesh_fuzz.h), with its interior points
+/// and its name "generated #i (icosphere|hull)".
+[[nodiscard]] MeshUnderTest generated_mesh(const MeshFuzzOptions& opt, std::size_t i);
 
 }  // namespace rayproof::verify

@@ -32,6 +32,7 @@
 #include <limits>
 #include <span>
 #include <stdexcept>
+#include <type_traits>
 #include <vector>
 
 #include "rayproof/bvh.h"
@@ -425,6 +426,13 @@ void bvh4_traverse_slots(const Bvh4& bvh, const Ray<double>& ray, double tmin, c
       if (leaf(j) && any) return true;
     return false;
   });
+}
+
+/// bvh4_traverse_leaves under the name the leaf kernels (src/scene/leaf_simd.h) first used.
+template <class LeafRangeFn>
+void bvh4_traverse_ranges(const Bvh4& bvh, const Ray<double>& ray, double tmin, const double& tmax, BvhTraversal mode,
+                          BvhQuery query, LeafRangeFn&& leaf_range) {
+  bvh4_traverse_leaves(bvh, ray, tmin, tmax, mode, query, leaf_range);
 }
 
 /// Visits the leaves' primitives the query needs, as bvh_traverse (bvh_traverse.h) does: `leaf(prim)`

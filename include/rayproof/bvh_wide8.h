@@ -110,16 +110,17 @@ enum class BvhSimd { automatic, sse4, avx2 };
   return ok;
 }
 
-/// The RAYPROOF_SIMD environment variable: unset, empty or "auto": automatic; "sse": the four-wide
-/// SSE path; "avx2": the eight-wide AVX2 path (when the CPU has AVX2; else the SSE path). Any other
-/// value throws std::invalid_argument naming the accepted ones.
+/// The RAYPROOF_SIMD environment variable: unset, empty or "auto": automatic; "sse" (and the leaf
+/// kernels' "scalar" and "off"): the four-wide SSE path; "avx2": the eight-wide AVX2 path (when the
+/// CPU has AVX2; else the SSE path). Any other value throws std::invalid_argument naming them.
 [[nodiscard]] inline BvhSimd bvh_simd_from_env() {
   const char* e = std::getenv("RAYPROOF_SIMD");
   if (!e || !*e || std::strcmp(e, "auto") == 0) return BvhSimd::automatic;
-  if (std::strcmp(e, "sse") == 0) return BvhSimd::sse4;
+  // "scalar" and "off" are the SIMD leaves' narrower settings (src/scene/leaf_simd.h): SSE nodes too.
+  if (std::strcmp(e, "sse") == 0 || std::strcmp(e, "scalar") == 0 || std::strcmp(e, "off") == 0) return BvhSimd::sse4;
   if (std::strcmp(e, "avx2") == 0) return BvhSimd::avx2;
   std::string msg = "RAYPROOF_SIMD='";
-  msg.append(e).append("': expected sse, avx2 or auto");
+  msg.append(e).append("': expected auto, avx2, sse, scalar or off");
   throw std::invalid_argument(msg);
 }
 

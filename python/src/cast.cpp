@@ -7,6 +7,7 @@
 #include <limits>
 #include <memory>
 #include <mutex>
+#include <span>
 #include <variant>
 
 #include "bindings.h"
@@ -60,28 +61,7 @@ class PyMesh {
       py::gil_scoped_release unlocked;
       c.closest(rays, {&range, 1}, hits, threads);
     });
-    py::array_t<std::uint8_t> codes(static_cast<py::ssize_t>(n));
-    py::array_t<double> t(static_cast<py::ssize_t>(n)), b1(static_cast<py::ssize_t>(n)), b2(static_cast<py::ssize_t>(n));
-    py::array_t<std::int64_t> prim(static_cast<py::ssize_t>(n));
-    py::array_t<bool> hit(static_cast<py::ssize_t>(n));
-    for (std::size_t i = 0; i < n; ++i) {
-      const MeshHit& h = hits[i];
-      codes.mutable_data()[i] = static_cast<std::uint8_t>(h.contact);
-      hit.mutable_data()[i] = h.hit();
-      prim.mutable_data()[i] = h.hit() ? static_cast<std::int64_t>(h.triangle) : -1;
-      t.mutable_data()[i] = h.t;
-      b1.mutable_data()[i] = h.b1;
-      b2.mutable_data()[i] = h.b2;
-    }
-    py::dict out;
-    out["hit"] = hit;
-    out["prim"] = prim;
-    out["t"] = t;
-    out["b1"] = b1;
-    out["b2"] = b2;
-    out["classes"] = class_names(codes);
-    out["codes"] = codes;
-    return out;
+    return hit_arrays(hits);
   }
 
   py::array_t<bool> any(py::handle origins, py::handle directions, const std::string& method, double tmin, double tmax,
@@ -113,22 +93,35 @@ class PyMesh {
         offsets[i + 1] = static_cast<std::int64_t>(flat.size());
       }
     });
-    const auto m = static_cast<py::ssize_t>(flat.size());
-    py::array_t<std::int64_t> ray(m), prim(m);
-    py::array_t<double> t(m), b1(m), b2(m);
-    py::array_t<std::uint8_t> codes(m);
+    py::dict out = hit_arrays(flat);
+    out.attr("pop")("hit");  // every listed crossing is a hit
+    py::array_t<std::int64_t> ray(static_cast<py::ssize_t>(flat.size()));
     for (std::size_t i = 0, k = 0; i < n; ++i)
-      for (; k < static_cast<std::size_t>(offsets[i + 1]); ++k) {
-        ray.mutable_data()[k] = static_cast<std::int64_t>(i);
-        prim.mutable_data()[k] = flat[k].triangle;
-        t.mutable_data()[k] = flat[k].t;
-        b1.mutable_data()[k] = flat[k].b1;
-        b2.mutable_data()[k] = flat[k].b2;
-        codes.mutable_data()[k] = static_cast<std::uint8_t>(flat[k].contact);
-      }
-    py::dict out;
+      for (; k < static_cast<std::size_t>(offsets[i + 1]); ++k) ray.mutable_data()[k] = static_cast<std::int64_t>(i);
     out["offsets"] = py::array_t<std::int64_t>(static_cast<py::ssize_t>(n + 1), offsets.data());
     out["ray"] = ray;
+    return out;
+  }
+
+ private:
+  /// The per-hit arrays of `hits`: hit, prim (-1 for a miss), t, b1, b2, classes, codes.
+  static py::dict hit_arrays(std::span<const MeshHit> hits) {
+    const auto n = static_cast<py::ssize_t>(hits.size());
+    py::array_t<std::uint8_t> codes(n);
+    py::array_t<double> t(n), b1(n), b2(n);
+    py::array_t<std::int64_t> prim(n);
+    py::array_t<bool> hit(n);
+    for (std::size_t i = 0; i < hits.size(); ++i) {
+      const MeshHit& h = hits[i];
+      codes.mutable_data()[i] = static_cast<std::uint8_t>(h.contact);
+      hit.mutable_data()[i] = h.hit();
+      prim.mutable_data()[i] = h.hit() ? static_cast<std::int64_t>(h.triangle) : -1;
+      t.mutable_data()[i] = h.t;
+      b1.mutable_data()[i] = h.b1;
+      b2.mutable_data()[i] = h.b2;
+    }
+    py::dict out;
+    out["hit"] = hit;
     out["prim"] = prim;
     out["t"] = t;
     out["b1"] = b1;
@@ -137,8 +130,6 @@ class PyMesh {
     out["codes"] = codes;
     return out;
   }
-
- private:
   /// The caster of method M, built on first use (once, even with concurrent callers; the GIL is
   /// released while the BVH is built). MeshInputError becomes ValueError.
   template <class M>

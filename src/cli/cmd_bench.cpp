@@ -1,8 +1,12 @@
-/// rayproof bench [SCENE] [--threads N] [--json]: BVH build time, bytes per triangle, Mrays/s of
-/// closest hit for primary and random incoherent rays per method, next to Embree 3 (default and
-/// robust) and CGAL's AABB_tree (Epick; Epeck on a subset) on the same rays, the ratio of each to
-/// Embree robust, and leaks: rays from inside a closed mesh towards every vertex and edge midpoint
-/// that find no hit. Without SCENE: a generated closed mesh of >= 1M triangles.
+/// rayproof bench [SCENE] [--threads N] [--json]: per method, Mrays/s of closest and any hit for
+/// primary and random incoherent rays on one thread (and the speed-up on N threads), next to
+/// Embree 3 (default and robust; rtcIntersect1 and rtcOccluded1) and CGAL's AABB_tree (Epick;
+/// Epeck on a subset) on the same rays, the ratio of each to Embree robust, bytes per triangle,
+/// leaks (rays from inside a closed mesh towards every vertex and edge midpoint that find no hit),
+/// BVH build times at one and N threads beside Embree's, and issue 15's targets with a verdict
+/// each (bench_text.h). Without SCENE: bunny00 and refined_elephant (CGAL's demo meshes, where
+/// the build extracted them) and a generated closed mesh of >= 1M triangles ('generated': that
+/// one alone).
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
 
@@ -10,11 +14,14 @@
 
 #include <algorithm>
 #include <chrono>
+#include <filesystem>
+#include <fstream>
 #include <optional>
 #include <map>
 #include <random>
 #include <thread>
 
+#include "cli/bench_text.h"
 #include "cli/commands.h"
 #include "cli/scene_caster.h"
 #include "cli/scene_input.h"
@@ -32,13 +39,7 @@ struct BenchOptions {
   std::string methods = "float,double,cramer-float,cramer-double,watertight-float,watertight,robust,certified";
   std::string competitors = "embree,embree-robust,cgal-epick,cgal-epeck";
   int repeat = 3;
-};
-
-struct Row {
-  std::string method, rays;
-  double mrays = 0, build_s = 0, bytes = -1;
-  std::size_t n = 0;
-  std::int64_t leaks = -1, leak_rays = 0;
+  int width = 640, height = 480;  ///< primary rays: this image of the default view
 };
 
 /// At most `cap` rays (0: all), evenly strided so that a subset samples the whole image or set.
@@ -78,33 +79,53 @@ std::vector<Ray<double>> random_rays(const BvhBox& b, std::size_t n) {
   return out;
 }
 
-int run_bench(const BenchOptions& opt) {
+/// The built-in mesh list for `bench` without a scene: bunny00 and refined_elephant from CGAL's
+/// demo data (where the build extracted it) and the generated closed mesh.
+std::vector<std::string> default_meshes() {
+  std::vector<std::string> out;
+#ifdef RAYPROOF_BENCH_MESH_DIR
+  for (const char* m : {"bunny00.off", "refined_elephant.off"}) {
+    const std::string p = std::string(RAYPROOF_BENCH_MESH_DIR) + "/" + m;
+    if (std::ifstream(p).good()) out.push_back(p);
+    else fmt::print(stderr, "rayproof bench: {} not found, skipped\n", p);
+  }
+#endif
+  out.emplace_back();  // the generated mesh
+  return out;
+}
+
+/// Runs every method and competitor on one scene: rows (one thread, and `threads` for the speed-up
+/// when above 1) and builds (ours and Embree's at one thread and at `threads`).
+int bench_scene(const BenchOptions& opt, const std::string& path, int threads, std::vector<BenchRow>& rows,
+                std::vector<BenchBuild>& builds) {
   std::unique_ptr<scene::Scene> sc;
+  std::string mesh_name;
   try {
-    if (opt.scene.empty()) {
+    if (path.empty()) {
       sc = std::make_unique<scene::Scene>();
       scene::add_mesh(*sc, scene::bumpy_sphere(opt.triangles));
+      mesh_name = fmt::format("generated-{}", sc->mesh.triangles.size());
     } else {
-      sc = std::make_unique<scene::Scene>(opt.scene == "default" ? scene::default_scene() : scene::load_scene(opt.scene));
+      sc = std::make_unique<scene::Scene>(path == "default" ? scene::default_scene() : scene::load_scene(path));
+      mesh_name = std::filesystem::path(path).filename().string();
     }
   } catch (const std::exception& e) {
     fmt::print(stderr, "rayproof bench: {}\n", e.what());
     return 2;
   }
   const scene::Scene& s = *sc;
-  const int threads = opt.threads > 0 ? opt.threads : int(std::thread::hardware_concurrency());
-  if (!opt.json) fmt::print(stderr, "scene: {} triangles, {} primitives, {} threads\n", s.mesh.triangles.size(), s.size(), threads);
+  std::vector<int> counts{1};
+  if (threads > 1) counts.push_back(threads);
+  if (!opt.json)
+    fmt::print(stderr, "{}: {} triangles, {} primitives; one thread{}\n", mesh_name, s.mesh.triangles.size(), s.size(),
+               threads > 1 ? fmt::format(" and {} threads", threads) : "");
   // Builds run on `threads` threads, as Embree's (its device is created with threads=N).
   tbb::task_arena build_arena(threads);
-  std::optional<scene::Accel> median_a, accel_a;
-  build_arena.execute([&] {
-    median_a.emplace(s, BvhBuildOptions{BvhBuilder::median, 4});
-    accel_a.emplace(s, BvhBuildOptions{BvhBuilder::sah, 4});
-  });
-  const scene::Accel& median = *median_a;
+  std::optional<scene::Accel> accel_a;
+  build_arena.execute([&] { accel_a.emplace(s, BvhBuildOptions{BvhBuilder::sah, 4}); });
   const scene::Accel& accel = *accel_a;
   // Ray sets: primary rays of the default view, random rays inside the bounds, leak rays.
-  const scene::Camera cam = s.camera ? *s.camera : scene::default_camera(s, 640, 480);
+  const scene::Camera cam = s.camera ? *s.camera : scene::default_camera(s, opt.width, opt.height);
   std::map<std::string, std::vector<Ray<double>>> sets;
   for (int j = 0; j < cam.height(); ++j)
     for (int i = 0; i < cam.width(); ++i) sets["primary"].push_back(cam.generate(i, j));
@@ -113,8 +134,29 @@ int run_bench(const BenchOptions& opt) {
   const bool closed = s.size() == s.mesh.triangles.size() && !s.mesh.triangles.empty();
   if (closed) leak = scene::leak_rays(scene::volume_centroid(s.mesh), scene::leak_targets(s.mesh, opt.leak_rays));
 
-  std::vector<Row> rows;
-  const double bytes = accel.bytes_per_primitive();
+  // One measurement: Mrays/s of `run(rays, threads)` at one thread and, for the speed-up, at `threads`.
+  auto measure = [&](BenchRow row, std::size_t cap, bool threaded, const auto& run) {
+    for (const auto& [set, all_rays] : sets) {
+      const std::vector<Ray<double>> rays = subset(all_rays, cap);
+      row.rays = set, row.n = rays.size();
+      for (const char* query : {"closest", "any"}) {
+        row.query = query;
+        for (int t : counts) {
+          if (t > 1 && !threaded) continue;
+          const double sec = best_seconds(cap ? 1 : opt.repeat, [&] { run(rays, query[0] == 'c', t); });
+          (t == 1 ? row.mrays : row.mrays_scaled) = rays.size() / std::max(sec, 1e-9) / 1e6;  // never inf
+          if (t > 1) row.scaled_threads = t;
+        }
+        rows.push_back(row);
+      }
+    }
+  };
+  const std::size_t first_row = rows.size();
+  auto set_leaks = [&](const std::string& name, std::int64_t misses, std::size_t n) {
+    for (std::size_t i = first_row; i < rows.size(); ++i)
+      if (rows[i].method == name) rows[i].leaks = misses, rows[i].leak_rays = std::int64_t(n);
+  };
+
   std::string list = opt.methods;
   for (std::size_t p = 0; p <= list.size();) {
     const std::size_t q = std::min(list.find(',', p), list.size());
@@ -134,67 +176,88 @@ int run_bench(const BenchOptions& opt) {
     std::optional<SceneCaster> caster;
     if (SceneCaster::takes_public_api(s, m)) build_arena.execute([&] { caster.emplace(s, m); });
     else caster.emplace(accel, m);
-    const double build_s = caster->public_api() ? caster->build_seconds() : accel.build_seconds();
-    for (const auto& [set, all_rays] : sets) {
-      const std::vector<Ray<double>> rays = subset(all_rays, cap);
-      std::vector<CastHit> hits(rays.size());
-      const double t = best_seconds(cap ? 1 : opt.repeat, [&] { caster->closest(rays, hits, threads); });
-      rows.push_back({name, set, rays.size() / t / 1e6, build_s, caster->bytes_per_primitive(), rays.size()});
-    }
+    BenchRow row;
+    row.mesh = mesh_name, row.method = name;
+    row.build_s = caster->public_api() ? caster->build_seconds() : accel.build_seconds();
+    row.bytes = caster->bytes_per_primitive();
+    std::vector<CastHit> hits;
+    std::vector<std::uint8_t> flags;
+    measure(row, cap, true, [&](const std::vector<Ray<double>>& rays, bool closest, int t) {
+      if (closest) hits.resize(rays.size()), caster->closest(rays, hits, t);
+      else flags.resize(rays.size()), caster->any(rays, flags, t);
+    });
     if (closed) {
       const std::vector<Ray<double>> lr = subset(leak, cap);
-      std::vector<CastHit> hits(lr.size());
-      caster->closest(lr, hits, threads);
-      const auto misses = std::count_if(hits.begin(), hits.end(), [](const CastHit& h) { return !h.hit(); });
-      for (auto& r : rows)
-        if (r.method == name) r.leaks = std::int64_t(misses), r.leak_rays = std::int64_t(lr.size());
+      std::vector<CastHit> lh(lr.size());
+      caster->closest(lr, lh, threads);
+      set_leaks(name, std::count_if(lh.begin(), lh.end(), [](const CastHit& h) { return !h.hit(); }), lr.size());
     }
   }
+  double embree_build[2] = {-1, -1};
   for (auto& c : scene::compare::make_competitors(s, opt.competitors, threads)) {
-    for (const auto& [set, all_rays] : sets) {
-      const std::vector<Ray<double>> rays = subset(all_rays, c.max_rays);
+    BenchRow row;
+    row.mesh = mesh_name, row.method = c.name, row.build_s = c.build_s, row.bytes = c.bytes_per_tri;
+    measure(row, c.max_rays, c.threaded, [&](const std::vector<Ray<double>>& rays, bool closest, int t) {
       std::vector<std::uint8_t> out(rays.size());
-      const double t = best_seconds(c.max_rays ? 1 : opt.repeat, [&] { c.closest(rays, out, threads); });
-      rows.push_back({c.name, set, rays.size() / t / 1e6, c.build_s, c.bytes_per_tri, rays.size()});
-    }
+      if (closest || !c.any) c.closest(rays, out, t);
+      else c.any(rays, out, t);
+    });
+    if (!c.any)  // no any-hit query: those rows timed closest hit; drop them
+      std::erase_if(rows, [&](const BenchRow& r) { return r.mesh == mesh_name && r.method == c.name && r.query == "any"; });
     if (closed) {
       const std::vector<Ray<double>> lr = subset(leak, c.max_rays);
       std::vector<std::uint8_t> out(lr.size());
       c.closest(lr, out, threads);
-      std::int64_t misses = 0;
-      for (auto x : out) misses += !x;
-      for (auto& r : rows)
-        if (r.method == c.name) r.leaks = misses, r.leak_rays = std::int64_t(lr.size());
+      set_leaks(c.name, std::count(out.begin(), out.end(), std::uint8_t(0)), lr.size());
     }
+    if (c.build_seconds && c.name.rfind("embree", 0) == 0)
+      for (std::size_t k = 0; k < counts.size(); ++k) {
+        // The build's own clock (its device is created before it starts), the least of `repeat`,
+        // in an arena of that many threads (Embree's TBB tasks run in the caller's arena).
+        tbb::task_arena arena(counts[k]);
+        double best = -1;
+        for (int i = 0; i < std::max(1, opt.repeat); ++i)
+          arena.execute([&] {
+            const double sec = c.build_seconds(counts[k]);
+            best = best < 0 ? sec : std::min(best, sec);
+          });
+        embree_build[k] = embree_build[k] < 0 ? best : std::min(embree_build[k], best);
+      }
   }
-  std::map<std::string, double> embree_robust;
-  for (const auto& r : rows)
-    if (r.method == "embree-robust") embree_robust[r.rays] = r.mrays;
-  if (opt.json) {
-    fmt::print("[\n");
-    for (std::size_t i = 0; i < rows.size(); ++i) {
-      const auto& r = rows[i];
-      const auto er = embree_robust.find(r.rays);
-      fmt::print("  {{\"method\": \"{}\", \"rays\": \"{}\", \"ray_count\": {}, \"threads\": {}, \"mrays_per_s\": {:.4f}, "
-                 "\"build_s\": {:.4f}, \"bytes_per_tri\": {}, \"ratio_to_embree_robust\": {}, \"leaks\": {}, \"leak_rays\": {}}}{}\n",
-                 r.method, r.rays, r.n, threads, r.mrays, r.build_s, r.bytes < 0 ? "null" : fmt::format("{:.1f}", r.bytes),
-                 er == embree_robust.end() ? "null" : fmt::format("{:.3f}", r.mrays / er->second),
-                 r.leaks < 0 ? "null" : std::to_string(r.leaks), r.leak_rays, i + 1 < rows.size() ? "," : "");
+  // Our build at one thread and at `threads`, the best of `repeat`, as Embree's.
+  for (std::size_t k = 0; k < counts.size(); ++k) {
+    tbb::task_arena arena(counts[k]);
+    double best = -1;
+    for (int i = 0; i < std::max(1, opt.repeat); ++i) {
+      arena.execute([&] {
+        const scene::Accel a(s, BvhBuildOptions{BvhBuilder::sah, 4});
+        best = best < 0 ? a.build_seconds() : std::min(best, a.build_seconds());
+      });
     }
-    fmt::print("]\n");
+    builds.push_back({mesh_name, counts[k], best, embree_build[k]});
+  }
+  return 0;
+}
+
+int run_bench(const BenchOptions& opt) {
+  const int threads = opt.threads > 0 ? opt.threads : int(std::thread::hardware_concurrency());
+  std::vector<BenchRow> rows;
+  std::vector<BenchBuild> builds;
+  // "generated": the generated mesh alone (an empty path below).
+  const std::vector<std::string> paths = opt.scene.empty()           ? default_meshes()
+                                         : opt.scene == "generated" ? std::vector<std::string>{std::string()}
+                                                                    : std::vector<std::string>{opt.scene};
+  for (const std::string& path : paths)
+    if (const int rc = bench_scene(opt, path, threads, rows, builds)) return rc;
+  const std::vector<BenchTarget> targets = bench_targets(rows, builds);
+  if (opt.json) {
+    fmt::print("{}", bench_json(rows, targets));
     return 0;
   }
-  fmt::print("BVH build ({} threads, Embree's too): sah {:.3f} s, median {:.3f} s; {:.1f} bytes/triangle (BVH {:.1f} + triangles {:.1f})\n",
-             threads, accel.build_seconds(), median.build_seconds(), bytes, double(accel.bvh_bytes()) / std::max<std::size_t>(1, s.size()),
-             double(s.triangle_bytes()) / std::max<std::size_t>(1, s.size()));
-  fmt::print("BVH traversal: {} (RAYPROOF_SIMD=sse|avx2|auto)\n", rayproof::to_string(accel.simd()));
-  fmt::print("{:<18} {:<8} {:>8} {:>10} {:>9} {:>10} {:>14}\n", "method", "rays", "count", "Mrays/s", "build s", "x embree-r", "leaks");
-  for (const auto& r : rows) {
-    const auto er = embree_robust.find(r.rays);
-    fmt::print("{:<18} {:<8} {:>8} {:>10.3f} {:>9.3f} {:>10} {:>14}\n", r.method, r.rays, r.n, r.mrays, r.build_s,
-               er == embree_robust.end() ? "-" : fmt::format("{:.3f}", r.mrays / er->second),
-               r.leaks < 0 ? "-" : fmt::format("{}/{}", r.leaks, r.leak_rays));
-  }
+  fmt::print("Mrays/s on one thread, single rays; speed-up: the same on {} threads over one.\n{}\n", threads, bench_table(rows));
+  fmt::print("BVH build (SAH, bounds included), best of {}; Embree: the faster of its default and robust builds.\n{}\n",
+             std::max(1, opt.repeat), build_table(builds));
+  fmt::print("Targets of issue 15 (verdicts decided on the printed values).\n{}", targets_table(targets));
   return 0;
 }
 }  // namespace
@@ -202,14 +265,22 @@ int run_bench(const BenchOptions& opt) {
 Run add_bench(CLI::App& app) {
   auto opt = std::make_shared<BenchOptions>();
   auto* sub = app.add_subcommand("bench", "Throughput and leaks of every method next to Embree and CGAL");
-  sub->add_option("scene", opt->scene, "Mesh file, scene JSON or 'default' (none: a generated closed mesh)");
-  sub->add_option("--threads,-j", opt->threads, "Threads (0: all)");
+  sub->add_option("scene", opt->scene,
+                  "Mesh file, scene JSON, 'default' or 'generated' (the generated closed mesh alone; none: bunny00, "
+                  "refined_elephant and the generated mesh)");
+  sub->add_option("--threads,-j", opt->threads, "Threads for the speed-up and the second build (0: all)")
+      ->check(CLI::Range(0, 1024));
   sub->add_flag("--json", opt->json, "Print a JSON array of results");
   sub->add_option("--triangles", opt->triangles, "Triangles of the generated mesh (at least)")->capture_default_str();
   sub->add_option("--rays", opt->rays, "Random rays")->capture_default_str();
   sub->add_option("--slow-rays", opt->slow_rays, "Rays per set for registry (non-compiled) methods")->capture_default_str();
   sub->add_option("--leak-rays", opt->leak_rays, "At most this many leak rays")->capture_default_str();
-  sub->add_option("--repeat", opt->repeat, "Time each ray set this many times, report the fastest")->capture_default_str();
+  sub->add_option("--width", opt->width, "Primary rays: image width (scenes without a camera)")
+      ->capture_default_str()->check(CLI::Range(1, 1 << 14));
+  sub->add_option("--height", opt->height, "Primary rays: image height (scenes without a camera)")
+      ->capture_default_str()->check(CLI::Range(1, 1 << 14));
+  sub->add_option("--repeat", opt->repeat, "Time each ray set and build this many times, report the fastest")
+      ->capture_default_str()->check(CLI::Range(1, 1000));
   sub->add_option("--methods", opt->methods, "Comma-separated methods")->capture_default_str();
   sub->add_option("--competitors", opt->competitors, "Comma-separated competitors to run (none: no competitor)")
       ->capture_default_str();

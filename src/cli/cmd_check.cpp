@@ -119,14 +119,7 @@ int run_mesh_check(const CheckCliOptions& o, const Method& kernel) {
       verify::MeshFuzzOptions gen_opt;
       gen_opt.seed = o.seed;
       gen_opt.interior_points = o.interior;
-      for (std::size_t i = 0; i < o.meshes; ++i) {
-        verify::MeshUnderTest mt;
-        std::mt19937_64 rng;
-        verify::MeshShape shape;
-        mt.mesh = verify::fuzz_mesh(gen_opt, i, shape, mt.interior, rng);
-        mt.name = fmt::format("generated #{} ({})", i, shape == verify::MeshShape::star ? "icosphere" : "hull");
-        run_one(std::move(mt));
-      }
+      for (std::size_t i = 0; i < o.meshes; ++i) run_one(verify::generated_mesh(gen_opt, i));
       continue;
     }
     verify::MeshUnderTest mt;

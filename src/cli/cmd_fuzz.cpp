@@ -129,14 +129,7 @@ int run_mesh_fuzz_cli(const FuzzCliOptions& o) {
     mopt.finder = scene::find_scene_method("certified", all_methods());
     for (const auto& k : *user) {
       std::vector<verify::MeshCheck> checks;
-      for (std::size_t i = 0; i < res.meshes; ++i) {
-        verify::MeshUnderTest mt;
-        std::mt19937_64 rng;
-        verify::MeshShape shape;
-        mt.mesh = verify::fuzz_mesh(opt, i, shape, mt.interior, rng);
-        mt.name = fmt::format("generated #{} ({})", i, shape == verify::MeshShape::star ? "icosphere" : "hull");
-        checks.push_back(verify::check_mesh(*k, mt, mopt));
-      }
+      for (std::size_t i = 0; i < res.meshes; ++i) checks.push_back(verify::check_mesh(*k, verify::generated_mesh(opt, i), mopt));
       std::uint64_t rays = 0, leaks = 0;
       for (const auto& c : checks) rays += c.rays, leaks += c.leaks + c.failures.size();
       fmt::print("{:<18} {:>10} {:>8}   (your kernel: leak rays only)\n", k->name, rays, leaks);

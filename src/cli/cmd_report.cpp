@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <fstream>
+#include <functional>
 #include <memory>
 
 #include "cli/commands.h"
@@ -15,6 +16,9 @@
 #include "report/report.h"
 #include "report/report_text.h"
 #include "report/irradiance_sweep.h"
+#include "report/stability_report.h"
+#include "gen/knobs.h"
+#include "verify/stability.h"
 
 namespace rayproof::cli {
 
@@ -29,6 +33,9 @@ struct ReportOptions {
   UserKernelOptions user;
   std::uint64_t irradiance_samples = 16384;
   std::uint64_t ulp_tolerance = 1;
+  bool stability_only = false;        ///< --stability: only the stability part
+  std::size_t stability_count = 200;  ///< cases per knob step (0: no stability part)
+  bool stability_count_given = false; ///< --stability-count on the command line
 };
 
 std::string cpu_model() {
@@ -37,6 +44,23 @@ std::string cpu_model() {
   while (std::getline(in, line))
     if (line.rfind("model name", 0) == 0) return line.substr(line.find(':') + 2);
   return "unknown CPU";
+}
+
+/// The stability part (docs/stability.md): stability.md, .csv, .svg, and, when `append_to` names a
+/// file, its markdown section appended there.
+std::string run_stability_part(const ReportOptions& opt, const std::vector<const Method*>& methods,
+                               const std::function<void(const std::string&)>& progress, const std::string& append_to) {
+  std::vector<const gen::Knob*> knobs;
+  for (const auto& k : gen::knobs()) knobs.push_back(&k);
+  const auto run = verify::run_stability(knobs, methods, opt.stability_count, opt.seed, progress);
+  if (auto err = report::write_stability(run, opt.out); !err.empty()) return err;
+  if (!append_to.empty()) {
+    std::ofstream out(append_to, std::ios::binary | std::ios::app);
+    out << "\n" << report::stability_markdown(run);
+    if (!out) return append_to + ": cannot write";
+  }
+  progress(fmt::format("wrote {0}/stability.md, {0}/stability.csv, {0}/stability.svg", opt.out));
+  return "";
 }
 
 int run_report(const ReportOptions& opt) {
@@ -51,6 +75,18 @@ int run_report(const ReportOptions& opt) {
   if (!user) return 2;
   std::vector<const Method*> methods = *selected;
   for (const auto& m : *user) methods.push_back(m.get());
+
+  if (opt.stability_only) {
+    if (opt.stability_count == 0) {
+      fmt::print(stderr, "rayproof report: --stability needs --stability-count of at least 1\n");
+      return 2;
+    }
+    if (auto err = run_stability_part(opt, methods, progress, ""); !err.empty()) {
+      fmt::print(stderr, "rayproof report: {}\n", err);
+      return 2;
+    }
+    return 0;
+  }
 
   std::vector<io::Case> cases;
   std::vector<std::string> notes;
@@ -117,6 +153,14 @@ int run_report(const ReportOptions& opt) {
     return 2;
   }
   progress(fmt::format("wrote {0}/report.md, {0}/report.csv, {0}/error_vs_time.svg", opt.out));
+  // The stability part belongs to the main job (every family); a focused run (--input, --families)
+  // gets it only when --stability-count asks for it.
+  const bool focused = !opt.input.empty() || !opt.families.empty();
+  if (opt.stability_count > 0 && (!focused || opt.stability_count_given))
+    if (auto err = run_stability_part(opt, methods, progress, opt.out + "/report.md"); !err.empty()) {
+      fmt::print(stderr, "rayproof report: {}\n", err);
+      return 2;
+    }
   if (auto err = report::write_irradiance_section(opt.out, methods, all_methods().find("certified"), opt.irradiance_samples,
                                                   opt.seed, progress); !err.empty()) {
     fmt::print(stderr, "rayproof report: {}\n", err);
@@ -145,11 +189,20 @@ Run add_report(CLI::App& app) {
   sub->add_option("--methods", opt->methods, "Methods (default: all registered)")->delimiter(',')->allow_extra_args(false);
   sub->add_option("--families", opt->families, "Families (default: all)")->delimiter(',')->allow_extra_args(false);
   sub->add_option("--input", opt->input, "Use the cases of this file instead of generated families");
+  sub->add_flag("--stability", opt->stability_only,
+                 "Only the stability part: every method along each stiffness knob (stability.md, .csv, .svg)");
+  auto* stability_count = sub->add_option("--stability-count", opt->stability_count,
+                  "Cases per step of each stiffness knob (0: no stability part; with --input or --families, only when given)")
+      ->check(CLI::Range(std::size_t{0}, std::size_t{5000}))
+      ->capture_default_str();
   add_user_kernel_options(*sub, opt->user);
   sub->add_option("--irradiance-samples", opt->irradiance_samples,
                   "Largest sample count of the irradiance section's sweep (0: no irradiance section)")
       ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 24))->capture_default_str();
-  return [opt] { return run_report(*opt); };
+  return [opt, stability_count] {
+    opt->stability_count_given = stability_count->count() > 0;
+    return run_report(*opt);
+  };
 }
 
 }  // namespace rayproof::cli

@@ -22,5 +22,6 @@ Run add_serve(CLI::App& app);
 Run add_plugin_host(CLI::App& app);
 Run add_irradiance(CLI::App& app);
 Run add_spawn(CLI::App& app);
+Run add_advise(CLI::App& app);
 
 }  // namespace rayproof::cli

@@ -27,6 +27,7 @@ int main(int argc, char** argv) {
   add(add_plugin_host(app));
   add(add_irradiance(app));
   add(add_spawn(app));
+  add(add_advise(app));
   auto* methods = app.add_subcommand("methods", "List the registered methods");
   try {
     app.parse(argc, argv);

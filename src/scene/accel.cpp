@@ -5,8 +5,11 @@
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
 
+#include <emmintrin.h>
+
 #include <algorithm>
 #include <chrono>
+#include <type_traits>
 
 #include "scene/kernels.h"
 
@@ -62,53 +65,185 @@ const Scene& empty_scene() {
   return s;
 }
 
+/// What a query traverses: the nodes, the leaf records, the packed groups (null: none) and the
+/// group kernels' path.
+template <class Tree>
+struct Leaves {
+  const Tree& bvh;  ///< Bvh4 (SSE path) or Bvh8 (AVX2 path)
+  const LeafPrim* prims;
+  const detail::TriGroup* groups;
+  detail::LeafSimd simd;
+};
+
+template <class Tree, class G>
+Leaves<Tree> leaves_of(const Tree& bvh, const std::vector<LeafPrim>& prims, const G& groups) {
+  const detail::LeafSimd simd = detail::leaf_simd();
+  return {bvh, prims.data(), groups.empty() || simd == detail::LeafSimd::off ? nullptr : groups.data(), simd};
+}
+
 /// The wide tree's traversal with whole leaves: leaf(first, count), true to stop (any hit).
-template <class LeafRange>
+template <class LeafRangeFn>
 void traverse_leaves(const Bvh4& bvh, const Ray<double>& r, double tmin, const double& tmax, BvhTraversal mode,
-                     BvhQuery query, LeafRange&& leaf) {
+                     BvhQuery query, LeafRangeFn&& leaf) {
   bvh4_traverse_leaves(bvh, r, tmin, tmax, mode, query, leaf);
 }
-template <class LeafRange>
+template <class LeafRangeFn>
 void traverse_leaves(const Bvh8& bvh, const Ray<double>& r, double tmin, const double& tmax, BvhTraversal mode,
-                     BvhQuery query, LeafRange&& leaf) {
+                     BvhQuery query, LeafRangeFn&& leaf) {
   bvh8_traverse_leaves(bvh, r, tmin, tmax, mode, query, leaf);
 }
 
-template <class Tree, class K>
-PrimHit closest_with(const Tree& bvh, const LeafPrim* prims, K& k, const Ray<double>& r, BvhTraversal mode, QueryRange q) {
+/// The kernels with group versions (leaf_simd.h): `float`, `robust` and `certified`.
+template <class K>
+constexpr bool kGroupKernel = std::is_same_v<K, detail::CompiledKernel<float, TriAlgo::moller_trumbore>> ||
+                              std::is_same_v<K, detail::CompiledKernel<float, TriAlgo::robust>> ||
+                              std::is_same_v<K, detail::CompiledKernel<double, TriAlgo::certified>>;
+
+/// Lane i of group g as a float triangle.
+inline Triangle<float> lane_triangle(const detail::TriGroup& g, int i) {
+  auto p = [&](int v) { return Vec3<float>{g.p[v][0][i], g.p[v][1][i], g.p[v][2][i]}; };
+  return {p(0), p(1), p(2)};
+}
+
+/// certified's leaves: the group's float data is not certified's, so the leaf records only (ids
+/// and vertex indices), the double vertices, stage 1's proven misses in lanes (AVX2), the other
+/// lanes through the per-primitive kernel.
+template <class K, class L_, class Emit>
+bool certified_leaf(const K& k, const L_& L, std::uint32_t first, std::uint32_t count, Emit& emit) {
+  using namespace detail;
+  const std::uint32_t end = first + count;
+  for (std::uint32_t g0 = first; g0 < end; g0 += kLanes) {
+    const unsigned in = end - g0 >= std::uint32_t(kLanes) ? (1u << kLanes) - 1 : (1u << (end - g0)) - 1;
+    Crossing c[2];
+    unsigned miss = 0;
+    if (L.simd == LeafSimd::avx2) {
+      alignas(32) double p[3][3][kLanes];
+      unsigned tri = 0;
+      for (int i = 0; i < kLanes; ++i) {
+        const LeafPrim& lp = L.prims[g0 + i];
+        const bool is_tri = (in >> i & 1) && lp.id < k.ntri;
+        tri |= unsigned(is_tri) << i;
+        for (int v = 0; v < 3; ++v) {
+          const Vec3<double> x = is_tri ? k.verts[lp.v[v]] : Vec3<double>{};  // (no vertex array without triangles)
+          p[v][0][i] = x.x, p[v][1][i] = x.y, p[v][2][i] = x.z;
+        }
+      }
+      miss = certified_group_misses_avx2(k.ray_d, p, tri);
+    }
+    for (unsigned m = in & ~miss; m; m &= m - 1) {
+      const LeafPrim& lp = L.prims[g0 + __builtin_ctz(m)];
+      const int n = k.crossings(lp, c);
+      if (n && emit(lp.id, c, n)) return true;
+    }
+  }
+  return false;
+}
+
+/// One leaf's slots [first, first + count) through the group kernels (float, robust): emit(id, crossings, n) for
+/// every primitive with crossings, in slot order within each group; true when emit asks to stop.
+template <class K, class L_, class Emit>
+bool group_leaf(const K& k, const L_& L, std::uint32_t first, std::uint32_t count, Emit& emit) {
+  using namespace detail;
+  constexpr bool kRobust = std::is_same_v<K, CompiledKernel<float, TriAlgo::robust>>;
+  const std::uint32_t end = first + count;
+  for (std::uint32_t g0 = first; g0 < end; g0 += kLanes) {
+    const unsigned in = end - g0 >= std::uint32_t(kLanes) ? (1u << kLanes) - 1 : (1u << (end - g0)) - 1;
+    Crossing c[2];
+    const TriGroup& g = L.groups[g0 / kLanes];
+    // The lanes' kinds from the tags' two top bits (padding lies past `in`: leaves end before it).
+    static_assert(kLanes == 4 && kScalarLane == 0x80000000u && kDeadLane == 0x40000000u);
+    const __m128i tags = _mm_load_si128(reinterpret_cast<const __m128i*>(g.tag));
+    const unsigned bit31 = unsigned(_mm_movemask_ps(_mm_castsi128_ps(tags)));
+    const unsigned bit30 = unsigned(_mm_movemask_ps(_mm_castsi128_ps(_mm_slli_epi32(tags, 1))));
+    const unsigned scalar = in & bit31;
+    const unsigned dead = in & ~bit31 & bit30, tri = in & ~bit31 & ~bit30;
+    // Lanes that the per-primitive kernel finishes (in slot order with the lane results).
+    unsigned finish;
+    RobustLanes lanes;
+    lanes.hit = 0;
+    if constexpr (kRobust) {
+      if (!k.ray_ok) {
+        finish = 0;  // the scalar kernel's `invalid`: no triangle crossing
+      } else if (L.simd == LeafSimd::avx2) {
+        robust_group_avx2(k.lane_ray, g, tri, lanes);
+        finish = lanes.special;
+      } else {
+        finish = tri;  // dead lanes: the scalar kernel reports nothing for them either
+      }
+    } else {
+      finish = L.simd == LeafSimd::scalar ? tri | dead : mt_group_survivors(k.ray, g, tri | dead);
+    }
+    for (unsigned m = finish | lanes.hit | scalar; m; m &= m - 1) {
+      const int i = __builtin_ctz(m);
+      const std::uint32_t id = g.tag[i] & kLaneIdMask;
+      int n;
+      if (scalar >> i & 1) {
+        n = k.crossings(L.prims[g0 + i], c);
+      } else if (lanes.hit >> i & 1) {
+        c[0] = {static_cast<Contact>(lanes.contact[i]), double(lanes.t[i]), double(lanes.b1[i]), double(lanes.b2[i])};
+        n = 1;
+      } else {
+        n = k.triangle_crossings(lane_triangle(g, i), c);
+      }
+      if (n && emit(id, c, n)) return true;
+    }
+  }
+  return false;
+}
+
+/// Runs the traversal with the leaf groups when the kernel has group versions and the groups
+/// exist, else slot by slot: emit(id, crossings, n) as in group_leaf.
+template <class K, class L_, class Emit>
+void traverse_with(const L_& L, const K& k, QueryRange q, const double& tmax, BvhTraversal mode, BvhQuery query,
+                   Emit&& emit) {
+  if constexpr (kGroupKernel<K>) {
+    if (L.groups) {
+      traverse_leaves(L.bvh, k.traversal_ray(), q.tmin, tmax, mode, query,
+                           [&](std::uint32_t first, std::uint32_t count) {
+                             if constexpr (std::is_same_v<K, detail::CompiledKernel<double, TriAlgo::certified>>) {
+                               return certified_leaf(k, L, first, count, emit);
+                             } else {
+                               return group_leaf(k, L, first, count, emit);
+                             }
+                           });
+      return;
+    }
+  }
+  traverse_leaves(L.bvh, k.traversal_ray(), q.tmin, tmax, mode, query, [&](std::uint32_t first, std::uint32_t count) {
+    for (std::uint32_t j = first; j < first + count; ++j) {
+      Crossing c[2];
+      const int n = k.crossings(L.prims[j], c);
+      if (n && emit(L.prims[j].id, c, n)) return true;
+    }
+    return false;
+  });
+}
+
+template <class L_, class K>
+PrimHit closest_with(const L_& L, K& k, const Ray<double>& r, BvhTraversal mode, QueryRange q) {
   if (!r.valid()) return {Contact::invalid};
   k.prepare(r);
   PrimHit best;
   double tmax = q.tmax;
-  traverse_leaves(bvh, k.traversal_ray(), q.tmin, tmax, mode, BvhQuery::closest, [&](std::uint32_t first, std::uint32_t count) {
-    for (std::uint32_t j = first; j < first + count; ++j) {
-      const LeafPrim& p = prims[j];
-      const std::uint32_t id = p.id;
-      Crossing c[2];
-      const int n = k.crossings(p, c);
-      for (int i = 0; i < n; ++i)
-        if (c[i].t >= q.tmin && (c[i].t < tmax || (c[i].t == tmax && id < best.prim))) {
-          tmax = c[i].t;
-          best = {c[i].contact, c[i].t, id, c[i].b1, c[i].b2};
-        }
-    }
+  traverse_with(L, k, q, tmax, mode, BvhQuery::closest, [&](std::uint32_t id, const Crossing* c, int n) {
+    for (int i = 0; i < n; ++i)
+      if (c[i].t >= q.tmin && (c[i].t < tmax || (c[i].t == tmax && id < best.prim))) {
+        tmax = c[i].t;
+        best = {c[i].contact, c[i].t, id, c[i].b1, c[i].b2};
+      }
     return false;
   });
   return best;
 }
 
-template <class Tree, class K>
-bool any_with(const Tree& bvh, const LeafPrim* prims, K& k, const Ray<double>& r, BvhTraversal mode, QueryRange q) {
+template <class L_, class K>
+bool any_with(const L_& L, K& k, const Ray<double>& r, BvhTraversal mode, QueryRange q) {
   if (!r.valid()) return false;
   k.prepare(r);
   bool hit = false;
-  traverse_leaves(bvh, k.traversal_ray(), q.tmin, q.tmax, mode, BvhQuery::any, [&](std::uint32_t first, std::uint32_t count) {
-    for (std::uint32_t j = first; j < first + count; ++j) {
-      Crossing c[2];
-      const int n = k.crossings(prims[j], c);
-      for (int i = 0; i < n; ++i)
-        if (c[i].t >= q.tmin && c[i].t <= q.tmax) return hit = true;
-    }
+  traverse_with(L, k, q, q.tmax, mode, BvhQuery::any, [&](std::uint32_t, const Crossing* c, int n) {
+    for (int i = 0; i < n; ++i)
+      if (c[i].t >= q.tmin && c[i].t <= q.tmax) return hit = true;
     return false;
   });
   return hit;
@@ -142,10 +277,20 @@ Accel::Accel(const Scene& s, const BvhBuildOptions& opt, BvhSimd simd)
   const auto start = std::chrono::steady_clock::now();
   std::vector<BvhBox> boxes;
   std::vector<Vec3<float>> centers;
-  s.primitive_bounds(boxes, centers);
+  if (s.size() == s.mesh.triangles.size()) {  // triangles only: their bounds over TBB's threads
+    boxes.resize(s.size()), centers.resize(s.size());
+    tbb::parallel_for(tbb::blocked_range<std::uint32_t>(0, ntri_, 4096), [&](const auto& r) {
+      for (std::uint32_t i = r.begin(); i < r.end(); ++i) triangle_bounds(s.triangle(i), boxes[i], centers[i]);
+    });
+  } else {
+    s.primitive_bounds(boxes, centers);
+  }
   build(boxes, centers, opt);
-  for (LeafPrim& p : leaf_prims_)
-    for (int k = 0; k < 3; ++k) p.v[k] = p.id < ntri_ ? s.mesh.triangles[p.id][k] : 0;
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, leaf_prims_.size(), 4096), [&](const auto& r) {
+    for (std::size_t j = r.begin(); j < r.end(); ++j)
+      for (LeafPrim& p = leaf_prims_[j]; int k : {0, 1, 2}) p.v[k] = p.id < ntri_ ? s.mesh.triangles[p.id][k] : 0;
+  });
+  build_groups();
   build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
@@ -162,10 +307,15 @@ Accel::Accel(const MeshRef& m, const BvhBuildOptions& opt, BvhSimd simd)
     }
   });
   build(boxes, centers, opt);
-  for (LeafPrim& p : leaf_prims_) {
-    const auto t = m.triangle(p.id);
-    for (int k = 0; k < 3; ++k) p.v[k] = t[k];
-  }
+  tbb::parallel_for(tbb::blocked_range<std::size_t>(0, leaf_prims_.size(), 4096), [&](const auto& r) {
+    for (std::size_t j = r.begin(); j < r.end(); ++j) {
+      LeafPrim& p = leaf_prims_[j];
+      if (p.id == PrimHit::kNoPrim) continue;  // padding
+      const auto t = m.triangle(p.id);
+      for (int k = 0; k < 3; ++k) p.v[k] = t[k];
+    }
+  });
+  build_groups();
   build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
@@ -174,18 +324,23 @@ void Accel::build(const std::vector<BvhBox>& boxes, const std::vector<Vec3<float
   Bvh bin = build_bvh(boxes, centers, opt, [](std::size_t n, const auto& f) {
     tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) { f(i); });
   });
-  // prim_ids folded into leaf-order records (the constructors add the triangles' vertex indices).
-  auto fold = [&](std::vector<std::uint32_t>& ids) {
-    leaf_prims_.resize(ids.size());
-    for (std::size_t j = 0; j < leaf_prims_.size(); ++j) leaf_prims_[j] = {{0, 0, 0}, ids[j]};
-    std::vector<std::uint32_t>().swap(ids);
+  // The wide tree of the path (eight-wide for AVX2, four-wide for SSE). Every leaf on a group
+  // boundary, then prim_ids folded into leaf-order records (padding slots: kNoPrim; the
+  // constructors add the triangles' vertex indices).
+  auto fold = [&](auto& tree) {
+    primitive_count_ = tree.prim_ids.size();
+    const std::vector<std::uint32_t> old_of = detail::align_leaf_slots(std::span(tree.nodes), detail::kLanes);
+    leaf_prims_.resize(old_of.size());
+    for (std::size_t j = 0; j < leaf_prims_.size(); ++j)
+      leaf_prims_[j] = {{0, 0, 0}, old_of[j] == detail::kPadLane ? PrimHit::kNoPrim : tree.prim_ids[old_of[j]]};
+    std::vector<std::uint32_t>().swap(tree.prim_ids);
   };
   if (simd_ == BvhSimd::avx2) {
     bvh8_ = collapse_bvh8(std::move(bin), boxes);
-    fold(bvh8_.prim_ids);
+    fold(bvh8_);
   } else {
     bvh_ = collapse_bvh4(std::move(bin), boxes);
-    fold(bvh_.prim_ids);
+    fold(bvh_);
   }
 }
 
@@ -196,6 +351,39 @@ decltype(auto) Accel::with_tree(F&& f) const {
   return f(bvh_);
 }
 
+void Accel::build_groups() {
+  using namespace detail;
+  groups_.clear();
+  if (leaf_prims_.empty()) return;
+  for (const LeafPrim& p : leaf_prims_)
+    if (p.id != PrimHit::kNoPrim && p.id > kMaxGroupPrims) return;  // too many for the lane tags
+  groups_.resize(leaf_prims_.size() / kLanes);
+  tbb::parallel_for(std::size_t(0), groups_.size(), [&](std::size_t gi) {
+    TriGroup& g = groups_[gi];
+    for (int i = 0; i < kLanes; ++i) {
+      const LeafPrim& p = leaf_prims_[gi * kLanes + i];
+      for (int v = 0; v < 3; ++v)
+        for (int a = 0; a < 3; ++a) g.p[v][a][i] = 0.0f;
+      if (p.id == PrimHit::kNoPrim) {
+        g.tag[i] = kPadLane;
+      } else if (p.id >= ntri_) {
+        g.tag[i] = kScalarLane | p.id;
+      } else {
+        const Triangle<float> t{verts_[p.v[0]].cast<float>(), verts_[p.v[1]].cast<float>(), verts_[p.v[2]].cast<float>()};
+        const Vec3<float> q[3] = {t.p0, t.p1, t.p2};
+        for (int v = 0; v < 3; ++v)
+          for (int a = 0; a < 3; ++a) g.p[v][a][i] = q[v][a];
+        g.tag[i] = triangle_lane_tag(t, p.id);
+      }
+    }
+  });
+}
+
+double Accel::group_bytes_per_primitive() const {
+  const std::size_t n = std::max<std::size_t>({1, scene_.size(), ntri_});
+  return double(bvh_.bytes() + bvh8_.bytes() + groups_.size() * sizeof(detail::TriGroup)) / double(n);
+}
+
 double Accel::bytes_per_primitive() const {
   const std::size_t n = std::max<std::size_t>({1, scene_.size(), ntri_});
   return double(bvh_bytes() + triangle_bytes_) / double(n);
@@ -204,14 +392,14 @@ double Accel::bytes_per_primitive() const {
 PrimHit Accel::closest(const Ray<double>& r, const SceneMethod& m, QueryRange q) const {
   return with_tree([&](const auto& tree) {
     return with_kernel(scene_, verts_, ntri_, m,
-                       [&](auto& k) { return closest_with(tree, leaf_prims_.data(), k, r, m.traversal, q); });
+                       [&](auto& k) { return closest_with(leaves_of(tree, leaf_prims_, groups_), k, r, m.traversal, q); });
   });
 }
 
 bool Accel::any(const Ray<double>& r, const SceneMethod& m, QueryRange q) const {
   return with_tree([&](const auto& tree) {
     return with_kernel(scene_, verts_, ntri_, m,
-                       [&](auto& k) { return any_with(tree, leaf_prims_.data(), k, r, m.traversal, q); });
+                       [&](auto& k) { return any_with(leaves_of(tree, leaf_prims_, groups_), k, r, m.traversal, q); });
   });
 }
 
@@ -221,18 +409,12 @@ std::vector<PrimHit> Accel::all(const Ray<double>& r, const SceneMethod& m, Quer
   with_tree([&](const auto& tree) {
     return with_kernel(scene_, verts_, ntri_, m, [&](auto& k) {
       k.prepare(r);
-      traverse_leaves(tree, k.traversal_ray(), q.tmin, q.tmax, m.traversal, BvhQuery::all,
-                      [&](std::uint32_t first, std::uint32_t count) {
-                        for (std::uint32_t j = first; j < first + count; ++j) {
-                          const std::uint32_t id = leaf_prims_[j].id;
-                          Crossing c[2];
-                          const int n = k.crossings(leaf_prims_[j], c);
-                          for (int i = 0; i < n; ++i)
-                            if (c[i].t >= q.tmin && c[i].t <= q.tmax)
-                              out.push_back({c[i].contact, c[i].t, id, c[i].b1, c[i].b2});
-                        }
-                        return false;
-                      });
+      traverse_with(leaves_of(tree, leaf_prims_, groups_), k, q, q.tmax, m.traversal, BvhQuery::all,
+                    [&](std::uint32_t id, const Crossing* c, int n) {
+                      for (int i = 0; i < n; ++i)
+                        if (c[i].t >= q.tmin && c[i].t <= q.tmax) out.push_back({c[i].contact, c[i].t, id, c[i].b1, c[i].b2});
+                      return false;
+                    });
       return 0;
     });
   });
@@ -258,7 +440,7 @@ void Accel::closest_batch(std::span<const Ray<double>> rays, std::span<PrimHit> 
   parallel_rays(rays.size(), threads, [&](std::size_t b, std::size_t e) {
     with_tree([&](const auto& tree) {
       return with_kernel(scene_, verts_, ntri_, m, [&](auto& k) {
-        for (std::size_t i = b; i < e; ++i) out[i] = closest_with(tree, leaf_prims_.data(), k, rays[i], m.traversal, q);
+        for (std::size_t i = b; i < e; ++i) out[i] = closest_with(leaves_of(tree, leaf_prims_, groups_), k, rays[i], m.traversal, q);
         return 0;
       });
     });
@@ -283,7 +465,7 @@ void Accel::closest_batch(std::span<const Ray<double>> rays, std::span<const Que
     with_tree([&](const auto& tree) {
       return with_kernel(scene_, verts_, ntri_, m, [&](auto& k) {
         for (std::size_t i = b; i < e; ++i)
-          sink(context, i, closest_with(tree, leaf_prims_.data(), k, rays[i], m.traversal, range_of(ranges, i)));
+          sink(context, i, closest_with(leaves_of(tree, leaf_prims_, groups_), k, rays[i], m.traversal, range_of(ranges, i)));
         return 0;
       });
     });
@@ -296,7 +478,7 @@ void Accel::any_batch(std::span<const Ray<double>> rays, std::span<const QueryRa
     with_tree([&](const auto& tree) {
       return with_kernel(scene_, verts_, ntri_, m, [&](auto& k) {
         for (std::size_t i = b; i < e; ++i)
-          out[i] = any_with(tree, leaf_prims_.data(), k, rays[i], m.traversal, range_of(ranges, i));
+          out[i] = any_with(leaves_of(tree, leaf_prims_, groups_), k, rays[i], m.traversal, range_of(ranges, i));
         return 0;
       });
     });

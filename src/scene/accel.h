@@ -17,6 +17,7 @@
 #include "rayproof/bvh_wide.h"
 #include "rayproof/bvh_wide8.h"
 #include "rayproof/mesh_caster.h"
+#include "scene/leaf_simd.h"
 #include "scene/scene.h"
 
 namespace rayproof::scene {
@@ -125,12 +126,22 @@ class Accel {
   [[nodiscard]] double build_seconds() const { return build_seconds_; }
   /// BVH plus triangle data, per triangle (analytic primitives counted as triangles).
   [[nodiscard]] double bytes_per_primitive() const;
-  /// Bytes of the BVH: its nodes and the leaf-order primitive records.
+  /// Bytes of the BVH: its nodes (of the tree in use), the leaf-order primitive records and the
+  /// packed leaf groups.
   [[nodiscard]] std::size_t bvh_bytes() const {
-    return bvh_.bytes() + bvh8_.bytes() + leaf_prims_.size() * sizeof(LeafPrim);
+    return bvh_.bytes() + bvh8_.bytes() + leaf_prims_.size() * sizeof(LeafPrim) + groups_.size() * sizeof(detail::TriGroup);
   }
-  /// The leaf-order primitive records (slot j of the BVH's leaves).
+  /// Bytes the `float` and `robust` queries read: the nodes and the packed leaf groups (they do
+  /// not touch the leaf records or the vertex array for triangles), per primitive.
+  [[nodiscard]] double group_bytes_per_primitive() const;
+  /// The leaf-order primitive records (slot j of the BVH's leaves; every leaf starts on a multiple
+  /// of detail::kLanes, the slots between leaves are padding with id = PrimHit::kNoPrim).
   [[nodiscard]] const std::vector<LeafPrim>& leaf_prims() const { return leaf_prims_; }
+  /// The primitives in the BVH (the leaf records without the padding).
+  [[nodiscard]] std::size_t primitive_count() const { return primitive_count_; }
+  /// The packed leaf groups (leaf_simd.h): group g holds slots [g kLanes, (g + 1) kLanes); empty
+  /// when the scene has too many primitives for the lane tags (then every query goes slot by slot).
+  [[nodiscard]] std::span<const detail::TriGroup> leaf_groups() const { return groups_; }
 
   /// Closest crossing in [tmin, tmax] (ties: the lower primitive number); `invalid` for a ray
   /// with a NaN or infinite component or d = 0.
@@ -156,6 +167,8 @@ class Accel {
   void build(const std::vector<BvhBox>& boxes, const std::vector<Vec3<float>>& centers, const BvhBuildOptions& opt);
   template <class F>
   decltype(auto) with_tree(F&& f) const;
+  /// The packed leaf groups from the leaf records (after the vertex indices are in).
+  void build_groups();
   const Scene& scene_;
   const Vec3<double>* verts_ = nullptr;  ///< the triangles' vertices
   std::uint32_t ntri_ = 0;
@@ -164,6 +177,8 @@ class Accel {
   Bvh4 bvh_;   ///< SSE path: nodes only (prim_ids is folded into leaf_prims_)
   Bvh8 bvh8_;  ///< AVX2 path: the same
   std::vector<LeafPrim> leaf_prims_;
+  std::vector<detail::TriGroup, AlignedAllocator<detail::TriGroup, 32>> groups_;
+  std::size_t primitive_count_ = 0;
   double build_seconds_ = 0;
 };
 

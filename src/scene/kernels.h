@@ -9,6 +9,7 @@
 #include "rayproof/triangle.h"
 #include "rayproof/triangle_watertight.h"
 #include "scene/accel.h"
+#include "scene/leaf_simd.h"
 
 namespace rayproof::scene::detail {
 
@@ -125,6 +126,7 @@ struct CompiledKernel {
 
   bool ray_ok = false;                                ///< robust: the float ray is valid
   std::optional<WatertightRay<float, double>> wr_robust{};  ///< robust: the front door's per-ray part
+  RobustLaneRay lane_ray{};  ///< robust: the same per-ray part for the group kernel (leaf_simd.h)
 
   void prepare(const Ray<double>& r) {
     ray = {r.o.template cast<T>(), r.d.template cast<T>()};
@@ -132,7 +134,11 @@ struct CompiledKernel {
     if constexpr (A == TriAlgo::watertight) wr.emplace(ray);
     if constexpr (A == TriAlgo::robust) {
       ray_ok = ray.valid();
-      if (ray_ok) wr_robust.emplace(ray);
+      if (ray_ok) {
+        wr_robust.emplace(ray);
+        for (int k = 0; k < 3; ++k) lane_ray.o[k] = wr_robust->o[k], lane_ray.d[k] = wr_robust->d[k];
+        lane_ray.kx = wr_robust->kx, lane_ray.ky = wr_robust->ky, lane_ray.kz = wr_robust->kz;
+      }
     }
   }
   /// The ray the kernel intersects, in double (a float kernel's float-rounded ray): the one the
@@ -150,9 +156,11 @@ struct CompiledKernel {
   int crossings(std::uint32_t id, Crossing out[2]) const;
   /// The same from a leaf-order record: the triangle's vertices straight from its indices.
   int crossings(const LeafPrim& p, Crossing out[2]) const;
+  /// A triangle's crossings from its vertices in T (float kernels: the float-rounded vertices, as
+  /// a leaf group holds them); not for certified.
+  int triangle_crossings(const Triangle<T>& t, Crossing out[2]) const;
 
  private:
-  int triangle_crossings(const Triangle<T>& t, Crossing out[2]) const;
   /// certified: the filter's answer, else the exact fallback (typed, or the registry method's).
   int certified_crossings(const Triangle<double>& t, std::uint32_t id, Crossing out[2]) const {
     if (const auto h = certified::triangle(ray_d, t)) return crossings_of(h->contact, h->t, h->t2, out);

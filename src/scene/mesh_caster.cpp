@@ -113,7 +113,7 @@ void check_batch(std::size_t rays, std::size_t ranges, std::size_t results) {
 
 template <class M>
 std::size_t MeshCaster<M>::triangle_count() const {
-  return state_->accel->leaf_prims().size();
+  return state_->accel->primitive_count();
 }
 template <class M>
 bool MeshCaster<M>::copies_vertices() const {

@@ -2,6 +2,9 @@
 #include "scene/scene.h"
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <limits>
 #include <map>
 #include <numbers>
 
@@ -37,17 +40,36 @@ Vec3<float> center_of(const BvhBox& b) {
 }
 }  // namespace
 
+namespace {
+/// x rounded to float towards -inf (`up` false) or +inf: the nearest float, stepped one
+/// ulp outward when it fell on the wrong side; the same as bvh_float_down / bvh_float_up, without
+/// branches (the side is a coin flip per coordinate, which branches mispredict).
+float float_outward(double x, bool up) {
+  if (x != x) return up ? -std::numeric_limits<float>::infinity() : std::numeric_limits<float>::infinity();  // NaN: no bound
+  float f = static_cast<float>(x);
+  const double back = f;
+  std::uint32_t u;
+  std::memcpy(&u, &f, 4);
+  // One step outward: away from zero on the outward side (|f| grows), towards zero otherwise. A
+  // zero here is -0 going down or +0 going up (the sign of x survives the rounding), whose steps
+  // are to -denorm_min / +denorm_min: +1 on the bits, as the rule gives.
+  const std::uint32_t negative = u >> 31;
+  const std::uint32_t wrong = up ? std::uint32_t(back < x) : std::uint32_t(back > x);
+  const std::uint32_t away = up ? 1u - negative : negative;  // growing |f| moves outward
+  u += wrong * (away ? 1u : ~0u);
+  std::memcpy(&f, &u, 4);
+  return f;
+}
+}  // namespace
+
 void triangle_bounds(const Triangle<double>& t, BvhBox& box, Vec3<float>& center) {
   // Bounds in double, then rounded outward once: the same box as extending by each vertex
   // (rounding down / up is monotonic), with 6 roundings instead of 18.
-  Vec3<double> lo, hi;
   for (int k = 0; k < 3; ++k) {
     const double a = t.p0[k], b = t.p1[k], c = t.p2[k];
     const double l = a < b ? a : b, h = a > b ? a : b;
-    lo[k] = c < l ? c : l, hi[k] = c > h ? c : h;
+    box.lo[k] = float_outward(c < l ? c : l, false), box.hi[k] = float_outward(c > h ? c : h, true);
   }
-  box = BvhBox{};
-  box.extend(lo), box.extend(hi);
   center = ((t.p0 + t.p1 + t.p2) / 3.0).cast<float>();
 }
 

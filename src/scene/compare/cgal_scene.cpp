@@ -66,6 +66,20 @@ Competitor make_cgal(const Scene& s, const char* name, bool threaded, std::size_
                         [&](const auto& r) { body(r.begin(), r.end()); });
     });
   };
+  c.any = [t, threaded, pt](std::span<const Ray<double>> rays, std::span<std::uint8_t> out, int threads) {
+    auto body = [&](std::size_t b, std::size_t e) {
+      for (std::size_t i = b; i < e; ++i) {
+        const typename K::Ray_3 ray(pt(rays[i].o), typename K::Vector_3(rays[i].d.x, rays[i].d.y, rays[i].d.z));
+        out[i] = t->tree.do_intersect(ray) ? 1 : 0;
+      }
+    };
+    if (!threaded) return body(0, rays.size());
+    tbb::task_arena arena(threads > 0 ? threads : tbb::this_task_arena::max_concurrency());
+    arena.execute([&] {
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rays.size(), 256),
+                        [&](const auto& r) { body(r.begin(), r.end()); });
+    });
+  };
   return c;
 }
 

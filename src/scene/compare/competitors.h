@@ -22,6 +22,13 @@ struct Competitor {
   std::size_t max_rays = 0;   ///< 0: all; else the caller passes at most this many rays (slow methods)
   /// Closest hit of each ray (t >= 0): out[i] = 1 for a hit.
   std::function<void(std::span<const Ray<double>>, std::span<std::uint8_t>, int threads)> closest;
+  /// Any hit (occlusion) of each ray (t >= 0): out[i] = 1 for a hit (Embree: rtcOccluded1; CGAL:
+  /// do_intersect).
+  std::function<void(std::span<const Ray<double>>, std::span<std::uint8_t>, int threads)> any;
+  /// Builds the same structure again on `threads` threads and returns the seconds it took (the
+  /// data set-up and the build; Embree's device is created before the clock starts, as a program
+  /// creates it once). Empty when not offered.
+  std::function<double(int threads)> build_seconds;
 };
 
 [[nodiscard]] bool have_embree();

@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <limits>
+#include <string>
 
 #include "scene/compare/competitors.h"
 
@@ -32,16 +33,18 @@ struct EmbreeScene {
     if (device) rtcReleaseDevice(device);
   }
 };
-}  // namespace
 
-Competitor make_embree(const Scene& s, bool robust, int build_threads) {
-  const auto start = std::chrono::steady_clock::now();
-  auto e = std::make_shared<EmbreeScene>();
-  const std::string config = build_threads > 0 ? "threads=" + std::to_string(build_threads) : std::string();
-  e->device = rtcNewDevice(config.empty() ? nullptr : config.c_str());
-  e->scene = rtcNewScene(e->device);
-  if (robust) rtcSetSceneFlags(e->scene, RTC_SCENE_FLAG_ROBUST);
-  RTCGeometry g = rtcNewGeometry(e->device, RTC_GEOMETRY_TYPE_TRIANGLE);
+/// Embree's device on `threads` threads (0: all).
+RTCDevice new_device(int threads) {
+  const std::string config = threads > 0 ? "threads=" + std::to_string(threads) : std::string();
+  return rtcNewDevice(config.empty() ? nullptr : config.c_str());
+}
+
+/// The scene of s's triangles on device e->device (vertices rounded to float, as Embree takes them).
+void build_scene(EmbreeScene& e, const Scene& s, bool robust) {
+  e.scene = rtcNewScene(e.device);
+  if (robust) rtcSetSceneFlags(e.scene, RTC_SCENE_FLAG_ROBUST);
+  RTCGeometry g = rtcNewGeometry(e.device, RTC_GEOMETRY_TYPE_TRIANGLE);
   auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3,
                                                          3 * sizeof(float), s.mesh.vertices.size()));
   for (std::size_t i = 0; i < s.mesh.vertices.size(); ++i)
@@ -51,32 +54,70 @@ Competitor make_embree(const Scene& s, bool robust, int build_threads) {
   for (std::size_t i = 0; i < s.mesh.triangles.size(); ++i)
     for (int k = 0; k < 3; ++k) ib[3 * i + k] = s.mesh.triangles[i][k];
   rtcCommitGeometry(g);
-  rtcAttachGeometry(e->scene, g);
+  rtcAttachGeometry(e.scene, g);
   rtcReleaseGeometry(g);
-  rtcCommitScene(e->scene);
+  rtcCommitScene(e.scene);
+}
+
+RTCRay embree_ray(const Ray<double>& r) {
+  RTCRay ray{};
+  ray.org_x = float(r.o.x), ray.org_y = float(r.o.y), ray.org_z = float(r.o.z);
+  ray.dir_x = float(r.d.x), ray.dir_y = float(r.d.y), ray.dir_z = float(r.d.z);
+  ray.tnear = 0.0f;
+  ray.tfar = std::numeric_limits<float>::infinity();
+  ray.mask = ~0u;
+  return ray;
+}
+
+template <class Body>
+void over_threads(std::size_t n, int threads, Body&& body) {
+  tbb::task_arena arena(threads > 0 ? threads : tbb::this_task_arena::max_concurrency());
+  arena.execute([&] {
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 256), [&](const auto& r) { body(r.begin(), r.end()); });
+  });
+}
+}  // namespace
+
+Competitor make_embree(const Scene& s, bool robust, int build_threads) {
+  auto e = std::make_shared<EmbreeScene>();
+  e->device = new_device(build_threads);
+  const auto start = std::chrono::steady_clock::now();
+  build_scene(*e, s, robust);
   Competitor c;
   c.name = robust ? "embree-robust" : "embree";
   c.build_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   c.bytes_per_tri = -1;
   c.closest = [e](std::span<const Ray<double>> rays, std::span<std::uint8_t> out, int threads) {
-    tbb::task_arena arena(threads > 0 ? threads : tbb::this_task_arena::max_concurrency());
-    arena.execute([&] {
-      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rays.size(), 256), [&](const auto& r) {
-        RTCIntersectContext ctx;
-        rtcInitIntersectContext(&ctx);
-        for (std::size_t i = r.begin(); i < r.end(); ++i) {
-          RTCRayHit rh{};
-          rh.ray.org_x = float(rays[i].o.x), rh.ray.org_y = float(rays[i].o.y), rh.ray.org_z = float(rays[i].o.z);
-          rh.ray.dir_x = float(rays[i].d.x), rh.ray.dir_y = float(rays[i].d.y), rh.ray.dir_z = float(rays[i].d.z);
-          rh.ray.tnear = 0.0f;
-          rh.ray.tfar = std::numeric_limits<float>::infinity();
-          rh.ray.mask = ~0u;
-          rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-          rtcIntersect1(e->scene, &ctx, &rh);
-          out[i] = rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
-        }
-      });
+    over_threads(rays.size(), threads, [&](std::size_t b, std::size_t end) {
+      RTCIntersectContext ctx;
+      rtcInitIntersectContext(&ctx);
+      for (std::size_t i = b; i < end; ++i) {
+        RTCRayHit rh{};
+        rh.ray = embree_ray(rays[i]);
+        rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+        rtcIntersect1(e->scene, &ctx, &rh);
+        out[i] = rh.hit.geomID != RTC_INVALID_GEOMETRY_ID;
+      }
     });
+  };
+  c.any = [e](std::span<const Ray<double>> rays, std::span<std::uint8_t> out, int threads) {
+    over_threads(rays.size(), threads, [&](std::size_t b, std::size_t end) {
+      RTCIntersectContext ctx;
+      rtcInitIntersectContext(&ctx);
+      for (std::size_t i = b; i < end; ++i) {
+        RTCRay ray = embree_ray(rays[i]);
+        rtcOccluded1(e->scene, &ctx, &ray);
+        out[i] = ray.tfar < 0.0f;  // set to -inf on a hit
+      }
+    });
+  };
+  const Scene* sp = &s;
+  c.build_seconds = [sp, robust](int threads) {
+    EmbreeScene again;
+    again.device = new_device(threads);
+    const auto t0 = std::chrono::steady_clock::now();
+    build_scene(again, *sp, robust);
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   };
   return c;
 }

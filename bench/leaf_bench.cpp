@@ -1,0 +1,239 @@
+/// SIMD leaves (issue 15, item 2; src/scene/leaf_simd.h): ns per triangle of the group kernels
+/// against the per-primitive kernels on the same triangles, and ns per ray of Accel::closest and
+/// Accel::any on a mesh with the groups on each path against the slot-by-slot queries
+/// (RAYPROOF_SIMD=off). The variants run interleaved, round after round, and each reports its
+/// fastest round, so ratios taken in one run are comparable on a busy machine.
+/// Run: leaf_bench [mesh.off] [rounds] [rays] [path] [method]  (default: a generated closed mesh of ~80k
+/// triangles, 7 rounds, 100000 rays per set, every path; a path (off, scalar, sse, avx2) runs only
+/// the queries on that path, e.g. under valgrind --tool=callgrind for instructions per ray).
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <functional>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "cli/registry.h"
+#include "rayproof/certified_triangle.h"
+#include "scene/accel.h"
+#include "scene/kernels.h"
+#include "scene/leaf_simd.h"
+#include "scene/watertight.h"
+
+using namespace rayproof;
+using namespace rayproof::scene;
+using namespace rayproof::scene::detail;
+
+namespace {
+
+double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
+
+volatile std::uint64_t sink_value = 0;
+
+struct Variant {
+  std::string name;
+  std::function<std::uint64_t()> run;  ///< returns a checksum (kept alive)
+  double per = 1;                      ///< units per run (triangles or rays)
+  double best = 1e30;
+};
+
+void run_rounds(std::vector<Variant>& vs, int rounds) {
+  for (int r = 0; r < rounds; ++r)
+    for (auto& v : vs) {
+      const double t0 = now();
+      sink_value = sink_value + v.run();
+      v.best = std::min(v.best, now() - t0);
+    }
+}
+
+void print(const char* title, const char* unit, const std::vector<Variant>& vs) {
+  std::printf("%s\n", title);
+  for (const auto& v : vs)
+    std::printf("  %-34s %8.2f ns/%s  %5.2fx of %s\n", v.name.c_str(), 1e9 * v.best / v.per, unit, vs[0].best / v.best,
+                vs[0].name.c_str());
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const int rounds = argc > 2 ? std::max(1, std::atoi(argv[2])) : 7;
+  const int nrays = argc > 3 ? std::max(1, std::atoi(argv[3])) : 100000;
+  const std::string only = argc > 4 ? argv[4] : "";
+  const std::string only_method = argc > 5 ? argv[5] : "";
+  const bool avx2 = [] {
+    force_leaf_simd(LeafSimd::avx2);
+    const bool ok = leaf_simd() == LeafSimd::avx2;
+    unforce_leaf_simd();
+    return ok;
+  }();
+
+  // Kernels on groups of 4 triangles near random rays (about a third hit), 4096 rays x 4 groups.
+  if (only.empty()) {
+    std::mt19937 rng(5);
+    std::uniform_real_distribution<float> u(-1, 1);
+    constexpr int kRays = 4096, kGroups = 4;
+    std::vector<Ray<double>> rays(kRays);
+    std::vector<TriGroup> groups(kRays * kGroups);
+    std::vector<Triangle<float>> tris(kRays * kGroups * kLanes);
+    for (int r = 0; r < kRays; ++r) {
+      rays[r] = {{u(rng), u(rng), -3.0f}, {0.3f * u(rng), 0.3f * u(rng), 1.0f}};
+      for (int g = 0; g < kGroups; ++g) {
+        TriGroup& G = groups[r * kGroups + g];
+        for (int i = 0; i < kLanes; ++i) {
+          const float z = 3 * u(rng);
+          const float cx = float(rays[r].o.x) + 0.5f * u(rng), cy = float(rays[r].o.y) + 0.5f * u(rng);
+          const Triangle<float> t{{cx + 0.3f * u(rng), cy + 0.3f * u(rng), z},
+                                  {cx + 0.3f * u(rng), cy + 0.3f * u(rng), z + 0.1f * u(rng)},
+                                  {cx + 0.3f * u(rng), cy + 0.3f * u(rng), z + 0.1f * u(rng)}};
+          tris[(r * kGroups + g) * kLanes + i] = t;
+          const Vec3<float> p[3] = {t.p0, t.p1, t.p2};
+          for (int v = 0; v < 3; ++v)
+            for (int a = 0; a < 3; ++a) G.p[v][a][i] = p[v][a];
+          G.tag[i] = triangle_lane_tag(t, std::uint32_t(i));
+        }
+      }
+    }
+    const Scene empty;
+    const double n_tri = double(tris.size());
+    std::vector<Variant> vs;
+    vs.push_back({"robust scalar (per triangle)", [&] {
+                    CompiledKernel<float, TriAlgo::robust> k{empty, nullptr, 0};
+                    std::uint64_t s = 0;
+                    Crossing c[2];
+                    for (int r = 0; r < kRays; ++r) {
+                      k.prepare(rays[r]);
+                      for (int j = 0; j < kGroups * kLanes; ++j) s += k.triangle_crossings(tris[r * kGroups * kLanes + j], c);
+                    }
+                    return s;
+                  }, n_tri});
+    if (avx2)
+      vs.push_back({"robust group (AVX2, 4 double lanes)", [&] {
+                      CompiledKernel<float, TriAlgo::robust> k{empty, nullptr, 0};
+                      std::uint64_t s = 0;
+                      RobustLanes out;
+                      for (int r = 0; r < kRays; ++r) {
+                        k.prepare(rays[r]);
+                        for (int g = 0; g < kGroups; ++g) {
+                          robust_group_avx2(k.lane_ray, groups[r * kGroups + g], 0xf, out);
+                          s += unsigned(__builtin_popcount(out.hit)) + out.special;
+                        }
+                      }
+                      return s;
+                    }, n_tri});
+    std::vector<Triangle<double>> tris_d(tris.size());
+    for (std::size_t i = 0; i < tris.size(); ++i)
+      tris_d[i] = {tris[i].p0.cast<double>(), tris[i].p1.cast<double>(), tris[i].p2.cast<double>()};
+    vs.push_back({"certified scalar (certified::triangle)", [&] {
+                    std::uint64_t s = 0;
+                    for (int r = 0; r < kRays; ++r)
+                      for (int j = 0; j < kGroups * kLanes; ++j) {
+                        const auto h = certified::triangle(rays[r], tris_d[r * kGroups * kLanes + j]);
+                        s += h ? unsigned(h->contact) : 99u;
+                      }
+                    return s;
+                  }, n_tri});
+    if (avx2)
+      vs.push_back({"certified group (AVX2 stage-1 misses)", [&] {
+                      std::uint64_t s = 0;
+                      alignas(32) double p[3][3][kLanes];
+                      for (int r = 0; r < kRays; ++r)
+                        for (int g = 0; g < kGroups; ++g) {
+                          const Triangle<double>* t = &tris_d[(r * kGroups + g) * kLanes];
+                          for (int i = 0; i < kLanes; ++i) {
+                            const Vec3<double> q[3] = {t[i].p0, t[i].p1, t[i].p2};
+                            for (int v = 0; v < 3; ++v)
+                              for (int a = 0; a < 3; ++a) p[v][a][i] = q[v][a];
+                          }
+                          const unsigned miss = certified_group_misses_avx2(rays[r], p, 0xf);
+                          for (unsigned b = 0xf & ~miss; b; b &= b - 1) {
+                            const auto h = certified::triangle(rays[r], t[__builtin_ctz(b)]);
+                            s += h ? unsigned(h->contact) : 99u;
+                          }
+                          s += unsigned(__builtin_popcount(miss));
+                        }
+                      return s;
+                    }, n_tri});
+    vs.push_back({"float scalar (screen + kernel)", [&] {
+                    CompiledKernel<float, TriAlgo::moller_trumbore> k{empty, nullptr, 0};
+                    std::uint64_t s = 0;
+                    Crossing c[2];
+                    for (int r = 0; r < kRays; ++r) {
+                      k.prepare(rays[r]);
+                      for (int j = 0; j < kGroups * kLanes; ++j) s += k.triangle_crossings(tris[r * kGroups * kLanes + j], c);
+                    }
+                    return s;
+                  }, n_tri});
+    vs.push_back({"float group (SSE screen + kernel)", [&] {
+                    CompiledKernel<float, TriAlgo::moller_trumbore> k{empty, nullptr, 0};
+                    std::uint64_t s = 0;
+                    Crossing c[2];
+                    for (int r = 0; r < kRays; ++r) {
+                      k.prepare(rays[r]);
+                      for (int g = 0; g < kGroups; ++g) {
+                        const unsigned m = mt_group_survivors(k.ray, groups[r * kGroups + g], 0xf);
+                        for (unsigned b = m; b; b &= b - 1)
+                          s += k.triangle_crossings(tris[(r * kGroups + g) * kLanes + __builtin_ctz(b)], c);
+                      }
+                    }
+                    return s;
+                  }, n_tri});
+    run_rounds(vs, rounds);
+    print("Triangle kernels (4096 rays x 16 triangles each, about a third hit):", "tri", vs);
+  }
+
+  // Whole queries on a mesh.
+  Scene s;
+  if (argc > 1 && std::string(argv[1]) != "-") {
+    s = load_scene(argv[1]);
+  } else {
+    add_mesh(s, bumpy_sphere(80000));
+  }
+  const Accel a(s);
+  std::printf("\nMesh: %zu triangles; bytes/triangle %.1f (all the Accel holds, with the vertex array), %.1f (nodes + "
+              "groups: what float and robust read)\n",
+              s.mesh.triangles.size(), a.bytes_per_primitive(), a.group_bytes_per_primitive());
+  const BvhBox b = s.bounds();
+  std::mt19937 rng(9);
+  auto in_box = [&] {
+    Vec3<double> p;
+    for (int k = 0; k < 3; ++k) p[k] = std::uniform_real_distribution<double>(b.lo[k], b.hi[k])(rng);
+    return p;
+  };
+  Vec3<double> center, ext;
+  for (int k = 0; k < 3; ++k) center[k] = 0.5 * (double(b.lo[k]) + double(b.hi[k])), ext[k] = double(b.hi[k]) - double(b.lo[k]);
+  const double radius = length(ext);
+  std::vector<Ray<double>> primary, random;
+  for (int i = 0; i < nrays; ++i) {
+    const Vec3<double> eye = center + Vec3<double>{0.2 * radius, 0.3 * radius, 1.5 * radius};
+    primary.push_back({eye, in_box() - eye});
+    const Vec3<double> o = in_box();
+    random.push_back({o, in_box() - o});
+  }
+  for (const char* mname : {"robust", "certified", "float"}) {
+    if (!only_method.empty() && only_method != mname) continue;
+    const SceneMethod m = find_scene_method(mname, cli::all_methods());
+    for (const char* set : {"primary", "random"}) {
+      const auto& rays = std::string(set) == "primary" ? primary : random;
+      for (const char* query : {"closest", "any"}) {
+        const bool closest = std::string(query) == "closest";
+        std::vector<Variant> vs;
+        for (LeafSimd p : {LeafSimd::off, LeafSimd::scalar, LeafSimd::sse, LeafSimd::avx2}) {
+          if ((p == LeafSimd::avx2 && !avx2) || (!only.empty() && only != to_string(p))) continue;
+          vs.push_back({std::string(mname) + " " + query + " " + to_string(p), [&, p, closest] {
+                          force_leaf_simd(p);
+                          std::uint64_t n = 0;
+                          for (const auto& r : rays) n += closest ? a.closest(r, m).prim != PrimHit::kNoPrim : a.any(r, m);
+                          unforce_leaf_simd();
+                          return n;
+                        }, double(rays.size())});
+        }
+        run_rounds(vs, rounds);
+        const std::string title = std::string("Accel ") + query + ", " + set + " rays (" + std::to_string(rays.size()) + "):";
+        print(title.c_str(), "ray", vs);
+      }
+    }
+  }
+  return 0;
+}

@@ -1,0 +1,157 @@
+#include "cli/bench_text.h"
+
+#include <fmt/core.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <map>
+#include <tuple>
+
+namespace rayproof::cli {
+
+namespace {
+std::string fixed(double v, int decimals) { return fmt::format("{:.{}f}", v, decimals); }
+
+/// A JSON string (the names here are file names and method names: quotes and backslashes escaped,
+/// control characters as \u00XX).
+std::string json_string(const std::string& s) {
+  std::string out = "\"";
+  for (char c : s) {
+    if (c == '"' || c == '\\') out += '\\', out += c;
+    else if (static_cast<unsigned char>(c) < 0x20) out += fmt::format("\\u{:04x}", int(c));
+    else out += c;
+  }
+  return out + "\"";
+}
+
+using Key = std::tuple<std::string, std::string, std::string, std::string>;  // mesh, method, rays, query
+std::map<Key, const BenchRow*> index_rows(const std::vector<BenchRow>& rows) {
+  std::map<Key, const BenchRow*> m;
+  for (const auto& r : rows) m[{r.mesh, r.method, r.rays, r.query}] = &r;
+  return m;
+}
+}  // namespace
+
+BenchTarget check_target(const std::string& mesh, const std::string& what, const std::string& rays,
+                         const std::string& query, double value, double goal, Goal kind, int decimals) {
+  BenchTarget t{mesh, what, rays, query, fixed(value, decimals), fixed(goal, decimals), false, ""};
+  // Decided on the printed numbers, so that the words agree with what stands beside them.
+  const double shown = std::strtod(t.value.c_str(), nullptr), g = std::strtod(t.goal.c_str(), nullptr);
+  t.met = kind == Goal::at_least ? shown >= g : shown <= g;
+  if (t.met) {
+    t.verdict = "met";
+  } else {
+    const double miss = kind == Goal::at_least ? g - shown : shown - g;
+    t.verdict = "missed by " + fixed(miss, decimals);
+    if (g > 0) {
+      const double pct = 100.0 * miss / g;
+      t.verdict += pct >= 10 ? fmt::format(" ({:.0f}% of the goal)", pct) : fmt::format(" ({:.2g}% of the goal)", pct);
+    }
+  }
+  return t;
+}
+
+std::vector<BenchTarget> bench_targets(const std::vector<BenchRow>& rows, const std::vector<BenchBuild>& builds) {
+  std::vector<BenchTarget> out;
+  const auto idx = index_rows(rows);
+  auto find = [&](const BenchRow& r, const char* method) {
+    const auto it = idx.find({r.mesh, method, r.rays, r.query});
+    return it == idx.end() ? nullptr : it->second;
+  };
+  struct Ratio {
+    const char *method, *against;
+    double goal;
+  };
+  const Ratio ratios[] = {{"robust", "embree-robust", 1.0}, {"certified", "embree-robust", 0.8}, {"float", "embree", 1.0}};
+  for (const Ratio& q : ratios)
+    for (const auto& r : rows) {
+      if (r.method != q.method) continue;
+      const BenchRow* e = find(r, q.against);
+      if (!e || !(e->mrays > 0)) continue;
+      out.push_back(check_target(r.mesh, fmt::format("{} / {} (1 thread)", q.method, q.against), r.rays, r.query,
+                                 r.mrays / e->mrays, q.goal, Goal::at_least, 2));
+    }
+  for (const char* m : {"robust", "certified", "float"})
+    for (const auto& r : rows)
+      if (r.method == m && r.scaled_threads == 2 && r.mrays > 0)
+        out.push_back(check_target(r.mesh, fmt::format("{} 2 threads / 1 thread", m), r.rays, r.query,
+                                   r.mrays_scaled / r.mrays, 1.9, Goal::at_least, 2));
+  for (const auto& b : builds)
+    if (b.embree_s > 0)
+      out.push_back(check_target(b.mesh, fmt::format("build / Embree's build ({} thread{})", b.threads, b.threads == 1 ? "" : "s"),
+                                 "", "", b.ours_s / b.embree_s, 1.0, Goal::at_most, 2));
+  std::map<std::string, bool> bytes_done, leaks_done;
+  for (const auto& r : rows) {
+    if (r.method == "robust" && r.bytes >= 0 && !bytes_done[r.mesh]) {
+      bytes_done[r.mesh] = true;
+      out.push_back(check_target(r.mesh, "robust bytes per triangle", "", "", r.bytes, 64.0, Goal::at_most, 1));
+    }
+    if ((r.method == "robust" || r.method == "certified") && r.leaks >= 0 && !leaks_done[r.mesh + "/" + r.method]) {
+      leaks_done[r.mesh + "/" + r.method] = true;
+      out.push_back(check_target(r.mesh, r.method + " leaks", "", "", double(r.leaks), 0.0, Goal::at_most, 0));
+    }
+  }
+  return out;
+}
+
+std::string bench_table(const std::vector<BenchRow>& rows) {
+  const auto idx = index_rows(rows);
+  std::string t = fmt::format("{:<20} {:<18} {:<8} {:<8} {:>8} {:>10} {:>10} {:>9} {:>10} {:>7} {:>14}\n", "mesh", "method",
+                              "rays", "query", "count", "Mrays/s 1t", "speed-up", "build s", "x embree-r", "B/tri", "leaks");
+  for (const auto& r : rows) {
+    const auto er = idx.find({r.mesh, "embree-robust", r.rays, r.query});
+    const bool has_er = er != idx.end() && er->second->mrays > 0;
+    t += fmt::format("{:<20} {:<18} {:<8} {:<8} {:>8} {:>10.3f} {:>10} {:>9.3f} {:>10} {:>7} {:>14}\n", r.mesh, r.method,
+                     r.rays, r.query, r.n, r.mrays,
+                     r.scaled_threads > 0 && r.mrays > 0 ? fmt::format("{:.2f}x/{}t", r.mrays_scaled / r.mrays, r.scaled_threads) : "-",
+                     r.build_s, has_er ? fixed(r.mrays / er->second->mrays, 3) : "-", r.bytes < 0 ? "-" : fixed(r.bytes, 1),
+                     r.leaks < 0 ? "-" : fmt::format("{}/{}", r.leaks, r.leak_rays));
+  }
+  return t;
+}
+
+std::string build_table(const std::vector<BenchBuild>& builds) {
+  std::string t = fmt::format("{:<20} {:>7} {:>10} {:>10} {:>8}\n", "mesh", "threads", "build s", "Embree s", "ratio");
+  for (const auto& b : builds)
+    t += fmt::format("{:<20} {:>7} {:>10.4f} {:>10} {:>8}\n", b.mesh, b.threads, b.ours_s,
+                     b.embree_s > 0 ? fixed(b.embree_s, 4) : "-", b.embree_s > 0 ? fixed(b.ours_s / b.embree_s, 2) : "-");
+  return t;
+}
+
+std::string targets_table(const std::vector<BenchTarget>& targets) {
+  std::string t = fmt::format("{:<20} {:<40} {:<8} {:<8} {:>8} {:>8}  {}\n", "mesh", "target", "rays", "query", "value",
+                              "goal", "verdict");
+  for (const auto& x : targets)
+    t += fmt::format("{:<20} {:<40} {:<8} {:<8} {:>8} {:>8}  {}\n", x.mesh, x.what, x.rays.empty() ? "-" : x.rays,
+                     x.query.empty() ? "-" : x.query, x.value, x.goal, x.verdict);
+  return t;
+}
+
+std::string bench_json(const std::vector<BenchRow>& rows, const std::vector<BenchTarget>& targets) {
+  const auto idx = index_rows(rows);
+  std::vector<std::string> items;
+  for (const auto& r : rows) {
+    const auto er = idx.find({r.mesh, "embree-robust", r.rays, r.query});
+    const bool has_er = er != idx.end() && er->second->mrays > 0;
+    items.push_back(fmt::format(
+        "{{\"method\": {}, \"rays\": {}, \"query\": {}, \"path\": {}, \"mesh\": {}, \"ray_count\": {}, \"threads\": 1, "
+        "\"mrays_per_s\": {:.4f}, \"build_s\": {:.4f}, \"bytes_per_tri\": {}, \"ratio_to_embree_robust\": {}, \"leaks\": {}, "
+        "\"leak_rays\": {}, \"scaling_threads\": {}, \"mrays_per_s_scaled\": {}, \"scaling\": {}}}",
+        json_string(r.method), json_string(r.rays), json_string(r.query), json_string(r.path), json_string(r.mesh), r.n,
+        r.mrays, r.build_s, r.bytes < 0 ? "null" : fixed(r.bytes, 1), has_er ? fixed(r.mrays / er->second->mrays, 3) : "null",
+        r.leaks < 0 ? "null" : std::to_string(r.leaks), r.leak_rays, r.scaled_threads > 0 ? std::to_string(r.scaled_threads) : "null",
+        r.scaled_threads > 0 ? fixed(r.mrays_scaled, 4) : "null",
+        r.scaled_threads > 0 && r.mrays > 0 ? fixed(r.mrays_scaled / r.mrays, 3) : "null"));
+  }
+  for (const auto& t : targets)
+    items.push_back(fmt::format("{{\"target\": {}, \"mesh\": {}, \"rays\": {}, \"query\": {}, \"value\": {}, \"goal\": {}, "
+                                "\"met\": {}, \"verdict\": {}}}",
+                                json_string(t.what), json_string(t.mesh), t.rays.empty() ? "null" : json_string(t.rays),
+                                t.query.empty() ? "null" : json_string(t.query), t.value, t.goal, t.met ? "true" : "false",
+                                json_string(t.verdict)));
+  std::string out = "[\n";
+  for (std::size_t i = 0; i < items.size(); ++i) out += "  " + items[i] + (i + 1 < items.size() ? ",\n" : "\n");
+  return out + "]\n";
+}
+
+}  // namespace rayproof::cli

@@ -1,0 +1,61 @@
+#pragma once
+/// What `rayproof bench` prints: the throughput table, the builds, and the issue 15 targets with a
+/// verdict each. Kept apart from the command so that a test can build them from known numbers;
+/// every verdict is decided on the number as printed beside it.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace rayproof::cli {
+
+/// One method or competitor on one mesh, ray set and query, one ray at a time ("single" path).
+struct BenchRow {
+  std::string mesh, method, rays, query = "closest", path = "single";
+  std::size_t n = 0;            ///< rays timed
+  double mrays = 0;             ///< million rays per second on one thread
+  int scaled_threads = 0;       ///< 0: not measured on more threads
+  double mrays_scaled = 0;      ///< on scaled_threads threads
+  double build_s = 0, bytes = -1;  ///< bytes per triangle: -1 not known
+  std::int64_t leaks = -1, leak_rays = 0;  ///< leaks -1: not measured (not a closed mesh)
+};
+
+/// The BVH build on one mesh at one thread count: ours (scene::Accel, SAH) and Embree's (the
+/// faster of its default and robust builds; -1 without Embree), each the best of some repeats.
+struct BenchBuild {
+  std::string mesh;
+  int threads = 1;
+  double ours_s = 0, embree_s = -1;
+};
+
+enum class Goal { at_least, at_most };
+
+/// One target of issue 15 checked on one measurement: the value and goal as printed, and the verdict
+/// ("met" or "missed by D (P% of the goal)") decided on the printed value.
+struct BenchTarget {
+  std::string mesh, what, rays, query;  ///< rays and query empty when the target is not per ray set
+  std::string value, goal;
+  bool met = false;
+  std::string verdict;
+};
+
+/// The target `what` with `value` printed to `decimals` places against `goal` (at least or at most).
+[[nodiscard]] BenchTarget check_target(const std::string& mesh, const std::string& what, const std::string& rays,
+                                       const std::string& query, double value, double goal, Goal kind, int decimals);
+
+/// Every target the rows and builds allow: per mesh, ray set and query, robust / embree-robust
+/// >= 1.0, certified / embree-robust >= 0.8, float / embree >= 1.0 and, measured on two threads,
+/// robust, certified and float two-thread speed-up >= 1.9; per mesh and thread count, build / Embree's
+/// build <= 1.0; per mesh, robust's bytes per triangle <= 64 and robust's and certified's leaks = 0.
+[[nodiscard]] std::vector<BenchTarget> bench_targets(const std::vector<BenchRow>& rows,
+                                                     const std::vector<BenchBuild>& builds);
+
+/// The throughput table: one row per mesh, method, ray set and query, with the ratio to
+/// embree-robust on the same mesh, rays and query (one thread each).
+[[nodiscard]] std::string bench_table(const std::vector<BenchRow>& rows);
+[[nodiscard]] std::string build_table(const std::vector<BenchBuild>& builds);
+[[nodiscard]] std::string targets_table(const std::vector<BenchTarget>& targets);
+/// A JSON array: the rows (fields of the earlier bench plus query, path, mesh and the scaling),
+/// then one object per target ("target", "mesh", "rays", "query", "value", "goal", "met", "verdict").
+[[nodiscard]] std::string bench_json(const std::vector<BenchRow>& rows, const std::vector<BenchTarget>& targets);
+
+}  // namespace rayproof::cli

@@ -1,0 +1,217 @@
+// SIMD leaf kernels (leaf_simd.h): the robust group kernel in AVX2 double lanes (target attribute,
+// chosen at run time), Möller–Trumbore's miss screen in SSE float lanes, and the path selection.
+#include "scene/leaf_simd.h"
+
+#include <immintrin.h>
+
+#include <atomic>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+
+namespace rayproof::scene::detail {
+namespace {
+
+bool cpu_has_avx2() {
+  static const bool ok = (__builtin_cpu_init(), __builtin_cpu_supports("avx2") != 0);
+  return ok;
+}
+
+LeafSimd from_environment() {
+  const LeafSimd best = cpu_has_avx2() ? LeafSimd::avx2 : LeafSimd::sse;
+  const char* e = std::getenv("RAYPROOF_SIMD");
+  if (!e) return best;
+  if (std::strcmp(e, "off") == 0) return LeafSimd::off;
+  if (std::strcmp(e, "scalar") == 0) return LeafSimd::scalar;
+  if (std::strcmp(e, "sse") == 0) return LeafSimd::sse;
+  return best;  // "avx2" or anything else: the best the CPU has
+}
+
+// -1: not forced; else a LeafSimd.
+std::atomic<int> forced{-1};
+
+}  // namespace
+
+LeafSimd leaf_simd() {
+  const int f = forced.load(std::memory_order_relaxed);
+  if (f >= 0) return static_cast<LeafSimd>(f);
+  static const LeafSimd env = from_environment();
+  return env;
+}
+
+void force_leaf_simd(LeafSimd s) {
+  if (s == LeafSimd::avx2 && !cpu_has_avx2()) s = LeafSimd::sse;
+  forced.store(int(s), std::memory_order_relaxed);
+}
+
+void unforce_leaf_simd() { forced.store(-1, std::memory_order_relaxed); }
+
+const char* to_string(LeafSimd s) {
+  switch (s) {
+    case LeafSimd::off: return "off";
+    case LeafSimd::scalar: return "scalar";
+    case LeafSimd::sse: return "sse";
+    case LeafSimd::avx2: return "avx2";
+  }
+  return "?";
+}
+
+// The scalar robust kernel (kernels.h, CompiledKernel<float, TriAlgo::robust>::triangle_crossings)
+// after its ray-independent screens, in four lanes. Every line below is the scalar line it mirrors,
+// with the same operands in the same order; each _mm256 operation is one correctly rounded IEEE
+// double operation, as the scalar one is (no FMA: this function is not compiled for "fma").
+__attribute__((target("avx2"))) void robust_group_avx2(const RobustLaneRay& r, const TriGroup& g, unsigned live,
+                                                        RobustLanes& out) {
+  out.hit = out.special = 0;
+  if (!live) return;
+  __m256d p[3][3];
+  for (int v = 0; v < 3; ++v)
+    for (int k = 0; k < 3; ++k) p[v][k] = _mm256_cvtps_pd(_mm_load_ps(g.p[v][k]));
+  const __m256d zero = _mm256_setzero_pd();
+  // n = cross(p1 - p0, p2 - p0); d . n = 0 goes to the front door (parallel or coplanar).
+  __m256d e1[3], e2[3];
+  for (int k = 0; k < 3; ++k) e1[k] = _mm256_sub_pd(p[1][k], p[0][k]), e2[k] = _mm256_sub_pd(p[2][k], p[0][k]);
+  const __m256d nx = _mm256_sub_pd(_mm256_mul_pd(e1[1], e2[2]), _mm256_mul_pd(e1[2], e2[1]));
+  const __m256d ny = _mm256_sub_pd(_mm256_mul_pd(e1[2], e2[0]), _mm256_mul_pd(e1[0], e2[2]));
+  const __m256d nz = _mm256_sub_pd(_mm256_mul_pd(e1[0], e2[1]), _mm256_mul_pd(e1[1], e2[0]));
+  const __m256d dn = _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(_mm256_set1_pd(r.d[0]), nx), _mm256_mul_pd(_mm256_set1_pd(r.d[1]), ny)),
+                                   _mm256_mul_pd(_mm256_set1_pd(r.d[2]), nz));
+  const unsigned special = unsigned(_mm256_movemask_pd(_mm256_cmp_pd(dn, zero, _CMP_EQ_OQ))) & live;
+  const unsigned rest = live & ~special;
+  out.special = special;
+  if (!rest) return;
+  // intersect_watertight(WatertightRay<float, double>, tri): vertices relative to the origin, shear.
+  const int kx = r.kx, ky = r.ky, kz = r.kz;
+  const __m256d dx = _mm256_set1_pd(r.d[kx]), dy = _mm256_set1_pd(r.d[ky]), dz = _mm256_set1_pd(r.d[kz]);
+  const __m256d ox = _mm256_set1_pd(r.o[kx]), oy = _mm256_set1_pd(r.o[ky]), oz = _mm256_set1_pd(r.o[kz]);
+  __m256d sx[3], sy[3], sz[3];  // per vertex: sheared x, y, and the relative z
+  for (int v = 0; v < 3; ++v) {
+    const __m256d ax = _mm256_sub_pd(p[v][kx], ox), ay = _mm256_sub_pd(p[v][ky], oy), az = _mm256_sub_pd(p[v][kz], oz);
+    sx[v] = _mm256_sub_pd(_mm256_mul_pd(dz, ax), _mm256_mul_pd(dx, az));
+    sy[v] = _mm256_sub_pd(_mm256_mul_pd(dz, ay), _mm256_mul_pd(dy, az));
+    sz[v] = az;
+  }
+  // u = edge(c, b), v = edge(a, c), w = edge(b, a): e(p, q) = p_x q_y - p_y q_x.
+  const __m256d u = _mm256_sub_pd(_mm256_mul_pd(sx[2], sy[1]), _mm256_mul_pd(sy[2], sx[1]));
+  const __m256d v = _mm256_sub_pd(_mm256_mul_pd(sx[0], sy[2]), _mm256_mul_pd(sy[0], sx[2]));
+  const __m256d w = _mm256_sub_pd(_mm256_mul_pd(sx[1], sy[0]), _mm256_mul_pd(sy[1], sx[0]));
+  const __m256d any_neg = _mm256_or_pd(_mm256_or_pd(_mm256_cmp_pd(u, zero, _CMP_LT_OQ), _mm256_cmp_pd(v, zero, _CMP_LT_OQ)),
+                                       _mm256_cmp_pd(w, zero, _CMP_LT_OQ));
+  const __m256d any_pos = _mm256_or_pd(_mm256_or_pd(_mm256_cmp_pd(u, zero, _CMP_GT_OQ), _mm256_cmp_pd(v, zero, _CMP_GT_OQ)),
+                                       _mm256_cmp_pd(w, zero, _CMP_GT_OQ));
+  const unsigned miss = unsigned(_mm256_movemask_pd(_mm256_and_pd(any_neg, any_pos)));
+  const __m256d det = _mm256_add_pd(_mm256_add_pd(u, v), w);
+  const unsigned parallel = unsigned(_mm256_movemask_pd(_mm256_cmp_pd(det, zero, _CMP_EQ_OQ)));
+  const __m256d ts = _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(u, sz[0]), _mm256_mul_pd(v, sz[1])), _mm256_mul_pd(w, sz[2]));
+  const __m256d den = _mm256_mul_pd(det, dz);
+  // behind = den < 0 ? ts > 0 : ts < 0
+  const __m256d den_neg = _mm256_cmp_pd(den, zero, _CMP_LT_OQ);
+  const __m256d behind = _mm256_or_pd(_mm256_and_pd(den_neg, _mm256_cmp_pd(ts, zero, _CMP_GT_OQ)),
+                                      _mm256_andnot_pd(den_neg, _mm256_cmp_pd(ts, zero, _CMP_LT_OQ)));
+  const unsigned hit = rest & ~miss & ~parallel & ~unsigned(_mm256_movemask_pd(behind));
+  out.hit = hit;
+  if (!hit) return;
+  alignas(32) double U[4], V[4], W[4], D[4], TS[4], DEN[4];
+  _mm256_store_pd(U, u), _mm256_store_pd(V, v), _mm256_store_pd(W, w);
+  _mm256_store_pd(D, det), _mm256_store_pd(TS, ts), _mm256_store_pd(DEN, den);
+  for (unsigned m = hit; m; m &= m - 1) {
+    const int i = __builtin_ctz(m);
+    out.t[i] = static_cast<float>(TS[i] / DEN[i]);
+    out.b1[i] = static_cast<float>(V[i] / D[i]), out.b2[i] = static_cast<float>(W[i] / D[i]);
+    const int zeros = (U[i] == 0.0) + (V[i] == 0.0) + (W[i] == 0.0);
+    out.contact[i] = static_cast<std::uint8_t>(zeros == 0 ? Contact::interior : zeros == 1 ? Contact::edge : Contact::vertex);
+  }
+}
+
+// triangle_stage1 (certified_triangle.h) up to `return H{Contact::miss}`, line by line in lanes:
+// a = p0 - o, b = p1 - o, c = p2 - o; u0 = (d x b) . c, u1 = (d x c) . a, u2 = (d x a) . b; the
+// bounds e_i and eden; a lane is a miss when |den| > eden, eden < 2^1020 and a u_i is clearly of
+// the sign opposite to den. Same operations in the same order as the scalar stage (no FMA here, and
+// the project compiles with -ffp-contract=off, so the scalar stage does not contract either); and
+// whatever the rounding, a lane reported here is a miss proven by stage 1's error bound, so the
+// exact class certified::triangle returns for it is miss.
+__attribute__((target("avx2"))) unsigned certified_group_misses_avx2(const Ray<double>& ray, const double (&p)[3][3][kLanes],
+                                                                    unsigned live) {
+  if (!live) return 0;
+  const __m256d sign = _mm256_set1_pd(-0.0);
+  __m256d rel[3][3];  // rel[vertex][axis] = p - o
+  for (int v = 0; v < 3; ++v)
+    for (int k = 0; k < 3; ++k) rel[v][k] = _mm256_sub_pd(_mm256_loadu_pd(p[v][k]), _mm256_set1_pd(ray.o[k]));
+  const __m256d dx = _mm256_set1_pd(ray.d.x), dy = _mm256_set1_pd(ray.d.y), dz = _mm256_set1_pd(ray.d.z);
+  __m256d u[3], mx[3];
+  // u0 from (b, c) = (rel[1], rel[2]), u1 from (c, a), u2 from (a, b): dot(cross(d, q), r).
+  const int q_of[3] = {1, 2, 0}, r_of[3] = {2, 0, 1};
+  for (int i = 0; i < 3; ++i) {
+    const __m256d* q = rel[q_of[i]];
+    const __m256d* r = rel[r_of[i]];
+    const __m256d cx = _mm256_sub_pd(_mm256_mul_pd(dy, q[2]), _mm256_mul_pd(dz, q[1]));
+    const __m256d cy = _mm256_sub_pd(_mm256_mul_pd(dz, q[0]), _mm256_mul_pd(dx, q[2]));
+    const __m256d cz = _mm256_sub_pd(_mm256_mul_pd(dx, q[1]), _mm256_mul_pd(dy, q[0]));
+    u[i] = _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(cx, r[0]), _mm256_mul_pd(cy, r[1])), _mm256_mul_pd(cz, r[2]));
+  }
+  for (int v = 0; v < 3; ++v) {  // norm_inf: m = x > y ? x : y; m > z ? m : z
+    const __m256d x = _mm256_andnot_pd(sign, rel[v][0]), y = _mm256_andnot_pd(sign, rel[v][1]), z = _mm256_andnot_pd(sign, rel[v][2]);
+    const __m256d m = _mm256_blendv_pd(y, x, _mm256_cmp_pd(x, y, _CMP_GT_OQ));
+    mx[v] = _mm256_blendv_pd(z, m, _mm256_cmp_pd(m, z, _CMP_GT_OQ));
+  }
+  const double d1 = std::fabs(ray.d.x) + std::fabs(ray.d.y) + std::fabs(ray.d.z);
+  const __m256d k = _mm256_set1_pd(0x1p-49 * d1), tiny = _mm256_set1_pd(0x1p-1000), one = _mm256_set1_pd(1.0);
+  // e0 = k mb mc + 2^-1000 (mc + 1), e1 = k mc ma + 2^-1000 (ma + 1), e2 = k ma mb + 2^-1000 (mb + 1)
+  __m256d e[3];
+  for (int i = 0; i < 3; ++i) {
+    const __m256d f = mx[q_of[i]], g = mx[r_of[i]];
+    e[i] = _mm256_add_pd(_mm256_mul_pd(_mm256_mul_pd(k, f), g), _mm256_mul_pd(tiny, _mm256_add_pd(g, one)));
+  }
+  const __m256d den = _mm256_add_pd(_mm256_add_pd(u[0], u[1]), u[2]);
+  const __m256d au = _mm256_add_pd(_mm256_add_pd(_mm256_andnot_pd(sign, u[0]), _mm256_andnot_pd(sign, u[1])),
+                                   _mm256_andnot_pd(sign, u[2]));
+  const __m256d eden = _mm256_add_pd(_mm256_mul_pd(_mm256_add_pd(_mm256_add_pd(e[0], e[1]), e[2]), _mm256_set1_pd(1 + 0x1p-50)),
+                                     _mm256_mul_pd(_mm256_set1_pd(0x1p-51), au));
+  const __m256d decided = _mm256_and_pd(_mm256_cmp_pd(_mm256_andnot_pd(sign, den), eden, _CMP_GT_OQ),
+                                        _mm256_cmp_pd(eden, _mm256_set1_pd(0x1p1020), _CMP_LT_OQ));
+  const __m256d den_pos = _mm256_cmp_pd(den, _mm256_setzero_pd(), _CMP_GT_OQ);
+  __m256d neg = _mm256_setzero_pd();
+  for (int i = 0; i < 3; ++i) {  // den > 0 ? u < -e : u > e
+    const __m256d below = _mm256_cmp_pd(u[i], _mm256_xor_pd(sign, e[i]), _CMP_LT_OQ);
+    const __m256d above = _mm256_cmp_pd(u[i], e[i], _CMP_GT_OQ);
+    neg = _mm256_or_pd(neg, _mm256_blendv_pd(above, below, den_pos));
+  }
+  return unsigned(_mm256_movemask_pd(_mm256_and_pd(decided, neg))) & live;
+}
+
+// mt_surely_no_crossing (kernels.h) in four float lanes; a lane survives unless the scalar screen
+// would return true: det != 0 and (!(b1 >= 0) or !(b2 >= 0 and 1 - b1 - b2 >= 0) or t' < 0).
+unsigned mt_group_survivors(const Ray<float>& ray, const TriGroup& g, unsigned live) {
+  if (!live) return 0;
+  __m128 p0[3], e1[3], e2[3];
+  for (int k = 0; k < 3; ++k) {
+    p0[k] = _mm_load_ps(g.p[0][k]);
+    e1[k] = _mm_sub_ps(_mm_load_ps(g.p[1][k]), p0[k]);
+    e2[k] = _mm_sub_ps(_mm_load_ps(g.p[2][k]), p0[k]);
+  }
+  const __m128 dx = _mm_set1_ps(ray.d.x), dy = _mm_set1_ps(ray.d.y), dz = _mm_set1_ps(ray.d.z);
+  // s1 = cross(d, e2), det = dot(s1, e1)
+  const __m128 s1x = _mm_sub_ps(_mm_mul_ps(dy, e2[2]), _mm_mul_ps(dz, e2[1]));
+  const __m128 s1y = _mm_sub_ps(_mm_mul_ps(dz, e2[0]), _mm_mul_ps(dx, e2[2]));
+  const __m128 s1z = _mm_sub_ps(_mm_mul_ps(dx, e2[1]), _mm_mul_ps(dy, e2[0]));
+  const __m128 det = _mm_add_ps(_mm_add_ps(_mm_mul_ps(s1x, e1[0]), _mm_mul_ps(s1y, e1[1])), _mm_mul_ps(s1z, e1[2]));
+  const __m128 zero = _mm_setzero_ps(), one = _mm_set1_ps(1.0f);
+  const __m128 inv = _mm_div_ps(one, det);
+  // s = o - p0; b1 = dot(s1, s) * inv
+  const __m128 sx = _mm_sub_ps(_mm_set1_ps(ray.o.x), p0[0]), sy = _mm_sub_ps(_mm_set1_ps(ray.o.y), p0[1]),
+               sz = _mm_sub_ps(_mm_set1_ps(ray.o.z), p0[2]);
+  const __m128 b1 = _mm_mul_ps(_mm_add_ps(_mm_add_ps(_mm_mul_ps(s1x, sx), _mm_mul_ps(s1y, sy)), _mm_mul_ps(s1z, sz)), inv);
+  // s2 = cross(s, e1); b2 = dot(s2, d) * inv; t' = dot(s2, e2) * inv
+  const __m128 s2x = _mm_sub_ps(_mm_mul_ps(sy, e1[2]), _mm_mul_ps(sz, e1[1]));
+  const __m128 s2y = _mm_sub_ps(_mm_mul_ps(sz, e1[0]), _mm_mul_ps(sx, e1[2]));
+  const __m128 s2z = _mm_sub_ps(_mm_mul_ps(sx, e1[1]), _mm_mul_ps(sy, e1[0]));
+  const __m128 b2 = _mm_mul_ps(_mm_add_ps(_mm_add_ps(_mm_mul_ps(s2x, dx), _mm_mul_ps(s2y, dy)), _mm_mul_ps(s2z, dz)), inv);
+  const __m128 tt = _mm_mul_ps(_mm_add_ps(_mm_add_ps(_mm_mul_ps(s2x, e2[0]), _mm_mul_ps(s2y, e2[1])), _mm_mul_ps(s2z, e2[2])), inv);
+  const __m128 b0 = _mm_sub_ps(_mm_sub_ps(one, b1), b2);
+  const __m128 inside = _mm_and_ps(_mm_and_ps(_mm_cmpge_ps(b1, zero), _mm_cmpge_ps(b2, zero)),
+                                   _mm_and_ps(_mm_cmpge_ps(b0, zero), _mm_cmpnlt_ps(tt, zero)));
+  const __m128 survive = _mm_or_ps(_mm_cmpeq_ps(det, zero), inside);
+  return unsigned(_mm_movemask_ps(survive)) & live;
+}
+
+}  // namespace rayproof::scene::detail

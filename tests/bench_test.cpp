@@ -1,0 +1,191 @@
+// Issue 15 item 5: `rayproof bench`'s targets and output. Verdicts from known numbers (decided on
+// the printed value), the targets a set of rows yields, and the JSON of a real run on a tiny closed
+// mesh: fields, rows for both queries, and ratios and verdicts that follow from the printed numbers.
+#include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <map>
+#include <set>
+#include <string>
+
+#include "cli/bench_text.h"
+#include "tests/cli_support.h"
+
+using namespace rayproof::cli;
+using rayproof::testing::run_rayproof;
+using rayproof::testing::write_file;
+
+TEST(BenchTarget, VerdictFollowsThePrintedValue) {
+  auto t = check_target("m", "robust / embree-robust (1 thread)", "primary", "closest", 0.59, 1.0, Goal::at_least, 2);
+  EXPECT_EQ(t.value, "0.59");
+  EXPECT_EQ(t.goal, "1.00");
+  EXPECT_FALSE(t.met);
+  EXPECT_EQ(t.verdict, "missed by 0.41 (41% of the goal)");
+  // 0.996 prints as 1.00: met, as the reader sees it.
+  t = check_target("m", "x", "", "", 0.996, 1.0, Goal::at_least, 2);
+  EXPECT_EQ(t.value, "1.00");
+  EXPECT_TRUE(t.met);
+  EXPECT_EQ(t.verdict, "met");
+  t = check_target("m", "x", "", "", 0.994, 1.0, Goal::at_least, 2);
+  EXPECT_EQ(t.value, "0.99");
+  EXPECT_EQ(t.verdict, "missed by 0.01 (1% of the goal)");
+  // At most: build ratio and bytes; leaks against 0 have no percentage.
+  t = check_target("m", "build", "", "", 1.2949, 1.0, Goal::at_most, 2);
+  EXPECT_EQ(t.verdict, "missed by 0.29 (29% of the goal)");
+  t = check_target("m", "build", "", "", 0.8, 1.0, Goal::at_most, 2);
+  EXPECT_EQ(t.verdict, "met");
+  t = check_target("m", "bytes", "", "", 64.04, 64.0, Goal::at_most, 1);
+  EXPECT_EQ(t.value, "64.0");
+  EXPECT_TRUE(t.met);
+  t = check_target("m", "bytes", "", "", 64.1, 64.0, Goal::at_most, 1);
+  EXPECT_EQ(t.verdict, "missed by 0.1 (0.16% of the goal)");
+  t = check_target("m", "robust leaks", "", "", 186, 0.0, Goal::at_most, 0);
+  EXPECT_EQ(t.verdict, "missed by 186");
+  t = check_target("m", "scaling", "", "", 1.86, 1.9, Goal::at_least, 2);
+  EXPECT_EQ(t.verdict, "missed by 0.04 (2.1% of the goal)");
+}
+
+TEST(BenchTarget, TargetsFromRowsAndBuilds) {
+  std::vector<BenchRow> rows;
+  auto row = [&](const char* method, const char* rays, const char* query, double mrays, double scaled) {
+    BenchRow r;
+    r.mesh = "m", r.method = method, r.rays = rays, r.query = query, r.n = 10, r.mrays = mrays;
+    if (scaled > 0) r.scaled_threads = 2, r.mrays_scaled = scaled;
+    r.bytes = std::string(method) == "robust" ? 61.5 : -1;
+    r.leaks = std::string(method) == "embree-robust" ? 186 : 0, r.leak_rays = 1000;
+    rows.push_back(r);
+  };
+  for (const char* q : {"closest", "any"}) {
+    row("robust", "primary", q, 5.0, 9.7);
+    row("certified", "primary", q, 4.0, 7.0);
+    row("float", "primary", q, 6.0, 12.0);
+    row("embree", "primary", q, 8.0, 16.0);
+    row("embree-robust", "primary", q, 4.0, 8.0);
+  }
+  const std::vector<BenchBuild> builds{{"m", 1, 0.03, 0.025}, {"m", 2, 0.02, 0.02}, {"n", 1, 0.5, -1}};
+  const auto targets = bench_targets(rows, builds);
+  std::map<std::string, const BenchTarget*> by;
+  for (const auto& t : targets) by[t.what + "|" + t.query] = &t;
+  ASSERT_TRUE(by.count("robust / embree-robust (1 thread)|closest"));
+  EXPECT_EQ(by["robust / embree-robust (1 thread)|closest"]->value, "1.25");
+  EXPECT_TRUE(by["robust / embree-robust (1 thread)|any"]->met);
+  EXPECT_EQ(by["certified / embree-robust (1 thread)|closest"]->value, "1.00");
+  EXPECT_EQ(by["float / embree (1 thread)|closest"]->verdict, "missed by 0.25 (25% of the goal)");
+  EXPECT_EQ(by["robust 2 threads / 1 thread|closest"]->value, "1.94");
+  EXPECT_EQ(by["certified 2 threads / 1 thread|any"]->verdict, "missed by 0.15 (7.9% of the goal)");
+  EXPECT_EQ(by["build / Embree's build (1 thread)|"]->value, "1.20");
+  EXPECT_FALSE(by["build / Embree's build (1 thread)|"]->met);
+  EXPECT_TRUE(by["build / Embree's build (2 threads)|"]->met);
+  EXPECT_TRUE(by["robust bytes per triangle|"]->met);
+  EXPECT_EQ(by["robust leaks|"]->value, "0");
+  EXPECT_TRUE(by["certified leaks|"]->met);
+  // No Embree build on mesh n: no build target there; 2 queries x (3 ratios + 3 speed-ups) + 2 builds + bytes + 2 leaks.
+  for (const auto& t : targets) EXPECT_EQ(t.mesh, "m");
+  EXPECT_EQ(targets.size(), 2u * 6 + 2 + 1 + 2);
+  // The table prints every verdict.
+  const std::string table = targets_table(targets);
+  for (const auto& t : targets) EXPECT_NE(table.find(t.verdict), std::string::npos);
+}
+
+namespace {
+/// An octahedron, closed, as OFF.
+std::string octahedron_off() {
+  return "OFF\n6 8 0\n1 0 0\n-1 0 0\n0 1 0\n0 -1 0\n0 0 1\n0 0 -1\n"
+         "3 0 2 4\n3 2 1 4\n3 1 3 4\n3 3 0 4\n3 2 0 5\n3 1 2 5\n3 3 1 5\n3 0 3 5\n";
+}
+}  // namespace
+
+TEST(BenchCli, JsonRowsForBothQueriesAndTargetsFromThePrintedNumbers) {
+  const auto mesh = write_file("bench_octahedron.off", octahedron_off());
+  const auto r = run_rayproof("bench " + mesh.string() +
+                              " --json --threads 2 --repeat 1 --rays 300 --leak-rays 40 --width 16 --height 12"
+                              " --methods float,robust,certified --competitors embree,embree-robust,cgal-epick");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_TRUE(j.is_array());
+  std::map<std::string, nlohmann::json> row;  // method/rays/query
+  std::vector<nlohmann::json> targets;
+  for (const auto& x : j) {
+    if (x.contains("target")) {
+      targets.push_back(x);
+      continue;
+    }
+    for (const char* f : {"method", "rays", "query", "path", "mesh", "ray_count", "threads", "mrays_per_s", "build_s",
+                          "bytes_per_tri", "ratio_to_embree_robust", "leaks", "leak_rays", "scaling_threads",
+                          "mrays_per_s_scaled", "scaling"})
+      EXPECT_TRUE(x.contains(f)) << f;
+    EXPECT_EQ(x["path"], "single");
+    EXPECT_EQ(x["mesh"], "bench_octahedron.off");
+    EXPECT_EQ(x["threads"], 1);
+    row[x["method"].get<std::string>() + "/" + x["rays"].get<std::string>() + "/" + x["query"].get<std::string>()] = x;
+  }
+  const bool embree = row.count("embree-robust/primary/closest") > 0;
+  std::vector<std::string> methods{"float", "robust", "certified", "cgal-epick"};
+  if (embree) methods.insert(methods.end(), {"embree", "embree-robust"});
+  for (const auto& m : methods)
+    for (const char* rays : {"primary", "random"})
+      for (const char* q : {"closest", "any"}) {
+        const std::string key = m + "/" + rays + "/" + q;
+        ASSERT_TRUE(row.count(key)) << key;
+        const auto& x = row[key];
+        EXPECT_EQ(x["ray_count"], std::string(rays) == "primary" ? 16 * 12 : 300) << key;
+        EXPECT_GT(x["mrays_per_s"].get<double>(), 0.0) << key;
+        EXPECT_EQ(x["scaling_threads"], 2) << key;
+        EXPECT_NEAR(x["scaling"].get<double>(), x["mrays_per_s_scaled"].get<double>() / x["mrays_per_s"].get<double>(), 2e-3 * x["scaling"].get<double>() + 1e-3) << key;
+        if (m == "robust" || m == "certified") {
+          EXPECT_EQ(x["leaks"], 0) << key;
+          EXPECT_GT(x["leak_rays"].get<int>(), 0) << key;
+        }
+        if (embree) {
+          const double er = row[std::string("embree-robust/") + rays + "/" + q]["mrays_per_s"].get<double>();
+          EXPECT_NEAR(x["ratio_to_embree_robust"].get<double>(), x["mrays_per_s"].get<double>() / er,
+                      1e-3 + 1e-4 * x["ratio_to_embree_robust"].get<double>() * 10) << key;
+        } else {
+          EXPECT_TRUE(x["ratio_to_embree_robust"].is_null()) << key;
+        }
+      }
+  // Targets: every verdict agrees with its printed value and goal.
+  std::set<std::string> kinds;
+  for (const auto& t : targets) {
+    kinds.insert(t["target"].get<std::string>());
+    const double v = t["value"].get<double>(), g = t["goal"].get<double>();
+    const std::string what = t["target"];
+    const bool at_most = what.find("build") != std::string::npos || what.find("bytes") != std::string::npos ||
+                         what.find("leaks") != std::string::npos;
+    EXPECT_EQ(t["met"].get<bool>(), at_most ? v <= g : v >= g) << what;
+    EXPECT_EQ(t["verdict"].get<std::string>() == "met", t["met"].get<bool>()) << what;
+  }
+  EXPECT_TRUE(kinds.count("robust 2 threads / 1 thread"));
+  EXPECT_TRUE(kinds.count("robust bytes per triangle"));
+  EXPECT_TRUE(kinds.count("robust leaks"));
+  EXPECT_TRUE(kinds.count("certified leaks"));
+  if (embree) {
+    EXPECT_TRUE(kinds.count("robust / embree-robust (1 thread)"));
+    EXPECT_TRUE(kinds.count("certified / embree-robust (1 thread)"));
+    EXPECT_TRUE(kinds.count("float / embree (1 thread)"));
+    EXPECT_TRUE(kinds.count("build / Embree's build (1 thread)"));
+    EXPECT_TRUE(kinds.count("build / Embree's build (2 threads)"));
+    // A robust ratio target per ray set and query, its value the row's ratio as printed.
+    for (const auto& t : targets)
+      if (t["target"] == "robust / embree-robust (1 thread)") {
+        const auto& x = row["robust/" + t["rays"].get<std::string>() + "/" + t["query"].get<std::string>()];
+        EXPECT_NEAR(t["value"].get<double>(), x["ratio_to_embree_robust"].get<double>(), 0.0051);
+      }
+  }
+}
+
+TEST(BenchCli, TextTablesAndBadOptions) {
+  const auto mesh = write_file("bench_octahedron2.off", octahedron_off());
+  const auto r = run_rayproof("bench " + mesh.string() +
+                              " --threads 1 --repeat 1 --rays 100 --leak-rays 20 --width 8 --height 8"
+                              " --methods robust --competitors none");
+  ASSERT_EQ(r.status, 0) << r.err;
+  for (const char* s : {"Mrays/s 1t", "BVH build", "Targets of issue 15", "robust leaks", "robust bytes per triangle"})
+    EXPECT_NE(r.out.find(s), std::string::npos) << s;
+  // One thread: no speed-up measured, no speed-up target.
+  EXPECT_EQ(r.out.find("2 threads / 1 thread"), std::string::npos);
+  EXPECT_NE(run_rayproof("bench " + mesh.string() + " --repeat 0").status, 0);
+  EXPECT_NE(run_rayproof("bench " + mesh.string() + " --threads -1").status, 0);
+  EXPECT_NE(run_rayproof("bench " + mesh.string() + " --width 0").status, 0);
+}

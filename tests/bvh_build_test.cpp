@@ -1,0 +1,243 @@
+// Issue 15 item 3: the parallel binned SAH builder. The tree is valid (every primitive exactly
+// once, boxes enclose children and primitives, max_depth right) and the same, node for node, for
+// one thread, two threads and tasks run in reverse order; triangle bounds are rounded outward as
+// BvhBox::extend rounds them.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <random>
+#include <thread>
+#include <vector>
+
+#include "rayproof/bvh_build.h"
+#include "rayproof/bvh_traverse.h"
+#include "rayproof/triangle.h"
+#include "scene/scene.h"
+
+using namespace rayproof;
+
+namespace {
+struct Soup {
+  std::vector<Triangle<double>> tris;
+  std::vector<BvhBox> boxes;
+  std::vector<Vec3<float>> centers;
+};
+/// n small triangles: clustered (half of them in a few tight clumps, to get coincident-looking
+/// centers and forced splits) and spread over a box.
+Soup soup(std::size_t n, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-10, 10), s(-0.3, 0.3), tiny(-1e-6, 1e-6);
+  Soup out;
+  for (std::size_t i = 0; i < n; ++i) {
+    const bool clump = i % 2 == 0;
+    const Vec3<double> c = clump ? Vec3<double>{double(i % 7), 0.5, -1.0} : Vec3<double>{u(rng), u(rng), u(rng)};
+    auto jitter = [&] { return clump ? Vec3<double>{tiny(rng), tiny(rng), tiny(rng)} : Vec3<double>{s(rng), s(rng), s(rng)}; };
+    const Triangle<double> t{c + jitter(), c + jitter(), c + jitter()};
+    BvhBox b;
+    Vec3<float> center;
+    scene::triangle_bounds(t, b, center);
+    out.tris.push_back(t);
+    out.boxes.push_back(b);
+    out.centers.push_back(center);
+  }
+  return out;
+}
+
+/// Runs f(0) .. f(n-1) on two threads (nested calls too), taking indices from a shared counter.
+struct TwoThreads {
+  template <class F>
+  void operator()(std::size_t n, F&& f) const {
+    std::atomic<std::size_t> next{0};
+    auto work = [&] {
+      for (std::size_t i; (i = next.fetch_add(1)) < n;) f(i);
+    };
+    std::thread other(work);
+    work();
+    other.join();
+  }
+};
+/// Runs the tasks last to first.
+struct Reversed {
+  template <class F>
+  void operator()(std::size_t n, F&& f) const {
+    for (std::size_t i = n; i-- > 0;) f(i);
+  }
+};
+
+bool same_box(const BvhBox& a, const BvhBox& b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+void expect_same_tree(const Bvh& a, const Bvh& b) {
+  ASSERT_EQ(a.nodes.size(), b.nodes.size());
+  EXPECT_EQ(a.prim_ids, b.prim_ids);
+  EXPECT_EQ(a.max_depth, b.max_depth);
+  for (std::size_t i = 0; i < a.nodes.size(); ++i) {
+    EXPECT_TRUE(same_box(a.nodes[i].box, b.nodes[i].box)) << "node " << i;
+    EXPECT_EQ(a.nodes[i].index, b.nodes[i].index) << "node " << i;
+    EXPECT_EQ(a.nodes[i].count, b.nodes[i].count) << "node " << i;
+  }
+}
+
+/// Every primitive in exactly one leaf, every node reached once from the root, boxes enclosing.
+void expect_valid(const Bvh& bvh, const Soup& s) {
+  const std::size_t n = s.boxes.size();
+  ASSERT_EQ(bvh.prim_ids.size(), n);
+  std::vector<int> seen_prim(n, 0), seen_slot(n, 0), seen_node(bvh.nodes.size(), 0);
+  std::vector<std::pair<std::uint32_t, int>> stack{{0u, 1}};
+  int depth = 0;
+  while (!stack.empty()) {
+    const auto [i, d] = stack.back();
+    stack.pop_back();
+    ASSERT_LT(i, bvh.nodes.size());
+    ++seen_node[i];
+    depth = std::max(depth, d);
+    const BvhNode& node = bvh.nodes[i];
+    EXPECT_FALSE(node.box.empty());
+    if (node.is_leaf()) {
+      ASSERT_LE(std::size_t(node.index) + node.count, n);
+      for (std::uint32_t j = node.index; j < node.index + node.count; ++j) {
+        ++seen_slot[j];
+        const std::uint32_t p = bvh.prim_ids[j];
+        ASSERT_LT(p, n);
+        ++seen_prim[p];
+        for (int k = 0; k < 3; ++k) EXPECT_TRUE(node.box.lo[k] <= s.boxes[p].lo[k] && node.box.hi[k] >= s.boxes[p].hi[k]);
+      }
+      continue;
+    }
+    EXPECT_EQ(node.index % 2, 0u) << "pairs start at even indices";
+    ASSERT_LT(node.index + 1, bvh.nodes.size());
+    for (std::uint32_t c : {node.index, node.index + 1}) {
+      for (int k = 0; k < 3; ++k)
+        EXPECT_TRUE(node.box.lo[k] <= bvh.nodes[c].box.lo[k] && node.box.hi[k] >= bvh.nodes[c].box.hi[k]);
+      stack.push_back({c, d + 1});
+    }
+  }
+  EXPECT_EQ(std::count(seen_prim.begin(), seen_prim.end(), 1), std::ptrdiff_t(n));
+  EXPECT_EQ(std::count(seen_slot.begin(), seen_slot.end(), 1), std::ptrdiff_t(n));
+  // Every node but nodes[1] (the root's copy) is reached exactly once: no orphans, no sharing.
+  for (std::size_t i = 0; i < bvh.nodes.size(); ++i) EXPECT_EQ(seen_node[i], i == 1 ? 0 : 1) << "node " << i;
+  EXPECT_EQ(bvh.max_depth, depth);
+  EXPECT_EQ(bvh.max_depth, bvh.depth());
+}
+}  // namespace
+
+TEST(BvhBuild, ParallelTreeIsValidAndTheSameForAnyThreadsAndOrder) {
+  // Above the grain and two bin chunks, so the top is split level by level over tasks.
+  const std::size_t n = 5 * detail::kBinChunk + 123;
+  ASSERT_GT(n, 2 * std::size_t(detail::parallel_grain(std::uint32_t(n))));
+  const Soup s = soup(n, 7);
+  for (BvhBuilder builder : {BvhBuilder::sah, BvhBuilder::median}) {
+    SCOPED_TRACE(builder == BvhBuilder::sah ? "sah" : "median");
+    const Bvh one = build_bvh(s.boxes, s.centers, {builder, 4});
+    expect_valid(one, s);
+    expect_same_tree(one, build_bvh(s.boxes, s.centers, {builder, 4}, TwoThreads{}));
+    expect_same_tree(one, build_bvh(s.boxes, s.centers, {builder, 4}, Reversed{}));
+  }
+}
+
+TEST(BvhBuild, ParallelTreeAnswersAsBruteForce) {
+  // Closest and any hit through the tree built over two threads, against every triangle.
+  const Soup s = soup(3 * detail::kBinChunk, 5);
+  const Bvh bvh = build_bvh(s.boxes, s.centers, {}, TwoThreads{});
+  std::mt19937 rng(9);
+  std::uniform_real_distribution<double> u(-12, 12), d(-1, 1);
+  int hit_rays = 0;
+  for (int r = 0; r < 200; ++r) {
+    // Half the rays aim at a clump or a random triangle's center, so that many of them hit.
+    const Vec3<double> o{u(rng), u(rng), u(rng)};
+    const Vec3<double> target = (s.tris[rng() % s.tris.size()].p0 + s.tris[rng() % s.tris.size()].p1) * 0.5;
+    const Ray<double> ray{o, r % 2 ? target - o : Vec3<double>{d(rng), d(rng), d(rng)}};
+    auto crosses = [&](std::uint32_t i, double& t) {
+      const auto h = intersect_moller_trumbore(ray, s.tris[i]);
+      t = h.t;
+      return (h.contact == Contact::interior || h.contact == Contact::edge || h.contact == Contact::vertex) && h.t >= 0;
+    };
+    double want_t = std::numeric_limits<double>::infinity();
+    std::uint32_t want = ~0u;
+    for (std::uint32_t i = 0; i < s.tris.size(); ++i)
+      if (double t; crosses(i, t) && (t < want_t || (t == want_t && i < want))) want_t = t, want = i;
+    for (BvhTraversal mode : {BvhTraversal::standard, BvhTraversal::conservative}) {
+      double tmax = std::numeric_limits<double>::infinity();
+      std::uint32_t got = ~0u;
+      bvh_traverse(bvh, ray, 0.0, tmax, mode, BvhQuery::closest, [&](std::uint32_t i) {
+        if (double t; crosses(i, t) && (t < tmax || (t == tmax && i < got))) tmax = t, got = i;
+        return false;
+      });
+      ASSERT_EQ(got, want) << "ray " << r;
+      double tm = std::numeric_limits<double>::infinity();
+      bool any = false;
+      bvh_traverse(bvh, ray, 0.0, tm, mode, BvhQuery::any, [&](std::uint32_t i) {
+        double t;
+        return any = crosses(i, t);
+      });
+      ASSERT_EQ(any, want != ~0u) << "ray " << r;
+    }
+    hit_rays += want != ~0u;
+  }
+  EXPECT_GT(hit_rays, 80);
+}
+
+TEST(BvhBuild, SmallAndDegenerateInputs) {
+  for (std::size_t n : {1u, 2u, 3u, 9u, 100u, 4097u}) {
+    const Soup s = soup(n, unsigned(n));
+    const Bvh bvh = build_bvh(s.boxes, s.centers, {}, TwoThreads{});
+    expect_valid(bvh, s);
+    expect_same_tree(bvh, build_bvh(s.boxes, s.centers));
+  }
+  // All centers equal: forced splits by halves keep leaves small.
+  Soup same;
+  for (int i = 0; i < 3000; ++i) same.boxes.push_back(BvhBox{{0, 0, 0}, {1, 1, 1}}), same.centers.push_back({0.5f, 0.5f, 0.5f});
+  const Bvh bvh = build_bvh(same.boxes, same.centers, {}, TwoThreads{});
+  expect_valid(bvh, same);
+  for (const BvhNode& node : bvh.nodes) {
+    if (node.is_leaf()) {
+      EXPECT_LE(node.count, 8u);
+    }
+  }
+}
+
+TEST(BvhBuild, SahCostFollowsItsDefinition) {
+  const Soup s = soup(3000, 3);
+  const Bvh bvh = build_bvh(s.boxes, s.centers);
+  // The cost from its definition: inner nodes 2 (two box tests), leaves their primitive count,
+  // each weighted by its area relative to the root's.
+  double expect = 0;
+  const double root = bvh.nodes[0].box.half_area();
+  for (std::size_t i = 0; i < bvh.nodes.size(); ++i) {
+    if (i == 1) continue;
+    const BvhNode& node = bvh.nodes[i];
+    expect += node.box.half_area() / root * (node.is_leaf() ? double(node.count) : 2.0);
+  }
+  EXPECT_NEAR(bvh_sah_cost(bvh), expect, 1e-9 * expect);
+  EXPECT_GT(bvh_sah_cost(bvh), 2.0);
+  EXPECT_EQ(bvh_sah_cost(Bvh{}), 0.0);
+}
+
+TEST(TriangleBounds, RoundedOutwardAsBvhBoxExtend) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::uniform_int_distribution<int> e(-140, 140);
+  const double edge[] = {0.0, -0.0, 1e-320, -1e-320, 1e-46, -1e-46, 3.4028235677973366e38, -3.4028235677973366e38,
+                         1e39, -1e39, 0.1, -0.1, 1.0, -1.0, 16777217.0, -16777217.0};
+  auto pick = [&](int i) { return i % 3 == 0 ? edge[std::size_t(rng() % std::size(edge))] : std::ldexp(u(rng), e(rng)); };
+  for (int i = 0; i < 20000; ++i) {
+    Triangle<double> t;
+    for (int k = 0; k < 3; ++k) t.p0[k] = pick(i + k), t.p1[k] = pick(i + k + 1), t.p2[k] = pick(i + k + 2);
+    BvhBox got, want;
+    Vec3<float> c;
+    scene::triangle_bounds(t, got, c);
+    want.extend(t.p0), want.extend(t.p1), want.extend(t.p2);
+    ASSERT_TRUE(same_box(got, want)) << "triangle " << i;
+  }
+  // A NaN coordinate bounds nothing on its axis (as extend leaves it).
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  BvhBox got, want;
+  Vec3<float> c;
+  const Triangle<double> t{{nan, 0, 0}, {nan, 1, 1}, {nan, 2, 2}};
+  scene::triangle_bounds(t, got, c);
+  want.extend(t.p0), want.extend(t.p1), want.extend(t.p2);
+  EXPECT_TRUE(same_box(got, want));
+}
