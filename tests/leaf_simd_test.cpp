@@ -239,15 +239,20 @@ void expect_aligned(const Accel& a) {
   ASSERT_EQ(prims.size() % kLanes, 0u);
   ASSERT_EQ(groups.size() * kLanes, prims.size());
   std::vector<char> in_leaf(prims.size(), 0);
-  for (const Bvh4Node& n : a.bvh().nodes)
-    for (int i = 0; i < 4; ++i) {
-      if (!(n.valid >> i & 1) || !n.count[i]) continue;
-      EXPECT_EQ(n.child[i] % kLanes, 0u);
-      for (std::uint32_t j = n.child[i]; j < n.child[i] + n.count[i]; ++j) {
-        ASSERT_LT(j, prims.size());
-        EXPECT_EQ(in_leaf[j]++, 0) << "slot " << j << " in two leaves";
+  // The tree of the accel's path (the other one is empty): four-wide (SSE) or eight-wide (AVX2).
+  auto visit = [&](const auto& nodes) {
+    for (const auto& n : nodes)
+      for (int i = 0; i < int(sizeof n.count); ++i) {
+        if (!(n.valid >> i & 1) || !n.count[i]) continue;
+        EXPECT_EQ(n.child[i] % kLanes, 0u);
+        for (std::uint32_t j = n.child[i]; j < n.child[i] + n.count[i]; ++j) {
+          ASSERT_LT(j, prims.size());
+          EXPECT_EQ(in_leaf[j]++, 0) << "slot " << j << " in two leaves";
+        }
       }
-    }
+  };
+  visit(a.bvh().nodes);
+  visit(a.bvh8().nodes);
   std::set<std::uint32_t> ids;
   for (std::size_t j = 0; j < prims.size(); ++j) {
     const std::uint32_t tag = groups[j / kLanes].tag[j % kLanes];

@@ -123,7 +123,7 @@ TEST(Accel, BruteForceOverPrimitivesAgrees) {
   for (BvhBuilder b : {BvhBuilder::median, BvhBuilder::sah}) {
     const Accel accel(s, {b, 4});
     const Accel flat(s, {BvhBuilder::median, 1u << 30});  // one leaf: brute force
-    ASSERT_LE(flat.bvh().max_depth, 6);  // one leaf, split into chunks of at most 255
+    ASSERT_LE(flat.max_depth(), 6);  // one leaf, split into chunks of at most 255
     const SceneMethod m = method("float");
     std::mt19937 rng(5);
     for (int i = 0; i < 400; ++i) {

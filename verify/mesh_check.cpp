@@ -132,7 +132,7 @@ MeshCheck check_mesh(const Method& kernel, const MeshUnderTest& mt, const MeshCh
         // past the first exact crossing (boxes are tested conservatively, so none the ray touches
         // there is left out).
         const double tmax = w.hits.front().t * (1 + 0x1p-10) + 0x1p-60;
-        bvh4_traverse_slots(accel.bvh(), rays[i], 0.0, tmax, BvhTraversal::conservative, BvhQuery::all,
+        accel.traverse_slots(rays[i], 0.0, tmax, BvhTraversal::conservative, BvhQuery::all,
                             [&](std::uint32_t j) {
                               w.prims.push_back(accel.leaf_prims()[j].id);
                               return false;

@@ -1,7 +1,7 @@
 #pragma once
 /// Four-wide BVH: the binary tree of bvh_build.h collapsed into nodes of up to four children whose
-/// boxes are tested together with SSE (the core is compiled without -mavx, so four float lanes is
-/// the widest safe unit). Children are visited nearest first; the stack holds (child, entry t) so
+/// boxes are tested together with SSE (the path for CPUs without AVX2; bvh_wide8.h has the eight-wide
+/// AVX2 one). Closest hit visits children nearest first (any and all hits in slot order); the stack holds (child, entry t) so
 /// closest hit drops popped children whose entry lies beyond the best t so far.
 ///
 /// Node layout (128 bytes, two cache lines): per axis the four children's lo then hi planes
@@ -192,7 +192,7 @@ inline float round_up_f(double x) { return bvh_float_up(x); }
 /// to the nearest float. That float is <= o (resp. >= o): the offset is at least one float ulp of o
 /// (ulp(o) <= |o| 2^-23 for normal floats, 2^-149 below them), and rounding to nearest moves by at
 /// most half an ulp; the double operations' own roundings (2^-53 relative) are far inside that.
-inline bool make_bvh4_ray(const Ray<double>& r, bool conservative, double tmin, Bvh4RayF& out) {
+[[gnu::always_inline]] inline bool make_bvh4_ray(const Ray<double>& r, bool conservative, double tmin, Bvh4RayF& out) {
   const __m128d sign = _mm_set1_pd(-0.0);
   const __m128d oxy = _mm_loadu_pd(&r.o.x), oz = _mm_load_sd(&r.o.z);
   const __m128d dxy = _mm_loadu_pd(&r.d.x), dz = _mm_load_sd(&r.d.z);
@@ -309,18 +309,9 @@ template <class T>
   for (int i = 0; i < m; ++i) stack[top++] = e[i];
 }
 
-/// A leaf visitor called once per leaf with its slot range (bvh4_traverse_ranges).
-template <class F>
-struct LeafRange {
-  F& f;
-};
-template <class L>
-struct is_leaf_range : std::false_type {};
-template <class F>
-struct is_leaf_range<LeafRange<F>> : std::true_type {};
-
-/// The traversal loop, for the float (T = float) and double (T = double) box tests. `leaf(j)`
-/// gets the leaf-order slot j (an index into prim_ids, or into the caller's own leaf-order data).
+/// The traversal loop, for the float (T = float) and double (T = double) box tests. `leaf(first,
+/// count)` gets the leaf-order slots [first, first + count) (indices into prim_ids, or into the
+/// caller's own leaf-order data) and returns true to stop (any hit).
 template <class T, bool Conservative, BvhQuery Query, class Leaf>
 void bvh4_traverse_impl(const Bvh4& bvh, const Ray<double>& ray, double tmin, const double& tmax, Leaf& leaf) {
   using Entry = Bvh4Entry<T>;
@@ -362,12 +353,7 @@ void bvh4_traverse_impl(const Bvh4& bvh, const Ray<double>& ray, double tmin, co
   if (Query == BvhQuery::closest && !(e.t <= tmax_cur)) return;  // NaN tmax
   for (;;) {
     if (e.count) {
-      if constexpr (is_leaf_range<Leaf>::value) {
-        if (leaf.f(e.ref, e.count) && Query == BvhQuery::any) return;
-      } else {
-        for (std::uint32_t i = e.ref, end = e.ref + e.count; i < end; ++i)
-          if (leaf(i) && Query == BvhQuery::any) return;
-      }
+      if (leaf(e.ref, e.count) && Query == BvhQuery::any) return;
       if constexpr (Query == BvhQuery::closest) tmax_cur = tmax_t();
     } else {
       const Bvh4Node& n = nodes[e.ref];
@@ -384,8 +370,14 @@ void bvh4_traverse_impl(const Bvh4& bvh, const Ray<double>& ray, double tmin, co
         if ((mask & (mask - 1)) == 0) {  // one child: straight to it
           const int i = __builtin_ctz(static_cast<unsigned>(mask));
           e = Entry{n.child[i], n.count[i], t[i]};
-        } else {  // several: the farther ones on the stack, the nearest next
+        } else if constexpr (Query == BvhQuery::closest) {  // several: the nearest next, the farther ones on the stack
           bvh4_push_sorted(n, nodes, mask, t, stack, top);
+          e = stack[--top];
+        } else {  // any / all: no order needed, slot order
+          for (int m = mask; m; m &= m - 1) {
+            const int i = __builtin_ctz(static_cast<unsigned>(m));
+            stack[top++] = Entry{n.child[i], n.count[i], t[i]};
+          }
           e = stack[--top];
         }
         continue;
@@ -409,26 +401,38 @@ void bvh4_traverse_query(const Bvh4& bvh, const Ray<double>& ray, double tmin, c
 
 }  // namespace detail
 
+/// The traversal with whole leaves: `leaf_range(first, count)` gets the leaf-order slots
+/// [first, first + count) of one leaf and returns true to stop (honoured for any hit); for closest
+/// hit it lowers `tmax` to the best t so far. Any hit stops at the first leaf that returns true and
+/// does not sort children (slot order); closest hit visits them nearest first.
+template <class LeafRange>
+void bvh4_traverse_leaves(const Bvh4& bvh, const Ray<double>& ray, double tmin, const double& tmax, BvhTraversal mode,
+                          BvhQuery query, LeafRange&& leaf_range) {
+  if (bvh.empty()) return;
+  // The float box test, or the double one for rays out of its range (decided per ray inside).
+  if (mode == BvhTraversal::conservative)
+    return detail::bvh4_traverse_query<float, true>(bvh, ray, tmin, tmax, query, leaf_range);
+  return detail::bvh4_traverse_query<float, false>(bvh, ray, tmin, tmax, query, leaf_range);
+}
+
 /// bvh4_traverse calling `leaf(j)` with the leaf-order slot j instead of the primitive prim_ids[j]:
 /// for callers that keep their primitive data in leaf order (and may drop prim_ids).
 template <class Leaf>
 void bvh4_traverse_slots(const Bvh4& bvh, const Ray<double>& ray, double tmin, const double& tmax, BvhTraversal mode,
                          BvhQuery query, Leaf&& leaf) {
-  if (bvh.empty()) return;
-  // The float box test, or the double one for rays out of its range (decided per ray inside).
-  if (mode == BvhTraversal::conservative) return detail::bvh4_traverse_query<float, true>(bvh, ray, tmin, tmax, query, leaf);
-  return detail::bvh4_traverse_query<float, false>(bvh, ray, tmin, tmax, query, leaf);
+  const bool any = query == BvhQuery::any;
+  bvh4_traverse_leaves(bvh, ray, tmin, tmax, mode, query, [&](std::uint32_t first, std::uint32_t count) {
+    for (std::uint32_t j = first, end = first + count; j < end; ++j)
+      if (leaf(j) && any) return true;
+    return false;
+  });
 }
 
-/// bvh4_traverse_slots with one call per leaf: `leaf_range(first, count)` gets the leaf's slots
-/// [first, first + count) and returns true to stop (any hit); closest hit lowers `tmax` in it.
+/// bvh4_traverse_leaves under the name the leaf kernels (src/scene/leaf_simd.h) first used.
 template <class LeafRangeFn>
 void bvh4_traverse_ranges(const Bvh4& bvh, const Ray<double>& ray, double tmin, const double& tmax, BvhTraversal mode,
                           BvhQuery query, LeafRangeFn&& leaf_range) {
-  if (bvh.empty()) return;
-  detail::LeafRange<std::remove_reference_t<LeafRangeFn>> r{leaf_range};
-  if (mode == BvhTraversal::conservative) return detail::bvh4_traverse_query<float, true>(bvh, ray, tmin, tmax, query, r);
-  return detail::bvh4_traverse_query<float, false>(bvh, ray, tmin, tmax, query, r);
+  bvh4_traverse_leaves(bvh, ray, tmin, tmax, mode, query, leaf_range);
 }
 
 /// Visits the leaves' primitives the query needs, as bvh_traverse (bvh_traverse.h) does: `leaf(prim)`

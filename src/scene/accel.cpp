@@ -67,17 +67,30 @@ const Scene& empty_scene() {
 
 /// What a query traverses: the nodes, the leaf records, the packed groups (null: none) and the
 /// group kernels' path.
+template <class Tree>
 struct Leaves {
-  const Bvh4& bvh;
+  const Tree& bvh;  ///< Bvh4 (SSE path) or Bvh8 (AVX2 path)
   const LeafPrim* prims;
   const detail::TriGroup* groups;
   detail::LeafSimd simd;
 };
 
-template <class G>
-Leaves leaves_of(const Bvh4& bvh, const std::vector<LeafPrim>& prims, const G& groups) {
+template <class Tree, class G>
+Leaves<Tree> leaves_of(const Tree& bvh, const std::vector<LeafPrim>& prims, const G& groups) {
   const detail::LeafSimd simd = detail::leaf_simd();
   return {bvh, prims.data(), groups.empty() || simd == detail::LeafSimd::off ? nullptr : groups.data(), simd};
+}
+
+/// The wide tree's traversal with whole leaves: leaf(first, count), true to stop (any hit).
+template <class LeafRangeFn>
+void traverse_leaves(const Bvh4& bvh, const Ray<double>& r, double tmin, const double& tmax, BvhTraversal mode,
+                     BvhQuery query, LeafRangeFn&& leaf) {
+  bvh4_traverse_leaves(bvh, r, tmin, tmax, mode, query, leaf);
+}
+template <class LeafRangeFn>
+void traverse_leaves(const Bvh8& bvh, const Ray<double>& r, double tmin, const double& tmax, BvhTraversal mode,
+                     BvhQuery query, LeafRangeFn&& leaf) {
+  bvh8_traverse_leaves(bvh, r, tmin, tmax, mode, query, leaf);
 }
 
 /// The kernels with group versions (leaf_simd.h): `float`, `robust` and `certified`.
@@ -95,8 +108,8 @@ inline Triangle<float> lane_triangle(const detail::TriGroup& g, int i) {
 /// certified's leaves: the group's float data is not certified's, so the leaf records only (ids
 /// and vertex indices), the double vertices, stage 1's proven misses in lanes (AVX2), the other
 /// lanes through the per-primitive kernel.
-template <class K, class Emit>
-bool certified_leaf(const K& k, const Leaves& L, std::uint32_t first, std::uint32_t count, Emit& emit) {
+template <class K, class L_, class Emit>
+bool certified_leaf(const K& k, const L_& L, std::uint32_t first, std::uint32_t count, Emit& emit) {
   using namespace detail;
   const std::uint32_t end = first + count;
   for (std::uint32_t g0 = first; g0 < end; g0 += kLanes) {
@@ -128,8 +141,8 @@ bool certified_leaf(const K& k, const Leaves& L, std::uint32_t first, std::uint3
 
 /// One leaf's slots [first, first + count) through the group kernels (float, robust): emit(id, crossings, n) for
 /// every primitive with crossings, in slot order within each group; true when emit asks to stop.
-template <class K, class Emit>
-bool group_leaf(const K& k, const Leaves& L, std::uint32_t first, std::uint32_t count, Emit& emit) {
+template <class K, class L_, class Emit>
+bool group_leaf(const K& k, const L_& L, std::uint32_t first, std::uint32_t count, Emit& emit) {
   using namespace detail;
   constexpr bool kRobust = std::is_same_v<K, CompiledKernel<float, TriAlgo::robust>>;
   const std::uint32_t end = first + count;
@@ -180,12 +193,12 @@ bool group_leaf(const K& k, const Leaves& L, std::uint32_t first, std::uint32_t 
 
 /// Runs the traversal with the leaf groups when the kernel has group versions and the groups
 /// exist, else slot by slot: emit(id, crossings, n) as in group_leaf.
-template <class K, class Emit>
-void traverse_with(const Leaves& L, const K& k, QueryRange q, const double& tmax, BvhTraversal mode, BvhQuery query,
+template <class K, class L_, class Emit>
+void traverse_with(const L_& L, const K& k, QueryRange q, const double& tmax, BvhTraversal mode, BvhQuery query,
                    Emit&& emit) {
   if constexpr (kGroupKernel<K>) {
     if (L.groups) {
-      bvh4_traverse_ranges(L.bvh, k.traversal_ray(), q.tmin, tmax, mode, query,
+      traverse_leaves(L.bvh, k.traversal_ray(), q.tmin, tmax, mode, query,
                            [&](std::uint32_t first, std::uint32_t count) {
                              if constexpr (std::is_same_v<K, detail::CompiledKernel<double, TriAlgo::certified>>) {
                                return certified_leaf(k, L, first, count, emit);
@@ -196,15 +209,18 @@ void traverse_with(const Leaves& L, const K& k, QueryRange q, const double& tmax
       return;
     }
   }
-  bvh4_traverse_slots(L.bvh, k.traversal_ray(), q.tmin, tmax, mode, query, [&](std::uint32_t j) {
-    Crossing c[2];
-    const int n = k.crossings(L.prims[j], c);
-    return n && emit(L.prims[j].id, c, n);
+  traverse_leaves(L.bvh, k.traversal_ray(), q.tmin, tmax, mode, query, [&](std::uint32_t first, std::uint32_t count) {
+    for (std::uint32_t j = first; j < first + count; ++j) {
+      Crossing c[2];
+      const int n = k.crossings(L.prims[j], c);
+      if (n && emit(L.prims[j].id, c, n)) return true;
+    }
+    return false;
   });
 }
 
-template <class K>
-PrimHit closest_with(const Leaves& L, K& k, const Ray<double>& r, BvhTraversal mode, QueryRange q) {
+template <class L_, class K>
+PrimHit closest_with(const L_& L, K& k, const Ray<double>& r, BvhTraversal mode, QueryRange q) {
   if (!r.valid()) return {Contact::invalid};
   k.prepare(r);
   PrimHit best;
@@ -220,8 +236,8 @@ PrimHit closest_with(const Leaves& L, K& k, const Ray<double>& r, BvhTraversal m
   return best;
 }
 
-template <class K>
-bool any_with(const Leaves& L, K& k, const Ray<double>& r, BvhTraversal mode, QueryRange q) {
+template <class L_, class K>
+bool any_with(const L_& L, K& k, const Ray<double>& r, BvhTraversal mode, QueryRange q) {
   if (!r.valid()) return false;
   k.prepare(r);
   bool hit = false;
@@ -255,9 +271,9 @@ std::vector<std::string> fast_scene_method_names() {
   return out;
 }
 
-Accel::Accel(const Scene& s, const BvhBuildOptions& opt)
+Accel::Accel(const Scene& s, const BvhBuildOptions& opt, BvhSimd simd)
     : scene_(s), verts_(s.mesh.vertices.data()), ntri_(std::uint32_t(s.mesh.triangles.size())),
-      triangle_bytes_(s.triangle_bytes()) {
+      triangle_bytes_(s.triangle_bytes()), simd_(bvh_simd_path(simd)) {
   const auto start = std::chrono::steady_clock::now();
   std::vector<BvhBox> boxes;
   std::vector<Vec3<float>> centers;
@@ -278,9 +294,9 @@ Accel::Accel(const Scene& s, const BvhBuildOptions& opt)
   build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-Accel::Accel(const MeshRef& m, const BvhBuildOptions& opt)
+Accel::Accel(const MeshRef& m, const BvhBuildOptions& opt, BvhSimd simd)
     : scene_(empty_scene()), verts_(m.vertices), ntri_(std::uint32_t(m.triangle_count)),
-      triangle_bytes_(m.vertex_count * sizeof(Vec3<double>)) {
+      triangle_bytes_(m.vertex_count * sizeof(Vec3<double>)), simd_(bvh_simd_path(simd)) {
   const auto start = std::chrono::steady_clock::now();
   std::vector<BvhBox> boxes(m.triangle_count);
   std::vector<Vec3<float>> centers(m.triangle_count);
@@ -308,15 +324,31 @@ void Accel::build(const std::vector<BvhBox>& boxes, const std::vector<Vec3<float
   Bvh bin = build_bvh(boxes, centers, opt, [](std::size_t n, const auto& f) {
     tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) { f(i); });
   });
-  bvh_ = collapse_bvh4(std::move(bin), boxes);
-  primitive_count_ = bvh_.prim_ids.size();
-  // Every leaf on a group boundary, then prim_ids folded into leaf-order records (padding slots:
-  // kNoPrim; the constructors add the triangles' vertex indices).
-  const std::vector<std::uint32_t> old_of = detail::align_leaf_slots(std::span<Bvh4Node>(bvh_.nodes), detail::kLanes);
-  leaf_prims_.resize(old_of.size());
-  for (std::size_t j = 0; j < leaf_prims_.size(); ++j)
-    leaf_prims_[j] = {{0, 0, 0}, old_of[j] == detail::kPadLane ? PrimHit::kNoPrim : bvh_.prim_ids[old_of[j]]};
-  std::vector<std::uint32_t>().swap(bvh_.prim_ids);
+  // The wide tree of the path (eight-wide for AVX2, four-wide for SSE). Every leaf on a group
+  // boundary, then prim_ids folded into leaf-order records (padding slots: kNoPrim; the
+  // constructors add the triangles' vertex indices).
+  auto fold = [&](auto& tree) {
+    primitive_count_ = tree.prim_ids.size();
+    const std::vector<std::uint32_t> old_of = detail::align_leaf_slots(std::span(tree.nodes), detail::kLanes);
+    leaf_prims_.resize(old_of.size());
+    for (std::size_t j = 0; j < leaf_prims_.size(); ++j)
+      leaf_prims_[j] = {{0, 0, 0}, old_of[j] == detail::kPadLane ? PrimHit::kNoPrim : tree.prim_ids[old_of[j]]};
+    std::vector<std::uint32_t>().swap(tree.prim_ids);
+  };
+  if (simd_ == BvhSimd::avx2) {
+    bvh8_ = collapse_bvh8(std::move(bin), boxes);
+    fold(bvh8_);
+  } else {
+    bvh_ = collapse_bvh4(std::move(bin), boxes);
+    fold(bvh_);
+  }
+}
+
+/// Runs `f(tree)` with the wide tree the accel's path traverses.
+template <class F>
+decltype(auto) Accel::with_tree(F&& f) const {
+  if (simd_ == BvhSimd::avx2) return f(bvh8_);
+  return f(bvh_);
 }
 
 void Accel::build_groups() {
@@ -349,7 +381,7 @@ void Accel::build_groups() {
 
 double Accel::group_bytes_per_primitive() const {
   const std::size_t n = std::max<std::size_t>({1, scene_.size(), ntri_});
-  return double(bvh_.bytes() + groups_.size() * sizeof(detail::TriGroup)) / double(n);
+  return double(bvh_.bytes() + bvh8_.bytes() + groups_.size() * sizeof(detail::TriGroup)) / double(n);
 }
 
 double Accel::bytes_per_primitive() const {
@@ -358,26 +390,33 @@ double Accel::bytes_per_primitive() const {
 }
 
 PrimHit Accel::closest(const Ray<double>& r, const SceneMethod& m, QueryRange q) const {
-  return with_kernel(scene_, verts_, ntri_, m,
-                     [&](auto& k) { return closest_with(leaves_of(bvh_, leaf_prims_, groups_), k, r, m.traversal, q); });
+  return with_tree([&](const auto& tree) {
+    return with_kernel(scene_, verts_, ntri_, m,
+                       [&](auto& k) { return closest_with(leaves_of(tree, leaf_prims_, groups_), k, r, m.traversal, q); });
+  });
 }
 
 bool Accel::any(const Ray<double>& r, const SceneMethod& m, QueryRange q) const {
-  return with_kernel(scene_, verts_, ntri_, m,
-                     [&](auto& k) { return any_with(leaves_of(bvh_, leaf_prims_, groups_), k, r, m.traversal, q); });
+  return with_tree([&](const auto& tree) {
+    return with_kernel(scene_, verts_, ntri_, m,
+                       [&](auto& k) { return any_with(leaves_of(tree, leaf_prims_, groups_), k, r, m.traversal, q); });
+  });
 }
 
 std::vector<PrimHit> Accel::all(const Ray<double>& r, const SceneMethod& m, QueryRange q) const {
   std::vector<PrimHit> out;
   if (!r.valid()) return out;
-  with_kernel(scene_, verts_, ntri_, m, [&](auto& k) {
-    k.prepare(r);
-    traverse_with(leaves_of(bvh_, leaf_prims_, groups_), k, q, q.tmax, m.traversal, BvhQuery::all, [&](std::uint32_t id, const Crossing* c, int n) {
-      for (int i = 0; i < n; ++i)
-        if (c[i].t >= q.tmin && c[i].t <= q.tmax) out.push_back({c[i].contact, c[i].t, id, c[i].b1, c[i].b2});
-      return false;
+  with_tree([&](const auto& tree) {
+    return with_kernel(scene_, verts_, ntri_, m, [&](auto& k) {
+      k.prepare(r);
+      traverse_with(leaves_of(tree, leaf_prims_, groups_), k, q, q.tmax, m.traversal, BvhQuery::all,
+                    [&](std::uint32_t id, const Crossing* c, int n) {
+                      for (int i = 0; i < n; ++i)
+                        if (c[i].t >= q.tmin && c[i].t <= q.tmax) out.push_back({c[i].contact, c[i].t, id, c[i].b1, c[i].b2});
+                      return false;
+                    });
+      return 0;
     });
-    return 0;
   });
   std::sort(out.begin(), out.end(), [](const PrimHit& a, const PrimHit& b) { return a.t < b.t || (a.t == b.t && a.prim < b.prim); });
   return out;
@@ -399,9 +438,11 @@ void parallel_rays(std::size_t n, int threads, Body&& body) {
 void Accel::closest_batch(std::span<const Ray<double>> rays, std::span<PrimHit> out, const SceneMethod& m, int threads,
                           QueryRange q) const {
   parallel_rays(rays.size(), threads, [&](std::size_t b, std::size_t e) {
-    with_kernel(scene_, verts_, ntri_, m, [&](auto& k) {
-      for (std::size_t i = b; i < e; ++i) out[i] = closest_with(leaves_of(bvh_, leaf_prims_, groups_), k, rays[i], m.traversal, q);
-      return 0;
+    with_tree([&](const auto& tree) {
+      return with_kernel(scene_, verts_, ntri_, m, [&](auto& k) {
+        for (std::size_t i = b; i < e; ++i) out[i] = closest_with(leaves_of(tree, leaf_prims_, groups_), k, rays[i], m.traversal, q);
+        return 0;
+      });
     });
   });
 }
@@ -421,10 +462,12 @@ QueryRange range_of(std::span<const QueryRange> ranges, std::size_t i) {
 void Accel::closest_batch(std::span<const Ray<double>> rays, std::span<const QueryRange> ranges, HitSink sink,
                           void* context, const SceneMethod& m, int threads) const {
   parallel_rays(rays.size(), threads, [&](std::size_t b, std::size_t e) {
-    with_kernel(scene_, verts_, ntri_, m, [&](auto& k) {
-      for (std::size_t i = b; i < e; ++i)
-        sink(context, i, closest_with(leaves_of(bvh_, leaf_prims_, groups_), k, rays[i], m.traversal, range_of(ranges, i)));
-      return 0;
+    with_tree([&](const auto& tree) {
+      return with_kernel(scene_, verts_, ntri_, m, [&](auto& k) {
+        for (std::size_t i = b; i < e; ++i)
+          sink(context, i, closest_with(leaves_of(tree, leaf_prims_, groups_), k, rays[i], m.traversal, range_of(ranges, i)));
+        return 0;
+      });
     });
   });
 }
@@ -432,10 +475,12 @@ void Accel::closest_batch(std::span<const Ray<double>> rays, std::span<const Que
 void Accel::any_batch(std::span<const Ray<double>> rays, std::span<const QueryRange> ranges,
                       std::span<std::uint8_t> out, const SceneMethod& m, int threads) const {
   parallel_rays(rays.size(), threads, [&](std::size_t b, std::size_t e) {
-    with_kernel(scene_, verts_, ntri_, m, [&](auto& k) {
-      for (std::size_t i = b; i < e; ++i)
-        out[i] = any_with(leaves_of(bvh_, leaf_prims_, groups_), k, rays[i], m.traversal, range_of(ranges, i));
-      return 0;
+    with_tree([&](const auto& tree) {
+      return with_kernel(scene_, verts_, ntri_, m, [&](auto& k) {
+        for (std::size_t i = b; i < e; ++i)
+          out[i] = any_with(leaves_of(tree, leaf_prims_, groups_), k, rays[i], m.traversal, range_of(ranges, i));
+        return 0;
+      });
     });
   });
 }

@@ -15,6 +15,7 @@
 #include "rayproof/bvh_build.h"
 #include "rayproof/bvh_traverse.h"
 #include "rayproof/bvh_wide.h"
+#include "rayproof/bvh_wide8.h"
 #include "rayproof/mesh_caster.h"
 #include "scene/leaf_simd.h"
 #include "scene/scene.h"
@@ -97,20 +98,38 @@ using HitSink = void (*)(void* context, std::size_t i, const PrimHit& h);
 
 class Accel {
  public:
-  Accel(const Scene& s, const BvhBuildOptions& opt = {});
+  /// `simd` picks the wide tree (bvh_simd_path: automatic follows RAYPROOF_SIMD, then the CPU):
+  /// eight-wide nodes with the AVX2 box test, or four-wide with SSE.
+  Accel(const Scene& s, const BvhBuildOptions& opt = {}, BvhSimd simd = BvhSimd::automatic);
   /// A BVH over a mesh read in place (triangles only; compiled methods only). The caller checks
   /// the input (indices in range, finite vertices) and keeps the vertex array alive.
-  explicit Accel(const MeshRef& m, const BvhBuildOptions& opt = {});
+  explicit Accel(const MeshRef& m, const BvhBuildOptions& opt = {}, BvhSimd simd = BvhSimd::automatic);
 
   [[nodiscard]] const Scene& scene() const { return scene_; }
-  /// The four-wide BVH the queries traverse (the SAH or median binary tree, collapsed).
+  /// The path the queries take: BvhSimd::avx2 (bvh8()) or BvhSimd::sse4 (bvh()).
+  [[nodiscard]] BvhSimd simd() const { return simd_; }
+  /// The four-wide BVH the SSE path traverses (the SAH or median binary tree, collapsed); empty on
+  /// the AVX2 path.
   [[nodiscard]] const Bvh4& bvh() const { return bvh_; }
+  /// The eight-wide BVH the AVX2 path traverses; empty on the SSE path.
+  [[nodiscard]] const Bvh8& bvh8() const { return bvh8_; }
+  /// Nodes on the longest root-to-leaf path of the tree in use.
+  [[nodiscard]] int max_depth() const { return simd_ == BvhSimd::avx2 ? bvh8_.max_depth : bvh_.max_depth; }
+  /// The tree in use traversed for a ray: `leaf(j)` per leaf-order slot j (leaf_prims()[j]), true
+  /// to stop (any hit), as bvh4_traverse_slots.
+  template <class Leaf>
+  void traverse_slots(const Ray<double>& r, double tmin, const double& tmax, BvhTraversal mode, BvhQuery query,
+                      Leaf&& leaf) const {
+    if (simd_ == BvhSimd::avx2) return bvh8_traverse_slots(bvh8_, r, tmin, tmax, mode, query, leaf);
+    bvh4_traverse_slots(bvh_, r, tmin, tmax, mode, query, leaf);
+  }
   [[nodiscard]] double build_seconds() const { return build_seconds_; }
   /// BVH plus triangle data, per triangle (analytic primitives counted as triangles).
   [[nodiscard]] double bytes_per_primitive() const;
-  /// Bytes of the BVH: its nodes, the leaf-order primitive records and the packed leaf groups.
+  /// Bytes of the BVH: its nodes (of the tree in use), the leaf-order primitive records and the
+  /// packed leaf groups.
   [[nodiscard]] std::size_t bvh_bytes() const {
-    return bvh_.bytes() + leaf_prims_.size() * sizeof(LeafPrim) + groups_.size() * sizeof(detail::TriGroup);
+    return bvh_.bytes() + bvh8_.bytes() + leaf_prims_.size() * sizeof(LeafPrim) + groups_.size() * sizeof(detail::TriGroup);
   }
   /// Bytes the `float` and `robust` queries read: the nodes and the packed leaf groups (they do
   /// not touch the leaf records or the vertex array for triangles), per primitive.
@@ -146,13 +165,17 @@ class Accel {
  private:
   /// The BVH over `boxes` and leaf records with ids (vertex indices filled by the constructor).
   void build(const std::vector<BvhBox>& boxes, const std::vector<Vec3<float>>& centers, const BvhBuildOptions& opt);
+  template <class F>
+  decltype(auto) with_tree(F&& f) const;
   /// The packed leaf groups from the leaf records (after the vertex indices are in).
   void build_groups();
   const Scene& scene_;
   const Vec3<double>* verts_ = nullptr;  ///< the triangles' vertices
   std::uint32_t ntri_ = 0;
   std::size_t triangle_bytes_ = 0;  ///< bytes of triangle data held for the queries
-  Bvh4 bvh_;  ///< nodes only: prim_ids is folded into leaf_prims_
+  BvhSimd simd_ = BvhSimd::sse4;
+  Bvh4 bvh_;   ///< SSE path: nodes only (prim_ids is folded into leaf_prims_)
+  Bvh8 bvh8_;  ///< AVX2 path: the same
   std::vector<LeafPrim> leaf_prims_;
   std::vector<detail::TriGroup, AlignedAllocator<detail::TriGroup, 32>> groups_;
   std::size_t primitive_count_ = 0;
