@@ -179,7 +179,7 @@ int bench_scene(const BenchOptions& opt, const std::string& path, int threads, s
     BenchRow row;
     row.mesh = mesh_name, row.method = name;
     row.build_s = caster->public_api() ? caster->build_seconds() : accel.build_seconds();
-    row.bytes = caster->bytes_per_primitive();
+    row.bytes = caster->bytes_read_per_primitive(), row.bytes_held = caster->bytes_per_primitive();
     std::vector<CastHit> hits;
     std::vector<std::uint8_t> flags;
     measure(row, cap, true, [&](const std::vector<Ray<double>>& rays, bool closest, int t) {
@@ -196,7 +196,7 @@ int bench_scene(const BenchOptions& opt, const std::string& path, int threads, s
   double embree_build[2] = {-1, -1};
   for (auto& c : scene::compare::make_competitors(s, opt.competitors, threads)) {
     BenchRow row;
-    row.mesh = mesh_name, row.method = c.name, row.build_s = c.build_s, row.bytes = c.bytes_per_tri;
+    row.mesh = mesh_name, row.method = c.name, row.build_s = c.build_s, row.bytes = row.bytes_held = c.bytes_per_tri;
     measure(row, c.max_rays, c.threaded, [&](const std::vector<Ray<double>>& rays, bool closest, int t) {
       std::vector<std::uint8_t> out(rays.size());
       if (closest || !c.any) c.closest(rays, out, t);
