@@ -218,9 +218,9 @@ TEST(BvhBuild, SahCostFollowsItsDefinition) {
 }
 
 TEST(BvhBuild, GroupLeafCostFillsGroups) {
-  // leaf_group = 4: a leaf costs its groups' lanes, ceil(n / 4) 4, in the build and in
-  // bvh_sah_cost(bvh, 4); the leaves fill their groups more than with the plain SAH (leaf_group 1),
-  // the lane cost is lower, and the tree is the same for any thread count.
+  // leaf_group = 4 (group_cost 2, the default): a leaf costs ceil(n / 4) 2, in the build and in
+  // bvh_sah_cost(bvh, 4, 2); the leaves fill their groups more than with the plain SAH (leaf_group
+  // 1), that cost is lower, and the tree is the same for any thread count.
   // A closed mesh's triangles (small, adjacent: leaves of several triangles pay).
   Soup s;
   const mesh::Mesh m = scene::bumpy_sphere(6000);
@@ -243,16 +243,18 @@ TEST(BvhBuild, GroupLeafCostFillsGroups) {
     return n;
   };
   EXPECT_LT(double(slots(b4)), 0.9 * double(slots(b1))) << slots(b4) << " vs " << slots(b1);
-  EXPECT_LT(bvh_sah_cost(b4, 4), bvh_sah_cost(b1, 4));
+  EXPECT_EQ(grouped.group_cost, 2.0f);
+  EXPECT_LT(bvh_sah_cost(b4, 4, 2), bvh_sah_cost(b1, 4, 2));
   double expect = 0;
   const double root = b4.nodes[0].box.half_area();
   for (std::size_t i = 0; i < b4.nodes.size(); ++i) {
     const BvhNode& node = b4.nodes[i];
     if (i == 1) continue;
     EXPECT_LE(node.count, 2 * grouped.max_leaf);
-    expect += node.box.half_area() / root * (node.is_leaf() ? double((node.count + 3) / 4 * 4) : 2.0);
+    expect += node.box.half_area() / root * (node.is_leaf() ? double((node.count + 3) / 4 * 2) : 2.0);
   }
-  EXPECT_NEAR(bvh_sah_cost(b4, 4), expect, 1e-9 * expect);
+  EXPECT_NEAR(bvh_sah_cost(b4, 4, 2), expect, 1e-9 * expect);
+  EXPECT_NEAR(bvh_sah_cost(b4, 1, 5), bvh_sah_cost(b4), 1e-12);  // leaf_group 1: the plain count
 }
 
 TEST(TriangleBounds, RoundedOutwardAsBvhBoxExtend) {
