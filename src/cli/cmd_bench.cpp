@@ -254,7 +254,10 @@ int run_bench(const BenchOptions& opt) {
     fmt::print("{}", bench_json(rows, targets));
     return 0;
   }
-  fmt::print("Mrays/s on one thread, single rays; speed-up: the same on {} threads over one.\n{}\n", threads, bench_table(rows));
+  fmt::print("Mrays/s on one thread, single rays; speed-up: the same on {} threads over one. B/tri read: bytes per "
+             "triangle of the structures the method's queries read (nodes, leaf groups or leaf records and vertices); "
+             "held: all that its structures hold.\n{}\n",
+             threads, bench_table(rows));
   fmt::print("BVH build (SAH, bounds included), best of {}; Embree: the faster of its default and robust builds.\n{}\n",
              std::max(1, opt.repeat), build_table(builds));
   fmt::print("Targets of issue 15 (verdicts decided on the printed values).\n{}", targets_table(targets));
