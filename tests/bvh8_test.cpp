@@ -111,7 +111,8 @@ TEST(Bvh8, CollapseKeepsEveryPrimitiveAndNestsBounds) {
   };
   for (auto [builder, leaf, merge] : {Case{BvhBuilder::median, 4u, 0}, {BvhBuilder::sah, 4u, 0}, {BvhBuilder::sah, 4u, 6},
                                       {BvhBuilder::median, 1u << 30, 0}, {BvhBuilder::median, 1u << 30, 300}}) {
-    Bvh bin = build_bvh(soup.boxes, soup.centers, {builder, leaf});
+    // The plain SAH (leaf_group 1: its leaves stay below 6 primitives here), so that merging shows.
+    Bvh bin = build_bvh(soup.boxes, soup.centers, {builder, leaf, 1});
     std::uint32_t bin_largest = 0, largest_leaf = 0;
     for (const BvhNode& n : bin.nodes) bin_largest = std::max(bin_largest, n.count);
     const Bvh8 w = collapse_bvh8(std::move(bin), soup.boxes, merge);

@@ -17,6 +17,7 @@
 #include "rayproof/bvh_traverse.h"
 #include "rayproof/triangle.h"
 #include "scene/scene.h"
+#include "scene/watertight.h"
 
 using namespace rayproof;
 
@@ -214,6 +215,46 @@ TEST(BvhBuild, SahCostFollowsItsDefinition) {
   EXPECT_NEAR(bvh_sah_cost(bvh), expect, 1e-9 * expect);
   EXPECT_GT(bvh_sah_cost(bvh), 2.0);
   EXPECT_EQ(bvh_sah_cost(Bvh{}), 0.0);
+}
+
+TEST(BvhBuild, GroupLeafCostFillsGroups) {
+  // leaf_group = 4 (group_cost 2, the default): a leaf costs ceil(n / 4) 2, in the build and in
+  // bvh_sah_cost(bvh, 4, 2); the leaves fill their groups more than with the plain SAH (leaf_group
+  // 1), that cost is lower, and the tree is the same for any thread count.
+  // A closed mesh's triangles (small, adjacent: leaves of several triangles pay).
+  Soup s;
+  const mesh::Mesh m = scene::bumpy_sphere(6000);
+  for (const auto& f : m.triangles) {
+    const Triangle<double> t{m.vertices[f[0]], m.vertices[f[1]], m.vertices[f[2]]};
+    BvhBox b;
+    Vec3<float> center;
+    scene::triangle_bounds(t, b, center);
+    s.tris.push_back(t), s.boxes.push_back(b), s.centers.push_back(center);
+  }
+  BvhBuildOptions plain, grouped;
+  plain.leaf_group = 1, grouped.leaf_group = 4;
+  const Bvh b1 = build_bvh(s.boxes, s.centers, plain), b4 = build_bvh(s.boxes, s.centers, grouped, TwoThreads{});
+  expect_valid(b4, s);
+  expect_same_tree(b4, build_bvh(s.boxes, s.centers, grouped));
+  auto slots = [](const Bvh& b) {
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < b.nodes.size(); ++i)
+      if (i != 1 && b.nodes[i].is_leaf()) n += (b.nodes[i].count + 3) / 4 * 4;
+    return n;
+  };
+  EXPECT_LT(double(slots(b4)), 0.9 * double(slots(b1))) << slots(b4) << " vs " << slots(b1);
+  EXPECT_EQ(grouped.group_cost, 2.0f);
+  EXPECT_LT(bvh_sah_cost(b4, 4, 2), bvh_sah_cost(b1, 4, 2));
+  double expect = 0;
+  const double root = b4.nodes[0].box.half_area();
+  for (std::size_t i = 0; i < b4.nodes.size(); ++i) {
+    const BvhNode& node = b4.nodes[i];
+    if (i == 1) continue;
+    EXPECT_LE(node.count, 2 * grouped.max_leaf);
+    expect += node.box.half_area() / root * (node.is_leaf() ? double((node.count + 3) / 4 * 2) : 2.0);
+  }
+  EXPECT_NEAR(bvh_sah_cost(b4, 4, 2), expect, 1e-9 * expect);
+  EXPECT_NEAR(bvh_sah_cost(b4, 1, 5), bvh_sah_cost(b4), 1e-12);  // leaf_group 1: the plain count
 }
 
 TEST(TriangleBounds, RoundedOutwardAsBvhBoxExtend) {

@@ -124,9 +124,14 @@ class MeshCaster {
   [[nodiscard]] std::size_t triangle_count() const;
   /// Whether the vertices were converted into a copy (float input, or not packed doubles).
   [[nodiscard]] bool copies_vertices() const;
-  /// Seconds the BVH build took; bytes of BVH nodes, leaf records and vertices read per triangle.
+  /// Seconds the BVH build took; bytes held per triangle: BVH nodes, leaf records, packed leaf
+  /// groups and the double vertices (the user's, when read in place).
   [[nodiscard]] double build_seconds() const;
   [[nodiscard]] double bytes_per_triangle() const;
+  /// Bytes per triangle this method's queries read: Float and Robust the nodes and the packed leaf
+  /// groups (not the leaf records or the vertices, unless RAYPROOF_SIMD=off); Certified the nodes,
+  /// the leaf records and the double vertices.
+  [[nodiscard]] double bytes_read_per_triangle() const;
 
   [[nodiscard]] MeshHit closest(const Ray<double>& ray, TRange range = {}) const;
   [[nodiscard]] bool any(const Ray<double>& ray, TRange range = {}) const;

@@ -15,7 +15,8 @@ struct BenchRow {
   double mrays = 0;             ///< million rays per second on one thread
   int scaled_threads = 0;       ///< 0: not measured on more threads
   double mrays_scaled = 0;      ///< on scaled_threads threads
-  double build_s = 0, bytes = -1;  ///< bytes per triangle: -1 not known
+  double build_s = 0, bytes = -1;  ///< bytes per triangle the method reads: -1 not known
+  double bytes_held = -1;          ///< bytes per triangle its structures hold: -1 not known
   std::int64_t leaks = -1, leak_rays = 0;  ///< leaks -1: not measured (not a closed mesh)
 };
 

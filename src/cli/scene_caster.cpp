@@ -16,7 +16,7 @@ bool SceneCaster::takes_public_api(const scene::Scene& s, const scene::SceneMeth
                       m.fast == scene::FastKernel::certified;
   const BvhBuildOptions mesh_caster_build;  // MeshCaster's: SAH, leaves of 4
   return kernel && s.size() == s.mesh.triangles.size() && opt.builder == mesh_caster_build.builder &&
-         opt.max_leaf == mesh_caster_build.max_leaf;
+         opt.max_leaf == mesh_caster_build.max_leaf && opt.leaf_group == mesh_caster_build.leaf_group;
 }
 
 SceneCaster::SceneCaster(const scene::Scene& s, const scene::SceneMethod& m, const BvhBuildOptions& opt)
@@ -46,6 +46,14 @@ double SceneCaster::bytes_per_primitive() const {
   return std::visit([](const auto& c) {
     if constexpr (std::is_same_v<std::decay_t<decltype(c)>, std::monostate>) return 0.0;
     else return c.bytes_per_triangle();
+  }, mesh_);
+}
+
+double SceneCaster::bytes_read_per_primitive() const {
+  if (shared_) return shared_->bytes_read_per_primitive(method_);
+  return std::visit([](const auto& c) {
+    if constexpr (std::is_same_v<std::decay_t<decltype(c)>, std::monostate>) return 0.0;
+    else return c.bytes_read_per_triangle();
   }, mesh_);
 }
 

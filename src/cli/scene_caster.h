@@ -33,6 +33,8 @@ class SceneCaster {
   [[nodiscard]] bool public_api() const { return mesh_.index() != 0; }
   [[nodiscard]] double build_seconds() const;
   [[nodiscard]] double bytes_per_primitive() const;
+  /// Bytes per primitive the method's queries read (Accel::bytes_read_per_primitive).
+  [[nodiscard]] double bytes_read_per_primitive() const;
   /// The scene BVH, when the queries go through it (else null).
   [[nodiscard]] const scene::Accel* accel() const { return shared_; }
 

@@ -384,6 +384,15 @@ double Accel::group_bytes_per_primitive() const {
   return double(bvh_.bytes() + bvh8_.bytes() + groups_.size() * sizeof(detail::TriGroup)) / double(n);
 }
 
+double Accel::bytes_read_per_primitive(const SceneMethod& m) const {
+  const bool groups = !groups_.empty() && detail::leaf_simd() != detail::LeafSimd::off &&
+                      (m.fast == FastKernel::mt_float || m.fast == FastKernel::robust);
+  // Triangles only (a MeshRef's accel has an empty scene): the queries never read the records.
+  const bool triangles_only = scene_.size() == 0 || scene_.size() == std::size_t(ntri_);
+  if (groups && triangles_only) return group_bytes_per_primitive();
+  return bytes_per_primitive();
+}
+
 double Accel::bytes_per_primitive() const {
   const std::size_t n = std::max<std::size_t>({1, scene_.size(), ntri_});
   return double(bvh_bytes() + triangle_bytes_) / double(n);

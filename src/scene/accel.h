@@ -134,6 +134,13 @@ class Accel {
   /// Bytes the `float` and `robust` queries read: the nodes and the packed leaf groups (they do
   /// not touch the leaf records or the vertex array for triangles), per primitive.
   [[nodiscard]] double group_bytes_per_primitive() const;
+  /// Bytes of the structures method `m`'s queries read, per primitive, on the leaf path in use
+  /// (detail::leaf_simd()): `float` and `robust` with the leaf groups: the nodes and the groups
+  /// (group_bytes_per_primitive), plus the leaf records and the primitive data when the scene has
+  /// other primitives than triangles (their lanes go through the records); `certified` and every
+  /// other method (or RAYPROOF_SIMD=off, or no groups): the nodes, the leaf records and the
+  /// triangle data (the double vertices). bytes_per_primitive() counts everything held.
+  [[nodiscard]] double bytes_read_per_primitive(const SceneMethod& m) const;
   /// The leaf-order primitive records (slot j of the BVH's leaves; every leaf starts on a multiple
   /// of detail::kLanes, the slots between leaves are padding with id = PrimHit::kNoPrim).
   [[nodiscard]] const std::vector<LeafPrim>& leaf_prims() const { return leaf_prims_; }

@@ -127,6 +127,10 @@ template <class M>
 double MeshCaster<M>::bytes_per_triangle() const {
   return state_->accel->bytes_per_primitive();
 }
+template <class M>
+double MeshCaster<M>::bytes_read_per_triangle() const {
+  return state_->accel->bytes_read_per_primitive(state_->method);
+}
 
 template <class M>
 MeshHit MeshCaster<M>::closest(const Ray<double>& ray, TRange r) const {
@@ -166,6 +170,7 @@ template std::size_t MeshCaster<cast::Certified>::triangle_count() const;
 template bool MeshCaster<cast::Certified>::copies_vertices() const;
 template double MeshCaster<cast::Certified>::build_seconds() const;
 template double MeshCaster<cast::Certified>::bytes_per_triangle() const;
+template double MeshCaster<cast::Certified>::bytes_read_per_triangle() const;
 template MeshHit MeshCaster<cast::Certified>::closest(const Ray<double>&, TRange) const;
 template bool MeshCaster<cast::Certified>::any(const Ray<double>&, TRange) const;
 template std::vector<MeshHit> MeshCaster<cast::Certified>::all(const Ray<double>&, TRange) const;
