@@ -7,6 +7,7 @@
 #include "rayproof/bvh_build.h"
 #include "rayproof/bvh_traverse.h"
 #include "rayproof/bvh_wide.h"
+#include "rayproof/bvh_wide8.h"
 #include "rayproof/triangle.h"
 
 using namespace rayproof;
@@ -333,4 +334,93 @@ TEST(Bvh4, EmptyAndInvalidRays) {
       double tm = inf;
       bvh4_traverse(w, r, 0.0, tm, mode, BvhQuery::closest, [](std::uint32_t) { return false; });
     }
+}
+
+// ---- One collapse for both widths (collapse_wide<N>) ----
+
+namespace {
+/// A binary tree built here, not by bvh_build.h (so the pinned results below do not move when the
+/// builders change): median splits on the longest axis of the centers, ties by index; leaves of at
+/// most `leaf` primitives, and at depth 4 every third subtree becomes one leaf whatever its size
+/// (leaves of hundreds of primitives: the collapse splits them into chunks).
+Bvh median_tree(const Soup& soup, std::uint32_t leaf) {
+  Bvh bin;
+  const auto n = static_cast<std::uint32_t>(soup.boxes.size());
+  bin.prim_ids.resize(n);
+  for (std::uint32_t i = 0; i < n; ++i) bin.prim_ids[i] = i;
+  bin.nodes.emplace_back();
+  struct Task {
+    std::uint32_t node, first, count;
+    int depth;
+  };
+  std::vector<Task> stack{{0, 0, n, 1}};
+  int leaf_subtrees = 0;
+  while (!stack.empty()) {
+    const Task t = stack.back();
+    stack.pop_back();
+    bin.max_depth = std::max(bin.max_depth, t.depth);
+    BvhBox box, cbox;
+    for (std::uint32_t i = t.first; i < t.first + t.count; ++i) {
+      const std::uint32_t p = bin.prim_ids[i];
+      box.extend(soup.boxes[p]);
+      BvhBox c;
+      for (int k = 0; k < 3; ++k) c.lo[k] = c.hi[k] = soup.centers[p][k];
+      cbox.extend(c);
+    }
+    bin.nodes[t.node].box = box;
+    if (t.count <= leaf || (t.depth == 4 && leaf_subtrees++ % 3 == 0)) {
+      bin.nodes[t.node].index = t.first, bin.nodes[t.node].count = t.count;
+      continue;
+    }
+    const int axis = cbox.longest_axis();
+    auto* ids = bin.prim_ids.data() + t.first;
+    std::sort(ids, ids + t.count, [&](std::uint32_t a, std::uint32_t b) {
+      const float ca = soup.centers[a][axis], cb = soup.centers[b][axis];
+      return ca < cb || (ca == cb && a < b);
+    });
+    const auto kids = static_cast<std::uint32_t>(bin.nodes.size());
+    bin.nodes[t.node].index = kids;
+    bin.nodes.emplace_back(), bin.nodes.emplace_back();
+    const std::uint32_t half = t.count / 2;
+    stack.push_back({kids, t.first, half, t.depth + 1});
+    stack.push_back({kids + 1, t.first + half, t.count - half, t.depth + 1});
+  }
+  return bin;
+}
+
+/// FNV-1a over a wide tree's node bytes, prim_ids and max_depth.
+template <class Tree>
+std::uint64_t tree_hash(const Tree& w) {
+  std::uint64_t h = 1469598103934665603ull;
+  auto add = [&](const void* p, std::size_t n) {
+    for (std::size_t i = 0; i < n; ++i) h = (h ^ static_cast<const unsigned char*>(p)[i]) * 1099511628211ull;
+  };
+  add(w.nodes.data(), w.nodes.size() * sizeof(w.nodes[0]));
+  add(w.prim_ids.data(), w.prim_ids.size() * sizeof(std::uint32_t));
+  add(&w.max_depth, sizeof(w.max_depth));
+  return h;
+}
+}  // namespace
+
+TEST(BvhWide, CollapseIsNodeForNodeTheOneOfBeforeTheMerge) {
+  // Hashes of the trees collapse_bvh4 / collapse_bvh8 built before the two widths shared one
+  // collapse (commit c63722d), for these soups and trees.
+  const Soup soup = random_soup(5000, 11);
+  struct Pinned {
+    std::uint32_t leaf;
+    std::uint64_t bvh4, bvh8, bvh8_merge16;
+  };
+  const Pinned pinned[] = {{1, 0x88a004cf968ca847, 0x2cc93c79358a7bef, 0xaa8253d94ddc4451},
+                           {4, 0x17de4fbb1c42b5d1, 0x7fe34303657ee1cb, 0x3f692f401a805465},
+                           {9, 0x237e8517723b3f6b, 0xf4de8f6fd4433d77, 0xd264c351cdebd7b1}};
+  for (const Pinned& p : pinned) {
+    const Bvh bin = median_tree(soup, p.leaf);
+    EXPECT_EQ(tree_hash(collapse_bvh4(Bvh(bin), soup.boxes)), p.bvh4) << "leaf " << p.leaf;
+    EXPECT_EQ(tree_hash(collapse_wide<4>(Bvh(bin), soup.boxes)), p.bvh4) << "leaf " << p.leaf;
+    EXPECT_EQ(tree_hash(collapse_bvh8(Bvh(bin), soup.boxes)), p.bvh8) << "leaf " << p.leaf;
+    EXPECT_EQ(tree_hash(collapse_bvh8(Bvh(bin), soup.boxes, 16)), p.bvh8_merge16) << "leaf " << p.leaf;
+  }
+  // The soup has leaves above kMaxLeaf (split into chunks) and merge_leaf changes the tree.
+  const Bvh8 merged = collapse_bvh8(median_tree(soup, 4), soup.boxes, 16), plain = collapse_bvh8(median_tree(soup, 4), soup.boxes);
+  EXPECT_LT(merged.nodes.size(), plain.nodes.size());
 }
