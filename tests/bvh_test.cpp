@@ -9,36 +9,17 @@
 #include "rayproof/bvh_wide.h"
 #include "rayproof/bvh_wide8.h"
 #include "rayproof/triangle.h"
+#include "bvh_support.h"
 
 using namespace rayproof;
 
+using test::Soup, test::random_soup, test::hits;
+
 namespace {
-struct Soup {
-  std::vector<Triangle<double>> tris;
-  std::vector<BvhBox> boxes;
-  std::vector<Vec3<float>> centers;
-};
-Soup random_soup(int n, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-10, 10), s(-0.7, 0.7);
-  Soup soup;
-  for (int i = 0; i < n; ++i) {
-    const Vec3<double> c{u(rng), u(rng), u(rng)};
-    Triangle<double> t{c + Vec3<double>{s(rng), s(rng), s(rng)}, c + Vec3<double>{s(rng), s(rng), s(rng)},
-                       c + Vec3<double>{s(rng), s(rng), s(rng)}};
-    BvhBox b;
-    b.extend(t.p0), b.extend(t.p1), b.extend(t.p2);
-    soup.tris.push_back(t);
-    soup.boxes.push_back(b);
-    soup.centers.push_back(((t.p0 + t.p1 + t.p2) / 3.0).cast<float>());
-  }
-  return soup;
-}
 Ray<double> random_ray(std::mt19937& rng) {
   std::uniform_real_distribution<double> u(-12, 12), d(-1, 1);
   return {{u(rng), u(rng), u(rng)}, {d(rng), d(rng), d(rng)}};
 }
-bool hits(const TriangleHit<double>& h) { return h.contact == Contact::interior || h.contact == Contact::edge || h.contact == Contact::vertex; }
 }  // namespace
 
 TEST(BvhBox, OutwardRoundingContainsDoublePoints) {
@@ -163,91 +144,12 @@ TEST(Bvh, EmptyAndSingle) {
 
 // ---- Four-wide BVH (bvh_wide.h) ----
 
-namespace {
-/// Every query on the wide BVH against brute force and against the binary BVH, Möller–Trumbore in
-/// double as the leaf test, with tmin / tmax ranges.
-void check_wide_against_brute_force(const Soup& soup, const Bvh& bin, const Bvh4& wide, const Ray<double>& ray,
-                                    BvhTraversal mode, double tmin, double tmax0, int& hit_rays, int r) {
-  std::vector<std::pair<double, std::uint32_t>> all;
-  for (std::uint32_t i = 0; i < soup.tris.size(); ++i) {
-    const auto h = intersect_moller_trumbore(ray, soup.tris[i]);
-    if (hits(h) && h.t >= tmin && h.t <= tmax0) all.push_back({h.t, i});
-  }
-  std::sort(all.begin(), all.end());
-  auto closest = [&](auto&& traverse) {
-    double tmax = tmax0;
-    std::uint32_t best = ~0u;
-    traverse(tmax, BvhQuery::closest, [&](std::uint32_t i) {
-      const auto h = intersect_moller_trumbore(ray, soup.tris[i]);
-      if (hits(h) && h.t >= tmin && (h.t < tmax || (h.t == tmax && i < best))) tmax = h.t, best = i;
-      return false;
-    });
-    return std::pair{tmax, best};
-  };
-  auto wide_t = [&](double& tmax, BvhQuery q, auto&& leaf) { bvh4_traverse(wide, ray, tmin, tmax, mode, q, leaf); };
-  auto bin_t = [&](double& tmax, BvhQuery q, auto&& leaf) { bvh_traverse(bin, ray, tmin, tmax, mode, q, leaf); };
-  const auto [wt, wp] = closest(wide_t);
-  const auto [bt, bp] = closest(bin_t);
-  ASSERT_EQ(wt, bt) << "ray " << r;
-  ASSERT_EQ(wp, bp) << "ray " << r;
-  std::vector<std::pair<double, std::uint32_t>> got;
-  double tm = tmax0;
-  wide_t(tm, BvhQuery::all, [&](std::uint32_t i) {
-    const auto h = intersect_moller_trumbore(ray, soup.tris[i]);
-    if (hits(h) && h.t >= tmin && h.t <= tm) got.push_back({h.t, i});
-    return false;
-  });
-  std::sort(got.begin(), got.end());
-  ASSERT_EQ(got, all) << "ray " << r;
-  bool any = false;
-  wide_t(tm, BvhQuery::any, [&](std::uint32_t i) {
-    const auto h = intersect_moller_trumbore(ray, soup.tris[i]);
-    return any = hits(h) && h.t >= tmin && h.t <= tm;
-  });
-  ASSERT_EQ(any, !all.empty()) << "ray " << r;
-  if (all.empty()) {
-    ASSERT_EQ(wp, ~0u) << "ray " << r;
-  } else {
-    ++hit_rays;
-    ASSERT_EQ(wt, all.front().first) << "ray " << r;
-    const auto lowest = std::find_if(all.begin(), all.end(), [&](const auto& x) { return x.first == all.front().first; });
-    ASSERT_EQ(wp, lowest->second) << "ray " << r;
-  }
-}
-}  // namespace
-
 TEST(Bvh4, CollapseKeepsEveryPrimitiveAndNestsBounds) {
   const Soup soup = random_soup(3000, 4);
   for (auto [builder, leaf] : {std::pair{BvhBuilder::median, 4u}, {BvhBuilder::sah, 4u}, {BvhBuilder::median, 1u << 30}}) {
     const Bvh4 w = collapse_bvh4(build_bvh(soup.boxes, soup.centers, {builder, leaf}), soup.boxes);
-    std::vector<int> seen(soup.tris.size(), 0);
-    int leaves = 0;
-    for (const Bvh4Node& n : w.nodes)
-      for (int i = 0; i < 4; ++i) {
-        if (!(n.valid >> i & 1)) continue;
-        const BvhBox b = n.box(i);
-        if (n.count[i]) {
-          ++leaves;
-          for (std::uint32_t j = n.child[i]; j < n.child[i] + n.count[i]; ++j) {
-            ++seen[w.prim_ids[j]];
-            for (int k = 0; k < 3; ++k) {
-              EXPECT_LE(b.lo[k], soup.boxes[w.prim_ids[j]].lo[k]);
-              EXPECT_GE(b.hi[k], soup.boxes[w.prim_ids[j]].hi[k]);
-            }
-          }
-        } else {
-          ASSERT_LT(n.child[i], w.nodes.size());
-          const Bvh4Node& c = w.nodes[n.child[i]];
-          for (int j = 0; j < 4; ++j)
-            if (c.valid >> j & 1)
-              for (int k = 0; k < 3; ++k) {
-                EXPECT_LE(b.lo[k], c.lo[k][j]);
-                EXPECT_GE(b.hi[k], c.hi[k][j]);
-              }
-        }
-      }
-    for (int s : seen) ASSERT_EQ(s, 1);
-    EXPECT_GT(leaves, 0);
+    const test::WideTreeStats stats = test::check_wide_tree(w, soup);
+    EXPECT_GT(stats.leaves, 0);
     if (leaf == 4u) {
       EXPECT_LT(w.nodes.size(), soup.tris.size() / 3);  // mostly four-wide
     }
@@ -269,8 +171,16 @@ TEST(Bvh4, QueriesAgreeWithBruteForceAndTheBinaryTree) {
         if (r % 7 == 5) ray.d = ray.d * 0x1p+70;
         const double s = r % 7 == 3 ? 0x1p70 : (r % 7 == 5 ? 0x1p-70 : 1.0);
         const double tmin = (r % 3 == 0 ? 2.0 : 0.0) * s, tmax0 = r % 5 == 0 ? 8.0 * s : 1e300;
-        check_wide_against_brute_force(soup, bin, wide, ray, mode, tmin, tmax0, hit_rays, r);
-        if (HasFatalFailure()) return;
+        // Every query on the wide tree against the binary tree and brute force.
+        const test::Answers aw = test::answers(soup, ray, tmin, tmax0, [&](double& tm, BvhQuery q, auto&& leaf) {
+          bvh4_traverse(wide, ray, tmin, tm, mode, q, leaf);
+        });
+        const test::Answers ab = test::answers(soup, ray, tmin, tmax0, [&](double& tm, BvhQuery q, auto&& leaf) {
+          bvh_traverse(bin, ray, tmin, tm, mode, q, leaf);
+        });
+        ASSERT_EQ(aw, ab) << "ray " << r;
+        ASSERT_EQ(aw, test::brute(soup, ray, tmin, tmax0)) << "ray " << r;
+        hit_rays += aw.any;
       }
       EXPECT_GT(hit_rays, 120);
     }

@@ -159,15 +159,21 @@ template <bool Conservative>
 struct Bvh8BoxTest {
   Bvh8RayF ray;
   __m256 tmin;
-  // Not always_inline: that would be an error inside wide_traverse_loop, which is compiled for the
-  // baseline; the loop is inlined into the AVX2 run() below and this test is inlined there.
-  [[gnu::target("avx2")]] int operator()(const Bvh8Node& n, float tmax, float* t) const {
+  [[gnu::target("avx2"), gnu::always_inline]] int operator()(const Bvh8Node& n, float tmax, float* t) const {
     __m256 te;
     const int mask = bvh8_test<Conservative>(n, ray, tmin, _mm256_set1_ps(tmax), te);
     if (mask) _mm256_store_ps(t, te);
     return mask;
   }
 };
+
+// The loop of bvh_wide.h compiled for AVX2 (see bvh_wide_loop.h): wide_traverse_loop_avx2.
+#pragma GCC push_options
+#pragma GCC target("avx2")
+#define RAYPROOF_WIDE_TRAVERSE_LOOP wide_traverse_loop_avx2
+#include "rayproof/bvh_wide_loop.h"
+#undef RAYPROOF_WIDE_TRAVERSE_LOOP
+#pragma GCC pop_options
 
 /// The eight-wide traversal: the shared loop with the AVX2 box test, compiled for AVX2; rays out of
 /// the float range take the double box test.
@@ -181,7 +187,7 @@ struct WideTraversal<8> {
     Bvh8BoxTest<Conservative> test;
     bvh8_ray(r4, test.ray);
     test.tmin = _mm256_set1_ps(r4.tmin);
-    wide_traverse_loop<8, float, Query>(bvh, test, [&] { return wide_tmax_float<Conservative>(tmax); }, leaf);
+    wide_traverse_loop_avx2<8, float, Query>(bvh, test, [&] { return wide_tmax_float<Conservative>(tmax); }, leaf);
   }
 };
 
