@@ -18,88 +18,18 @@
 #include "rayproof/bvh_wide8.h"
 #include "rayproof/triangle.h"
 #include "scene/accel.h"
+#include "bvh_support.h"
 #include "scene/watertight.h"
 
 using namespace rayproof;
+using test::Answers, test::answers, test::brute, test::hits, test::Soup;
 
 namespace {
-
-struct Soup {
-  std::vector<Triangle<double>> tris;
-  std::vector<BvhBox> boxes;
-  std::vector<Vec3<float>> centers;
-};
-Soup random_soup(int n, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-10, 10), s(-0.7, 0.7);
-  Soup soup;
-  for (int i = 0; i < n; ++i) {
-    const Vec3<double> c{u(rng), u(rng), u(rng)};
-    Triangle<double> t{c + Vec3<double>{s(rng), s(rng), s(rng)}, c + Vec3<double>{s(rng), s(rng), s(rng)},
-                       c + Vec3<double>{s(rng), s(rng), s(rng)}};
-    // Some axis-aligned triangles: their boxes are flat, and rays along them have origins on slab planes.
-    if (i % 5 == 0) t.p1.z = t.p2.z = t.p0.z;
-    BvhBox b;
-    b.extend(t.p0), b.extend(t.p1), b.extend(t.p2);
-    soup.tris.push_back(t);
-    soup.boxes.push_back(b);
-    soup.centers.push_back(((t.p0 + t.p1 + t.p2) / 3.0).cast<float>());
-  }
-  return soup;
-}
-bool hits(const TriangleHit<double>& h) {
-  return h.contact == Contact::interior || h.contact == Contact::edge || h.contact == Contact::vertex;
-}
+/// The soups here have every fifth triangle flat (parallel to z = 0).
+test::Soup random_soup(int n, unsigned seed) { return test::random_soup(n, seed, true); }
 
 #define REQUIRE_AVX2() \
   if (!cpu_has_avx2()) GTEST_SKIP() << "no AVX2 on this CPU: the eight-wide path is never taken"
-
-/// The answers of one traversal (closest t and primitive, all hits sorted, any) with MT leaves.
-struct Answers {
-  double t = 0;
-  std::uint32_t prim = ~0u;
-  std::vector<std::pair<double, std::uint32_t>> all;
-  bool any = false;
-  friend bool operator==(const Answers&, const Answers&) = default;
-};
-template <class Traverse>
-Answers answers(const Soup& soup, const Ray<double>& ray, double tmin, double tmax0, Traverse&& traverse) {
-  Answers a;
-  double tmax = tmax0;
-  traverse(tmax, BvhQuery::closest, [&](std::uint32_t i) {
-    const auto h = intersect_moller_trumbore(ray, soup.tris[i]);
-    if (hits(h) && h.t >= tmin && (h.t < tmax || (h.t == tmax && i < a.prim))) tmax = h.t, a.prim = i;
-    return false;
-  });
-  a.t = tmax;
-  double tm = tmax0;
-  traverse(tm, BvhQuery::all, [&](std::uint32_t i) {
-    const auto h = intersect_moller_trumbore(ray, soup.tris[i]);
-    if (hits(h) && h.t >= tmin && h.t <= tmax0) a.all.push_back({h.t, i});
-    return false;
-  });
-  std::sort(a.all.begin(), a.all.end());
-  int visits_after_hit = 0;
-  traverse(tm, BvhQuery::any, [&](std::uint32_t i) {
-    visits_after_hit += a.any;
-    const auto h = intersect_moller_trumbore(ray, soup.tris[i]);
-    return a.any = hits(h) && h.t >= tmin && h.t <= tmax0;
-  });
-  EXPECT_EQ(visits_after_hit, 0);  // any hit stops at the first hit
-  return a;
-}
-Answers brute(const Soup& soup, const Ray<double>& ray, double tmin, double tmax0) {
-  Answers a;
-  a.t = tmax0;
-  for (std::uint32_t i = 0; i < soup.tris.size(); ++i) {
-    const auto h = intersect_moller_trumbore(ray, soup.tris[i]);
-    if (hits(h) && h.t >= tmin && h.t <= tmax0) a.all.push_back({h.t, i});
-  }
-  std::sort(a.all.begin(), a.all.end());
-  a.any = !a.all.empty();
-  if (a.any) a.t = a.all.front().first, a.prim = a.all.front().second;
-  return a;
-}
 
 }  // namespace
 
@@ -113,38 +43,10 @@ TEST(Bvh8, CollapseKeepsEveryPrimitiveAndNestsBounds) {
                                       {BvhBuilder::median, 1u << 30, 0}, {BvhBuilder::median, 1u << 30, 300}}) {
     // The plain SAH (leaf_group 1: its leaves stay below 6 primitives here), so that merging shows.
     Bvh bin = build_bvh(soup.boxes, soup.centers, {builder, leaf, 1});
-    std::uint32_t bin_largest = 0, largest_leaf = 0;
+    std::uint32_t bin_largest = 0;
     for (const BvhNode& n : bin.nodes) bin_largest = std::max(bin_largest, n.count);
     const Bvh8 w = collapse_bvh8(std::move(bin), soup.boxes, merge);
-    std::vector<int> seen(soup.tris.size(), 0);
-    for (const Bvh8Node& n : w.nodes)
-      for (int i = 0; i < 8; ++i) {
-        if (!(n.valid >> i & 1)) {
-          EXPECT_GT(n.lo[0][i], n.hi[0][i]);  // unused slots: empty boxes
-          continue;
-        }
-        const BvhBox b = n.box(i);
-        if (n.count[i]) {
-          largest_leaf = std::max<std::uint32_t>(largest_leaf, n.count[i]);
-          for (std::uint32_t j = n.child[i]; j < n.child[i] + n.count[i]; ++j) {
-            ++seen[w.prim_ids[j]];
-            for (int k = 0; k < 3; ++k) {
-              EXPECT_LE(b.lo[k], soup.boxes[w.prim_ids[j]].lo[k]);
-              EXPECT_GE(b.hi[k], soup.boxes[w.prim_ids[j]].hi[k]);
-            }
-          }
-        } else {
-          ASSERT_LT(n.child[i], w.nodes.size());
-          const Bvh8Node& c = w.nodes[n.child[i]];
-          for (int j = 0; j < 8; ++j)
-            if (c.valid >> j & 1)
-              for (int k = 0; k < 3; ++k) {
-                EXPECT_LE(b.lo[k], c.lo[k][j]);
-                EXPECT_GE(b.hi[k], c.hi[k][j]);
-              }
-        }
-      }
-    for (int s : seen) ASSERT_EQ(s, 1);
+    const std::uint32_t largest_leaf = test::check_wide_tree(w, soup).largest_leaf;
     if (leaf == 4u) {
       EXPECT_LT(w.nodes.size(), soup.tris.size() / 4);  // wider than the four-wide tree's bound (tris / 3)
       // Merged subtrees: at most `merge` primitives; without merging the binary tree's leaves.

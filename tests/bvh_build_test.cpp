@@ -18,15 +18,13 @@
 #include "rayproof/triangle.h"
 #include "scene/scene.h"
 #include "scene/watertight.h"
+#include "bvh_support.h"
 
 using namespace rayproof;
 
+using test::Soup;
+
 namespace {
-struct Soup {
-  std::vector<Triangle<double>> tris;
-  std::vector<BvhBox> boxes;
-  std::vector<Vec3<float>> centers;
-};
 /// n small triangles: clustered (half of them in a few tight clumps, to get coincident-looking
 /// centers and forced splits) and spread over a box.
 Soup soup(std::size_t n, unsigned seed) {

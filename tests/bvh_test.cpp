@@ -7,37 +7,19 @@
 #include "rayproof/bvh_build.h"
 #include "rayproof/bvh_traverse.h"
 #include "rayproof/bvh_wide.h"
+#include "rayproof/bvh_wide8.h"
 #include "rayproof/triangle.h"
+#include "bvh_support.h"
 
 using namespace rayproof;
 
+using test::Soup, test::random_soup, test::hits;
+
 namespace {
-struct Soup {
-  std::vector<Triangle<double>> tris;
-  std::vector<BvhBox> boxes;
-  std::vector<Vec3<float>> centers;
-};
-Soup random_soup(int n, unsigned seed) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-10, 10), s(-0.7, 0.7);
-  Soup soup;
-  for (int i = 0; i < n; ++i) {
-    const Vec3<double> c{u(rng), u(rng), u(rng)};
-    Triangle<double> t{c + Vec3<double>{s(rng), s(rng), s(rng)}, c + Vec3<double>{s(rng), s(rng), s(rng)},
-                       c + Vec3<double>{s(rng), s(rng), s(rng)}};
-    BvhBox b;
-    b.extend(t.p0), b.extend(t.p1), b.extend(t.p2);
-    soup.tris.push_back(t);
-    soup.boxes.push_back(b);
-    soup.centers.push_back(((t.p0 + t.p1 + t.p2) / 3.0).cast<float>());
-  }
-  return soup;
-}
 Ray<double> random_ray(std::mt19937& rng) {
   std::uniform_real_distribution<double> u(-12, 12), d(-1, 1);
   return {{u(rng), u(rng), u(rng)}, {d(rng), d(rng), d(rng)}};
 }
-bool hits(const TriangleHit<double>& h) { return h.contact == Contact::interior || h.contact == Contact::edge || h.contact == Contact::vertex; }
 }  // namespace
 
 TEST(BvhBox, OutwardRoundingContainsDoublePoints) {
@@ -162,91 +144,12 @@ TEST(Bvh, EmptyAndSingle) {
 
 // ---- Four-wide BVH (bvh_wide.h) ----
 
-namespace {
-/// Every query on the wide BVH against brute force and against the binary BVH, Möller–Trumbore in
-/// double as the leaf test, with tmin / tmax ranges.
-void check_wide_against_brute_force(const Soup& soup, const Bvh& bin, const Bvh4& wide, const Ray<double>& ray,
-                                    BvhTraversal mode, double tmin, double tmax0, int& hit_rays, int r) {
-  std::vector<std::pair<double, std::uint32_t>> all;
-  for (std::uint32_t i = 0; i < soup.tris.size(); ++i) {
-    const auto h = intersect_moller_trumbore(ray, soup.tris[i]);
-    if (hits(h) && h.t >= tmin && h.t <= tmax0) all.push_back({h.t, i});
-  }
-  std::sort(all.begin(), all.end());
-  auto closest = [&](auto&& traverse) {
-    double tmax = tmax0;
-    std::uint32_t best = ~0u;
-    traverse(tmax, BvhQuery::closest, [&](std::uint32_t i) {
-      const auto h = intersect_moller_trumbore(ray, soup.tris[i]);
-      if (hits(h) && h.t >= tmin && (h.t < tmax || (h.t == tmax && i < best))) tmax = h.t, best = i;
-      return false;
-    });
-    return std::pair{tmax, best};
-  };
-  auto wide_t = [&](double& tmax, BvhQuery q, auto&& leaf) { bvh4_traverse(wide, ray, tmin, tmax, mode, q, leaf); };
-  auto bin_t = [&](double& tmax, BvhQuery q, auto&& leaf) { bvh_traverse(bin, ray, tmin, tmax, mode, q, leaf); };
-  const auto [wt, wp] = closest(wide_t);
-  const auto [bt, bp] = closest(bin_t);
-  ASSERT_EQ(wt, bt) << "ray " << r;
-  ASSERT_EQ(wp, bp) << "ray " << r;
-  std::vector<std::pair<double, std::uint32_t>> got;
-  double tm = tmax0;
-  wide_t(tm, BvhQuery::all, [&](std::uint32_t i) {
-    const auto h = intersect_moller_trumbore(ray, soup.tris[i]);
-    if (hits(h) && h.t >= tmin && h.t <= tm) got.push_back({h.t, i});
-    return false;
-  });
-  std::sort(got.begin(), got.end());
-  ASSERT_EQ(got, all) << "ray " << r;
-  bool any = false;
-  wide_t(tm, BvhQuery::any, [&](std::uint32_t i) {
-    const auto h = intersect_moller_trumbore(ray, soup.tris[i]);
-    return any = hits(h) && h.t >= tmin && h.t <= tm;
-  });
-  ASSERT_EQ(any, !all.empty()) << "ray " << r;
-  if (all.empty()) {
-    ASSERT_EQ(wp, ~0u) << "ray " << r;
-  } else {
-    ++hit_rays;
-    ASSERT_EQ(wt, all.front().first) << "ray " << r;
-    const auto lowest = std::find_if(all.begin(), all.end(), [&](const auto& x) { return x.first == all.front().first; });
-    ASSERT_EQ(wp, lowest->second) << "ray " << r;
-  }
-}
-}  // namespace
-
 TEST(Bvh4, CollapseKeepsEveryPrimitiveAndNestsBounds) {
   const Soup soup = random_soup(3000, 4);
   for (auto [builder, leaf] : {std::pair{BvhBuilder::median, 4u}, {BvhBuilder::sah, 4u}, {BvhBuilder::median, 1u << 30}}) {
     const Bvh4 w = collapse_bvh4(build_bvh(soup.boxes, soup.centers, {builder, leaf}), soup.boxes);
-    std::vector<int> seen(soup.tris.size(), 0);
-    int leaves = 0;
-    for (const Bvh4Node& n : w.nodes)
-      for (int i = 0; i < 4; ++i) {
-        if (!(n.valid >> i & 1)) continue;
-        const BvhBox b = n.box(i);
-        if (n.count[i]) {
-          ++leaves;
-          for (std::uint32_t j = n.child[i]; j < n.child[i] + n.count[i]; ++j) {
-            ++seen[w.prim_ids[j]];
-            for (int k = 0; k < 3; ++k) {
-              EXPECT_LE(b.lo[k], soup.boxes[w.prim_ids[j]].lo[k]);
-              EXPECT_GE(b.hi[k], soup.boxes[w.prim_ids[j]].hi[k]);
-            }
-          }
-        } else {
-          ASSERT_LT(n.child[i], w.nodes.size());
-          const Bvh4Node& c = w.nodes[n.child[i]];
-          for (int j = 0; j < 4; ++j)
-            if (c.valid >> j & 1)
-              for (int k = 0; k < 3; ++k) {
-                EXPECT_LE(b.lo[k], c.lo[k][j]);
-                EXPECT_GE(b.hi[k], c.hi[k][j]);
-              }
-        }
-      }
-    for (int s : seen) ASSERT_EQ(s, 1);
-    EXPECT_GT(leaves, 0);
+    const test::WideTreeStats stats = test::check_wide_tree(w, soup);
+    EXPECT_GT(stats.leaves, 0);
     if (leaf == 4u) {
       EXPECT_LT(w.nodes.size(), soup.tris.size() / 3);  // mostly four-wide
     }
@@ -268,8 +171,16 @@ TEST(Bvh4, QueriesAgreeWithBruteForceAndTheBinaryTree) {
         if (r % 7 == 5) ray.d = ray.d * 0x1p+70;
         const double s = r % 7 == 3 ? 0x1p70 : (r % 7 == 5 ? 0x1p-70 : 1.0);
         const double tmin = (r % 3 == 0 ? 2.0 : 0.0) * s, tmax0 = r % 5 == 0 ? 8.0 * s : 1e300;
-        check_wide_against_brute_force(soup, bin, wide, ray, mode, tmin, tmax0, hit_rays, r);
-        if (HasFatalFailure()) return;
+        // Every query on the wide tree against the binary tree and brute force.
+        const test::Answers aw = test::answers(soup, ray, tmin, tmax0, [&](double& tm, BvhQuery q, auto&& leaf) {
+          bvh4_traverse(wide, ray, tmin, tm, mode, q, leaf);
+        });
+        const test::Answers ab = test::answers(soup, ray, tmin, tmax0, [&](double& tm, BvhQuery q, auto&& leaf) {
+          bvh_traverse(bin, ray, tmin, tm, mode, q, leaf);
+        });
+        ASSERT_EQ(aw, ab) << "ray " << r;
+        ASSERT_EQ(aw, test::brute(soup, ray, tmin, tmax0)) << "ray " << r;
+        hit_rays += aw.any;
       }
       EXPECT_GT(hit_rays, 120);
     }
@@ -333,4 +244,93 @@ TEST(Bvh4, EmptyAndInvalidRays) {
       double tm = inf;
       bvh4_traverse(w, r, 0.0, tm, mode, BvhQuery::closest, [](std::uint32_t) { return false; });
     }
+}
+
+// ---- One collapse for both widths (collapse_wide<N>) ----
+
+namespace {
+/// A binary tree built here, not by bvh_build.h (so the pinned results below do not move when the
+/// builders change): median splits on the longest axis of the centers, ties by index; leaves of at
+/// most `leaf` primitives, and at depth 4 every third subtree becomes one leaf whatever its size
+/// (leaves of hundreds of primitives: the collapse splits them into chunks).
+Bvh median_tree(const Soup& soup, std::uint32_t leaf) {
+  Bvh bin;
+  const auto n = static_cast<std::uint32_t>(soup.boxes.size());
+  bin.prim_ids.resize(n);
+  for (std::uint32_t i = 0; i < n; ++i) bin.prim_ids[i] = i;
+  bin.nodes.emplace_back();
+  struct Task {
+    std::uint32_t node, first, count;
+    int depth;
+  };
+  std::vector<Task> stack{{0, 0, n, 1}};
+  int leaf_subtrees = 0;
+  while (!stack.empty()) {
+    const Task t = stack.back();
+    stack.pop_back();
+    bin.max_depth = std::max(bin.max_depth, t.depth);
+    BvhBox box, cbox;
+    for (std::uint32_t i = t.first; i < t.first + t.count; ++i) {
+      const std::uint32_t p = bin.prim_ids[i];
+      box.extend(soup.boxes[p]);
+      BvhBox c;
+      for (int k = 0; k < 3; ++k) c.lo[k] = c.hi[k] = soup.centers[p][k];
+      cbox.extend(c);
+    }
+    bin.nodes[t.node].box = box;
+    if (t.count <= leaf || (t.depth == 4 && leaf_subtrees++ % 3 == 0)) {
+      bin.nodes[t.node].index = t.first, bin.nodes[t.node].count = t.count;
+      continue;
+    }
+    const int axis = cbox.longest_axis();
+    auto* ids = bin.prim_ids.data() + t.first;
+    std::sort(ids, ids + t.count, [&](std::uint32_t a, std::uint32_t b) {
+      const float ca = soup.centers[a][axis], cb = soup.centers[b][axis];
+      return ca < cb || (ca == cb && a < b);
+    });
+    const auto kids = static_cast<std::uint32_t>(bin.nodes.size());
+    bin.nodes[t.node].index = kids;
+    bin.nodes.emplace_back(), bin.nodes.emplace_back();
+    const std::uint32_t half = t.count / 2;
+    stack.push_back({kids, t.first, half, t.depth + 1});
+    stack.push_back({kids + 1, t.first + half, t.count - half, t.depth + 1});
+  }
+  return bin;
+}
+
+/// FNV-1a over a wide tree's node bytes, prim_ids and max_depth.
+template <class Tree>
+std::uint64_t tree_hash(const Tree& w) {
+  std::uint64_t h = 1469598103934665603ull;
+  auto add = [&](const void* p, std::size_t n) {
+    for (std::size_t i = 0; i < n; ++i) h = (h ^ static_cast<const unsigned char*>(p)[i]) * 1099511628211ull;
+  };
+  add(w.nodes.data(), w.nodes.size() * sizeof(w.nodes[0]));
+  add(w.prim_ids.data(), w.prim_ids.size() * sizeof(std::uint32_t));
+  add(&w.max_depth, sizeof(w.max_depth));
+  return h;
+}
+}  // namespace
+
+TEST(BvhWide, CollapseIsNodeForNodeTheOneOfBeforeTheMerge) {
+  // Hashes of the trees collapse_bvh4 / collapse_bvh8 built before the two widths shared one
+  // collapse (commit c63722d), for these soups and trees.
+  const Soup soup = random_soup(5000, 11);
+  struct Pinned {
+    std::uint32_t leaf;
+    std::uint64_t bvh4, bvh8, bvh8_merge16;
+  };
+  const Pinned pinned[] = {{1, 0x88a004cf968ca847, 0x2cc93c79358a7bef, 0xaa8253d94ddc4451},
+                           {4, 0x17de4fbb1c42b5d1, 0x7fe34303657ee1cb, 0x3f692f401a805465},
+                           {9, 0x237e8517723b3f6b, 0xf4de8f6fd4433d77, 0xd264c351cdebd7b1}};
+  for (const Pinned& p : pinned) {
+    const Bvh bin = median_tree(soup, p.leaf);
+    EXPECT_EQ(tree_hash(collapse_bvh4(Bvh(bin), soup.boxes)), p.bvh4) << "leaf " << p.leaf;
+    EXPECT_EQ(tree_hash(collapse_wide<4>(Bvh(bin), soup.boxes)), p.bvh4) << "leaf " << p.leaf;
+    EXPECT_EQ(tree_hash(collapse_bvh8(Bvh(bin), soup.boxes)), p.bvh8) << "leaf " << p.leaf;
+    EXPECT_EQ(tree_hash(collapse_bvh8(Bvh(bin), soup.boxes, 16)), p.bvh8_merge16) << "leaf " << p.leaf;
+  }
+  // The soup has leaves above kMaxLeaf (split into chunks) and merge_leaf changes the tree.
+  const Bvh8 merged = collapse_bvh8(median_tree(soup, 4), soup.boxes, 16), plain = collapse_bvh8(median_tree(soup, 4), soup.boxes);
+  EXPECT_LT(merged.nodes.size(), plain.nodes.size());
 }

@@ -1,11 +1,11 @@
 #pragma once
-/// Four-wide BVH: the binary tree of bvh_build.h collapsed into nodes of up to four children whose
-/// boxes are tested together with SSE (the path for CPUs without AVX2; bvh_wide8.h has the eight-wide
-/// AVX2 one). Closest hit visits children nearest first (any and all hits in slot order); the stack holds (child, entry t) so
+/// Wide BVHs: the binary tree of bvh_build.h collapsed into nodes of up to N = 4 or 8 children
+/// (one node template, one collapse, one traversal loop for both widths). This header has the
+/// four-wide SSE box test (the path for CPUs without AVX2); bvh_wide8.h has the eight-wide AVX2 one. Closest hit visits children nearest first (any and all hits in slot order); the stack holds (child, entry t) so
 /// closest hit drops popped children whose entry lies beyond the best t so far.
 ///
-/// Node layout (128 bytes, two cache lines): per axis the four children's lo then hi planes
-/// (structure of arrays, one SSE load per plane), then per child its reference: an inner child is a
+/// Node layout (32 N bytes: 128 for four children, two cache lines; 256 for eight): per axis the N
+/// children's lo then hi planes (structure of arrays, one SSE / AVX load per plane), then per child its reference: an inner child is a
 /// node index, a leaf child is a range [first, first + count) of prim_ids (count 1..255; count 0
 /// marks an inner child). Unused slots have empty boxes and a clear bit in `valid`.
 ///
@@ -32,7 +32,6 @@
 #include <limits>
 #include <span>
 #include <stdexcept>
-#include <type_traits>
 #include <vector>
 
 #include "rayproof/bvh.h"
@@ -40,17 +39,21 @@
 
 namespace rayproof {
 
-struct alignas(64) Bvh4Node {
-  float lo[3][4];  ///< lo[axis][child]
-  float hi[3][4];  ///< hi[axis][child]
-  std::uint32_t child[4] = {0, 0, 0, 0};  ///< inner: node index; leaf: first prim_ids entry
-  std::uint8_t count[4] = {0, 0, 0, 0};   ///< 0: inner child; else primitives in the leaf
-  std::uint8_t valid = 0;                 ///< bit i: slot i is used
-  std::uint8_t pad_[11] = {};
+/// A wide node of N = 4 or 8 children (layout above; 32 N bytes). Bvh4Node / Bvh8Node name the two.
+template <int N>
+struct alignas(64) BvhWideNode {
+  static_assert(N == 4 || N == 8, "the box tests exist for four (SSE) and eight (AVX2) lanes");
+  static constexpr int kWidth = N;
+  float lo[3][N];  ///< lo[axis][child]
+  float hi[3][N];  ///< hi[axis][child]
+  std::uint32_t child[N] = {};  ///< inner: node index; leaf: first prim_ids entry
+  std::uint8_t count[N] = {};   ///< 0: inner child; else primitives in the leaf
+  std::uint8_t valid = 0;       ///< bit i: slot i is used
+  std::uint8_t pad_[3 * N - 1] = {};
 
-  Bvh4Node() {
+  BvhWideNode() {
     for (int k = 0; k < 3; ++k)
-      for (int i = 0; i < 4; ++i) lo[k][i] = std::numeric_limits<float>::infinity(), hi[k][i] = -std::numeric_limits<float>::infinity();
+      for (int i = 0; i < N; ++i) lo[k][i] = std::numeric_limits<float>::infinity(), hi[k][i] = -std::numeric_limits<float>::infinity();
   }
   [[nodiscard]] BvhBox box(int i) const {
     BvhBox b;
@@ -61,30 +64,38 @@ struct alignas(64) Bvh4Node {
     for (int k = 0; k < 3; ++k) lo[k][i] = b.lo[k], hi[k][i] = b.hi[k];
   }
 };
+using Bvh4Node = BvhWideNode<4>;
+using Bvh8Node = BvhWideNode<8>;
 static_assert(sizeof(Bvh4Node) == 128);
+static_assert(sizeof(Bvh8Node) == 256);
 
-struct Bvh4 {
+/// A wide tree: Bvh4 (SSE path) and Bvh8 (AVX2 path, bvh_wide8.h).
+template <int N>
+struct BvhWide {
+  using Node = BvhWideNode<N>;
+  static constexpr int kWidth = N;
   static constexpr std::uint32_t kMaxLeaf = 255;
-  std::vector<Bvh4Node, AlignedAllocator<Bvh4Node, 64>> nodes;  ///< nodes[0] is the root (absent when empty)
-  std::vector<std::uint32_t> prim_ids;                          ///< primitive indices, leaf by leaf
-  int max_depth = 0;                                            ///< nodes on the longest root-to-leaf path
+  std::vector<Node, AlignedAllocator<Node, 64>> nodes;  ///< nodes[0] is the root (absent when empty)
+  std::vector<std::uint32_t> prim_ids;                  ///< primitive indices, leaf by leaf
+  int max_depth = 0;                                    ///< nodes on the longest root-to-leaf path
 
   [[nodiscard]] bool empty() const { return nodes.empty(); }
-  [[nodiscard]] std::size_t bytes() const {
-    return nodes.size() * sizeof(Bvh4Node) + prim_ids.size() * sizeof(std::uint32_t);
-  }
+  [[nodiscard]] std::size_t bytes() const { return nodes.size() * sizeof(Node) + prim_ids.size() * sizeof(std::uint32_t); }
 };
+using Bvh4 = BvhWide<4>;
+using Bvh8 = BvhWide<8>;
 
 namespace detail {
 
-/// Splits a leaf range of more than kMaxLeaf primitives into a subtree of wide nodes (chunks in
+/// Splits a leaf range of more than kMaxLeaf primitives into a subtree of wide nodes (N chunks in
 /// prim_ids order, boxes from the primitives' bounds); returns the new node's index.
-inline std::uint32_t bvh4_chunk(Bvh4& w, std::span<const BvhBox> prim_boxes, std::uint32_t first, std::uint32_t count,
-                                int depth, int& max_depth) {
+template <int N>
+std::uint32_t wide_chunk(BvhWide<N>& w, std::span<const BvhBox> prim_boxes, std::uint32_t first, std::uint32_t count,
+                         int depth, int& max_depth) {
   const auto id = static_cast<std::uint32_t>(w.nodes.size());
   w.nodes.emplace_back();
   max_depth = std::max(max_depth, depth);
-  const std::uint32_t part = (count + 3) / 4;
+  const std::uint32_t part = (count + N - 1) / N;
   int slot = 0;
   for (std::uint32_t b = first; b < first + count; b += part, ++slot) {
     const std::uint32_t n = std::min(part, first + count - b);
@@ -92,8 +103,8 @@ inline std::uint32_t bvh4_chunk(Bvh4& w, std::span<const BvhBox> prim_boxes, std
     for (std::uint32_t i = b; i < b + n; ++i) box.extend(prim_boxes[w.prim_ids[i]]);
     std::uint32_t ref = b;
     std::uint8_t cnt = static_cast<std::uint8_t>(n);
-    if (n > Bvh4::kMaxLeaf) ref = bvh4_chunk(w, prim_boxes, b, n, depth + 1, max_depth), cnt = 0;
-    Bvh4Node& node = w.nodes[id];
+    if (n > BvhWide<N>::kMaxLeaf) ref = wide_chunk(w, prim_boxes, b, n, depth + 1, max_depth), cnt = 0;
+    auto& node = w.nodes[id];
     node.set_box(slot, box);
     node.child[slot] = ref, node.count[slot] = cnt, node.valid |= std::uint8_t(1u << slot);
   }
@@ -102,16 +113,46 @@ inline std::uint32_t bvh4_chunk(Bvh4& w, std::span<const BvhBox> prim_boxes, std
 
 }  // namespace detail
 
-/// Collapses a binary BVH into a four-wide one: each wide node takes a binary node's children and
-/// opens the inner child of largest surface area until it has four (or only leaves are left).
-/// `prim_boxes` (indexed by primitive) bound leaves of more than Bvh4::kMaxLeaf primitives, which
+/// Collapses a binary BVH into an N-wide one (N = 4 or 8): each wide node takes a binary node's
+/// children and opens the inner child of largest surface area until it has N (or only leaves are
+/// left). An inner binary node whose subtree holds at most `merge_leaf` primitives becomes one leaf
+/// (its primitives are contiguous in prim_ids): fewer, fuller nodes at the bottom; 0 keeps every
+/// leaf. `prim_boxes` (indexed by primitive) bound leaves of more than kMaxLeaf primitives, which
 /// are split. The binary tree's prim_ids become the wide tree's (moved out of `bin`).
-[[nodiscard]] inline Bvh4 collapse_bvh4(Bvh&& bin, std::span<const BvhBox> prim_boxes) {
-  Bvh4 w;
+template <int N>
+[[nodiscard]] BvhWide<N> collapse_wide(Bvh&& bin, std::span<const BvhBox> prim_boxes, std::uint32_t merge_leaf = 0) {
+  using Node = BvhWideNode<N>;
+  BvhWide<N> w;
   if (bin.empty()) return w;
+  // Per binary node: its subtree's primitives [first, first + size) when contiguous (else size 0).
+  std::vector<std::uint32_t> first, size;
+  if (merge_leaf > 0) {
+    first.assign(bin.nodes.size(), 0), size.assign(bin.nodes.size(), 0);
+    std::vector<std::pair<std::uint32_t, bool>> order{{0, false}};  // post-order: children first
+    while (!order.empty()) {
+      const auto [i, done] = order.back();
+      order.pop_back();
+      const BvhNode& n = bin.nodes[i];
+      if (n.is_leaf()) {
+        first[i] = n.index, size[i] = n.count;
+      } else if (!done) {
+        order.push_back({i, true}), order.push_back({n.index, false}), order.push_back({n.index + 1, false});
+      } else {
+        const std::uint32_t a = n.index, b = n.index + 1;
+        const bool contiguous = size[a] && size[b] && (first[a] + size[a] == first[b] || first[b] + size[b] == first[a]);
+        first[i] = std::min(first[a], first[b]), size[i] = contiguous ? size[a] + size[b] : 0;
+      }
+    }
+  }
+  // A binary child taken as one leaf of the wide tree: (first, count), or count 0 (an inner node).
+  auto as_leaf = [&](const BvhNode& c, std::uint32_t i) -> std::pair<std::uint32_t, std::uint32_t> {
+    if (c.is_leaf()) return {c.index, c.count};
+    if (merge_leaf > 0 && size[i] && size[i] <= merge_leaf) return {first[i], size[i]};
+    return {0, 0};
+  };
   w.prim_ids = std::move(bin.prim_ids);
   if (w.prim_ids.size() >= (std::size_t(1) << 31)) throw std::length_error("BVH: too many primitives");
-  w.nodes.reserve(bin.nodes.size() / 3 + 2);
+  w.nodes.reserve(bin.nodes.size() / (N - 1) + 2);
   int max_depth = 1;
   struct Task {
     std::uint32_t bin, wide;
@@ -122,11 +163,11 @@ inline std::uint32_t bvh4_chunk(Bvh4& w, std::span<const BvhBox> prim_boxes, std
   const BvhNode& root = bin.nodes[0];
   if (root.is_leaf()) {
     // A single leaf: one slot (split when too big).
-    Bvh4Node& n = w.nodes[0];
+    Node& n = w.nodes[0];
     n.set_box(0, root.box), n.valid = 1;
-    if (root.count > Bvh4::kMaxLeaf) {
+    if (root.count > BvhWide<N>::kMaxLeaf) {
       w.nodes.clear();
-      detail::bvh4_chunk(w, prim_boxes, root.index, root.count, 1, max_depth);
+      detail::wide_chunk(w, prim_boxes, root.index, root.count, 1, max_depth);
     } else {
       n.child[0] = root.index, n.count[0] = static_cast<std::uint8_t>(root.count);
     }
@@ -137,33 +178,34 @@ inline std::uint32_t bvh4_chunk(Bvh4& w, std::span<const BvhBox> prim_boxes, std
     const Task t = stack.back();
     stack.pop_back();
     max_depth = std::max(max_depth, t.depth);
-    std::uint32_t kids[4] = {bin.nodes[t.bin].index, bin.nodes[t.bin].index + 1, 0, 0};
+    std::uint32_t kids[N] = {bin.nodes[t.bin].index, bin.nodes[t.bin].index + 1};
     int nk = 2;
-    while (nk < 4) {
+    while (nk < N) {
       int best = -1;
       float best_area = -1;
       for (int i = 0; i < nk; ++i) {
         const BvhNode& c = bin.nodes[kids[i]];
-        if (!c.is_leaf() && c.box.half_area() > best_area) best = i, best_area = c.box.half_area();
+        if (!as_leaf(c, kids[i]).second && c.box.half_area() > best_area) best = i, best_area = c.box.half_area();
       }
       if (best < 0) break;
-      const std::uint32_t first = bin.nodes[kids[best]].index;
-      kids[best] = first, kids[nk++] = first + 1;
+      const std::uint32_t first_kid = bin.nodes[kids[best]].index;
+      kids[best] = first_kid, kids[nk++] = first_kid + 1;
     }
     for (int i = 0; i < nk; ++i) {
       const BvhNode& c = bin.nodes[kids[i]];
+      const auto [leaf_first, leaf_count] = as_leaf(c, kids[i]);
       std::uint32_t ref = 0;
       std::uint8_t cnt = 0;
-      if (c.is_leaf() && c.count <= Bvh4::kMaxLeaf) {
-        ref = c.index, cnt = static_cast<std::uint8_t>(c.count);
-      } else if (c.is_leaf()) {
-        ref = detail::bvh4_chunk(w, prim_boxes, c.index, c.count, t.depth + 1, max_depth);
+      if (leaf_count && leaf_count <= BvhWide<N>::kMaxLeaf) {
+        ref = leaf_first, cnt = static_cast<std::uint8_t>(leaf_count);
+      } else if (leaf_count) {
+        ref = detail::wide_chunk(w, prim_boxes, leaf_first, leaf_count, t.depth + 1, max_depth);
       } else {
         ref = static_cast<std::uint32_t>(w.nodes.size());
         w.nodes.emplace_back();
         stack.push_back({kids[i], ref, t.depth + 1});
       }
-      Bvh4Node& n = w.nodes[t.wide];
+      Node& n = w.nodes[t.wide];
       n.set_box(i, c.box);
       n.child[i] = ref, n.count[i] = cnt, n.valid |= std::uint8_t(1u << i);
     }
@@ -172,6 +214,16 @@ inline std::uint32_t bvh4_chunk(Bvh4& w, std::span<const BvhBox> prim_boxes, std
   w.max_depth = max_depth;
   bin = Bvh{};
   return w;
+}
+
+/// collapse_wide<4>: the tree of the SSE path.
+[[nodiscard]] inline Bvh4 collapse_bvh4(Bvh&& bin, std::span<const BvhBox> prim_boxes, std::uint32_t merge_leaf = 0) {
+  return collapse_wide<4>(std::move(bin), prim_boxes, merge_leaf);
+}
+
+/// collapse_wide<8>: the tree of the AVX2 path (bvh_wide8.h).
+[[nodiscard]] inline Bvh8 collapse_bvh8(Bvh&& bin, std::span<const BvhBox> prim_boxes, std::uint32_t merge_leaf = 0) {
+  return collapse_wide<8>(std::move(bin), prim_boxes, merge_leaf);
 }
 
 namespace detail {
@@ -268,11 +320,11 @@ inline int bvh4_test(const Bvh4Node& n, const Bvh4RayF& r, __m128 tmin, __m128 t
   return _mm_movemask_ps(_mm_cmple_ps(t0, t1)) & n.valid;
 }
 
-/// The scalar double test of the same four children (rays out of the float path's range).
-template <bool Conservative>
-inline int bvh4_test_double(const Bvh4Node& n, const BvhRay<double>& r, double tmin, double tmax, double t_enter[4]) {
+/// The scalar double test of the N children of `n` (rays out of the float path's range).
+template <bool Conservative, int N>
+inline int wide_test_double(const BvhWideNode<N>& n, const BvhRay<double>& r, double tmin, double tmax, double t_enter[N]) {
   int mask = 0;
-  for (int i = 0; i < 4; ++i) {
+  for (int i = 0; i < N; ++i) {
     if (!(n.valid >> i & 1)) continue;
     t_enter[i] = r.template enter<Conservative>(n.box(i), tmin, tmax);
     if (t_enter[i] != std::numeric_limits<double>::infinity()) mask |= 1 << i;
@@ -281,27 +333,49 @@ inline int bvh4_test_double(const Bvh4Node& n, const BvhRay<double>& r, double t
 }
 
 template <class T>
-struct Bvh4Entry {
+struct WideEntry {
   std::uint32_t ref;
   std::uint32_t count;  ///< 0: inner node
   T t;
 };
 
-/// Pushes the hit children of `n` (mask, two or more bits) on the stack, farthest first, so the
-/// nearest is on top; prefetches inner children's nodes.
-template <class T>
-[[gnu::always_inline]] inline void bvh4_push_sorted(const Bvh4Node& n, const Bvh4Node* nodes, int mask, const T* t,
-                                                    Bvh4Entry<T>* stack, int& top) {
-  Bvh4Entry<T> e[4];
+/// Pushes the hit children of `n` (mask, two or more bits) on the stack: for closest hit (Sort)
+/// farthest first, so the nearest is on top, and prefetching inner children's nodes; else in slot
+/// order. On equal entry t the four-wide sort puts the later slot on top; the eight-wide pair case
+/// (one comparison) puts the earlier one on top, as each did before they shared this code.
+template <bool Sort, int N, class T>
+[[gnu::always_inline]] inline void wide_push(const BvhWideNode<N>& n, const BvhWideNode<N>* nodes, int mask, const T* t,
+                                             WideEntry<T>* stack, int& top) {
+  if constexpr (!Sort) {
+    for (; mask; mask &= mask - 1) {
+      const int i = __builtin_ctz(static_cast<unsigned>(mask));
+      stack[top++] = WideEntry<T>{n.child[i], n.count[i], t[i]};
+    }
+    return;
+  }
+  auto prefetch = [&](const WideEntry<T>& x) {
+    if (x.count) return;
+    const char* p = reinterpret_cast<const char*>(nodes + x.ref);
+    for (std::size_t line = 0; line < sizeof(BvhWideNode<N>); line += 64) _mm_prefetch(p + line, _MM_HINT_T0);
+  };
+  if constexpr (N == 8) {
+    if (__builtin_popcount(static_cast<unsigned>(mask)) == 2) {  // the common case: one comparison
+      const int i = __builtin_ctz(static_cast<unsigned>(mask)), j = __builtin_ctz(static_cast<unsigned>(mask & (mask - 1)));
+      const WideEntry<T> a{n.child[i], n.count[i], t[i]}, b{n.child[j], n.count[j], t[j]};
+      prefetch(a), prefetch(b);
+      const bool a_near = a.t <= t[j];
+      stack[top++] = a_near ? b : a;
+      stack[top++] = a_near ? a : b;
+      return;
+    }
+  }
+  WideEntry<T> e[N];
   int m = 0;
   while (mask) {
     const int i = __builtin_ctz(static_cast<unsigned>(mask));
     mask &= mask - 1;
-    Bvh4Entry<T> x{n.child[i], n.count[i], t[i]};
-    if (!x.count) {
-      _mm_prefetch(reinterpret_cast<const char*>(nodes + x.ref), _MM_HINT_T0);
-      _mm_prefetch(reinterpret_cast<const char*>(nodes + x.ref) + 64, _MM_HINT_T0);
-    }
+    WideEntry<T> x{n.child[i], n.count[i], t[i]};
+    prefetch(x);
     int j = m++;
     for (; j > 0 && e[j - 1].t < x.t; --j) e[j] = e[j - 1];  // descending t
     e[j] = x;
@@ -309,140 +383,135 @@ template <class T>
   for (int i = 0; i < m; ++i) stack[top++] = e[i];
 }
 
-/// The traversal loop, for the float (T = float) and double (T = double) box tests. `leaf(first,
-/// count)` gets the leaf-order slots [first, first + count) (indices into prim_ids, or into the
-/// caller's own leaf-order data) and returns true to stop (any hit).
-template <class T, bool Conservative, BvhQuery Query, class Leaf>
-void bvh4_traverse_impl(const Bvh4& bvh, const Ray<double>& ray, double tmin, const double& tmax, Leaf& leaf) {
-  using Entry = Bvh4Entry<T>;
-  Entry local[192];
-  std::vector<Entry> heap;
-  Entry* stack = local;
-  const std::size_t need = 3 * static_cast<std::size_t>(bvh.max_depth) + 8;
-  if (need > 192) heap.resize(need), stack = heap.data();
-  int top = 0;
-  const Bvh4Node* nodes = bvh.nodes.data();
-  auto tmax_t = [&]() -> T {
-    if constexpr (std::is_same_v<T, float>) {
-      return Conservative ? round_up_f(tmax) : static_cast<float>(tmax);
-    } else {
-      return tmax;
-    }
-  };
-  [[maybe_unused]] Bvh4RayF rf;
-  [[maybe_unused]] __m128 tmin_v{};
-  struct NoRay {};
-  [[maybe_unused]] const std::conditional_t<std::is_same_v<T, float>, NoRay, BvhRay<double>> rd = [&] {
-    if constexpr (std::is_same_v<T, float>) {
-      return NoRay{};
-    } else {
-      return BvhRay<double>(ray, Conservative ? BvhTraversal::conservative : BvhTraversal::standard);
-    }
-  }();
-  if constexpr (std::is_same_v<T, float>) {
-    if (!make_bvh4_ray(ray, Conservative, tmin, rf)) {  // out of range: the double box test
-      bvh4_traverse_impl<double, Conservative, Query>(bvh, ray, tmin, tmax, leaf);
-      return;
-    }
-    tmin_v = _mm_set1_ps(rf.tmin);
+// wide_traverse_loop: the traversal loop of both widths (bvh_wide_loop.h, compiled for the baseline
+// here; bvh_wide8.h compiles the same source for AVX2 as wide_traverse_loop_avx2).
+#define RAYPROOF_WIDE_TRAVERSE_LOOP wide_traverse_loop
+#include "rayproof/bvh_wide_loop.h"
+#undef RAYPROOF_WIDE_TRAVERSE_LOOP
+
+template <bool Conservative, int N>
+struct WideBoxTestDouble {
+  BvhRay<double> ray;
+  double tmin;
+  [[gnu::always_inline]] int operator()(const BvhWideNode<N>& n, double tmax, double* t) const {
+    return wide_test_double<Conservative>(n, ray, tmin, tmax, t);
   }
-  T tmax_cur = tmax_t();
-  // `e` is the child being visited (its entry already checked against tmax); a visit that ends
-  // a path pops the next child whose entry is still within tmax.
-  Entry e{0, 0, static_cast<T>(-std::numeric_limits<T>::infinity())};
-  if (Query == BvhQuery::closest && !(e.t <= tmax_cur)) return;  // NaN tmax
-  for (;;) {
-    if (e.count) {
-      if (leaf(e.ref, e.count) && Query == BvhQuery::any) return;
-      if constexpr (Query == BvhQuery::closest) tmax_cur = tmax_t();
-    } else {
-      const Bvh4Node& n = nodes[e.ref];
-      alignas(16) T t[4];
-      int mask;
-      if constexpr (std::is_same_v<T, float>) {
-        __m128 te;
-        mask = bvh4_test<Conservative>(n, rf, tmin_v, _mm_set1_ps(tmax_cur), te);
-        _mm_store_ps(t, te);
-      } else {
-        mask = bvh4_test_double<Conservative>(n, rd, tmin, tmax_cur, t);
-      }
-      if (mask) {
-        if ((mask & (mask - 1)) == 0) {  // one child: straight to it
-          const int i = __builtin_ctz(static_cast<unsigned>(mask));
-          e = Entry{n.child[i], n.count[i], t[i]};
-        } else if constexpr (Query == BvhQuery::closest) {  // several: the nearest next, the farther ones on the stack
-          bvh4_push_sorted(n, nodes, mask, t, stack, top);
-          e = stack[--top];
-        } else {  // any / all: no order needed, slot order
-          for (int m = mask; m; m &= m - 1) {
-            const int i = __builtin_ctz(static_cast<unsigned>(m));
-            stack[top++] = Entry{n.child[i], n.count[i], t[i]};
-          }
-          e = stack[--top];
-        }
-        continue;
-      }
-    }
-    do {
-      if (top == 0) return;
-      e = stack[--top];
-    } while (Query == BvhQuery::closest && !(e.t <= tmax_cur));
-  }
+};
+
+/// The loop with the double box test: rays out of the float path's range, either width.
+template <int N, bool Conservative, BvhQuery Query, class Leaf>
+void wide_traverse_double(const BvhWide<N>& bvh, const Ray<double>& ray, double tmin, const double& tmax, Leaf& leaf) {
+  const WideBoxTestDouble<Conservative, N> test{
+      BvhRay<double>(ray, Conservative ? BvhTraversal::conservative : BvhTraversal::standard), tmin};
+  wide_traverse_loop<N, double, Query>(bvh, test, [&] { return tmax; }, leaf);
 }
 
-template <class T, bool Conservative, class Leaf>
-void bvh4_traverse_query(const Bvh4& bvh, const Ray<double>& ray, double tmin, const double& tmax, BvhQuery query, Leaf& leaf) {
+/// tmax in float for the float box tests: rounded up when conservative.
+template <bool Conservative>
+[[gnu::always_inline]] inline float wide_tmax_float(double tmax) {
+  return Conservative ? round_up_f(tmax) : static_cast<float>(tmax);
+}
+
+template <bool Conservative>
+struct Bvh4BoxTest {
+  Bvh4RayF ray;
+  __m128 tmin;
+  [[gnu::always_inline]] int operator()(const Bvh4Node& n, float tmax, float* t) const {
+    __m128 te;
+    const int mask = bvh4_test<Conservative>(n, ray, tmin, _mm_set1_ps(tmax), te);
+    _mm_store_ps(t, te);
+    return mask;
+  }
+};
+
+/// The traversal of one width: run<Conservative, Query>(bvh, ray, tmin, tmax, leaf). The SSE one
+/// here, the AVX2 one in bvh_wide8.h.
+template <int N>
+struct WideTraversal;
+
+template <>
+struct WideTraversal<4> {
+  template <bool Conservative, BvhQuery Query, class Leaf>
+  static void run(const Bvh4& bvh, const Ray<double>& ray, double tmin, const double& tmax, Leaf& leaf) {
+    Bvh4RayF rf;
+    if (!make_bvh4_ray(ray, Conservative, tmin, rf))  // out of range: the double box test
+      return wide_traverse_double<4, Conservative, Query>(bvh, ray, tmin, tmax, leaf);
+    const Bvh4BoxTest<Conservative> test{rf, _mm_set1_ps(rf.tmin)};
+    wide_traverse_loop<4, float, Query>(bvh, test, [&] { return wide_tmax_float<Conservative>(tmax); }, leaf);
+  }
+};
+
+template <int N, bool Conservative, class Leaf>
+void wide_traverse_query(const BvhWide<N>& bvh, const Ray<double>& ray, double tmin, const double& tmax, BvhQuery query,
+                         Leaf& leaf) {
+  using Run = WideTraversal<N>;
   switch (query) {
-    case BvhQuery::closest: return bvh4_traverse_impl<T, Conservative, BvhQuery::closest>(bvh, ray, tmin, tmax, leaf);
-    case BvhQuery::any: return bvh4_traverse_impl<T, Conservative, BvhQuery::any>(bvh, ray, tmin, tmax, leaf);
-    case BvhQuery::all: return bvh4_traverse_impl<T, Conservative, BvhQuery::all>(bvh, ray, tmin, tmax, leaf);
+    case BvhQuery::closest: return Run::template run<Conservative, BvhQuery::closest>(bvh, ray, tmin, tmax, leaf);
+    case BvhQuery::any: return Run::template run<Conservative, BvhQuery::any>(bvh, ray, tmin, tmax, leaf);
+    case BvhQuery::all: return Run::template run<Conservative, BvhQuery::all>(bvh, ray, tmin, tmax, leaf);
   }
 }
 
 }  // namespace detail
 
-/// The traversal with whole leaves: `leaf_range(first, count)` gets the leaf-order slots
-/// [first, first + count) of one leaf and returns true to stop (honoured for any hit); for closest
-/// hit it lowers `tmax` to the best t so far. Any hit stops at the first leaf that returns true and
-/// does not sort children (slot order); closest hit visits them nearest first.
-template <class LeafRange>
-void bvh4_traverse_leaves(const Bvh4& bvh, const Ray<double>& ray, double tmin, const double& tmax, BvhTraversal mode,
+/// The traversal with whole leaves, either width: `leaf_range(first, count)` gets the leaf-order
+/// slots [first, first + count) of one leaf and returns true to stop (honoured for any hit); for
+/// closest hit it lowers `tmax` to the best t so far. Any hit stops at the first leaf that returns
+/// true and does not sort children (slot order); closest hit visits them nearest first. The
+/// eight-wide tree needs bvh_wide8.h and AVX2: call it only when cpu_has_avx2().
+template <int N, class LeafRange>
+void wide_traverse_leaves(const BvhWide<N>& bvh, const Ray<double>& ray, double tmin, const double& tmax, BvhTraversal mode,
                           BvhQuery query, LeafRange&& leaf_range) {
   if (bvh.empty()) return;
   // The float box test, or the double one for rays out of its range (decided per ray inside).
-  if (mode == BvhTraversal::conservative)
-    return detail::bvh4_traverse_query<float, true>(bvh, ray, tmin, tmax, query, leaf_range);
-  return detail::bvh4_traverse_query<float, false>(bvh, ray, tmin, tmax, query, leaf_range);
+  if (mode == BvhTraversal::conservative) return detail::wide_traverse_query<N, true>(bvh, ray, tmin, tmax, query, leaf_range);
+  return detail::wide_traverse_query<N, false>(bvh, ray, tmin, tmax, query, leaf_range);
 }
 
-/// bvh4_traverse calling `leaf(j)` with the leaf-order slot j instead of the primitive prim_ids[j]:
-/// for callers that keep their primitive data in leaf order (and may drop prim_ids).
-template <class Leaf>
-void bvh4_traverse_slots(const Bvh4& bvh, const Ray<double>& ray, double tmin, const double& tmax, BvhTraversal mode,
+/// wide_traverse_leaves one slot at a time: `leaf(j)` for each leaf-order slot j, true to stop (any
+/// hit); for callers that keep their primitive data in leaf order (and may drop prim_ids).
+template <int N, class Leaf>
+void wide_traverse_slots(const BvhWide<N>& bvh, const Ray<double>& ray, double tmin, const double& tmax, BvhTraversal mode,
                          BvhQuery query, Leaf&& leaf) {
   const bool any = query == BvhQuery::any;
-  bvh4_traverse_leaves(bvh, ray, tmin, tmax, mode, query, [&](std::uint32_t first, std::uint32_t count) {
+  wide_traverse_leaves(bvh, ray, tmin, tmax, mode, query, [&](std::uint32_t first, std::uint32_t count) {
     for (std::uint32_t j = first, end = first + count; j < end; ++j)
       if (leaf(j) && any) return true;
     return false;
   });
 }
 
-/// bvh4_traverse_leaves under the name the leaf kernels (src/scene/leaf_simd.h) first used.
-template <class LeafRangeFn>
-void bvh4_traverse_ranges(const Bvh4& bvh, const Ray<double>& ray, double tmin, const double& tmax, BvhTraversal mode,
-                          BvhQuery query, LeafRangeFn&& leaf_range) {
-  bvh4_traverse_leaves(bvh, ray, tmin, tmax, mode, query, leaf_range);
-}
-
 /// Visits the leaves' primitives the query needs, as bvh_traverse (bvh_traverse.h) does: `leaf(prim)`
 /// returns true to stop (any hit); for closest hit it lowers `tmax` to the best t so far. `ray` is
 /// the ray the primitive kernel intersects, in double (for a float kernel: its float-rounded ray).
+template <int N, class Leaf>
+void wide_traverse(const BvhWide<N>& bvh, const Ray<double>& ray, double tmin, const double& tmax, BvhTraversal mode,
+                   BvhQuery query, Leaf&& leaf) {
+  const std::uint32_t* ids = bvh.prim_ids.data();
+  wide_traverse_slots(bvh, ray, tmin, tmax, mode, query, [&](std::uint32_t j) { return leaf(ids[j]); });
+}
+
+/// The four-wide (SSE) names of wide_traverse_leaves / _slots / wide_traverse; bvh4_traverse_ranges
+/// is the name the leaf kernels (src/scene/leaf_simd.h) first used.
+template <class LeafRange>
+void bvh4_traverse_leaves(const Bvh4& bvh, const Ray<double>& ray, double tmin, const double& tmax, BvhTraversal mode,
+                          BvhQuery query, LeafRange&& leaf_range) {
+  wide_traverse_leaves(bvh, ray, tmin, tmax, mode, query, leaf_range);
+}
+template <class LeafRange>
+void bvh4_traverse_ranges(const Bvh4& bvh, const Ray<double>& ray, double tmin, const double& tmax, BvhTraversal mode,
+                          BvhQuery query, LeafRange&& leaf_range) {
+  wide_traverse_leaves(bvh, ray, tmin, tmax, mode, query, leaf_range);
+}
+template <class Leaf>
+void bvh4_traverse_slots(const Bvh4& bvh, const Ray<double>& ray, double tmin, const double& tmax, BvhTraversal mode,
+                         BvhQuery query, Leaf&& leaf) {
+  wide_traverse_slots(bvh, ray, tmin, tmax, mode, query, leaf);
+}
 template <class Leaf>
 void bvh4_traverse(const Bvh4& bvh, const Ray<double>& ray, double tmin, const double& tmax, BvhTraversal mode,
                    BvhQuery query, Leaf&& leaf) {
-  const std::uint32_t* ids = bvh.prim_ids.data();
-  bvh4_traverse_slots(bvh, ray, tmin, tmax, mode, query, [&](std::uint32_t j) { return leaf(ids[j]); });
+  wide_traverse(bvh, ray, tmin, tmax, mode, query, leaf);
 }
 
 }  // namespace rayproof

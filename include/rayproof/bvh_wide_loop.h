@@ -1,0 +1,57 @@
+// No include guard: bvh_wide.h and bvh_wide8.h each include this file once, inside namespace
+// rayproof::detail, with RAYPROOF_WIDE_TRAVERSE_LOOP naming the function. bvh_wide8.h includes it
+// under `#pragma GCC target("avx2")`, so that the AVX2 box test (always_inline, AVX2) can be
+// inlined into the loop: an always_inline AVX2 function cannot be inlined into a baseline one, and
+// when it is not inlined the eight-wide traversal pays a call per node. One source, two targets.
+#ifndef RAYPROOF_WIDE_TRAVERSE_LOOP
+#error "include rayproof/bvh_wide.h, not bvh_wide_loop.h"
+#endif
+
+/// The traversal loop of both widths, for the float (T = float) and double (T = double) box tests.
+/// `test(node, tmax, t)` returns the hit mask of the node's children and stores their entry
+/// distances in t[0 .. N) (at least for the hit ones); `tmax_now()` is the caller's tmax in T.
+/// `leaf(first, count)` gets the leaf-order slots [first, first + count) (indices into prim_ids, or
+/// into the caller's own leaf-order data) and returns true to stop (any hit).
+template <int N, class T, BvhQuery Query, class BoxTest, class TmaxNow, class Leaf>
+[[gnu::always_inline]] inline void RAYPROOF_WIDE_TRAVERSE_LOOP(const BvhWide<N>& bvh, const BoxTest& test, const TmaxNow& tmax_now,
+                                                               Leaf& leaf) {
+  using Entry = WideEntry<T>;
+  constexpr std::size_t kLocal = N == 4 ? 192 : 256;  // entries on the call stack; deeper trees use the heap
+  Entry local[kLocal];
+  std::vector<Entry> heap;
+  Entry* stack = local;
+  const std::size_t need = (N - 1) * static_cast<std::size_t>(bvh.max_depth) + 8;
+  if (need > kLocal) heap.resize(need), stack = heap.data();
+  int top = 0;
+  const BvhWideNode<N>* nodes = bvh.nodes.data();
+  T tmax_cur = tmax_now();
+  // `e` is the child being visited (its entry already checked against tmax); a visit that ends
+  // a path pops the next child whose entry is still within tmax.
+  Entry e{0, 0, static_cast<T>(-std::numeric_limits<T>::infinity())};
+  if (Query == BvhQuery::closest && !(e.t <= tmax_cur)) return;  // NaN tmax
+  for (;;) {
+    if (e.count) {
+      if (leaf(e.ref, e.count) && Query == BvhQuery::any) return;
+      if constexpr (Query == BvhQuery::closest) tmax_cur = tmax_now();
+    } else {
+      const BvhWideNode<N>& n = nodes[e.ref];
+      alignas(32) T t[N];
+      const int mask = test(n, tmax_cur, t);
+      if (mask) {
+        if ((mask & (mask - 1)) == 0) {  // one child: straight to it
+          const int i = __builtin_ctz(static_cast<unsigned>(mask));
+          e = Entry{n.child[i], n.count[i], t[i]};
+        } else {  // several: for closest hit the nearest next, the farther ones on the stack
+          wide_push<Query == BvhQuery::closest>(n, nodes, mask, t, stack, top);
+          e = stack[--top];
+        }
+        continue;
+      }
+    }
+    do {
+      if (top == 0) return;
+      e = stack[--top];
+    } while (Query == BvhQuery::closest && !(e.t <= tmax_cur));
+  }
+}
+
