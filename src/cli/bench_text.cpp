@@ -51,6 +51,18 @@ BenchTarget check_target(const std::string& mesh, const std::string& what, const
   return t;
 }
 
+BenchTarget scaling_target(const std::string& mesh, const std::string& what, const std::string& rays,
+                           const std::string& query, double speedup) {
+  BenchTarget t = check_target(mesh, what, rays, query, speedup, 1.9, Goal::at_least, 2);
+  // Two threads cannot do more than twice the work of one: a speed-up printed above 2.10 says one of
+  // the two timings was disturbed (a shared machine), so it proves nothing either way.
+  if (std::strtod(t.value.c_str(), nullptr) > 2.1) {
+    t.met = false;
+    t.verdict = "not judged: above 2.10 on 2 threads, a timing was disturbed";
+  }
+  return t;
+}
+
 std::vector<BenchTarget> bench_targets(const std::vector<BenchRow>& rows, const std::vector<BenchBuild>& builds) {
   std::vector<BenchTarget> out;
   const auto idx = index_rows(rows);
@@ -74,8 +86,8 @@ std::vector<BenchTarget> bench_targets(const std::vector<BenchRow>& rows, const 
   for (const char* m : {"robust", "certified", "float"})
     for (const auto& r : rows)
       if (r.method == m && r.scaled_threads == 2 && r.mrays > 0)
-        out.push_back(check_target(r.mesh, fmt::format("{} 2 threads / 1 thread", m), r.rays, r.query,
-                                   r.mrays_scaled / r.mrays, 1.9, Goal::at_least, 2));
+        out.push_back(scaling_target(r.mesh, fmt::format("{} 2 threads / 1 thread", m), r.rays, r.query,
+                                     r.mrays_scaled / r.mrays));
   for (const auto& b : builds)
     if (b.embree_s > 0)
       out.push_back(check_target(b.mesh, fmt::format("build / Embree's build ({} thread{})", b.threads, b.threads == 1 ? "" : "s"),

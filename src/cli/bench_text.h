@@ -43,6 +43,11 @@ struct BenchTarget {
 [[nodiscard]] BenchTarget check_target(const std::string& mesh, const std::string& what, const std::string& rays,
                                        const std::string& query, double value, double goal, Goal kind, int decimals);
 
+/// The two-thread speed-up target (>= 1.9), not judged when the printed value is above 2.10: two
+/// threads cannot do more than twice one thread's work, so such a value means a disturbed timing.
+[[nodiscard]] BenchTarget scaling_target(const std::string& mesh, const std::string& what, const std::string& rays,
+                                         const std::string& query, double speedup);
+
 /// Every target the rows and builds allow: per mesh, ray set and query, robust / embree-robust
 /// >= 1.0, certified / embree-robust >= 0.8, float / embree >= 1.0 and, measured on two threads,
 /// robust, certified and float two-thread speed-up >= 1.9; per mesh and thread count, build / Embree's
