@@ -195,11 +195,15 @@ std::string to_markdown(const Report& r) {
 }
 
 std::string write_report(const Report& r, const std::string& dir) {
+  const std::pair<const char*, std::string> files[] = {
+      {"report.md", to_markdown(r)}, {"report.csv", to_csv(r)}, {"error_vs_time.svg", to_svg(r)}};
+  return write_files(dir, files);
+}
+
+std::string write_files(const std::string& dir, std::span<const std::pair<const char*, std::string>> files) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
   if (ec) return dir + ": cannot create directory (" + ec.message() + ")";
-  const std::pair<const char*, std::string> files[] = {
-      {"report.md", to_markdown(r)}, {"report.csv", to_csv(r)}, {"error_vs_time.svg", to_svg(r)}};
   for (const auto& [name, text] : files) {
     const auto path = std::filesystem::path(dir) / name;
     std::ofstream out(path, std::ios::binary);

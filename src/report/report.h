@@ -3,7 +3,9 @@
 /// timed side by side in one run; written as report.md, report.csv and error_vs_time.svg.
 #include <cstdint>
 #include <functional>
+#include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "io/case_file.h"
@@ -60,5 +62,8 @@ struct Report {
 
 /// Writes the three files into `dir` (created if needed); returns an error message or "".
 [[nodiscard]] std::string write_report(const Report& r, const std::string& dir);
+
+/// Writes each (name, text) into `dir` (created when missing); "" on success, else what failed.
+[[nodiscard]] std::string write_files(const std::string& dir, std::span<const std::pair<const char*, std::string>> files);
 
 }  // namespace rayproof::report

@@ -5,11 +5,10 @@
 
 #include <algorithm>
 #include <cmath>
-#include <filesystem>
-#include <fstream>
 #include <limits>
 #include <map>
 
+#include "report/report.h"
 #include "report/stability_text.h"
 
 namespace rayproof::report {
@@ -186,19 +185,10 @@ std::string stability_csv(const verify::StabilityRun& run) {
 }
 
 std::string write_stability(const verify::StabilityRun& run, const std::string& dir) {
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
-  if (ec) return dir + ": cannot create directory (" + ec.message() + ")";
   const std::pair<const char*, std::string> files[] = {{"stability.md", "# rayproof: stability\n\n" + stability_markdown(run)},
                                                        {"stability.csv", stability_csv(run)},
                                                        {"stability.svg", stability_svg(run)}};
-  for (const auto& [name, text] : files) {
-    const auto path = std::filesystem::path(dir) / name;
-    std::ofstream out(path, std::ios::binary);
-    out << text;
-    if (!out) return path.string() + ": cannot write";
-  }
-  return "";
+  return write_files(dir, files);
 }
 
 }  // namespace rayproof::report
