@@ -168,12 +168,22 @@ struct Bvh8BoxTest {
 };
 
 // The loop of bvh_wide.h compiled for AVX2 (see bvh_wide_loop.h): wide_traverse_loop_avx2.
+// (g++: a target pragma; clang, which ignores it, applies the same attribute to every function of
+// the region, the loop's lambdas included.)
+#if defined(__clang__)
+#pragma clang attribute push(__attribute__((target("avx2"))), apply_to = function)
+#else
 #pragma GCC push_options
 #pragma GCC target("avx2")
+#endif
 #define RAYPROOF_WIDE_TRAVERSE_LOOP wide_traverse_loop_avx2
 #include "rayproof/bvh_wide_loop.h"
 #undef RAYPROOF_WIDE_TRAVERSE_LOOP
+#if defined(__clang__)
+#pragma clang attribute pop
+#else
 #pragma GCC pop_options
+#endif
 
 /// The eight-wide traversal: the shared loop with the AVX2 box test, compiled for AVX2; rays out of
 /// the float range take the double box test.
