@@ -491,15 +491,9 @@ void wide_traverse(const BvhWide<N>& bvh, const Ray<double>& ray, double tmin, c
   wide_traverse_slots(bvh, ray, tmin, tmax, mode, query, [&](std::uint32_t j) { return leaf(ids[j]); });
 }
 
-/// The four-wide (SSE) names of wide_traverse_leaves / _slots / wide_traverse; bvh4_traverse_ranges
-/// is the name the leaf kernels (src/scene/leaf_simd.h) first used.
+/// The four-wide (SSE) names of wide_traverse_leaves / _slots / wide_traverse.
 template <class LeafRange>
 void bvh4_traverse_leaves(const Bvh4& bvh, const Ray<double>& ray, double tmin, const double& tmax, BvhTraversal mode,
-                          BvhQuery query, LeafRange&& leaf_range) {
-  wide_traverse_leaves(bvh, ray, tmin, tmax, mode, query, leaf_range);
-}
-template <class LeafRange>
-void bvh4_traverse_ranges(const Bvh4& bvh, const Ray<double>& ray, double tmin, const double& tmax, BvhTraversal mode,
                           BvhQuery query, LeafRange&& leaf_range) {
   wide_traverse_leaves(bvh, ray, tmin, tmax, mode, query, leaf_range);
 }

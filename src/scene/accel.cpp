@@ -81,18 +81,6 @@ Leaves<Tree> leaves_of(const Tree& bvh, const std::vector<LeafPrim>& prims, cons
   return {bvh, prims.data(), groups.empty() || simd == detail::LeafSimd::off ? nullptr : groups.data(), simd};
 }
 
-/// The wide tree's traversal with whole leaves: leaf(first, count), true to stop (any hit).
-template <class LeafRangeFn>
-void traverse_leaves(const Bvh4& bvh, const Ray<double>& r, double tmin, const double& tmax, BvhTraversal mode,
-                     BvhQuery query, LeafRangeFn&& leaf) {
-  bvh4_traverse_leaves(bvh, r, tmin, tmax, mode, query, leaf);
-}
-template <class LeafRangeFn>
-void traverse_leaves(const Bvh8& bvh, const Ray<double>& r, double tmin, const double& tmax, BvhTraversal mode,
-                     BvhQuery query, LeafRangeFn&& leaf) {
-  bvh8_traverse_leaves(bvh, r, tmin, tmax, mode, query, leaf);
-}
-
 /// The kernels with group versions (leaf_simd.h): `float`, `robust` and `certified`.
 template <class K>
 constexpr bool kGroupKernel = std::is_same_v<K, detail::CompiledKernel<float, TriAlgo::moller_trumbore>> ||
@@ -198,7 +186,7 @@ void traverse_with(const L_& L, const K& k, QueryRange q, const double& tmax, Bv
                    Emit&& emit) {
   if constexpr (kGroupKernel<K>) {
     if (L.groups) {
-      traverse_leaves(L.bvh, k.traversal_ray(), q.tmin, tmax, mode, query,
+      wide_traverse_leaves(L.bvh, k.traversal_ray(), q.tmin, tmax, mode, query,
                            [&](std::uint32_t first, std::uint32_t count) {
                              if constexpr (std::is_same_v<K, detail::CompiledKernel<double, TriAlgo::certified>>) {
                                return certified_leaf(k, L, first, count, emit);
@@ -209,7 +197,7 @@ void traverse_with(const L_& L, const K& k, QueryRange q, const double& tmax, Bv
       return;
     }
   }
-  traverse_leaves(L.bvh, k.traversal_ray(), q.tmin, tmax, mode, query, [&](std::uint32_t first, std::uint32_t count) {
+  wide_traverse_leaves(L.bvh, k.traversal_ray(), q.tmin, tmax, mode, query, [&](std::uint32_t first, std::uint32_t count) {
     for (std::uint32_t j = first; j < first + count; ++j) {
       Crossing c[2];
       const int n = k.crossings(L.prims[j], c);
