@@ -169,6 +169,19 @@ class Accel {
   void any_batch(std::span<const Ray<double>> rays, std::span<const QueryRange> ranges, std::span<std::uint8_t> out,
                  const SceneMethod& m, int threads = 0) const;
 
+  /// Packets (issue 15): closest() / any() for every ray, the rays taken eight at a time in the
+  /// order given (a caller groups coherent rays, e.g. camera tiles of 4x2 pixels, into consecutive
+  /// eights; the last packet may be partial). On the AVX2 path each eight goes through the packet
+  /// traversal of rayproof/bvh_packet.h (rays out of its float range: ray by ray); on the SSE path
+  /// ray by ray. `ranges`: one per ray, one for all, or empty ([0, inf)). The answers are those of
+  /// closest() / any() ray by ray: identical under conservative traversal; under standard
+  /// traversal closest hit may pick another crossing within float ulps of the best t (its float
+  /// pruning depends on the visit order, as between the SSE and AVX2 trees).
+  void closest_packets(std::span<const Ray<double>> rays, std::span<const QueryRange> ranges, std::span<PrimHit> out,
+                       const SceneMethod& m, int threads = 0) const;
+  void any_packets(std::span<const Ray<double>> rays, std::span<const QueryRange> ranges, std::span<std::uint8_t> out,
+                   const SceneMethod& m, int threads = 0) const;
+
  private:
   /// The BVH over `boxes` and leaf records with ids (vertex indices filled by the constructor).
   void build(const std::vector<BvhBox>& boxes, const std::vector<Vec3<float>>& centers, const BvhBuildOptions& opt);
