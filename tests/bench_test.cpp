@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <set>
@@ -103,6 +104,57 @@ TEST(BenchTarget, TargetsFromRowsAndBuilds) {
   for (const auto& t : targets) EXPECT_NE(table.find(t.verdict), std::string::npos);
 }
 
+TEST(BenchTarget, PacketRowsAreJudgedAgainstTheSamePath) {
+  // Packet rows (primary rays) beside single ones: each ratio target takes the competitor's row of
+  // the same path and names the path; speed-up targets stay single-ray ones; the table's ratio
+  // column divides by embree-robust on the same path.
+  std::vector<BenchRow> rows;
+  auto row = [&](const char* method, const char* path, double mrays) {
+    BenchRow r;
+    r.mesh = "m", r.method = method, r.rays = "primary", r.query = "closest", r.path = path, r.n = 16, r.mrays = mrays;
+    r.scaled_threads = 2, r.mrays_scaled = 1.9 * mrays;
+    rows.push_back(r);
+  };
+  row("robust", "single", 3.0), row("robust", "packet8", 4.5);
+  row("embree-robust", "single", 4.0), row("embree-robust", "packet8", 5.0), row("embree-robust", "packet16", 9.0);
+  row("float", "packet8", 7.0), row("embree", "packet8", 6.0), row("embree", "single", 8.0);
+  const auto targets = bench_targets(rows, {});
+  std::map<std::string, const BenchTarget*> by;
+  for (const auto& t : targets) by[t.what] = &t;
+  ASSERT_TRUE(by.count("robust / embree-robust (1 thread)"));
+  EXPECT_EQ(by["robust / embree-robust (1 thread)"]->value, "0.75");
+  ASSERT_TRUE(by.count("robust / embree-robust (packet8, 1 thread)"));
+  EXPECT_EQ(by["robust / embree-robust (packet8, 1 thread)"]->value, "0.90");
+  EXPECT_EQ(by["robust / embree-robust (packet8, 1 thread)"]->verdict, "missed by 0.10 (10% of the goal)");
+  ASSERT_TRUE(by.count("float / embree (packet8, 1 thread)"));
+  EXPECT_EQ(by["float / embree (packet8, 1 thread)"]->value, "1.17");
+  EXPECT_TRUE(by["float / embree (packet8, 1 thread)"]->met);
+  EXPECT_FALSE(by.count("float / embree (1 thread)"));  // no single float row
+  // One speed-up target: robust's single row (packet rows have none).
+  EXPECT_EQ(std::count_if(targets.begin(), targets.end(), [](const BenchTarget& t) { return t.what.find("2 threads") != std::string::npos; }), 1);
+  EXPECT_EQ(targets.size(), 4u);
+  const std::string table = bench_table(rows);
+  EXPECT_NE(table.find("packet8"), std::string::npos);
+  // robust packet8: 4.5 / 5.0 (embree-robust packet8), not / 4.0 or / 9.0.
+  const auto line = [&](const std::string& method, const std::string& path) {
+    for (std::size_t p = 0; p < table.size();) {
+      const std::size_t e = table.find('\n', p);
+      const std::string l = table.substr(p, e - p);
+      if (l.find(" " + method + " ") != std::string::npos && l.find(" " + path + " ") != std::string::npos) return l;
+      p = e + 1;
+    }
+    return std::string();
+  };
+  EXPECT_NE(line("robust", "packet8").find(" 0.900 "), std::string::npos) << table;
+  EXPECT_NE(line("robust", "single").find(" 0.750 "), std::string::npos) << table;
+  EXPECT_NE(line("embree-robust", "packet16").find(" 1.000 "), std::string::npos) << table;
+  EXPECT_NE(line("float", "packet8").find(" - "), std::string::npos) << table;  // no embree-robust float row: '-'
+  // JSON: the path field and the same-path ratio.
+  const auto j = nlohmann::json::parse(bench_json(rows, targets));
+  EXPECT_EQ(j[1]["path"], "packet8");
+  EXPECT_NEAR(j[1]["ratio_to_embree_robust"].get<double>(), 0.9, 1e-9);
+}
+
 namespace {
 /// An octahedron, closed, as OFF.
 std::string octahedron_off() {
@@ -119,7 +171,7 @@ TEST(BenchCli, JsonRowsForBothQueriesAndTargetsFromThePrintedNumbers) {
   ASSERT_EQ(r.status, 0) << r.err;
   const auto j = nlohmann::json::parse(r.out);
   ASSERT_TRUE(j.is_array());
-  std::map<std::string, nlohmann::json> row;  // method/rays/query
+  std::map<std::string, nlohmann::json> row;  // method/rays/query, then /path for packet rows
   std::vector<nlohmann::json> targets;
   for (const auto& x : j) {
     if (x.contains("target")) {
@@ -130,10 +182,20 @@ TEST(BenchCli, JsonRowsForBothQueriesAndTargetsFromThePrintedNumbers) {
                           "bytes_per_tri", "ratio_to_embree_robust", "leaks", "leak_rays", "scaling_threads",
                           "mrays_per_s_scaled", "scaling"})
       EXPECT_TRUE(x.contains(f)) << f;
-    EXPECT_EQ(x["path"], "single");
     EXPECT_EQ(x["mesh"], "bench_octahedron.off");
     EXPECT_EQ(x["threads"], 1);
-    row[x["method"].get<std::string>() + "/" + x["rays"].get<std::string>() + "/" + x["query"].get<std::string>()] = x;
+    const std::string path = x["path"];
+    std::string key = x["method"].get<std::string>() + "/" + x["rays"].get<std::string>() + "/" + x["query"].get<std::string>();
+    if (path != "single") {
+      // Packets: primary rays only, ours eight at a time, Embree's 8 and 16.
+      EXPECT_TRUE(path == "packet8" || path == "packet16") << path;
+      EXPECT_EQ(x["rays"], "primary");
+      EXPECT_EQ(x["ray_count"], 16 * 12);
+      EXPECT_GT(x["mrays_per_s"].get<double>(), 0.0) << key;
+      key += "/" + path;
+    }
+    EXPECT_FALSE(row.count(key)) << key;
+    row[key] = x;
   }
   const bool embree = row.count("embree-robust/primary/closest") > 0;
   std::vector<std::string> methods{"float", "robust", "certified", "cgal-epick"};
@@ -160,6 +222,23 @@ TEST(BenchCli, JsonRowsForBothQueriesAndTargetsFromThePrintedNumbers) {
           EXPECT_TRUE(x["ratio_to_embree_robust"].is_null()) << key;
         }
       }
+  // Packet rows: every compiled method ours, both queries; robust and certified leak nothing there.
+  for (const std::string m : {"float", "robust", "certified"})
+    for (const char* q : {"closest", "any"}) {
+      const std::string key = m + "/primary/" + q + "/packet8";
+      ASSERT_TRUE(row.count(key)) << key;
+      if (m != "float") {
+        EXPECT_EQ(row[key]["leaks"], 0) << key;
+      }
+      if (embree) {
+        const double er = row[std::string("embree-robust/primary/") + q + "/packet8"]["mrays_per_s"].get<double>();
+        EXPECT_NEAR(row[key]["ratio_to_embree_robust"].get<double>(), row[key]["mrays_per_s"].get<double>() / er,
+                    1e-3 + 1e-3 * row[key]["ratio_to_embree_robust"].get<double>()) << key;
+      }
+    }
+  if (embree) {
+    EXPECT_TRUE(row.count("embree-robust/primary/any/packet8"));
+  }
   // Targets: every verdict agrees with its printed value and goal.
   std::set<std::string> kinds;
   for (const auto& t : targets) {

@@ -24,10 +24,10 @@ std::string json_string(const std::string& s) {
   return out + "\"";
 }
 
-using Key = std::tuple<std::string, std::string, std::string, std::string>;  // mesh, method, rays, query
+using Key = std::tuple<std::string, std::string, std::string, std::string, std::string>;  // mesh, method, rays, query, path
 std::map<Key, const BenchRow*> index_rows(const std::vector<BenchRow>& rows) {
   std::map<Key, const BenchRow*> m;
-  for (const auto& r : rows) m[{r.mesh, r.method, r.rays, r.query}] = &r;
+  for (const auto& r : rows) m[{r.mesh, r.method, r.rays, r.query, r.path}] = &r;
   return m;
 }
 }  // namespace
@@ -67,7 +67,7 @@ std::vector<BenchTarget> bench_targets(const std::vector<BenchRow>& rows, const 
   std::vector<BenchTarget> out;
   const auto idx = index_rows(rows);
   auto find = [&](const BenchRow& r, const char* method) {
-    const auto it = idx.find({r.mesh, method, r.rays, r.query});
+    const auto it = idx.find({r.mesh, method, r.rays, r.query, r.path});
     return it == idx.end() ? nullptr : it->second;
   };
   struct Ratio {
@@ -78,14 +78,15 @@ std::vector<BenchTarget> bench_targets(const std::vector<BenchRow>& rows, const 
   for (const Ratio& q : ratios)
     for (const auto& r : rows) {
       if (r.method != q.method) continue;
-      const BenchRow* e = find(r, q.against);
+      const BenchRow* e = find(r, q.against);  // on the same path
       if (!e || !(e->mrays > 0)) continue;
-      out.push_back(check_target(r.mesh, fmt::format("{} / {} (1 thread)", q.method, q.against), r.rays, r.query,
-                                 r.mrays / e->mrays, q.goal, Goal::at_least, 2));
+      const std::string what = r.path == "single" ? fmt::format("{} / {} (1 thread)", q.method, q.against)
+                                                  : fmt::format("{} / {} ({}, 1 thread)", q.method, q.against, r.path);
+      out.push_back(check_target(r.mesh, what, r.rays, r.query, r.mrays / e->mrays, q.goal, Goal::at_least, 2));
     }
   for (const char* m : {"robust", "certified", "float"})
     for (const auto& r : rows)
-      if (r.method == m && r.scaled_threads == 2 && r.mrays > 0)
+      if (r.method == m && r.path == "single" && r.scaled_threads == 2 && r.mrays > 0)
         out.push_back(scaling_target(r.mesh, fmt::format("{} 2 threads / 1 thread", m), r.rays, r.query,
                                      r.mrays_scaled / r.mrays));
   for (const auto& b : builds)
@@ -111,14 +112,14 @@ std::string bench_table(const std::vector<BenchRow>& rows) {
   const auto idx = index_rows(rows);
   // B/tri read: what the method's queries read (nodes, leaf groups or records, vertices); held: all
   // its structures hold (MeshCaster and scene::Accel keep the leaf records for every method).
-  std::string t = fmt::format("{:<20} {:<18} {:<8} {:<8} {:>8} {:>10} {:>10} {:>9} {:>10} {:>10} {:>7} {:>14}\n", "mesh",
-                              "method", "rays", "query", "count", "Mrays/s 1t", "speed-up", "build s", "x embree-r",
+  std::string t = fmt::format("{:<20} {:<18} {:<8} {:<8} {:<8} {:>8} {:>10} {:>10} {:>9} {:>10} {:>10} {:>7} {:>14}\n", "mesh",
+                              "method", "rays", "query", "path", "count", "Mrays/s 1t", "speed-up", "build s", "x embree-r",
                               "B/tri read", "held", "leaks");
   for (const auto& r : rows) {
-    const auto er = idx.find({r.mesh, "embree-robust", r.rays, r.query});
+    const auto er = idx.find({r.mesh, "embree-robust", r.rays, r.query, r.path});
     const bool has_er = er != idx.end() && er->second->mrays > 0;
-    t += fmt::format("{:<20} {:<18} {:<8} {:<8} {:>8} {:>10.3f} {:>10} {:>9.3f} {:>10} {:>10} {:>7} {:>14}\n", r.mesh, r.method,
-                     r.rays, r.query, r.n, r.mrays,
+    t += fmt::format("{:<20} {:<18} {:<8} {:<8} {:<8} {:>8} {:>10.3f} {:>10} {:>9.3f} {:>10} {:>10} {:>7} {:>14}\n", r.mesh, r.method,
+                     r.rays, r.query, r.path, r.n, r.mrays,
                      r.scaled_threads > 0 && r.mrays > 0 ? fmt::format("{:.2f}x/{}t", r.mrays_scaled / r.mrays, r.scaled_threads) : "-",
                      r.build_s, has_er ? fixed(r.mrays / er->second->mrays, 3) : "-", r.bytes < 0 ? "-" : fixed(r.bytes, 1),
                      r.bytes_held < 0 ? "-" : fixed(r.bytes_held, 1), r.leaks < 0 ? "-" : fmt::format("{}/{}", r.leaks, r.leak_rays));
@@ -135,10 +136,10 @@ std::string build_table(const std::vector<BenchBuild>& builds) {
 }
 
 std::string targets_table(const std::vector<BenchTarget>& targets) {
-  std::string t = fmt::format("{:<20} {:<40} {:<8} {:<8} {:>8} {:>8}  {}\n", "mesh", "target", "rays", "query", "value",
+  std::string t = fmt::format("{:<20} {:<48} {:<8} {:<8} {:>8} {:>8}  {}\n", "mesh", "target", "rays", "query", "value",
                               "goal", "verdict");
   for (const auto& x : targets)
-    t += fmt::format("{:<20} {:<40} {:<8} {:<8} {:>8} {:>8}  {}\n", x.mesh, x.what, x.rays.empty() ? "-" : x.rays,
+    t += fmt::format("{:<20} {:<48} {:<8} {:<8} {:>8} {:>8}  {}\n", x.mesh, x.what, x.rays.empty() ? "-" : x.rays,
                      x.query.empty() ? "-" : x.query, x.value, x.goal, x.verdict);
   return t;
 }
@@ -147,7 +148,7 @@ std::string bench_json(const std::vector<BenchRow>& rows, const std::vector<Benc
   const auto idx = index_rows(rows);
   std::vector<std::string> items;
   for (const auto& r : rows) {
-    const auto er = idx.find({r.mesh, "embree-robust", r.rays, r.query});
+    const auto er = idx.find({r.mesh, "embree-robust", r.rays, r.query, r.path});
     const bool has_er = er != idx.end() && er->second->mrays > 0;
     items.push_back(fmt::format(
         "{{\"method\": {}, \"rays\": {}, \"query\": {}, \"path\": {}, \"mesh\": {}, \"ray_count\": {}, \"threads\": 1, "

@@ -8,7 +8,8 @@
 
 namespace rayproof::cli {
 
-/// One method or competitor on one mesh, ray set and query, one ray at a time ("single" path).
+/// One method or competitor on one mesh, ray set, query and path: "single" (one ray at a time),
+/// "packet8" / "packet16" (8 / 16 consecutive rays per call; primary rays in 4x2 pixel tiles).
 struct BenchRow {
   std::string mesh, method, rays, query = "closest", path = "single";
   std::size_t n = 0;            ///< rays timed
@@ -48,15 +49,17 @@ struct BenchTarget {
 [[nodiscard]] BenchTarget scaling_target(const std::string& mesh, const std::string& what, const std::string& rays,
                                          const std::string& query, double speedup);
 
-/// Every target the rows and builds allow: per mesh, ray set and query, robust / embree-robust
-/// >= 1.0, certified / embree-robust >= 0.8, float / embree >= 1.0 and, measured on two threads,
+/// Every target the rows and builds allow: per mesh, ray set, query and path, robust / embree-robust
+/// >= 1.0, certified / embree-robust >= 0.8, float / embree >= 1.0 (each against the competitor's
+/// row on the same path; a packet path's target names it: "robust / embree-robust (packet8, 1
+/// thread)") and, measured on two threads for single rays,
 /// robust, certified and float two-thread speed-up >= 1.9; per mesh and thread count, build / Embree's
 /// build <= 1.0; per mesh, robust's bytes per triangle <= 64 and robust's and certified's leaks = 0.
 [[nodiscard]] std::vector<BenchTarget> bench_targets(const std::vector<BenchRow>& rows,
                                                      const std::vector<BenchBuild>& builds);
 
-/// The throughput table: one row per mesh, method, ray set and query, with the ratio to
-/// embree-robust on the same mesh, rays and query (one thread each).
+/// The throughput table: one row per mesh, method, ray set, query and path, with the ratio to
+/// embree-robust on the same mesh, rays, query and path (one thread each).
 [[nodiscard]] std::string bench_table(const std::vector<BenchRow>& rows);
 [[nodiscard]] std::string build_table(const std::vector<BenchBuild>& builds);
 [[nodiscard]] std::string targets_table(const std::vector<BenchTarget>& targets);

@@ -1,7 +1,9 @@
 /// rayproof bench [SCENE] [--threads N] [--json]: per method, Mrays/s of closest and any hit for
 /// primary and random incoherent rays on one thread (and the speed-up on N threads), next to
 /// Embree 3 (default and robust; rtcIntersect1 and rtcOccluded1) and CGAL's AABB_tree (Epick;
-/// Epeck on a subset) on the same rays, the ratio of each to Embree robust, bytes per triangle,
+/// Epeck on a subset) on the same rays, and for primary rays the packet paths (ours: eight rays per
+/// call, bvh_packet.h; Embree: rtcIntersect8 and, where native, rtcIntersect16, and the occluded
+/// calls) on the same rays in 4x2 pixel tiles, the ratio of each to Embree robust, bytes per triangle,
 /// leaks (rays from inside a closed mesh towards every vertex and edge midpoint that find no hit),
 /// BVH build times at one and N threads beside Embree's, and issue 15's targets with a verdict
 /// each (bench_text.h). Without SCENE: bunny00 and refined_elephant (CGAL's demo meshes, where
@@ -22,6 +24,7 @@
 #include <thread>
 
 #include "cli/bench_text.h"
+#include "rayproof/bvh_packet.h"
 #include "cli/commands.h"
 #include "cli/scene_caster.h"
 #include "cli/scene_input.h"
@@ -97,7 +100,7 @@ std::vector<std::string> default_meshes() {
 /// Runs every method and competitor on one scene: rows (one thread, and `threads` for the speed-up
 /// when above 1) and builds (ours and Embree's at one thread and at `threads`).
 int bench_scene(const BenchOptions& opt, const std::string& path, int threads, std::vector<BenchRow>& rows,
-                std::vector<BenchBuild>& builds) {
+                std::vector<BenchBuild>& builds, std::vector<std::string>& notes) {
   std::unique_ptr<scene::Scene> sc;
   std::string mesh_name;
   try {
@@ -133,6 +136,11 @@ int bench_scene(const BenchOptions& opt, const std::string& path, int threads, s
   std::vector<Ray<double>> leak;
   const bool closed = s.size() == s.mesh.triangles.size() && !s.mesh.triangles.empty();
   if (closed) leak = scene::leak_rays(scene::volume_centroid(s.mesh), scene::leak_targets(s.mesh, opt.leak_rays));
+  // Packets (issue 15 item 4): the primary rays in tiles of 4x2 pixels, so that each eight
+  // consecutive rays (and each sixteen: two tiles side by side) are one coherent packet.
+  std::vector<Ray<double>> tiled;
+  for (std::uint32_t p : packet_tile_order(cam.width(), cam.height()))
+    tiled.push_back(sets["primary"][p]);
 
   // One measurement: Mrays/s of `run(rays, threads)` at one thread and, for the speed-up, at `threads`.
   auto measure = [&](BenchRow row, std::size_t cap, bool threaded, const auto& run) {
@@ -151,10 +159,24 @@ int bench_scene(const BenchOptions& opt, const std::string& path, int threads, s
       }
     }
   };
+  // The same on the tiled primary rays alone, for a packet path.
+  auto measure_packets = [&](BenchRow row, const std::string& path, bool threaded, const auto& run) {
+    row.path = path, row.rays = "primary", row.n = tiled.size();
+    for (const char* query : {"closest", "any"}) {
+      row.query = query;
+      for (int t : counts) {
+        if (t > 1 && !threaded) continue;
+        const double sec = best_seconds(opt.repeat, [&] { run(tiled, query[0] == 'c', t); });
+        (t == 1 ? row.mrays : row.mrays_scaled) = tiled.size() / std::max(sec, 1e-9) / 1e6;
+        if (t > 1) row.scaled_threads = t;
+      }
+      rows.push_back(row);
+    }
+  };
   const std::size_t first_row = rows.size();
-  auto set_leaks = [&](const std::string& name, std::int64_t misses, std::size_t n) {
+  auto set_leaks = [&](const std::string& name, std::int64_t misses, std::size_t n, const std::string& path = "single") {
     for (std::size_t i = first_row; i < rows.size(); ++i)
-      if (rows[i].method == name) rows[i].leaks = misses, rows[i].leak_rays = std::int64_t(n);
+      if (rows[i].method == name && rows[i].path == path) rows[i].leaks = misses, rows[i].leak_rays = std::int64_t(n);
   };
 
   std::string list = opt.methods;
@@ -192,6 +214,20 @@ int bench_scene(const BenchOptions& opt, const std::string& path, int threads, s
       caster->closest(lr, lh, threads);
       set_leaks(name, std::count_if(lh.begin(), lh.end(), [](const CastHit& h) { return !h.hit(); }), lr.size());
     }
+    if (m.fast == scene::FastKernel::none) continue;  // registry methods: single rays only
+    // The packet path: eight rays at a time through the scene BVH (built as MeshCaster's).
+    row.build_s = accel.build_seconds();
+    std::vector<scene::PrimHit> ph;
+    measure_packets(row, "packet8", true, [&](const std::vector<Ray<double>>& rays, bool closest, int t) {
+      if (closest) ph.resize(rays.size()), accel.closest_packets(rays, {}, ph, m, t);
+      else flags.resize(rays.size()), accel.any_packets(rays, {}, flags, m, t);
+    });
+    if (closed) {
+      ph.resize(leak.size());
+      accel.closest_packets(leak, {}, ph, m, threads);
+      set_leaks(name, std::count_if(ph.begin(), ph.end(), [](const scene::PrimHit& h) { return h.prim == scene::PrimHit::kNoPrim; }),
+                leak.size(), "packet8");
+    }
   }
   double embree_build[2] = {-1, -1};
   for (auto& c : scene::compare::make_competitors(s, opt.competitors, threads)) {
@@ -210,6 +246,21 @@ int bench_scene(const BenchOptions& opt, const std::string& path, int threads, s
       c.closest(lr, out, threads);
       set_leaks(c.name, std::count(out.begin(), out.end(), std::uint8_t(0)), lr.size());
     }
+    for (const auto& p : c.packets) {
+      const std::string path = "packet" + std::to_string(p.width);
+      measure_packets(row, path, c.threaded, [&](const std::vector<Ray<double>>& rays, bool closest, int t) {
+        std::vector<std::uint8_t> out(rays.size());
+        if (closest) p.closest(rays, out, t);
+        else p.any(rays, out, t);
+      });
+      if (closed) {
+        std::vector<std::uint8_t> out(leak.size());
+        p.closest(leak, out, threads);
+        set_leaks(c.name, std::count(out.begin(), out.end(), std::uint8_t(0)), leak.size(), path);
+      }
+    }
+    for (const auto& note : c.packet_notes)
+      if (std::find(notes.begin(), notes.end(), c.name + ": " + note) == notes.end()) notes.push_back(c.name + ": " + note);
     if (c.build_seconds && c.name.rfind("embree", 0) == 0)
       for (std::size_t k = 0; k < counts.size(); ++k) {
         // The build's own clock (its device is created before it starts), the least of `repeat`,
@@ -243,21 +294,28 @@ int run_bench(const BenchOptions& opt) {
   const int threads = opt.threads > 0 ? opt.threads : int(std::thread::hardware_concurrency());
   std::vector<BenchRow> rows;
   std::vector<BenchBuild> builds;
+  std::vector<std::string> notes;  // packet widths a competitor does not offer, and why
   // "generated": the generated mesh alone (an empty path below).
   const std::vector<std::string> paths = opt.scene.empty()           ? default_meshes()
                                          : opt.scene == "generated" ? std::vector<std::string>{std::string()}
                                                                     : std::vector<std::string>{opt.scene};
   for (const std::string& path : paths)
-    if (const int rc = bench_scene(opt, path, threads, rows, builds)) return rc;
+    if (const int rc = bench_scene(opt, path, threads, rows, builds, notes)) return rc;
   const std::vector<BenchTarget> targets = bench_targets(rows, builds);
   if (opt.json) {
+    for (const auto& n : notes) fmt::print(stderr, "rayproof bench: {}\n", n);
     fmt::print("{}", bench_json(rows, targets));
     return 0;
   }
-  fmt::print("Mrays/s on one thread, single rays; speed-up: the same on {} threads over one. B/tri read: bytes per "
+  fmt::print("Mrays/s on one thread; speed-up: the same on {} threads over one. Path single: one ray at a time (primary "
+             "rays in scanlines); packet8 / packet16: 8 / 16 consecutive primary rays per call, the rays in tiles of 4x2 "
+             "pixels (ours: Accel::closest_packets / any_packets; Embree: rtcIntersect8 / rtcOccluded8 and rtcIntersect16 / "
+             "rtcOccluded16); x embree-r: against embree-robust on the same path. B/tri read: bytes per "
              "triangle of the structures the method's queries read (nodes, leaf groups or leaf records and vertices); "
-             "held: all that its structures hold.\n{}\n",
+             "held: all that its structures hold.\n{}",
              threads, bench_table(rows));
+  for (const auto& n : notes) fmt::print("{}\n", n);
+  fmt::print("\n");
   fmt::print("BVH build (SAH, bounds included), best of {}; Embree: the faster of its default and robust builds.\n{}\n",
              std::max(1, opt.repeat), build_table(builds));
   fmt::print("Targets of issue 15 (verdicts decided on the printed values).\n{}", targets_table(targets));

@@ -1,6 +1,6 @@
 #pragma once
 /// Other ray tracers on the same scene and rays, for `rayproof bench`: Embree 3 (rtcIntersect1,
-/// default and RTC_SCENE_FLAG_ROBUST; when built with Embree) and CGAL's AABB_tree
+/// default and RTC_SCENE_FLAG_ROBUST, and its 8- and 16-ray packets; when built with Embree) and CGAL's AABB_tree
 /// first_intersection (Epick; Epeck, exact constructions, on a subset). Triangles only. CGAL and
 /// Embree stay inside this target; callers see only rays in, hit flags out.
 #include <cstdint>
@@ -29,6 +29,16 @@ struct Competitor {
   /// data set-up and the build; Embree's device is created before the clock starts, as a program
   /// creates it once). Empty when not offered.
   std::function<double(int threads)> build_seconds;
+  /// Packets of `width` consecutive rays (the caller orders coherent rays, e.g. camera tiles, into
+  /// consecutive groups; a last partial packet has its missing lanes switched off): Embree's
+  /// rtcIntersect8 / rtcOccluded8 and rtcIntersect16 / rtcOccluded16, each offered when its device
+  /// reports that packet width as native.
+  struct Packets {
+    int width = 8;
+    std::function<void(std::span<const Ray<double>>, std::span<std::uint8_t>, int threads)> closest, any;
+  };
+  std::vector<Packets> packets;
+  std::vector<std::string> packet_notes;  ///< a packet width not offered, and why
 };
 
 [[nodiscard]] bool have_embree();

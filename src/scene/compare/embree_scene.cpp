@@ -69,6 +69,21 @@ RTCRay embree_ray(const Ray<double>& r) {
   return ray;
 }
 
+/// Lane i of an Embree packet from a ray (as embree_ray: float origin and direction, [0, inf)).
+template <class RayW>
+void set_lane(RayW& p, int i, const Ray<double>& r) {
+  p.org_x[i] = float(r.o.x), p.org_y[i] = float(r.o.y), p.org_z[i] = float(r.o.z);
+  p.dir_x[i] = float(r.d.x), p.dir_y[i] = float(r.d.y), p.dir_z[i] = float(r.d.z);
+  p.tnear[i] = 0.0f, p.time[i] = 0.0f;
+  p.tfar[i] = std::numeric_limits<float>::infinity();
+  p.mask[i] = ~0u, p.id[i] = 0, p.flags[i] = 0;
+}
+
+std::string fmt_not_native(const char* calls, int width) {
+  return std::string(calls) + ": not available (this Embree device does not run " + std::to_string(width) +
+         "-ray packets natively on this CPU)";
+}
+
 template <class Body>
 void over_threads(std::size_t n, int threads, Body&& body) {
   tbb::task_arena arena(threads > 0 ? threads : tbb::this_task_arena::max_concurrency());
@@ -111,6 +126,61 @@ Competitor make_embree(const Scene& s, bool robust, int build_threads) {
       }
     });
   };
+  // Packets: 8 and 16 rays, where the device runs that width natively.
+  auto add_packets = [&]<int W, class RayHitW, class RayW>(RTCDeviceProperty native, const char* calls, void (*isect)(const int*, RTCScene, RTCIntersectContext*, RayHitW*), void (*occl)(const int*, RTCScene, RTCIntersectContext*, RayW*)) {
+    if (!rtcGetDeviceProperty(e->device, native)) {
+      c.packet_notes.push_back(fmt_not_native(calls, W));
+      return;
+    }
+    Competitor::Packets p;
+    p.width = W;
+    p.closest = [e, isect](std::span<const Ray<double>> rays, std::span<std::uint8_t> out, int threads) {
+      const std::size_t packets = (rays.size() + W - 1) / W;
+      over_threads(packets, threads, [&](std::size_t b, std::size_t end) {
+        RTCIntersectContext ctx;
+        rtcInitIntersectContext(&ctx);
+        alignas(64) int valid[W];
+        alignas(64) RayHitW rh;
+        for (std::size_t pk = b; pk < end; ++pk) {
+          const std::size_t first = pk * W;
+          for (int i = 0; i < W; ++i) {
+            const bool live = first + std::size_t(i) < rays.size();
+            valid[i] = live ? -1 : 0;
+            set_lane(rh.ray, i, live ? rays[first + std::size_t(i)] : Ray<double>{{0, 0, 0}, {0, 0, 1}});
+            rh.hit.geomID[i] = RTC_INVALID_GEOMETRY_ID;
+          }
+          isect(valid, e->scene, &ctx, &rh);
+          for (int i = 0; i < W && first + std::size_t(i) < rays.size(); ++i)
+            out[first + std::size_t(i)] = rh.hit.geomID[i] != RTC_INVALID_GEOMETRY_ID;
+        }
+      });
+    };
+    p.any = [e, occl](std::span<const Ray<double>> rays, std::span<std::uint8_t> out, int threads) {
+      const std::size_t packets = (rays.size() + W - 1) / W;
+      over_threads(packets, threads, [&](std::size_t b, std::size_t end) {
+        RTCIntersectContext ctx;
+        rtcInitIntersectContext(&ctx);
+        alignas(64) int valid[W];
+        alignas(64) RayW ray;
+        for (std::size_t pk = b; pk < end; ++pk) {
+          const std::size_t first = pk * W;
+          for (int i = 0; i < W; ++i) {
+            const bool live = first + std::size_t(i) < rays.size();
+            valid[i] = live ? -1 : 0;
+            set_lane(ray, i, live ? rays[first + std::size_t(i)] : Ray<double>{{0, 0, 0}, {0, 0, 1}});
+          }
+          occl(valid, e->scene, &ctx, &ray);
+          for (int i = 0; i < W && first + std::size_t(i) < rays.size(); ++i)
+            out[first + std::size_t(i)] = ray.tfar[i] < 0.0f;  // set to -inf on a hit
+        }
+      });
+    };
+    c.packets.push_back(std::move(p));
+  };
+  add_packets.template operator()<8, RTCRayHit8, RTCRay8>(RTC_DEVICE_PROPERTY_NATIVE_RAY8_SUPPORTED, "rtcIntersect8/rtcOccluded8",
+                                                        rtcIntersect8, rtcOccluded8);
+  add_packets.template operator()<16, RTCRayHit16, RTCRay16>(RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED,
+                                                           "rtcIntersect16/rtcOccluded16", rtcIntersect16, rtcOccluded16);
   const Scene* sp = &s;
   c.build_seconds = [sp, robust](int threads) {
     EmbreeScene again;
