@@ -173,6 +173,19 @@ int bench_scene(const BenchOptions& opt, const std::string& path, int threads, s
       rows.push_back(row);
     }
   };
+  // A packet path's hit-or-miss answers on the tiled rays against the same caller's single rays: a
+  // note when they differ (they must not: the packet paths answer each ray as a single call would).
+  auto check_same = [&](const std::string& what, const auto& single, const auto& packet) {
+    for (const bool closest : {true, false}) {
+      std::vector<std::uint8_t> a(tiled.size()), b(tiled.size());
+      single(closest, a), packet(closest, b);
+      std::size_t differ = 0;
+      for (std::size_t i = 0; i < a.size(); ++i) differ += (a[i] != 0) != (b[i] != 0);
+      if (differ)
+        notes.push_back(fmt::format("{} {}: {} of {} primary rays hit or miss otherwise than single rays", what,
+                                    closest ? "closest" : "any", differ, a.size()));
+    }
+  };
   const std::size_t first_row = rows.size();
   auto set_leaks = [&](const std::string& name, std::int64_t misses, std::size_t n, const std::string& path = "single") {
     for (std::size_t i = first_row; i < rows.size(); ++i)
@@ -228,6 +241,14 @@ int bench_scene(const BenchOptions& opt, const std::string& path, int threads, s
       set_leaks(name, std::count_if(ph.begin(), ph.end(), [](const scene::PrimHit& h) { return h.prim == scene::PrimHit::kNoPrim; }),
                 leak.size(), "packet8");
     }
+    auto hits_of = [&](bool packets, bool closest, std::vector<std::uint8_t>& out) {
+      if (!closest) return packets ? accel.any_packets(tiled, {}, out, m, threads) : accel.any_batch(tiled, out, m, threads);
+      std::vector<scene::PrimHit> h(tiled.size());
+      if (packets) accel.closest_packets(tiled, {}, h, m, threads);
+      else accel.closest_batch(tiled, h, m, threads);
+      for (std::size_t i = 0; i < h.size(); ++i) out[i] = h[i].prim != scene::PrimHit::kNoPrim;
+    };
+    check_same(name + " packet8", [&](bool c, auto& out) { hits_of(false, c, out); }, [&](bool c, auto& out) { hits_of(true, c, out); });
   }
   double embree_build[2] = {-1, -1};
   for (auto& c : scene::compare::make_competitors(s, opt.competitors, threads)) {
@@ -258,6 +279,9 @@ int bench_scene(const BenchOptions& opt, const std::string& path, int threads, s
         p.closest(leak, out, threads);
         set_leaks(c.name, std::count(out.begin(), out.end(), std::uint8_t(0)), leak.size(), path);
       }
+      if (c.any)
+        check_same(c.name + " " + path, [&](bool closest, auto& out) { (closest ? c.closest : c.any)(tiled, out, threads); },
+                   [&](bool closest, auto& out) { (closest ? p.closest : p.any)(tiled, out, threads); });
     }
     for (const auto& note : c.packet_notes)
       if (std::find(notes.begin(), notes.end(), c.name + ": " + note) == notes.end()) notes.push_back(c.name + ": " + note);
