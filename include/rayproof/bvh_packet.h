@@ -15,7 +15,9 @@
 /// per-ray floats and picks near and far by the ray's sign bit (a blend: a selection, no
 /// arithmetic), then does the max / min, the widening by 1 -/+ 8u and 2^-120, the clamp to the
 /// ray's float tmin / tmax and the ordered comparison of bvh8_test, in the same order with the same
-/// operands (no FMA: the target is "avx2" without "fma"). Every lane therefore computes bit for bit
+/// operands (no FMA: the target is "avx2" without "fma"). When all live rays share the sign of 1/d
+/// on every axis (most camera tiles), the planes are loaded as near / far directly and no blend is
+/// needed: the same differences and products of the same floats. Every lane therefore computes bit for bit
 /// what the single-ray test computes for that ray and that box, and the conservative guarantee of
 /// bvh_wide8.h's header carries over lane by lane: under conservative traversal every box the
 /// exact double segment [tmin, tmax] of a ray touches passes in that ray's lane.
@@ -66,16 +68,30 @@ inline void packet_set_lane(Packet8RayF& p, int lane, const Bvh4RayF& r) {
   p.tmin[lane] = r.tmin;
 }
 
-/// The packet's registers.
+/// The packet's registers. When every live lane has the same sign of 1/d on an axis (`uniform`:
+/// the common case for a camera tile), the near and far planes of that axis are the same for all
+/// lanes: o_near / o_far are then the origins paired with them and near_off / far_off their float
+/// offsets in the node (lo[k] at 8k, hi[k] at 24 + 8k), and the test loads the planes it needs
+/// instead of computing both and blending; each lane still computes the same difference and
+/// product of the same floats.
 struct Packet8Regs {
   __m256 o_lo[3], o_hi[3], inv[3], neg[3], tmin;
+  __m256 o_near[3], o_far[3];
+  int near_off[3], far_off[3];
+  bool uniform = false;
 };
 
-[[gnu::target("avx2"), gnu::always_inline]] inline Packet8Regs packet_regs(const Packet8RayF& p) {
+[[gnu::target("avx2"), gnu::always_inline]] inline Packet8Regs packet_regs(const Packet8RayF& p, unsigned live) {
   Packet8Regs r;
+  r.uniform = true;
   for (int k = 0; k < 3; ++k) {
     r.o_lo[k] = _mm256_load_ps(p.o_lo[k]), r.o_hi[k] = _mm256_load_ps(p.o_hi[k]), r.inv[k] = _mm256_load_ps(p.inv[k]);
     r.neg[k] = _mm256_castsi256_ps(_mm256_load_si256(reinterpret_cast<const __m256i*>(p.neg[k])));
+    const unsigned negs = unsigned(_mm256_movemask_ps(r.neg[k])) & live;
+    const bool neg = negs != 0;
+    r.uniform = r.uniform && (negs == 0 || negs == live);
+    r.o_near[k] = neg ? r.o_hi[k] : r.o_lo[k], r.o_far[k] = neg ? r.o_lo[k] : r.o_hi[k];
+    r.near_off[k] = neg ? 24 + 8 * k : 8 * k, r.far_off[k] = neg ? 8 * k : 24 + 8 * k;
   }
   r.tmin = _mm256_load_ps(p.tmin);
   return r;
@@ -83,16 +99,23 @@ struct Packet8Regs {
 
 /// Child `c` of `n` against the eight rays: the lanes' hit bits (before any lane mask) and entry
 /// distances. Per lane the operations of bvh8_test on that lane's ray (see the header comment).
-template <bool Conservative>
+template <bool Conservative, bool Uniform>
 [[gnu::target("avx2"), gnu::always_inline]] inline int packet8_child_test(const Bvh8Node& n, int c, const Packet8Regs& r,
                                                                         __m256 tmax, __m256& t_enter) {
   const __m256 ninf = _mm256_set1_ps(-std::numeric_limits<float>::infinity());
   const __m256 pinf = _mm256_set1_ps(std::numeric_limits<float>::infinity());
   __m256 t0 = Conservative ? ninf : r.tmin, t1 = Conservative ? pinf : tmax;
+  const float* f = &n.lo[0][0] + c;
   for (int k = 0; k < 3; ++k) {
-    const __m256 tlo = _mm256_mul_ps(_mm256_sub_ps(_mm256_broadcast_ss(&n.lo[k][c]), r.o_lo[k]), r.inv[k]);
-    const __m256 thi = _mm256_mul_ps(_mm256_sub_ps(_mm256_broadcast_ss(&n.hi[k][c]), r.o_hi[k]), r.inv[k]);
-    const __m256 near = _mm256_blendv_ps(tlo, thi, r.neg[k]), far = _mm256_blendv_ps(thi, tlo, r.neg[k]);
+    __m256 near, far;
+    if constexpr (Uniform) {
+      near = _mm256_mul_ps(_mm256_sub_ps(_mm256_broadcast_ss(f + r.near_off[k]), r.o_near[k]), r.inv[k]);
+      far = _mm256_mul_ps(_mm256_sub_ps(_mm256_broadcast_ss(f + r.far_off[k]), r.o_far[k]), r.inv[k]);
+    } else {
+      const __m256 tlo = _mm256_mul_ps(_mm256_sub_ps(_mm256_broadcast_ss(&n.lo[k][c]), r.o_lo[k]), r.inv[k]);
+      const __m256 thi = _mm256_mul_ps(_mm256_sub_ps(_mm256_broadcast_ss(&n.hi[k][c]), r.o_hi[k]), r.inv[k]);
+      near = _mm256_blendv_ps(tlo, thi, r.neg[k]), far = _mm256_blendv_ps(thi, tlo, r.neg[k]);
+    }
     t0 = _mm256_max_ps(near, t0);  // NaN near: t0, as in bvh8_test
     t1 = _mm256_min_ps(far, t1);
   }
@@ -132,10 +155,9 @@ struct alignas(32) PacketEntry {
   std::uint32_t mask;  ///< lanes entering
 };
 
-template <bool Conservative, BvhQuery Query, class Leaf>
-[[gnu::target("avx2")]] void packet8_run(const Bvh8& bvh, const Packet8RayF& pr, unsigned live, const double* tmax,
+template <bool Conservative, BvhQuery Query, bool Uniform, class Leaf>
+[[gnu::target("avx2")]] void packet8_run(const Bvh8& bvh, const Packet8Regs& r, unsigned live, const double* tmax,
                                          Leaf& leaf) {
-  const Packet8Regs r = packet_regs(pr);
   alignas(32) float tmax_f[8];
   for (int i = 0; i < 8; ++i) tmax_f[i] = (live >> i & 1) ? wide_tmax_float<Conservative>(tmax[i]) : 0.0f;
   __m256 tmaxv = _mm256_load_ps(tmax_f);
@@ -169,7 +191,7 @@ template <bool Conservative, BvhQuery Query, class Leaf>
         for (unsigned v = n.valid; v; v &= v - 1) {
           const int c = __builtin_ctz(v);
           __m256 t;
-          const unsigned hit = unsigned(packet8_child_test<Conservative>(n, c, r, tmaxv, t)) & m;
+          const unsigned hit = unsigned(packet8_child_test<Conservative, Uniform>(n, c, r, tmaxv, t)) & m;
           if (!hit) continue;
           kids[nk] = PacketEntry{t, n.child[c], n.count[c], hit};
           if constexpr (Query == BvhQuery::closest) key[nk] = packet_min(t, hit);
@@ -200,6 +222,27 @@ template <bool Conservative, BvhQuery Query, class Leaf>
     }
     if (top == 0) return;
     e = stack[--top];
+  }
+}
+
+/// The packet's registers, then the loop for its mode, query and sign pattern.
+template <class Leaf>
+[[gnu::target("avx2")]] void packet8_go(const Bvh8& bvh, const Packet8RayF& p, unsigned in, const double* tmax,
+                                        bool conservative, BvhQuery query, Leaf& leaf) {
+  const Packet8Regs r = packet_regs(p, in);
+  auto go = [&]<bool C, bool U>() {
+    switch (query) {
+      case BvhQuery::closest: return packet8_run<C, BvhQuery::closest, U>(bvh, r, in, tmax, leaf);
+      case BvhQuery::any: return packet8_run<C, BvhQuery::any, U>(bvh, r, in, tmax, leaf);
+      case BvhQuery::all: return packet8_run<C, BvhQuery::all, U>(bvh, r, in, tmax, leaf);
+    }
+  };
+  if (conservative) {
+    if (r.uniform) go.template operator()<true, true>();
+    else go.template operator()<true, false>();
+  } else {
+    if (r.uniform) go.template operator()<false, true>();
+    else go.template operator()<false, false>();
   }
 }
 
@@ -239,15 +282,7 @@ void bvh8_packet_traverse_leaves(const Bvh8& bvh, const Ray<double>* rays, const
     }
   }
   if (!in) return;
-  auto go = [&]<bool C>() {
-    switch (query) {
-      case BvhQuery::closest: return detail::packet8_run<C, BvhQuery::closest>(bvh, p, in, tmax, leaf);
-      case BvhQuery::any: return detail::packet8_run<C, BvhQuery::any>(bvh, p, in, tmax, leaf);
-      case BvhQuery::all: return detail::packet8_run<C, BvhQuery::all>(bvh, p, in, tmax, leaf);
-    }
-  };
-  if (conservative) go.template operator()<true>();
-  else go.template operator()<false>();
+  detail::packet8_go(bvh, p, in, tmax, conservative, query, leaf);
 }
 
 /// Pixel numbers (j * width + i) of a width x height image in tiles of tile_w x tile_h pixels (4x2:
