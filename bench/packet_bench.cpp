@@ -43,7 +43,7 @@ int main(int argc, char** argv) {
   const Camera cam = default_camera(s, width, height);
   std::vector<Ray<double>> rays;
   for (std::uint32_t p : packet_tile_order(width, height)) rays.push_back(cam.generate(int(p % unsigned(width)), int(p / unsigned(width))));
-  std::printf("%-10s %-8s %12s %12s %8s %6s\n", "method", "query", "single ns", "packet ns", "ratio", "same");
+  std::printf("%-10s %-8s %12s %12s %8s %6s %6s\n", "method", "query", "single ns", "packet ns", "ratio", "same", "hit %");
   for (std::size_t p = 0; p <= methods.size();) {
     const std::size_t q = std::min(methods.find(',', p), methods.size());
     const std::string name = methods.substr(p, q - p);
@@ -64,11 +64,14 @@ int main(int argc, char** argv) {
         else a.any_packets(rays, {}, y2, m, 1);
         best[1] = std::min(best[1], now() - t);
       }
-      std::size_t same = 0;
-      for (std::size_t i = 0; i < rays.size(); ++i) same += closest ? c1[i] == c2[i] : y1[i] == y2[i];
+      std::size_t same = 0, hit = 0;
+      for (std::size_t i = 0; i < rays.size(); ++i) {
+        same += closest ? c1[i] == c2[i] : y1[i] == y2[i];
+        hit += closest ? c1[i].prim != PrimHit::kNoPrim : y1[i] != 0;
+      }
       const double n = double(rays.size());
-      std::printf("%-10s %-8s %12.1f %12.1f %8.3f %6s\n", name.c_str(), closest ? "closest" : "any", 1e9 * best[0] / n,
-                  1e9 * best[1] / n, best[0] / best[1], same == rays.size() ? "yes" : "NO");
+      std::printf("%-10s %-8s %12.1f %12.1f %8.3f %6s %6.1f\n", name.c_str(), closest ? "closest" : "any", 1e9 * best[0] / n,
+                  1e9 * best[1] / n, best[0] / best[1], same == rays.size() ? "yes" : "NO", 100.0 * double(hit) / n);
     }
   }
   return 0;
