@@ -511,24 +511,44 @@ bool leaf_for_ray(const L_& L, const K& k, std::uint32_t first, std::uint32_t co
   return false;
 }
 
-/// The packet's lanes: kernels prepared per ray, the traversal rays and ranges; invalid rays are
-/// answered at once (`invalid`, no hit) and left out of `live`.
+template <class K>
+struct IsCompiledKernel : std::false_type {};
+template <class T, TriAlgo A>
+struct IsCompiledKernel<detail::CompiledKernel<T, A>> : std::true_type {};
+
+/// The packet's lanes: the traversal rays and ranges, and the kernels, each prepared for its ray
+/// when that ray first reaches a leaf (most primary rays of a scene miss: they never pay for it).
+/// A compiled kernel's traversal ray is its ray rounded to its type and back, computed here without
+/// preparing it (CompiledKernel::traversal_ray); other kernels are prepared at once. Invalid rays
+/// are answered at once (`invalid`, no hit) and left out of `live`.
 template <class K>
 struct PacketLanes {
   K* ks;
+  const Ray<double>* rays;
   Ray<double> ray[kPacketWidth];
   double tmin[kPacketWidth], tmax[kPacketWidth];
   QueryRange q[kPacketWidth];
-  unsigned live = 0;
-  PacketLanes(K* k, const Ray<double>* rays, int n, std::span<const QueryRange> ranges, std::size_t first) : ks(k) {
+  unsigned live = 0, prepared = 0;
+  PacketLanes(K* k, const Ray<double>* r, int n, std::span<const QueryRange> ranges, std::size_t first) : ks(k), rays(r) {
     for (int i = 0; i < kPacketWidth; ++i) {
       q[i] = i < n ? range_of(ranges, first + std::size_t(i)) : QueryRange{};
       tmin[i] = q[i].tmin, tmax[i] = q[i].tmax;
       if (i >= n || !rays[i].valid()) continue;
-      ks[i].prepare(rays[i]);
-      ray[i] = ks[i].traversal_ray();
+      if constexpr (IsCompiledKernel<K>::value) {
+        using T = decltype(ks[i].ray.o.x);
+        ray[i] = {rays[i].o.template cast<T>().template cast<double>(), rays[i].d.template cast<T>().template cast<double>()};
+      } else {
+        ks[i].prepare(rays[i]);
+        ray[i] = ks[i].traversal_ray();
+        prepared |= 1u << i;
+      }
       live |= 1u << i;
     }
+  }
+  /// Lane i's kernel, prepared for its ray.
+  const K& kernel(int i) {
+    if (!(prepared >> i & 1)) ks[i].prepare(rays[i]), prepared |= 1u << i;
+    return ks[i];
   }
 };
 
@@ -551,7 +571,7 @@ void closest_packet(const Leaves<Bvh8>& L, K* ks, const Ray<double>* rays, int n
                                     }
                                   return false;
                                 };
-                                return leaf_for_ray(L, P.ks[lane], f, count, emit);
+                                return leaf_for_ray(L, P.kernel(lane), f, count, emit);
                               });
 }
 
@@ -572,7 +592,7 @@ void any_packet(const Leaves<Bvh8>& L, K* ks, const Ray<double>* rays, int n, st
                                     }
                                   return false;
                                 };
-                                return leaf_for_ray(L, P.ks[lane], f, count, emit);
+                                return leaf_for_ray(L, P.kernel(lane), f, count, emit);
                               });
 }
 
