@@ -164,6 +164,118 @@ TEST(LeafSimd, RobustLanesMatchTheScalarKernelBitForBit) {
   EXPECT_GT(dead, 200);
 }
 
+namespace {
+
+/// A ray from a random origin at `scale` through a point of triangle `t` that lies on an edge
+/// (or at a vertex, or just off either by a few ulps), so that one or two of the edge functions
+/// are zero or nearly so and their float and double values can differ in sign.
+Ray<double> grazing_ray(std::mt19937& rng, const Triangle<float>& t, double scale) {
+  std::uniform_real_distribution<double> u(-1, 1);
+  const Vec3<double> p[3] = {t.p0.cast<double>(), t.p1.cast<double>(), t.p2.cast<double>()};
+  const int i = int(rng() % 3), j = (i + 1 + int(rng() % 2)) % 3;
+  const double s = rng() % 3 == 0 ? double(rng() % 2) : std::uniform_real_distribution<double>(0, 1)(rng);
+  Vec3<double> target = p[i] + (p[j] - p[i]) * s;
+  for (int k = 0; k < 3; ++k)  // a few ulps off, or exactly on
+    for (int n = int(rng() % 4); n > 0; --n) target[k] = std::nextafter(target[k], rng() % 2 ? 1e300 : -1e300);
+  const Vec3<double> o = target + Vec3<double>{u(rng), u(rng), u(rng)} * scale;
+  return {o, target - o};
+}
+
+}  // namespace
+
+TEST(LeafSimd, RobustFloatScreenDecidesOnlyTheScalarKernelsMisses) {
+  // The float screen (robust_group_float_misses) against the scalar robust kernel: every lane it
+  // decides has no crossing, and the double edge functions have mixed signs there (its error
+  // bound's claim). Families: the hostile ones, and rays grazing an edge or a vertex at scales
+  // from 2^-60 to 2^60, where float and double disagree in sign (counted: the bound is what keeps
+  // the screen away from those lanes).
+  const Scene empty;
+  const Method* robust = cli::all_methods().find("robust");
+  ASSERT_NE(robust, nullptr);
+  CompiledKernel<float, TriAlgo::robust> k{empty, nullptr, 0, robust};
+  Family f(31);
+  int decided = 0, undecided = 0, sign_traps = 0, misses = 0;
+  for (int r = 0; r < 12000; ++r) {
+    Triangle<float> t[kLanes];
+    const int n = 1 + int(f.rng() % kLanes);
+    Ray<double> ray;
+    if (r % 2) {  // grazing rays, at random magnitudes (the triangle scaled with them)
+      const float scale = std::ldexp(1.0f, int(f.rng() % 121) - 60);
+      const Vec3<float> c{f.uni(-4, 4) * scale, f.uni(-4, 4) * scale, f.uni(-4, 4) * scale};
+      for (int i = 0; i < n; ++i)
+        t[i] = {c + Vec3<float>{f.uni(-1, 1), f.uni(-1, 1), f.uni(-1, 1)} * scale,
+                c + Vec3<float>{f.uni(-1, 1), f.uni(-1, 1), f.uni(-1, 1)} * scale,
+                c + Vec3<float>{f.uni(-1, 1), f.uni(-1, 1), f.uni(-1, 1)} * scale};
+      ray = grazing_ray(f.rng, t[f.rng() % unsigned(n)], double(scale) * (f.rng() % 2 ? 1 : 1000));
+    } else {
+      ray = f.ray(r / 2);
+      for (int i = 0; i < n; ++i) t[i] = f.triangle(r / 2, ray);
+    }
+    k.prepare(ray);
+    if (!k.ray_ok) continue;
+    const TriGroup g = make_group(t, n);
+    unsigned live = 0;
+    for (int i = 0; i < n; ++i) live |= unsigned(!(g.tag[i] & kDeadLane)) << i;
+    const unsigned screened = robust_group_float_misses(k.lane_ray, g, live);
+    EXPECT_EQ(screened & ~live, 0u);
+    for (int i = 0; i < n; ++i) {
+      if (!(live >> i & 1)) continue;
+      Crossing c[2];
+      const int m = k.triangle_crossings(t[i], c);
+      misses += m == 0;
+      // The double and float edge functions, as the kernels compute them.
+      const WatertightRay<float, double>& wr = *k.wr_robust;
+      const Vec3<float> p[3] = {t[i].p0, t[i].p1, t[i].p2};
+      double sxd[3], syd[3];
+      float sxf[3], syf[3];
+      for (int v = 0; v < 3; ++v) {
+        const Vec3<double> q = p[v].cast<double>() - wr.o;
+        sxd[v] = wr.d[wr.kz] * q[wr.kx] - wr.d[wr.kx] * q[wr.kz], syd[v] = wr.d[wr.kz] * q[wr.ky] - wr.d[wr.ky] * q[wr.kz];
+        const Vec3<float> qf = p[v] - k.ray.o;
+        sxf[v] = k.ray.d[wr.kz] * qf[wr.kx] - k.ray.d[wr.kx] * qf[wr.kz];
+        syf[v] = k.ray.d[wr.kz] * qf[wr.ky] - k.ray.d[wr.ky] * qf[wr.kz];
+      }
+      const int b_of[3] = {1, 2, 0}, c_of[3] = {2, 0, 1};  // U = e(c, b) with (b, c) = (p1, p2), ...
+      bool pos = false, neg = false;
+      for (int e = 0; e < 3; ++e) {
+        const int b = b_of[e], cc = c_of[e];
+        const double ed = sxd[cc] * syd[b] - syd[cc] * sxd[b];
+        const float ef = sxf[cc] * syf[b] - syf[cc] * sxf[b];
+        pos |= ed > 0, neg |= ed < 0;
+        sign_traps += (ef > 0 && ed < 0) || (ef < 0 && ed > 0);
+      }
+      if (screened >> i & 1) {
+        ++decided;
+        EXPECT_EQ(m, 0) << "ray " << r << " lane " << i << ": the screen decided a " << to_string(c[0].contact);
+        EXPECT_TRUE(pos && neg) << "ray " << r << " lane " << i << ": the double edge functions do not have mixed signs";
+      } else {
+        ++undecided;
+      }
+    }
+  }
+  EXPECT_GT(decided, 8000);
+  EXPECT_GT(undecided, 3000);
+  EXPECT_GT(sign_traps, 300);  // float and double edge functions of opposite signs: the cases the bound exists for
+  EXPECT_GT(misses, decided);
+}
+
+TEST(LeafSimd, RobustFloatScreenIsOffForRaysOutOfItsRange) {
+  // D = |d_z| + max(|d_x|, |d_y|) outside [2^-20, 2^20]: no lane is decided (the double lanes are).
+  const Scene empty;
+  CompiledKernel<float, TriAlgo::robust> k{empty, nullptr, 0};
+  const Triangle<float> t[1] = {{{5, 0, 1}, {6, 0, 1}, {5, 1, 1}}};  // missed by the rays below
+  const TriGroup g = make_group(t, 1);
+  for (double s : {0x1p-22, 0x1p-20, 1.0, 0x1p20, 0x1p22}) {
+    k.prepare({{0, 0, 0}, {0, 0, s}});
+    const bool in_range = s >= 0x1p-20 && s <= 0x1p20;
+    EXPECT_EQ(robust_group_float_misses(k.lane_ray, g, 1), in_range ? 1u : 0u) << s;
+  }
+  // A vertex offset beyond 2^39 / D: undecided.
+  const Triangle<float> far[1] = {{{0x1p40f, 0, 1}, {0x1p40f + 0x1p20f, 0, 1}, {0x1p40f, 0x1p20f, 1}}};
+  k.prepare({{0, 0, 0}, {0, 0, 1}});
+  EXPECT_EQ(robust_group_float_misses(k.lane_ray, make_group(far, 1), 1), 0u);
+}
+
 TEST(LeafSimd, CertifiedStageOneMissesInLanesAreTheScalarStagesMisses) {
   if (!cpu_avx2()) GTEST_SKIP() << "no AVX2 on this CPU";
   Family f(9);
@@ -316,6 +428,13 @@ TEST(LeafSimd, QueriesThroughGroupsMatchSlotBySlotOnEveryPath) {
     int hits = 0;
     expect_same_queries(a, rays, p, hits);
     EXPECT_GT(hits, 800) << to_string(p);
+  }
+  if (cpu_avx2()) {  // the AVX2 double lanes behind the float screen
+    set_robust_screen_avx2(!robust_screen_avx2());
+    int hits = 0;
+    expect_same_queries(a, rays, LeafSimd::avx2, hits);
+    set_robust_screen_avx2(!robust_screen_avx2());
+    EXPECT_GT(hits, 800);
   }
 }
 

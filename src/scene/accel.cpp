@@ -153,8 +153,11 @@ bool group_leaf(const K& k, const L_& L, std::uint32_t first, std::uint32_t coun
       if (!k.ray_ok) {
         finish = 0;  // the scalar kernel's `invalid`: no triangle crossing
       } else if (L.simd == LeafSimd::avx2) {
-        robust_group_avx2(k.lane_ray, g, tri, lanes);
+        robust_group_avx2(k.lane_ray, g, robust_screen_avx2() ? tri & ~robust_group_float_misses(k.lane_ray, g, tri) : tri,
+                          lanes);
         finish = lanes.special;
+      } else if (L.simd == LeafSimd::sse) {
+        finish = tri & ~robust_group_float_misses(k.lane_ray, g, tri);  // the float screen's misses need no kernel
       } else {
         finish = tri;  // dead lanes: the scalar kernel reports nothing for them either
       }

@@ -138,6 +138,7 @@ struct CompiledKernel {
         wr_robust.emplace(ray);
         for (int k = 0; k < 3; ++k) lane_ray.o[k] = wr_robust->o[k], lane_ray.d[k] = wr_robust->d[k];
         lane_ray.kx = wr_robust->kx, lane_ray.ky = wr_robust->ky, lane_ray.kz = wr_robust->kz;
+        finish_lane_ray(lane_ray);
       }
     }
   }
