@@ -256,19 +256,20 @@ int main(int argc, char** argv) {
         std::vector<Variant> vs;
         for (LeafSimd p : {LeafSimd::off, LeafSimd::scalar, LeafSimd::sse, LeafSimd::avx2}) {
           if ((p == LeafSimd::avx2 && !avx2) || (!only.empty() && only != to_string(p))) continue;
-          // robust on AVX2: the double lanes alone, and behind the float screen (set_robust_screen_avx2).
-          const bool two = p == LeafSimd::avx2 && std::string(mname) == "robust";
+          // robust on AVX2 and certified on SSE and AVX2: without and with their float screens (the
+          // default: without; set_robust_screen_avx2, set_certified_screen).
+          const bool robust = std::string(mname) == "robust", certified = std::string(mname) == "certified";
+          const bool two = (robust && p == LeafSimd::avx2) || (certified && (p == LeafSimd::avx2 || p == LeafSimd::sse));
           for (int screen = 0; screen < 1 + two; ++screen) {
-            const bool was = robust_screen_avx2();
-            const bool on = two ? screen == 1 : was;
+            const bool on = two ? screen == 1 : (robust ? robust_screen_avx2() : certified_screen());
             const std::string name = std::string(mname) + " " + query + " " + to_string(p) + (two && on ? "+screen" : "");
-            vs.push_back({name, [&, p, closest, on] {
+            vs.push_back({name, [&, p, closest, on, robust] {
                             force_leaf_simd(p);
-                            const bool before = robust_screen_avx2();
-                            set_robust_screen_avx2(on);
+                            const bool before = robust ? robust_screen_avx2() : certified_screen();
+                            robust ? set_robust_screen_avx2(on) : set_certified_screen(on);
                             std::uint64_t n = 0;
                             for (const auto& r : rays) n += closest ? a.closest(r, m).prim != PrimHit::kNoPrim : a.any(r, m);
-                            set_robust_screen_avx2(before);
+                            robust ? set_robust_screen_avx2(before) : set_certified_screen(before);
                             unforce_leaf_simd();
                             return n;
                           }, double(rays.size())});

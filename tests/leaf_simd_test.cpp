@@ -11,6 +11,7 @@
 #include <set>
 
 #include "cli/registry.h"
+#include "rayproof/certified.h"
 #include "scene/accel.h"
 #include "scene/kernels.h"
 #include "scene/leaf_simd.h"
@@ -276,6 +277,68 @@ TEST(LeafSimd, RobustFloatScreenIsOffForRaysOutOfItsRange) {
   EXPECT_EQ(robust_group_float_misses(k.lane_ray, make_group(far, 1), 1), 0u);
 }
 
+TEST(LeafSimd, CertifiedFloatScreenDecidesOnlyExactMisses) {
+  // certified's float screen (certified_group_float_misses) on double triangles and double rays
+  // that float does not represent: every lane it decides is one certified::triangle (exact class)
+  // gives no crossing. Rays graze an edge or a vertex (a few ulps of double off, or on) at scales
+  // from 2^-60 to 2^60, origins near or 1000 sizes away, and the hostile families.
+  Family f(37);
+  std::uniform_real_distribution<double> jitter(-1, 1);
+  int decided = 0, undecided = 0, misses = 0, hits = 0;
+  for (int r = 0; r < 12000; ++r) {
+    Triangle<double> t[kLanes];
+    Triangle<float> tf[kLanes];
+    const int n = 1 + int(f.rng() % kLanes);
+    Ray<double> ray;
+    if (r % 2) {
+      const double scale = std::ldexp(1.0, int(f.rng() % 121) - 60);
+      const Vec3<double> c{jitter(f.rng) * 4 * scale, jitter(f.rng) * 4 * scale, jitter(f.rng) * 4 * scale};
+      auto vtx = [&] { return c + Vec3<double>{jitter(f.rng), jitter(f.rng), jitter(f.rng)} * scale; };
+      for (int i = 0; i < n; ++i) t[i] = {vtx(), vtx(), vtx()};
+      const Triangle<double>& aim = t[f.rng() % unsigned(n)];
+      const Triangle<float> aim_f{aim.p0.cast<float>(), aim.p1.cast<float>(), aim.p2.cast<float>()};
+      ray = grazing_ray(f.rng, aim_f, scale * (f.rng() % 2 ? 1 : 1000));
+      // Aim at the double triangle's edge instead of its float rounding's, half the time.
+      if (f.rng() % 2) {
+        const double s = std::uniform_real_distribution<double>(0, 1)(f.rng);
+        const Vec3<double> target = aim.p0 + (aim.p1 - aim.p0) * s;
+        ray.d = target - ray.o;
+      }
+    } else {
+      ray = f.ray(r / 2);
+      if (r % 4) ray.o.x += jitter(f.rng) * 1e-9;
+      for (int i = 0; i < n; ++i) {
+        const Triangle<float> x = f.triangle(r / 2, ray);
+        t[i] = {x.p0.cast<double>(), x.p1.cast<double>(), x.p2.cast<double>()};
+        if (r % 3 == 0) t[i].p2.y += jitter(f.rng) * 1e-9;
+      }
+    }
+    for (int i = 0; i < n; ++i) tf[i] = {t[i].p0.cast<float>(), t[i].p1.cast<float>(), t[i].p2.cast<float>()};
+    RobustLaneRay lr;
+    certified_lane_ray(ray, lr);
+    const TriGroup g = make_group(tf, n);
+    const unsigned live = (1u << n) - 1;
+    const unsigned screened = certified_group_float_misses(lr, g, live);
+    EXPECT_EQ(screened & ~live, 0u);
+    for (int i = 0; i < n; ++i) {
+      const TriangleHit<double> h = certified::intersect(ray, t[i]);  // the exact class (filters, then GMP)
+      Crossing c[2];
+      const int m = crossings_of(h.contact, h.t, h.t2, c);
+      (m ? hits : misses)++;
+      if (screened >> i & 1) {
+        ++decided;
+        EXPECT_EQ(m, 0) << "ray " << r << " lane " << i << ": the screen decided a " << to_string(h.contact);
+      } else {
+        ++undecided;
+      }
+    }
+  }
+  EXPECT_GT(decided, 8000);
+  EXPECT_GT(undecided, 3000);
+  EXPECT_GT(hits, 1000);
+  EXPECT_GT(misses, decided);
+}
+
 TEST(LeafSimd, CertifiedStageOneMissesInLanesAreTheScalarStagesMisses) {
   if (!cpu_avx2()) GTEST_SKIP() << "no AVX2 on this CPU";
   Family f(9);
@@ -429,13 +492,18 @@ TEST(LeafSimd, QueriesThroughGroupsMatchSlotBySlotOnEveryPath) {
     expect_same_queries(a, rays, p, hits);
     EXPECT_GT(hits, 800) << to_string(p);
   }
-  if (cpu_avx2()) {  // the AVX2 double lanes behind the float screen
-    set_robust_screen_avx2(!robust_screen_avx2());
+  // The screens' other settings (their defaults flipped): robust's float screen in front of the
+  // AVX2 double lanes, certified's float screen.
+  set_robust_screen_avx2(!robust_screen_avx2());
+  set_certified_screen(!certified_screen());
+  for (LeafSimd p : {LeafSimd::sse, LeafSimd::avx2}) {
+    if (p == LeafSimd::avx2 && !cpu_avx2()) continue;
     int hits = 0;
-    expect_same_queries(a, rays, LeafSimd::avx2, hits);
-    set_robust_screen_avx2(!robust_screen_avx2());
-    EXPECT_GT(hits, 800);
+    expect_same_queries(a, rays, p, hits);
+    EXPECT_GT(hits, 800) << to_string(p);
   }
+  set_robust_screen_avx2(!robust_screen_avx2());
+  set_certified_screen(!certified_screen());
 }
 
 TEST(LeafSimd, SceneWithoutTrianglesGoesPerPrimitive) {

@@ -126,7 +126,7 @@ struct CompiledKernel {
 
   bool ray_ok = false;                                ///< robust: the float ray is valid
   std::optional<WatertightRay<float, double>> wr_robust{};  ///< robust: the front door's per-ray part
-  RobustLaneRay lane_ray{};  ///< robust: the same per-ray part for the group kernel (leaf_simd.h)
+  RobustLaneRay lane_ray{};  ///< robust, certified: the per-ray part for the group kernels (leaf_simd.h)
 
   void prepare(const Ray<double>& r) {
     ray = {r.o.template cast<T>(), r.d.template cast<T>()};
@@ -141,6 +141,7 @@ struct CompiledKernel {
         finish_lane_ray(lane_ray);
       }
     }
+    if constexpr (A == TriAlgo::certified) certified_lane_ray(r, lane_ray);
   }
   /// The ray the kernel intersects, in double (a float kernel's float-rounded ray): the one the
   /// BVH traversal must not cull boxes of.

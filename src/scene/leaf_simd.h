@@ -130,10 +130,25 @@ void finish_lane_ray(RobustLaneRay& r);
 /// The error bounds behind it are derived in leaf_simd.cpp. Lanes not set are undecided.
 [[nodiscard]] unsigned robust_group_float_misses(const RobustLaneRay& r, const TriGroup& g, unsigned live);
 
+/// certified's per-ray part of the same screen, from the double ray (its float rounding, the axis
+/// permutation of its dominant direction, and the bound's constants; off for rays out of range).
+void certified_lane_ray(const Ray<double>& ray, RobustLaneRay& r);
+
+/// certified's float screen (SSE): bit i set when lane i (of `live`: triangle lanes; the group's
+/// float vertices are the roundings of the double ones) is proven missed by the exact double ray,
+/// so certified::triangle reports no crossing for it. Derivation in leaf_simd.cpp.
+[[nodiscard]] unsigned certified_group_float_misses(const RobustLaneRay& r, const TriGroup& g, unsigned live);
+
 /// Whether the AVX2 path runs the float screen before the double lanes (default off: measured not
 /// to pay there, see leaf_simd.cpp); the SSE path always runs it. For benchmarks and tests.
 void set_robust_screen_avx2(bool on);
 [[nodiscard]] bool robust_screen_avx2();
+/// Whether certified's leaves run its float screen (SSE and AVX2 paths). Default off: it decides
+/// about 65% of the lanes certified's leaves test (bunny00), but reading the groups costs more than
+/// the double vertices it spares, and AVX2 stage 1 decides those lanes anyway: per ray 1.2-1.4x
+/// slower with it on both paths (leaf_bench, bunny00 and refined_elephant). For benchmarks and tests.
+void set_certified_screen(bool on);
+[[nodiscard]] bool certified_screen();
 
 /// One group's robust results, lane by lane: `hit` lanes have a crossing (class, t, b1, b2 as the
 /// scalar kernel computes them); `special` lanes need the scalar front door (d . n = 0).
