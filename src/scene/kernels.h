@@ -141,7 +141,9 @@ struct CompiledKernel {
         finish_lane_ray(lane_ray);
       }
     }
-    if constexpr (A == TriAlgo::certified) certified_lane_ray(r, lane_ray);
+    if constexpr (A == TriAlgo::certified) {
+      if (certified_screen()) certified_lane_ray(r, lane_ray);  // (off by default: leaf_simd.h)
+    }
   }
   /// The ray the kernel intersects, in double (a float kernel's float-rounded ray): the one the
   /// BVH traversal must not cull boxes of.

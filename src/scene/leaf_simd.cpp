@@ -214,13 +214,14 @@ void finish_lane_ray(RobustLaneRay& r) {
   const int axis[3] = {r.kx, r.ky, r.kz};
   for (int i = 0; i < 3; ++i) r.so[i] = float(r.o[axis[i]]), r.sd[i] = float(r.d[axis[i]]);
   const double dz = std::fabs(r.d[r.kz]), d = dz + std::max(std::fabs(r.d[r.kx]), std::fabs(r.d[r.ky]));
-  const float up = std::numeric_limits<float>::infinity();
   if (!(d >= 0x1p-20 && d <= 0x1p20)) {
     r.edge_k = r.dn_k = 0.0f, r.a_limit = -1.0f;  // no lane passes A_v <= -1: the screen is off
     return;
   }
-  r.edge_k = std::nextafter(float(0x1p-19 * d * d), up);  // rounded up
-  r.dn_k = std::nextafter(float(0x1p-45 * dz * dz), up);
+  // Rounded up: float(x) >= x (1 - 2^-24), times 1 + 2^-20 > 1 + 2^-23 after rounding (x >= 2^-87:
+  // no underflow, since d >= 2^-20 and d_z >= d / 2).
+  r.edge_k = float(0x1p-19 * d * d) * (1.0f + 0x1p-20f);
+  r.dn_k = float(0x1p-45 * dz * dz) * (1.0f + 0x1p-20f);
   r.a_limit = float(0x1p39 / d);
 }
 
@@ -304,7 +305,7 @@ void certified_lane_ray(const Ray<double>& ray, RobustLaneRay& r) {
     r.edge_k = 0.0f, r.a_limit = -1.0f;  // off
     return;
   }
-  r.edge_k = std::nextafter(float(0x1p-18 * d * d), std::numeric_limits<float>::infinity());
+  r.edge_k = float(0x1p-18 * d * d) * (1.0f + 0x1p-20f);  // rounded up, as in finish_lane_ray
   r.a_limit = float(0x1p39 / d);
 }
 
