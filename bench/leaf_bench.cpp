@@ -2,12 +2,12 @@
 /// against the per-primitive kernels on the same triangles, and ns per ray of Accel::closest and
 /// Accel::any on a mesh with the groups on each path against the slot-by-slot queries
 /// (RAYPROOF_SIMD=off). The variants run interleaved, round after round, and each reports its
-/// fastest round, so ratios taken in one run are comparable on a busy machine.
+/// fastest round (thread CPU time), so ratios taken in one run are comparable on a busy machine.
 /// Run: leaf_bench [mesh.off] [rounds] [rays] [path] [method]  (default: a generated closed mesh of ~80k
 /// triangles, 7 rounds, 100000 rays per set, every path; a path (off, scalar, sse, avx2) runs only
 /// the queries on that path, e.g. under valgrind --tool=callgrind for instructions per ray).
 #include <algorithm>
-#include <chrono>
+#include <ctime>
 #include <cstdio>
 #include <cstdlib>
 #include <functional>
@@ -28,7 +28,13 @@ using namespace rayproof::scene::detail;
 
 namespace {
 
-double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
+/// The thread's CPU time, not the wall clock: on a machine shared with other jobs the time this
+/// thread waits for a core is not counted (cache disturbance by the others still is).
+double now() {
+  timespec ts;
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
 
 volatile std::uint64_t sink_value = 0;
 
@@ -51,7 +57,7 @@ void run_rounds(std::vector<Variant>& vs, int rounds) {
 void print(const char* title, const char* unit, const std::vector<Variant>& vs) {
   std::printf("%s\n", title);
   for (const auto& v : vs)
-    std::printf("  %-34s %8.2f ns/%s  %5.2fx of %s\n", v.name.c_str(), 1e9 * v.best / v.per, unit, vs[0].best / v.best,
+    std::printf("  %-42s %8.2f ns/%s  %5.2fx of %s\n", v.name.c_str(), 1e9 * v.best / v.per, unit, vs[0].best / v.best,
                 vs[0].name.c_str());
 }
 
@@ -117,6 +123,35 @@ int main(int argc, char** argv) {
                         k.prepare(rays[r]);
                         for (int g = 0; g < kGroups; ++g) {
                           robust_group_avx2(k.lane_ray, groups[r * kGroups + g], 0xf, out);
+                          s += unsigned(__builtin_popcount(out.hit)) + out.special;
+                        }
+                      }
+                      return s;
+                    }, n_tri});
+    vs.push_back({"robust float screen (SSE) + scalar rest", [&] {
+                    CompiledKernel<float, TriAlgo::robust> k{empty, nullptr, 0};
+                    std::uint64_t s = 0;
+                    Crossing c[2];
+                    for (int r = 0; r < kRays; ++r) {
+                      k.prepare(rays[r]);
+                      for (int g = 0; g < kGroups; ++g) {
+                        const unsigned rest = 0xf & ~robust_group_float_misses(k.lane_ray, groups[r * kGroups + g], 0xf);
+                        for (unsigned b = rest; b; b &= b - 1)
+                          s += k.triangle_crossings(tris[(r * kGroups + g) * kLanes + __builtin_ctz(b)], c);
+                      }
+                    }
+                    return s;
+                  }, n_tri});
+    if (avx2)
+      vs.push_back({"robust float screen + AVX2 double rest", [&] {
+                      CompiledKernel<float, TriAlgo::robust> k{empty, nullptr, 0};
+                      std::uint64_t s = 0;
+                      RobustLanes out;
+                      for (int r = 0; r < kRays; ++r) {
+                        k.prepare(rays[r]);
+                        for (int g = 0; g < kGroups; ++g) {
+                          const TriGroup& G = groups[r * kGroups + g];
+                          robust_group_avx2(k.lane_ray, G, 0xf & ~robust_group_float_misses(k.lane_ray, G, 0xf), out);
                           s += unsigned(__builtin_popcount(out.hit)) + out.special;
                         }
                       }
@@ -221,13 +256,24 @@ int main(int argc, char** argv) {
         std::vector<Variant> vs;
         for (LeafSimd p : {LeafSimd::off, LeafSimd::scalar, LeafSimd::sse, LeafSimd::avx2}) {
           if ((p == LeafSimd::avx2 && !avx2) || (!only.empty() && only != to_string(p))) continue;
-          vs.push_back({std::string(mname) + " " + query + " " + to_string(p), [&, p, closest] {
-                          force_leaf_simd(p);
-                          std::uint64_t n = 0;
-                          for (const auto& r : rays) n += closest ? a.closest(r, m).prim != PrimHit::kNoPrim : a.any(r, m);
-                          unforce_leaf_simd();
-                          return n;
-                        }, double(rays.size())});
+          // robust on AVX2 and certified on SSE and AVX2: without and with their float screens (the
+          // default: without; set_robust_screen_avx2, set_certified_screen).
+          const bool robust = std::string(mname) == "robust", certified = std::string(mname) == "certified";
+          const bool two = (robust && p == LeafSimd::avx2) || (certified && (p == LeafSimd::avx2 || p == LeafSimd::sse));
+          for (int screen = 0; screen < 1 + two; ++screen) {
+            const bool on = two ? screen == 1 : (robust ? robust_screen_avx2() : certified_screen());
+            const std::string name = std::string(mname) + " " + query + " " + to_string(p) + (two && on ? "+screen" : "");
+            vs.push_back({name, [&, p, closest, on, robust] {
+                            force_leaf_simd(p);
+                            const bool before = robust ? robust_screen_avx2() : certified_screen();
+                            robust ? set_robust_screen_avx2(on) : set_certified_screen(on);
+                            std::uint64_t n = 0;
+                            for (const auto& r : rays) n += closest ? a.closest(r, m).prim != PrimHit::kNoPrim : a.any(r, m);
+                            robust ? set_robust_screen_avx2(before) : set_certified_screen(before);
+                            unforce_leaf_simd();
+                            return n;
+                          }, double(rays.size())});
+          }
         }
         run_rounds(vs, rounds);
         const std::string title = std::string("Accel ") + query + ", " + set + " rays (" + std::to_string(rays.size()) + "):";

@@ -11,6 +11,7 @@
 #include <set>
 
 #include "cli/registry.h"
+#include "rayproof/certified.h"
 #include "scene/accel.h"
 #include "scene/kernels.h"
 #include "scene/leaf_simd.h"
@@ -162,6 +163,180 @@ TEST(LeafSimd, RobustLanesMatchTheScalarKernelBitForBit) {
   EXPECT_GT(edges, 50);
   EXPECT_GT(special, 50);
   EXPECT_GT(dead, 200);
+}
+
+namespace {
+
+/// A ray from a random origin at `scale` through a point of triangle `t` that lies on an edge
+/// (or at a vertex, or just off either by a few ulps), so that one or two of the edge functions
+/// are zero or nearly so and their float and double values can differ in sign.
+Ray<double> grazing_ray(std::mt19937& rng, const Triangle<float>& t, double scale) {
+  std::uniform_real_distribution<double> u(-1, 1);
+  const Vec3<double> p[3] = {t.p0.cast<double>(), t.p1.cast<double>(), t.p2.cast<double>()};
+  const int i = int(rng() % 3), j = (i + 1 + int(rng() % 2)) % 3;
+  const double s = rng() % 3 == 0 ? double(rng() % 2) : std::uniform_real_distribution<double>(0, 1)(rng);
+  Vec3<double> target = p[i] + (p[j] - p[i]) * s;
+  for (int k = 0; k < 3; ++k)  // a few ulps off, or exactly on
+    for (int n = int(rng() % 4); n > 0; --n) target[k] = std::nextafter(target[k], rng() % 2 ? 1e300 : -1e300);
+  const Vec3<double> o = target + Vec3<double>{u(rng), u(rng), u(rng)} * scale;
+  return {o, target - o};
+}
+
+}  // namespace
+
+TEST(LeafSimd, RobustFloatScreenDecidesOnlyTheScalarKernelsMisses) {
+  // The float screen (robust_group_float_misses) against the scalar robust kernel: every lane it
+  // decides has no crossing, and the double edge functions have mixed signs there (its error
+  // bound's claim). Families: the hostile ones, and rays grazing an edge or a vertex at scales
+  // from 2^-60 to 2^60, where float and double disagree in sign (counted: the bound is what keeps
+  // the screen away from those lanes).
+  const Scene empty;
+  const Method* robust = cli::all_methods().find("robust");
+  ASSERT_NE(robust, nullptr);
+  CompiledKernel<float, TriAlgo::robust> k{empty, nullptr, 0, robust};
+  Family f(31);
+  int decided = 0, undecided = 0, sign_traps = 0, misses = 0;
+  for (int r = 0; r < 12000; ++r) {
+    Triangle<float> t[kLanes];
+    const int n = 1 + int(f.rng() % kLanes);
+    Ray<double> ray;
+    if (r % 2) {  // grazing rays, at random magnitudes (the triangle scaled with them)
+      const float scale = std::ldexp(1.0f, int(f.rng() % 121) - 60);
+      const Vec3<float> c{f.uni(-4, 4) * scale, f.uni(-4, 4) * scale, f.uni(-4, 4) * scale};
+      for (int i = 0; i < n; ++i)
+        t[i] = {c + Vec3<float>{f.uni(-1, 1), f.uni(-1, 1), f.uni(-1, 1)} * scale,
+                c + Vec3<float>{f.uni(-1, 1), f.uni(-1, 1), f.uni(-1, 1)} * scale,
+                c + Vec3<float>{f.uni(-1, 1), f.uni(-1, 1), f.uni(-1, 1)} * scale};
+      ray = grazing_ray(f.rng, t[f.rng() % unsigned(n)], double(scale) * (f.rng() % 2 ? 1 : 1000));
+    } else {
+      ray = f.ray(r / 2);
+      for (int i = 0; i < n; ++i) t[i] = f.triangle(r / 2, ray);
+    }
+    k.prepare(ray);
+    if (!k.ray_ok) continue;
+    const TriGroup g = make_group(t, n);
+    unsigned live = 0;
+    for (int i = 0; i < n; ++i) live |= unsigned(!(g.tag[i] & kDeadLane)) << i;
+    const unsigned screened = robust_group_float_misses(k.lane_ray, g, live);
+    EXPECT_EQ(screened & ~live, 0u);
+    for (int i = 0; i < n; ++i) {
+      if (!(live >> i & 1)) continue;
+      Crossing c[2];
+      const int m = k.triangle_crossings(t[i], c);
+      misses += m == 0;
+      // The double and float edge functions, as the kernels compute them.
+      const WatertightRay<float, double>& wr = *k.wr_robust;
+      const Vec3<float> p[3] = {t[i].p0, t[i].p1, t[i].p2};
+      double sxd[3], syd[3];
+      float sxf[3], syf[3];
+      for (int v = 0; v < 3; ++v) {
+        const Vec3<double> q = p[v].cast<double>() - wr.o;
+        sxd[v] = wr.d[wr.kz] * q[wr.kx] - wr.d[wr.kx] * q[wr.kz], syd[v] = wr.d[wr.kz] * q[wr.ky] - wr.d[wr.ky] * q[wr.kz];
+        const Vec3<float> qf = p[v] - k.ray.o;
+        sxf[v] = k.ray.d[wr.kz] * qf[wr.kx] - k.ray.d[wr.kx] * qf[wr.kz];
+        syf[v] = k.ray.d[wr.kz] * qf[wr.ky] - k.ray.d[wr.ky] * qf[wr.kz];
+      }
+      const int b_of[3] = {1, 2, 0}, c_of[3] = {2, 0, 1};  // U = e(c, b) with (b, c) = (p1, p2), ...
+      bool pos = false, neg = false;
+      for (int e = 0; e < 3; ++e) {
+        const int b = b_of[e], cc = c_of[e];
+        const double ed = sxd[cc] * syd[b] - syd[cc] * sxd[b];
+        const float ef = sxf[cc] * syf[b] - syf[cc] * sxf[b];
+        pos |= ed > 0, neg |= ed < 0;
+        sign_traps += (ef > 0 && ed < 0) || (ef < 0 && ed > 0);
+      }
+      if (screened >> i & 1) {
+        ++decided;
+        EXPECT_EQ(m, 0) << "ray " << r << " lane " << i << ": the screen decided a " << to_string(c[0].contact);
+        EXPECT_TRUE(pos && neg) << "ray " << r << " lane " << i << ": the double edge functions do not have mixed signs";
+      } else {
+        ++undecided;
+      }
+    }
+  }
+  EXPECT_GT(decided, 8000);
+  EXPECT_GT(undecided, 3000);
+  EXPECT_GT(sign_traps, 300);  // float and double edge functions of opposite signs: the cases the bound exists for
+  EXPECT_GT(misses, decided);
+}
+
+TEST(LeafSimd, RobustFloatScreenIsOffForRaysOutOfItsRange) {
+  // D = |d_z| + max(|d_x|, |d_y|) outside [2^-20, 2^20]: no lane is decided (the double lanes are).
+  const Scene empty;
+  CompiledKernel<float, TriAlgo::robust> k{empty, nullptr, 0};
+  const Triangle<float> t[1] = {{{5, 0, 1}, {6, 0, 1}, {5, 1, 1}}};  // missed by the rays below
+  const TriGroup g = make_group(t, 1);
+  for (double s : {0x1p-22, 0x1p-20, 1.0, 0x1p20, 0x1p22}) {
+    k.prepare({{0, 0, 0}, {0, 0, s}});
+    const bool in_range = s >= 0x1p-20 && s <= 0x1p20;
+    EXPECT_EQ(robust_group_float_misses(k.lane_ray, g, 1), in_range ? 1u : 0u) << s;
+  }
+  // A vertex offset beyond 2^39 / D: undecided.
+  const Triangle<float> far[1] = {{{0x1p40f, 0, 1}, {0x1p40f + 0x1p20f, 0, 1}, {0x1p40f, 0x1p20f, 1}}};
+  k.prepare({{0, 0, 0}, {0, 0, 1}});
+  EXPECT_EQ(robust_group_float_misses(k.lane_ray, make_group(far, 1), 1), 0u);
+}
+
+TEST(LeafSimd, CertifiedFloatScreenDecidesOnlyExactMisses) {
+  // certified's float screen (certified_group_float_misses) on double triangles and double rays
+  // that float does not represent: every lane it decides is one certified::triangle (exact class)
+  // gives no crossing. Rays graze an edge or a vertex (a few ulps of double off, or on) at scales
+  // from 2^-60 to 2^60, origins near or 1000 sizes away, and the hostile families.
+  Family f(37);
+  std::uniform_real_distribution<double> jitter(-1, 1);
+  int decided = 0, undecided = 0, misses = 0, hits = 0;
+  for (int r = 0; r < 12000; ++r) {
+    Triangle<double> t[kLanes];
+    Triangle<float> tf[kLanes];
+    const int n = 1 + int(f.rng() % kLanes);
+    Ray<double> ray;
+    if (r % 2) {
+      const double scale = std::ldexp(1.0, int(f.rng() % 121) - 60);
+      const Vec3<double> c{jitter(f.rng) * 4 * scale, jitter(f.rng) * 4 * scale, jitter(f.rng) * 4 * scale};
+      auto vtx = [&] { return c + Vec3<double>{jitter(f.rng), jitter(f.rng), jitter(f.rng)} * scale; };
+      for (int i = 0; i < n; ++i) t[i] = {vtx(), vtx(), vtx()};
+      const Triangle<double>& aim = t[f.rng() % unsigned(n)];
+      const Triangle<float> aim_f{aim.p0.cast<float>(), aim.p1.cast<float>(), aim.p2.cast<float>()};
+      ray = grazing_ray(f.rng, aim_f, scale * (f.rng() % 2 ? 1 : 1000));
+      // Aim at the double triangle's edge instead of its float rounding's, half the time.
+      if (f.rng() % 2) {
+        const double s = std::uniform_real_distribution<double>(0, 1)(f.rng);
+        const Vec3<double> target = aim.p0 + (aim.p1 - aim.p0) * s;
+        ray.d = target - ray.o;
+      }
+    } else {
+      ray = f.ray(r / 2);
+      if (r % 4) ray.o.x += jitter(f.rng) * 1e-9;
+      for (int i = 0; i < n; ++i) {
+        const Triangle<float> x = f.triangle(r / 2, ray);
+        t[i] = {x.p0.cast<double>(), x.p1.cast<double>(), x.p2.cast<double>()};
+        if (r % 3 == 0) t[i].p2.y += jitter(f.rng) * 1e-9;
+      }
+    }
+    for (int i = 0; i < n; ++i) tf[i] = {t[i].p0.cast<float>(), t[i].p1.cast<float>(), t[i].p2.cast<float>()};
+    RobustLaneRay lr;
+    certified_lane_ray(ray, lr);
+    const TriGroup g = make_group(tf, n);
+    const unsigned live = (1u << n) - 1;
+    const unsigned screened = certified_group_float_misses(lr, g, live);
+    EXPECT_EQ(screened & ~live, 0u);
+    for (int i = 0; i < n; ++i) {
+      const TriangleHit<double> h = certified::intersect(ray, t[i]);  // the exact class (filters, then GMP)
+      Crossing c[2];
+      const int m = crossings_of(h.contact, h.t, h.t2, c);
+      (m ? hits : misses)++;
+      if (screened >> i & 1) {
+        ++decided;
+        EXPECT_EQ(m, 0) << "ray " << r << " lane " << i << ": the screen decided a " << to_string(h.contact);
+      } else {
+        ++undecided;
+      }
+    }
+  }
+  EXPECT_GT(decided, 8000);
+  EXPECT_GT(undecided, 3000);
+  EXPECT_GT(hits, 1000);
+  EXPECT_GT(misses, decided);
 }
 
 TEST(LeafSimd, CertifiedStageOneMissesInLanesAreTheScalarStagesMisses) {
@@ -317,6 +492,18 @@ TEST(LeafSimd, QueriesThroughGroupsMatchSlotBySlotOnEveryPath) {
     expect_same_queries(a, rays, p, hits);
     EXPECT_GT(hits, 800) << to_string(p);
   }
+  // The screens' other settings (their defaults flipped): robust's float screen in front of the
+  // AVX2 double lanes, certified's float screen.
+  set_robust_screen_avx2(!robust_screen_avx2());
+  set_certified_screen(!certified_screen());
+  for (LeafSimd p : {LeafSimd::sse, LeafSimd::avx2}) {
+    if (p == LeafSimd::avx2 && !cpu_avx2()) continue;
+    int hits = 0;
+    expect_same_queries(a, rays, p, hits);
+    EXPECT_GT(hits, 800) << to_string(p);
+  }
+  set_robust_screen_avx2(!robust_screen_avx2());
+  set_certified_screen(!certified_screen());
 }
 
 TEST(LeafSimd, SceneWithoutTrianglesGoesPerPrimitive) {

@@ -12,6 +12,7 @@
 #include <limits>
 
 #include "gen/build.h"
+#include "gen/gen_table.h"
 
 namespace rayproof::gen {
 
@@ -19,16 +20,13 @@ using namespace detail;
 
 namespace {
 
-struct Entry {
-  Family family;
-  CaseFn fn;
-};
+using Table = GenTable<Family, CaseFn>;
 
 using C = Contact;
 using K = io::Kind;
 
-const std::vector<Entry>& table() {
-  static const std::vector<Entry> t = {
+const Table& table() {
+  static const Table t = {
       // triangles
       {{"tri_generic", K::triangle, "random rays and triangles: ordinary hits and misses", {C::interior, C::edge, C::vertex, C::miss, C::behind}},
        tri_generic},
@@ -105,20 +103,9 @@ const std::vector<Entry>& table() {
 
 }  // namespace
 
-const std::vector<Family>& families() {
-  static const std::vector<Family> f = [] {
-    std::vector<Family> out;
-    for (const auto& e : table()) out.push_back(e.family);
-    return out;
-  }();
-  return f;
-}
+const std::vector<Family>& families() { return table().items; }
 
-const Family* find_family(std::string_view name) {
-  for (const auto& f : families())
-    if (f.name == name) return &f;
-  return nullptr;
-}
+const Family* find_family(std::string_view name) { return table().find(name); }
 
 std::string family_names() {
   std::string s;
@@ -131,9 +118,7 @@ std::string family_names() {
 
 void generate_each(const Family& f, std::size_t count, std::uint64_t seed, Precision p,
                    const std::function<void(const io::Case&)>& sink) {
-  CaseFn fn = nullptr;
-  for (const auto& e : table())
-    if (e.family.name == f.name) fn = e.fn;
+  const CaseFn fn = table().fn_of(f);
   if (!fn) return;
   Rng rng = Rng::for_family(seed, f.name);
   for (std::size_t i = 0; i < count; ++i) {

@@ -11,6 +11,7 @@
 #include <cmath>
 
 #include "gen/build.h"
+#include "gen/gen_table.h"
 
 namespace rayproof::gen {
 
@@ -319,10 +320,7 @@ io::Case knob_tangency(Rng& r, int k) {
 
 using KnobFn = io::Case (*)(Rng&, int);
 
-struct KnobEntry {
-  Knob knob;
-  KnobFn fn;
-};
+using Table = GenTable<Knob, KnobFn>;
 
 std::vector<int> steps(int from, int to, int by) {
   std::vector<int> v;
@@ -330,8 +328,8 @@ std::vector<int> steps(int from, int to, int by) {
   return v;
 }
 
-const std::vector<KnobEntry>& table() {
-  static const std::vector<KnobEntry> t = {
+const Table& table() {
+  static const Table t = {
       {{"offset", K::triangle, "offset / size", "exact lattice hits translated far from the origin: cancellation in absolute positions",
         steps(0, 60, 4)},
        knob_offset},
@@ -366,20 +364,9 @@ const std::vector<KnobEntry>& table() {
 
 }  // namespace
 
-const std::vector<Knob>& knobs() {
-  static const std::vector<Knob> k = [] {
-    std::vector<Knob> out;
-    for (const auto& e : table()) out.push_back(e.knob);
-    return out;
-  }();
-  return k;
-}
+const std::vector<Knob>& knobs() { return table().items; }
 
-const Knob* find_knob(std::string_view name) {
-  for (const auto& k : knobs())
-    if (k.name == name) return &k;
-  return nullptr;
-}
+const Knob* find_knob(std::string_view name) { return table().find(name); }
 
 std::string step_name(const Knob& k, int exponent) { return k.name + "@" + std::to_string(exponent); }
 
@@ -396,9 +383,7 @@ std::optional<std::pair<const Knob*, int>> parse_step_name(std::string_view grou
 }
 
 std::vector<io::Case> generate_knob(const Knob& k, int exponent, std::size_t count, std::uint64_t seed) {
-  KnobFn fn = nullptr;
-  for (const auto& e : table())
-    if (e.knob.name == k.name) fn = e.fn;
+  const KnobFn fn = table().fn_of(k);
   std::vector<io::Case> out;
   if (!fn) return out;
   const std::string name = step_name(k, exponent);

@@ -94,17 +94,26 @@ inline Triangle<float> lane_triangle(const detail::TriGroup& g, int i) {
   return {p(0), p(1), p(2)};
 }
 
-/// certified's leaves: the group's float data is not certified's, so the leaf records only (ids
-/// and vertex indices), the double vertices, stage 1's proven misses in lanes (AVX2), the other
-/// lanes through the per-primitive kernel.
+/// certified's leaves: when on (certified_screen(), off by default: it does not pay), first the
+/// float screen on the group's float vertices (the roundings of the double ones); then the leaf
+/// records (ids and vertex indices), the double vertices, stage 1's proven misses in lanes
+/// (AVX2), the other lanes through the per-primitive kernel.
 template <class K, class L_, class Emit>
 bool certified_leaf(const K& k, const L_& L, std::uint32_t first, std::uint32_t count, Emit& emit) {
   using namespace detail;
   const std::uint32_t end = first + count;
+  const bool screen = L.simd != LeafSimd::scalar && certified_screen();
   for (std::uint32_t g0 = first; g0 < end; g0 += kLanes) {
-    const unsigned in = end - g0 >= std::uint32_t(kLanes) ? (1u << kLanes) - 1 : (1u << (end - g0)) - 1;
+    unsigned in = end - g0 >= std::uint32_t(kLanes) ? (1u << kLanes) - 1 : (1u << (end - g0)) - 1;
     Crossing c[2];
     unsigned miss = 0;
+    if (screen) {
+      // Triangle lanes: tags without the top bit (pad and scalar lanes have it).
+      const TriGroup& g = L.groups[g0 / kLanes];
+      const unsigned not_tri = unsigned(_mm_movemask_ps(_mm_load_ps(reinterpret_cast<const float*>(g.tag))));
+      in &= ~certified_group_float_misses(k.lane_ray, g, in & ~not_tri);
+      if (!in) continue;
+    }
     if (L.simd == LeafSimd::avx2) {
       alignas(32) double p[3][3][kLanes];
       unsigned tri = 0;
@@ -154,8 +163,11 @@ bool group_leaf(const K& k, const L_& L, std::uint32_t first, std::uint32_t coun
       if (!k.ray_ok) {
         finish = 0;  // the scalar kernel's `invalid`: no triangle crossing
       } else if (L.simd == LeafSimd::avx2) {
-        robust_group_avx2(k.lane_ray, g, tri, lanes);
+        robust_group_avx2(k.lane_ray, g, robust_screen_avx2() ? tri & ~robust_group_float_misses(k.lane_ray, g, tri) : tri,
+                          lanes);
         finish = lanes.special;
+      } else if (L.simd == LeafSimd::sse) {
+        finish = tri & ~robust_group_float_misses(k.lane_ray, g, tri);  // the float screen's misses need no kernel
       } else {
         finish = tri;  // dead lanes: the scalar kernel reports nothing for them either
       }

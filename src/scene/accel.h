@@ -139,7 +139,9 @@ class Accel {
   /// (group_bytes_per_primitive), plus the leaf records and the primitive data when the scene has
   /// other primitives than triangles (their lanes go through the records); `certified` and every
   /// other method (or RAYPROOF_SIMD=off, or no groups): the nodes, the leaf records and the
-  /// triangle data (the double vertices). bytes_per_primitive() counts everything held.
+  /// triangle data (the double vertices), and for `certified` the groups too when its float
+  /// screen is on (detail::set_certified_screen, off by default). bytes_per_primitive() counts
+  /// everything held.
   [[nodiscard]] double bytes_read_per_primitive(const SceneMethod& m) const;
   /// The leaf-order primitive records (slot j of the BVH's leaves; every leaf starts on a multiple
   /// of detail::kLanes, the slots between leaves are padding with id = PrimHit::kNoPrim).

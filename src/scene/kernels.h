@@ -126,7 +126,7 @@ struct CompiledKernel {
 
   bool ray_ok = false;                                ///< robust: the float ray is valid
   std::optional<WatertightRay<float, double>> wr_robust{};  ///< robust: the front door's per-ray part
-  RobustLaneRay lane_ray{};  ///< robust: the same per-ray part for the group kernel (leaf_simd.h)
+  RobustLaneRay lane_ray{};  ///< robust, certified: the per-ray part for the group kernels (leaf_simd.h)
 
   void prepare(const Ray<double>& r) {
     ray = {r.o.template cast<T>(), r.d.template cast<T>()};
@@ -138,7 +138,11 @@ struct CompiledKernel {
         wr_robust.emplace(ray);
         for (int k = 0; k < 3; ++k) lane_ray.o[k] = wr_robust->o[k], lane_ray.d[k] = wr_robust->d[k];
         lane_ray.kx = wr_robust->kx, lane_ray.ky = wr_robust->ky, lane_ray.kz = wr_robust->kz;
+        finish_lane_ray(lane_ray);
       }
+    }
+    if constexpr (A == TriAlgo::certified) {
+      if (certified_screen()) certified_lane_ray(r, lane_ray);  // (off by default: leaf_simd.h)
     }
   }
   /// The ray the kernel intersects, in double (a float kernel's float-rounded ray): the one the

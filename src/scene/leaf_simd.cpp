@@ -4,10 +4,12 @@
 
 #include <immintrin.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <cstdlib>
 #include <cstring>
+#include <limits>
 
 namespace rayproof::scene::detail {
 namespace {
@@ -178,6 +180,152 @@ __attribute__((target("avx2"))) unsigned certified_group_misses_avx2(const Ray<d
   }
   return unsigned(_mm256_movemask_pd(_mm256_and_pd(decided, neg))) & live;
 }
+
+// robust's float screen. The scalar robust kernel (kernels.h) computes, in double, on the float
+// vertices p and the float ray (o, d): dn = d . ((p1 - p0) x (p2 - p0)); when dn != 0, the
+// watertight test's U, V, W (q = p - o, sx = d_z q_x - d_x q_z, sy = d_z q_y - d_y q_z in the
+// permuted axes; U = sx_c sy_b - sy_c sx_b, V = sx_a sy_c - sy_a sx_c, W = sx_b sy_a - sy_b sx_a),
+// and reports nothing when they have mixed signs. The screen computes the same U, V, W in float
+// and decides a lane only when that outcome is certain:
+//
+// Edge functions. Let U* be the exact value on the (exact) float inputs, M_v = |d_z||q*_x| +
+// |d_x||q*_z| (and with y), S = M_x,c M_y,b + M_y,c M_x,b. Each float operation errs by at most
+// u = 2^-24 relatively, plus 2^-150 absolutely for a product that underflows (sums and
+// differences of floats are exact when they underflow). Eight roundings lie on every path, so
+// |U_float - U*| <= gamma_8 S + 2^-148 (sum of the M) + 2^-149 <= gamma_8 S + 2^-104 when every
+// M <= 2^40; in double (no underflow: every value is a float-made product of at most 4 factors,
+// far above 2^-1022) |U_double - U*| <= gamma_8(2^-53) S. With D = |d_z| + max(|d_x|, |d_y|) and
+// A_v = max_k |q_v,k| (float, >= (1 - u) |q*|), M_v <= D A_v (1 + 2u), so S <= 2 D^2 A_b A_c
+// (1 + 5u), and the two errors add up to less than B_u = 2^-19 D^2 A_b A_c + 2^-100 (factor 2 of
+// slack for the float evaluation of B_u itself). When |U_float| > B_u, U* is not zero and has
+// U_float's sign, and so has U_double. A lane whose float U, V, W include one > B and one < -B
+// therefore has mixed double signs.
+// d . n != 0. Exactly, U* + V* + W* = d_z (d . n)* up to sign (the scaled shear maps the plane
+// normal to d_z d). The double dn errs by at most gamma_7(2^-53) |d|_1 8 A^2 (edges |p1 - p0| <=
+// 2A) <= 2^-45.6 |d_z| A^2 (|d|_1 <= 3|d_z|, A = max A_v); the float sum det = (U + V) + W errs
+// by at most the three bounds plus gamma_2 (|U| + |V| + |W|). So |det| > B_u + B_v + B_w +
+// 2^-22 (|U| + |V| + |W|) + 2^-45 d_z^2 A^2 proves the double dn nonzero: the scalar kernel then
+// runs the watertight test (not the coplanar front door), which reports the mixed signs' miss.
+// Ranges. The absolute terms need M <= 2^40: a lane is decided only when every A_v <= 2^39 / D
+// (false for inf and NaN); a ray is screened only when 2^-20 <= D <= 2^20, which keeps the bound
+// products from overflowing and their underflow error (<= 2^-150 times a factor <= 2^21) under
+// the 2^-100 of slack. Other rays and lanes go to the double kernel: slower, never different.
+void finish_lane_ray(RobustLaneRay& r) {
+  const int axis[3] = {r.kx, r.ky, r.kz};
+  for (int i = 0; i < 3; ++i) r.so[i] = float(r.o[axis[i]]), r.sd[i] = float(r.d[axis[i]]);
+  const double dz = std::fabs(r.d[r.kz]), d = dz + std::max(std::fabs(r.d[r.kx]), std::fabs(r.d[r.ky]));
+  if (!(d >= 0x1p-20 && d <= 0x1p20)) {
+    r.edge_k = r.dn_k = 0.0f, r.a_limit = -1.0f;  // no lane passes A_v <= -1: the screen is off
+    return;
+  }
+  // Rounded up: float(x) >= x (1 - 2^-24), times 1 + 2^-20 > 1 + 2^-23 after rounding (x >= 2^-87:
+  // no underflow, since d >= 2^-20 and d_z >= d / 2).
+  r.edge_k = float(0x1p-19 * d * d) * (1.0f + 0x1p-20f);
+  r.dn_k = float(0x1p-45 * dz * dz) * (1.0f + 0x1p-20f);
+  r.a_limit = float(0x1p39 / d);
+}
+
+namespace {
+
+/// The float screen's body: kRobust adds the d . n test and takes A_v = max |q|; certified takes
+/// A_v = max (|p| + |o|) and its own constants (see certified_lane_ray).
+template <bool kRobust>
+unsigned float_screen(const RobustLaneRay& r, const TriGroup& g, unsigned live) {
+  if (!live) return 0;
+  const __m128 sign = _mm_set1_ps(-0.0f);
+  const __m128 dx = _mm_set1_ps(r.sd[0]), dy = _mm_set1_ps(r.sd[1]), dz = _mm_set1_ps(r.sd[2]);
+  const __m128 o[3] = {_mm_set1_ps(r.so[0]), _mm_set1_ps(r.so[1]), _mm_set1_ps(r.so[2])};
+  const int axis[3] = {r.kx, r.ky, r.kz};
+  __m128 sx[3], sy[3], a[3];
+  for (int v = 0; v < 3; ++v) {
+    __m128 p[3], q[3];
+    for (int k = 0; k < 3; ++k) p[k] = _mm_load_ps(g.p[v][axis[k]]), q[k] = _mm_sub_ps(p[k], o[k]);
+    sx[v] = _mm_sub_ps(_mm_mul_ps(dz, q[0]), _mm_mul_ps(dx, q[2]));
+    sy[v] = _mm_sub_ps(_mm_mul_ps(dz, q[1]), _mm_mul_ps(dy, q[2]));
+    __m128 m[3];
+    for (int k = 0; k < 3; ++k)
+      m[k] = kRobust ? _mm_andnot_ps(sign, q[k]) : _mm_add_ps(_mm_andnot_ps(sign, p[k]), _mm_andnot_ps(sign, o[k]));
+    a[v] = _mm_max_ps(_mm_max_ps(m[0], m[1]), m[2]);
+  }
+  const __m128 u = _mm_sub_ps(_mm_mul_ps(sx[2], sy[1]), _mm_mul_ps(sy[2], sx[1]));
+  const __m128 v = _mm_sub_ps(_mm_mul_ps(sx[0], sy[2]), _mm_mul_ps(sy[0], sx[2]));
+  const __m128 w = _mm_sub_ps(_mm_mul_ps(sx[1], sy[0]), _mm_mul_ps(sy[1], sx[0]));
+  const __m128 k = _mm_set1_ps(r.edge_k), slack = _mm_set1_ps(kRobust ? 0x1p-100f : 0x1p-80f);
+  const __m128 bu = _mm_add_ps(_mm_mul_ps(_mm_mul_ps(a[1], a[2]), k), slack);
+  const __m128 bv = _mm_add_ps(_mm_mul_ps(_mm_mul_ps(a[2], a[0]), k), slack);
+  const __m128 bw = _mm_add_ps(_mm_mul_ps(_mm_mul_ps(a[0], a[1]), k), slack);
+  const __m128 amax = _mm_max_ps(_mm_max_ps(a[0], a[1]), a[2]);
+  const __m128 in_range = _mm_cmple_ps(amax, _mm_set1_ps(r.a_limit));
+  const __m128 pos = _mm_or_ps(_mm_or_ps(_mm_cmpgt_ps(u, bu), _mm_cmpgt_ps(v, bv)), _mm_cmpgt_ps(w, bw));
+  const __m128 neg = _mm_or_ps(_mm_or_ps(_mm_cmplt_ps(u, _mm_xor_ps(sign, bu)), _mm_cmplt_ps(v, _mm_xor_ps(sign, bv))),
+                               _mm_cmplt_ps(w, _mm_xor_ps(sign, bw)));
+  __m128 decided = _mm_and_ps(_mm_and_ps(pos, neg), in_range);
+  if constexpr (kRobust) {
+    const __m128 det = _mm_add_ps(_mm_add_ps(u, v), w);
+    const __m128 sum_abs = _mm_add_ps(_mm_add_ps(_mm_andnot_ps(sign, u), _mm_andnot_ps(sign, v)), _mm_andnot_ps(sign, w));
+    const __m128 det_bound = _mm_add_ps(_mm_add_ps(_mm_add_ps(_mm_add_ps(bu, bv), bw), _mm_mul_ps(_mm_set1_ps(0x1p-22f), sum_abs)),
+                                        _mm_mul_ps(_mm_mul_ps(amax, amax), _mm_set1_ps(r.dn_k)));
+    decided = _mm_and_ps(decided, _mm_cmpgt_ps(_mm_andnot_ps(sign, det), det_bound));
+  }
+  return unsigned(_mm_movemask_ps(decided)) & live;
+}
+
+}  // namespace
+
+unsigned robust_group_float_misses(const RobustLaneRay& r, const TriGroup& g, unsigned live) {
+  return float_screen<true>(r, g, live);
+}
+
+// certified's float screen: the same edge functions, but against the exact answer for the double
+// triangle P and the double ray (O, D), of which the group and so, sd are the float roundings. For
+// dz != 0 the scaled shear is the projection along D (times dz), so exact U*, V*, W* of mixed
+// strict signs mean that the line misses the triangle: certified's exact class is then one
+// without a crossing (miss, parallel, degenerate; coplanar needs U* = V* = W* = 0). Error of the
+// float U against U*: the inputs carry one rounding each (relative u, or 2^-150 absolutely when
+// subnormal; d is screened only when each |D_k| is 0 or >= 2^-120, so its rounding is relative),
+// so |q - Q*| <= gamma_2 (|P| + |O|) + 2^-148 instead of u |Q*|: with A_v = max_k (|p_k| + |o_k|),
+// |sx - SX*| <= gamma_5 D A_v (+ absolute terms), and |U - U*| <= gamma_12 2 D^2 A_b A_c + 2^-87
+// (every A_v <= 2^39 / D, as for robust) < B_u = 2^-18 D^2 A_b A_c + 2^-80. No d . n test: the
+// exact signs alone decide. Lanes with a non-finite or out-of-float-range vertex have A_v = inf
+// and are not decided.
+void certified_lane_ray(const Ray<double>& ray, RobustLaneRay& r) {
+  r.kz = max_abs_axis(ray.d);
+  r.kx = (r.kz + 1) % 3, r.ky = (r.kx + 1) % 3;
+  if (ray.d[r.kz] < 0) std::swap(r.kx, r.ky);
+  const int axis[3] = {r.kx, r.ky, r.kz};
+  bool ok = true;
+  for (int i = 0; i < 3; ++i) {
+    r.so[i] = float(ray.o[axis[i]]), r.sd[i] = float(ray.d[axis[i]]);
+    const double ad = std::fabs(ray.d[axis[i]]);
+    ok = ok && (ad == 0 || ad >= 0x1p-120);
+  }
+  const double dz = std::fabs(ray.d[r.kz]), d = dz + std::max(std::fabs(ray.d[r.kx]), std::fabs(ray.d[r.ky]));
+  r.dn_k = 0.0f;
+  if (!(ok && d >= 0x1p-20 && d <= 0x1p20)) {
+    r.edge_k = 0.0f, r.a_limit = -1.0f;  // off
+    return;
+  }
+  r.edge_k = float(0x1p-18 * d * d) * (1.0f + 0x1p-20f);  // rounded up, as in finish_lane_ray
+  r.a_limit = float(0x1p39 / d);
+}
+
+unsigned certified_group_float_misses(const RobustLaneRay& r, const TriGroup& g, unsigned live) {
+  return float_screen<false>(r, g, live);
+}
+
+namespace {
+std::atomic<bool> screen_avx2{false};
+}  // namespace
+
+void set_robust_screen_avx2(bool on) { screen_avx2.store(on, std::memory_order_relaxed); }
+bool robust_screen_avx2() { return screen_avx2.load(std::memory_order_relaxed); }
+
+namespace {
+std::atomic<bool> screen_certified{false};
+}  // namespace
+
+void set_certified_screen(bool on) { screen_certified.store(on, std::memory_order_relaxed); }
+bool certified_screen() { return screen_certified.load(std::memory_order_relaxed); }
 
 // mt_surely_no_crossing (kernels.h) in four float lanes; a lane survives unless the scalar screen
 // would return true: det != 0 and (!(b1 >= 0) or !(b2 >= 0 and 1 - b1 - b2 >= 0) or t' < 0).

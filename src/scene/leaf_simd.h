@@ -25,12 +25,16 @@
 /// (the project compiles with -ffp-contract=off, and the AVX2 code uses separate multiply and add
 /// instructions), so every lane's U, V, W, det, t_scaled and their signs are bit for bit the scalar
 /// kernel's. Lanes with d . n = 0 (parallel or coplanar) go to the scalar front door, as the scalar
-/// kernel does.
+/// kernel does. On the SSE path, robust's float screen (robust_group_float_misses, four float
+/// lanes, x86-64 baseline) first decides the lanes whose double edge functions are certain to have
+/// mixed signs (an error bound covering the float and the double evaluation), and only the other
+/// lanes go to the scalar kernel. On the AVX2 path the screen is off by default: in front of the
+/// four double lanes it was measured 3-11% slower per ray (leaf_bench, bunny00).
 ///
 /// Path selection: AVX2 when the CPU has it, unless the environment variable RAYPROOF_SIMD is
-/// `sse` (robust lane by lane, float screen in SSE), `scalar` (every lane through the scalar
-/// kernel) or `off` (no groups: slot by slot, as before them). Tests force a path with
-/// force_leaf_simd.
+/// `sse` (robust's float screen then lane by lane, float's screen in SSE), `scalar` (every lane
+/// through the scalar kernel) or `off` (no groups: slot by slot, as before them). Tests force a
+/// path with force_leaf_simd.
 #include <algorithm>
 #include <cstdint>
 #include <span>
@@ -58,8 +62,8 @@ struct alignas(32) TriGroup {
 static_assert(sizeof(TriGroup) == 160);
 
 /// off: no groups, the queries go slot by slot through the per-primitive kernels (the reference);
-/// scalar: the groups, every lane through the per-primitive kernel; sse: float's screen in SSE,
-/// robust lane by lane; avx2: both in lanes.
+/// scalar: the groups, every lane through the per-primitive kernel; sse: float's screen and robust's
+/// float screen in SSE, the undecided lanes one by one; avx2: both in lanes.
 /// A triangle lane's tag: `id`, with kDeadLane when robust classes the triangle invalid or
 /// degenerate for every ray (its screens in kernels.h: a non-finite float vertex, or the double
 /// normal cross(p1 - p0, p2 - p0) of the float vertices is zero).
@@ -105,11 +109,46 @@ std::vector<std::uint32_t> align_leaf_slots(std::span<Node> nodes, std::uint32_t
   return old_of;
 }
 
-/// The robust kernel's ray-dependent part for the group kernel (WatertightRay<float, double>).
+/// The robust kernel's ray-dependent part for the group kernel (WatertightRay<float, double>), and
+/// for its float screen (robust_group_float_misses): the float ray in the permuted axes (kx, ky,
+/// kz) and three per-ray constants of the screen's error bounds (finish_lane_ray).
 struct RobustLaneRay {
   double o[3], d[3];  ///< the float ray in double
   int kx, ky, kz;
+  float so[3], sd[3];  ///< the float ray, axes kx, ky, kz
+  float edge_k = 0;    ///< >= 2^-19 D^2, D = |d_z| + max(|d_x|, |d_y|): the edge functions' bound per |a| |b|
+  float a_limit = 0;   ///< 2^39 / D: larger vertex offsets are left to double
+  float dn_k = 0;      ///< >= 2^-45 d_z^2: the double d . n's error bound per A^2
 };
+
+/// Fills the screen's part of `r` from o, d, kx, ky, kz (once per ray).
+void finish_lane_ray(RobustLaneRay& r);
+
+/// robust's float screen (SSE, four float lanes): bit i set when lane i (of `live`: triangle
+/// lanes, no pad, scalar or dead ones) is proven to have no crossing for robust, i.e. the double
+/// d . n of the scalar kernel is nonzero and its double edge functions U, V, W have mixed signs.
+/// The error bounds behind it are derived in leaf_simd.cpp. Lanes not set are undecided.
+[[nodiscard]] unsigned robust_group_float_misses(const RobustLaneRay& r, const TriGroup& g, unsigned live);
+
+/// certified's per-ray part of the same screen, from the double ray (its float rounding, the axis
+/// permutation of its dominant direction, and the bound's constants; off for rays out of range).
+void certified_lane_ray(const Ray<double>& ray, RobustLaneRay& r);
+
+/// certified's float screen (SSE): bit i set when lane i (of `live`: triangle lanes; the group's
+/// float vertices are the roundings of the double ones) is proven missed by the exact double ray,
+/// so certified::triangle reports no crossing for it. Derivation in leaf_simd.cpp.
+[[nodiscard]] unsigned certified_group_float_misses(const RobustLaneRay& r, const TriGroup& g, unsigned live);
+
+/// Whether the AVX2 path runs the float screen before the double lanes (default off: measured not
+/// to pay there, see leaf_simd.cpp); the SSE path always runs it. For benchmarks and tests.
+void set_robust_screen_avx2(bool on);
+[[nodiscard]] bool robust_screen_avx2();
+/// Whether certified's leaves run its float screen (SSE and AVX2 paths). Default off: it decides
+/// about 65% of the lanes certified's leaves test (bunny00), but reading the groups costs more than
+/// the double vertices it spares, and AVX2 stage 1 decides those lanes anyway: per ray 1.2-1.4x
+/// slower with it on both paths (leaf_bench, bunny00 and refined_elephant). For benchmarks and tests.
+void set_certified_screen(bool on);
+[[nodiscard]] bool certified_screen();
 
 /// One group's robust results, lane by lane: `hit` lanes have a crossing (class, t, b1, b2 as the
 /// scalar kernel computes them); `special` lanes need the scalar front door (d . n = 0).
