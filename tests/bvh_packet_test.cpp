@@ -257,6 +257,12 @@ TEST(BvhPacketAccel, EveryMethodGivesTheSingleRayAnswers) {
   for (int i : {0, 3, 4, 6}) few[std::size_t(i)].d = {0, 0, 0};
   check_packets(a, few, {}, kAll, hits);
   for (int i = 0; i < 8; ++i) few.resize(std::size_t(8 - i)), check_packets(a, few, {}, {"robust"}, hits);
+  // The leaves' float screens (leaf_simd.h; off by default on AVX2) use per-ray constants that a
+  // lane's kernel gets when it is prepared (at its first leaf): the same answers with them on.
+  scene::detail::set_robust_screen_avx2(true), scene::detail::set_certified_screen(true);
+  const std::vector<Ray<double>> some(rays.begin(), rays.begin() + 400);
+  check_packets(a, some, mixed, {"robust", "certified"}, hits);
+  scene::detail::set_robust_screen_avx2(false), scene::detail::set_certified_screen(false);
 }
 
 TEST(BvhPacketAccel, BunnyLeakRaysAndCameraTiles) {
