@@ -19,10 +19,11 @@
 #include "rayproof/triangle.h"
 #include "scene/accel.h"
 #include "bvh_support.h"
+#include "hostile_rays.h"
 #include "scene/watertight.h"
 
 using namespace rayproof;
-using test::Answers, test::answers, test::brute, test::hits, test::Soup;
+using test::Answers, test::answers, test::brute, test::hits, test::hostile_rays, test::Soup;
 
 namespace {
 /// The soups here have every fifth triangle flat (parallel to z = 0).
@@ -307,31 +308,6 @@ void check_paths(const Scene& s, const std::vector<Ray<double>>& rays, const std
   a8.any_batch(rays, y8, m, 2);
   a4.any_batch(rays, y4, m, 1);
   ASSERT_EQ(y8, y4);
-}
-
-/// Hostile rays near the mesh: axis-parallel with +-0 components, origins on vertices' coordinate
-/// planes (the slab planes of leaf boxes), huge and tiny scalings (the double path), NaN and zero d.
-std::vector<Ray<double>> hostile_rays(const mesh::Mesh& m, unsigned seed, int n) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-1.5, 1.5);
-  std::vector<Ray<double>> out;
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  for (int i = 0; i < n; ++i) {
-    const Vec3<double>& v = m.vertices[rng() % m.vertices.size()];
-    Ray<double> r{{u(rng), u(rng), u(rng)}, {u(rng), u(rng), u(rng)}};
-    switch (i % 8) {
-      case 0: r.o = {v.x, v.y, -3.0}, r.d = {i % 16 ? 0.0 : -0.0, -0.0, 1.0}; break;  // through a vertex, axis-parallel
-      case 1: r.o = {v.x, u(rng), u(rng)}, r.d = {0.0, r.d.y, r.d.z}; break;          // in a vertex's x plane
-      case 2: r.o = v * 0x1p70, r.d = (v - r.o) * 0x1p-3; break;                        // huge origin: double path
-      case 3: r.d = r.d * 0x1p-70; break;                                               // tiny d: double path
-      case 4: r.d = (v - r.o) * 0x1p70; break;                                          // huge d, aimed at a vertex
-      case 5: r.d = {nan, 1, 0}; break;                                                 // invalid
-      case 6: r.d = {0, 0, 0}; break;                                                   // invalid
-      default: r.d = v - r.o; break;                                                    // at a vertex
-    }
-    out.push_back(r);
-  }
-  return out;
 }
 
 const std::vector<std::string> kAll = {"float", "double", "cramer-float", "cramer-double", "watertight-float",
