@@ -4,7 +4,7 @@
 /// nodes, on one SIMD path. The two accels run interleaved in blocks of 500 rays (the order
 /// alternating block by block), so both see the same load on a busy machine; each round gives one
 /// ratio of the summed times (thread CPU time), and the table shows the median ratio over the rounds and its range.
-/// Run: node_bench [mesh.off | generated] [rounds] [rays] [avx2 | sse] [method]
+/// Run: node_bench [mesh.off | generated[:N]] [rounds] [rays] [avx2 | sse] [method]
 /// (default: generated, a closed mesh of 1.31M triangles as `rayproof bench` makes; 5 rounds;
 /// 50000 rays per set; the CPU's path; robust, certified and float).
 #include <algorithm>
@@ -44,8 +44,8 @@ int main(int argc, char** argv) {
   const BvhSimd simd = path == "sse" ? BvhSimd::sse4 : path == "avx2" ? BvhSimd::avx2 : BvhSimd::automatic;
 
   Scene s;
-  if (mesh == "generated") {
-    add_mesh(s, bumpy_sphere(1 << 20));
+  if (mesh.rfind("generated", 0) == 0) {  // generated[:N]: at least N triangles (default 2^20: 1.31M)
+    add_mesh(s, bumpy_sphere(mesh.size() > 10 ? std::size_t(std::atoll(mesh.c_str() + 10)) : std::size_t(1) << 20));
   } else {
     s = load_scene(mesh);
   }

@@ -299,13 +299,29 @@ TEST(BvhQuantized, EnvironmentChoice) {
   const char* old = std::getenv("RAYPROOF_BVH_NODES");
   const std::string saved = old ? old : "";
   ::unsetenv("RAYPROOF_BVH_NODES");
+  // Automatic: by the size of the full nodes.
   EXPECT_EQ(bvh_nodes_choice(), BvhNodes::full);
+  EXPECT_EQ(bvh_nodes_choice(BvhNodes::automatic, kCompressedNodesAbove), BvhNodes::full);
+  EXPECT_EQ(bvh_nodes_choice(BvhNodes::automatic, kCompressedNodesAbove + 1), BvhNodes::compressed);
   EXPECT_EQ(bvh_nodes_choice(BvhNodes::compressed), BvhNodes::compressed);
+  EXPECT_EQ(bvh_nodes_choice(BvhNodes::full, std::size_t(1) << 30), BvhNodes::full);
   ::setenv("RAYPROOF_BVH_NODES", "compressed", 1);
   EXPECT_EQ(bvh_nodes_choice(), BvhNodes::compressed);
   EXPECT_EQ(bvh_nodes_choice(BvhNodes::full), BvhNodes::full);  // explicit wins
   ::setenv("RAYPROOF_BVH_NODES", "full", 1);
-  EXPECT_EQ(bvh_nodes_choice(), BvhNodes::full);
+  EXPECT_EQ(bvh_nodes_choice(BvhNodes::automatic, std::size_t(1) << 30), BvhNodes::full);
+  ::setenv("RAYPROOF_BVH_NODES", "auto", 1);
+  EXPECT_EQ(bvh_nodes_choice(BvhNodes::automatic, std::size_t(1) << 30), BvhNodes::compressed);
+  // Accel follows the variable (a small scene: automatic alone would keep full nodes).
+  scene::Scene s;
+  scene::add_mesh(s, scene::bumpy_sphere(500));
+  ::setenv("RAYPROOF_BVH_NODES", "compressed", 1);
+  EXPECT_EQ(scene::Accel(s, {}, BvhSimd::sse4).nodes(), BvhNodes::compressed);
+  EXPECT_EQ(scene::Accel(s, {}, BvhSimd::sse4, BvhNodes::full).nodes(), BvhNodes::full);
+  ::unsetenv("RAYPROOF_BVH_NODES");
+  EXPECT_EQ(scene::Accel(s, {}, BvhSimd::sse4).nodes(), BvhNodes::full);
+  ::setenv("RAYPROOF_BVH_NODES", "Compressed", 1);
+  EXPECT_THROW(scene::Accel(s, {}, BvhSimd::sse4), std::invalid_argument);
   ::setenv("RAYPROOF_BVH_NODES", "quantised", 1);
   try {
     (void)bvh_nodes_choice();

@@ -366,8 +366,15 @@ template <int N>
 }
 
 /// Which nodes a wide tree is built with: full float boxes (BvhWideNode) or quantized ones
-/// (BvhWideQNode); automatic follows RAYPROOF_BVH_NODES, then the default (full).
+/// (BvhWideQNode); automatic follows RAYPROOF_BVH_NODES, then the tree's size (bvh_nodes_choice).
 enum class BvhNodes { automatic, full, compressed };
+
+/// The automatic choice takes compressed nodes when the full ones would take more than this. Measured
+/// (bench/node_bench, AVX2, one thread, robust / certified / float, closest and any): with 1.1-1.3 MB
+/// of full nodes (bunny00, refined_elephant) compressed nodes were 0-10% slower (the decoding costs
+/// more than the cache lines saved); with 5.9 MB (a generated mesh of 328k triangles) and 15.7 MB
+/// (1.31M triangles) 2-14% faster. 4 MiB lies between (twice this machine's 2 MiB L2 per core).
+inline constexpr std::size_t kCompressedNodesAbove = std::size_t(4) << 20;
 
 /// The RAYPROOF_BVH_NODES environment variable: unset, empty or "auto": automatic; "full";
 /// "compressed". Any other value throws std::invalid_argument naming them.
@@ -381,12 +388,13 @@ enum class BvhNodes { automatic, full, compressed };
   throw std::invalid_argument(msg);
 }
 
-/// The node kind for a request: automatic follows RAYPROOF_BVH_NODES, then the default. The
-/// default is full: compressed nodes did not pay on the bench meshes (README, "Speed against
-/// Embree"). Never returns automatic.
-[[nodiscard]] inline BvhNodes bvh_nodes_choice(BvhNodes want = BvhNodes::automatic) {
+/// The node kind for a request and a tree whose full nodes take `full_node_bytes`: automatic
+/// follows RAYPROOF_BVH_NODES, then compressed above kCompressedNodesAbove, else full. Never
+/// returns automatic.
+[[nodiscard]] inline BvhNodes bvh_nodes_choice(BvhNodes want = BvhNodes::automatic, std::size_t full_node_bytes = 0) {
   if (want == BvhNodes::automatic) want = bvh_nodes_from_env();
-  return want == BvhNodes::compressed ? BvhNodes::compressed : BvhNodes::full;
+  if (want == BvhNodes::automatic) return full_node_bytes > kCompressedNodesAbove ? BvhNodes::compressed : BvhNodes::full;
+  return want;
 }
 
 [[nodiscard]] inline const char* to_string(BvhNodes n) {

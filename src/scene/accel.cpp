@@ -309,7 +309,8 @@ Accel::Accel(const MeshRef& m, const BvhBuildOptions& opt, BvhSimd simd, BvhNode
 
 void Accel::build(const std::vector<BvhBox>& boxes, const std::vector<Vec3<float>>& centers, const BvhBuildOptions& opt,
                   BvhNodes nodes) {
-  const BvhNodes want = bvh_nodes_choice(nodes);  // throws on a bad RAYPROOF_BVH_NODES before any work
+  // Throws on a bad RAYPROOF_BVH_NODES before any work; automatic is decided by the tree's size.
+  const BvhNodes asked = nodes == BvhNodes::automatic ? bvh_nodes_from_env() : nodes;
   // Subtrees in parallel on TBB's threads (the arena of the caller).
   Bvh bin = build_bvh(boxes, centers, opt, [](std::size_t n, const auto& f) {
     tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) { f(i); });
@@ -328,7 +329,7 @@ void Accel::build(const std::vector<BvhBox>& boxes, const std::vector<Vec3<float
   // Compressed nodes: a pass after the collapse and the leaf alignment (it copies the final leaf
   // references); the full tree is dropped when every node quantized, else kept (nodes_ full).
   auto compress = [&](auto& full, auto& q) {
-    if (want != BvhNodes::compressed) return;
+    if (bvh_nodes_choice(asked, full.nodes.size() * sizeof(full.nodes[0])) != BvhNodes::compressed) return;
     if (auto c = quantize_wide(full)) q = std::move(*c), full = {}, nodes_ = BvhNodes::compressed;
   };
   if (simd_ == BvhSimd::avx2) {
