@@ -252,11 +252,16 @@ void check_paths(const Scene& s, const std::vector<Ray<double>>& rays, const std
   const Accel flat(with_flat ? s : none, {BvhBuilder::median, 1u << 30}, BvhSimd::sse4);
   ASSERT_EQ(a8.simd(), BvhSimd::avx2);
   ASSERT_EQ(a4.simd(), BvhSimd::sse4);
-  ASSERT_FALSE(a8.bvh8().empty());
+  ASSERT_FALSE(a8.bvh8().empty() && a8.bvh8q().empty());  // full or compressed (RAYPROOF_BVH_NODES)
+  // Compressed nodes (RAYPROOF_BVH_NODES=compressed): the two widths' decoded leaf boxes differ, so
+  // standard traversal (not conservative) may visit different leaves; bvh_quantized_test compares
+  // compressed with full nodes. Here they are compared under conservative traversal only.
+  const bool same_leaf_boxes = a8.nodes() == BvhNodes::full && a4.nodes() == BvhNodes::full;
   for (const std::string& name : names) {
     const SceneMethod m = method(name);
     ASSERT_NE(m.fast, FastKernel::none) << name;
     const bool conservative = m.traversal == BvhTraversal::conservative;
+    if (!conservative && !same_leaf_boxes) continue;
     for (std::size_t i = 0; i < rays.size(); ++i) {
       const QueryRange q = i % 3 == 1 ? QueryRange{0.25, 1.5} : QueryRange{};
       const PrimHit c8 = a8.closest(rays[i], m, q);
@@ -270,7 +275,10 @@ void check_paths(const Scene& s, const std::vector<Ray<double>>& rays, const std
         ASSERT_EQ(all8, flat.all(rays[i], m, q)) << name << " ray " << i;
       }
       auto same_closest = [&](const PrimHit& other, const char* what) {
-        if (conservative || c8 == other) return ::testing::AssertionResult(c8 == other) << what;
+        // (With compressed nodes the same holds under conservative traversal for hostile rays, whose
+        // kernel t may fall short of a box's exact entry: which boxes are that near differs.)
+        if ((conservative && (same_leaf_boxes || closest_is_first)) || c8 == other)
+          return ::testing::AssertionResult(c8 == other) << what;
         // Standard traversal prunes closest hit with float entry distances and a float tmax, which
         // are not widened: a crossing within a few float ulps of the best t so far may be pruned,
         // so which of two such crossings is returned depends on the visit order. Both must be real
