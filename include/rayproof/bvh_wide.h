@@ -8,6 +8,11 @@
 /// children's lo then hi planes (structure of arrays, one SSE / AVX load per plane), then per child its reference: an inner child is a
 /// node index, a leaf child is a range [first, first + count) of prim_ids (count 1..255; count 0
 /// marks an inner child). Unused slots have empty boxes and a clear bit in `valid`.
+/// Compressed nodes (BvhWideQNode, below: 128 bytes for eight children, 80 for four) hold the same
+/// references with 8-bit child planes on a per-node grid; quantize_wide makes them from a full tree,
+/// and the same loop and box tests traverse them (the planes decoded to floats that contain the
+/// full boxes, so every guarantee below carries over). RAYPROOF_BVH_NODES=full|compressed or the
+/// tree's size chooses (bvh_nodes_choice).
 ///
 /// Box tests. The ray is given in double; the traversal runs in float when the ray is within range:
 ///  - standard: the slab test on the float-rounded ray (what a float kernel intersects).

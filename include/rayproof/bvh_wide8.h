@@ -9,6 +9,9 @@
 /// (structure of arrays, one 256-bit load per plane), then `child`, `count` and `valid` with the
 /// meaning they have in Bvh4Node (both are BvhWideNode of bvh_wide.h): an inner child is a node index (count 0), a leaf child a range
 /// [child, child + count) of prim_ids (count 1..255); unused slots have empty boxes and a clear bit.
+/// Compressed eight-wide nodes (Bvh8QNode, 128 bytes, bvh_wide.h) run the same test on planes
+/// decoded by bvh8q_decode (vpmovzxbd, vcvtdq2ps, vmulps, vaddps): floats that contain the full
+/// node's planes (proof at BvhWideQNode), so the guarantee below holds for them unchanged.
 ///
 /// Box tests. The ray is prepared by make_bvh4_ray (bvh_wide.h) and its per-axis floats broadcast
 /// to eight lanes; the test then does in each lane exactly the float operations bvh4_test does in
