@@ -8,6 +8,7 @@
 /// (default: generated, a closed mesh of 1.31M triangles as `rayproof bench` makes; 5 rounds;
 /// 50000 rays per set; the CPU's path; robust, certified and float).
 #include <algorithm>
+#include <chrono>
 #include <ctime>
 #include <cstdio>
 #include <cstdlib>
@@ -60,6 +61,16 @@ int main(int argc, char** argv) {
               s.mesh.triangles.size(), to_string(full.simd()), nodes,
               full.simd() == BvhSimd::avx2 ? sizeof(Bvh8Node) : sizeof(Bvh4Node),
               full.simd() == BvhSimd::avx2 ? sizeof(Bvh8QNode) : sizeof(Bvh4QNode));
+  // The quantization pass alone (one thread), against the whole build of the full accel (TBB threads).
+  double quantize = 1e30;
+  for (int r = 0; r < 3; ++r) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const bool ok = full.simd() == BvhSimd::avx2 ? quantize_wide(full.bvh8()).has_value() : quantize_wide(full.bvh()).has_value();
+    quantize = std::min(quantize, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    sink_value = sink_value + ok;
+  }
+  std::printf("quantize_wide: %.1f ms (one thread; the full accel's build: %.1f ms)\n", 1e3 * quantize,
+              1e3 * full.build_seconds());
 
   // Rays as leaf_bench makes them: from an eye outside the bounds into them, and between two points inside.
   const BvhBox b = s.bounds();
