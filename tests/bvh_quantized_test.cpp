@@ -92,6 +92,19 @@ void check_containment(const Soup& soup, const char* what, ScaleRange& range) {
   ASSERT_TRUE(q.has_value()) << what;
   EXPECT_EQ(violations(full, *q), 0) << what << ", " << N << " wide";
   EXPECT_EQ(q->max_depth, full.max_depth);
+  // In chunks run in any order (Accel runs them on TBB's threads): the same nodes.
+  const auto rev = quantize_wide(full, [](std::size_t n, const auto& f) {
+    for (std::size_t i = n; i-- > 0;) f(i);
+  });
+  ASSERT_TRUE(rev.has_value());
+  ASSERT_EQ(rev->nodes.size(), q->nodes.size());
+  for (std::size_t i = 0; i < q->nodes.size(); ++i) {
+    const auto &a = q->nodes[i], &b = rev->nodes[i];
+    bool same = a.valid == b.valid && std::equal(a.origin, a.origin + 3, b.origin) && std::equal(a.scale, a.scale + 3, b.scale) &&
+                std::equal(&a.qlo[0][0], &a.qlo[0][0] + 6 * N, &b.qlo[0][0]) && std::equal(a.child, a.child + N, b.child) &&
+                std::equal(a.count, a.count + N, b.count);
+    ASSERT_TRUE(same) << what << ": node " << i;
+  }
   const ScaleRange r = scales(*q);
   range.smallest = std::min(range.smallest, r.smallest), range.largest = std::max(range.largest, r.largest);
   // The check can fail: one plane moved inward by one step (each q is the tightest, so the

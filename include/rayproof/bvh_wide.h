@@ -32,10 +32,12 @@
 #include <xmmintrin.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
 #include <cstring>
+#include <functional>
 #include <limits>
 #include <optional>
 #include <span>
@@ -364,13 +366,23 @@ template <int N>
 
 /// The quantized copy of a wide tree (same nodes in the same order, same references, prim_ids
 /// copied), or nothing when a node cannot be quantized (see BvhWideQNode). A separate pass after
-/// collapse_wide (and after any rewrite of the leaf references, which it copies).
-template <int N>
-[[nodiscard]] std::optional<BvhWideQ<N>> quantize_wide(const BvhWide<N>& w) {
+/// collapse_wide (and after any rewrite of the leaf references, which it copies). Nodes are
+/// independent: `parallel_for(n, f)` may run f(0) .. f(n - 1) on several threads (as build_bvh's;
+/// the default runs them in order).
+template <int N, class ParallelFor = void (*)(std::size_t, const std::function<void(std::size_t)>&)>
+[[nodiscard]] std::optional<BvhWideQ<N>> quantize_wide(
+    const BvhWide<N>& w, ParallelFor&& parallel_for = [](std::size_t n, const std::function<void(std::size_t)>& f) {
+      for (std::size_t i = 0; i < n; ++i) f(i);
+    }) {
   BvhWideQ<N> q;
   q.nodes.resize(w.nodes.size());
-  for (std::size_t i = 0; i < w.nodes.size(); ++i)
-    if (!detail::quantize_node(w.nodes[i], q.nodes[i])) return std::nullopt;
+  constexpr std::size_t kChunk = 1024;
+  std::atomic<bool> ok{true};
+  parallel_for((w.nodes.size() + kChunk - 1) / kChunk, [&](std::size_t c) {
+    for (std::size_t i = c * kChunk, end = std::min(w.nodes.size(), i + kChunk); i < end; ++i)
+      if (!detail::quantize_node(w.nodes[i], q.nodes[i])) ok.store(false, std::memory_order_relaxed);
+  });
+  if (!ok.load()) return std::nullopt;
   q.prim_ids = w.prim_ids;
   q.max_depth = w.max_depth;
   return q;
@@ -381,11 +393,12 @@ template <int N>
 enum class BvhNodes { automatic, full, compressed };
 
 /// The automatic choice takes compressed nodes when the full ones would take more than this. Measured
-/// (bench/node_bench, AVX2, one thread, robust / certified / float, closest and any): with 1.1-1.3 MB
-/// of full nodes (bunny00, refined_elephant) compressed nodes were 0-10% slower (the decoding costs
-/// more than the cache lines saved); with 5.9 MB (a generated mesh of 328k triangles) and 15.7 MB
-/// (1.31M triangles) 2-14% faster. 4 MiB lies between (twice this machine's 2 MiB L2 per core).
-inline constexpr std::size_t kCompressedNodesAbove = std::size_t(4) << 20;
+/// (bench/node_bench, AVX2, one thread, robust / certified / float, closest and any, medians of
+/// 7-9 interleaved rounds): with 1.1-1.3 MB of full nodes (bunny00, refined_elephant) compressed
+/// nodes were 0-5% slower (decoding costs more than the lines saved); with 5.9 MB (a generated mesh
+/// of 328k triangles) mixed, 0.92-1.05 of the time over two runs; with 15.7 MB (1.31M triangles)
+/// faster in each of three runs (robust 0.88-0.99). 8 MiB lies between the last two.
+inline constexpr std::size_t kCompressedNodesAbove = std::size_t(8) << 20;
 
 /// The RAYPROOF_BVH_NODES environment variable: unset, empty or "auto": automatic; "full";
 /// "compressed". Any other value throws std::invalid_argument naming them.

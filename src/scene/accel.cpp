@@ -330,7 +330,10 @@ void Accel::build(const std::vector<BvhBox>& boxes, const std::vector<Vec3<float
   // references); the full tree is dropped when every node quantized, else kept (nodes_ full).
   auto compress = [&](auto& full, auto& q) {
     if (bvh_nodes_choice(asked, full.nodes.size() * sizeof(full.nodes[0])) != BvhNodes::compressed) return;
-    if (auto c = quantize_wide(full)) q = std::move(*c), full = {}, nodes_ = BvhNodes::compressed;
+    auto c = quantize_wide(full, [](std::size_t n, const auto& f) {
+      tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) { f(i); });
+    });
+    if (c) q = std::move(*c), full = {}, nodes_ = BvhNodes::compressed;
   };
   if (simd_ == BvhSimd::avx2) {
     bvh8_ = collapse_bvh8(std::move(bin), boxes);

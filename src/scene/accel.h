@@ -101,7 +101,7 @@ class Accel {
   /// `simd` picks the wide tree (bvh_simd_path: automatic follows RAYPROOF_SIMD, then the CPU):
   /// eight-wide nodes with the AVX2 box test, or four-wide with SSE. `nodes` picks full float
   /// boxes or quantized ones (bvh_nodes_choice: automatic follows RAYPROOF_BVH_NODES, then the
-  /// tree's size: compressed when the full nodes would exceed kCompressedNodesAbove, 4 MiB);
+  /// tree's size: compressed when the full nodes would exceed kCompressedNodesAbove, 8 MiB);
   /// a tree that cannot be quantized (non-finite bounds) keeps full nodes (see nodes()).
   Accel(const Scene& s, const BvhBuildOptions& opt = {}, BvhSimd simd = BvhSimd::automatic,
         BvhNodes nodes = BvhNodes::automatic);
