@@ -19,10 +19,11 @@
 #include "rayproof/triangle.h"
 #include "scene/accel.h"
 #include "bvh_support.h"
+#include "hostile_rays.h"
 #include "scene/watertight.h"
 
 using namespace rayproof;
-using test::Answers, test::answers, test::brute, test::hits, test::Soup;
+using test::Answers, test::answers, test::brute, test::hits, test::hostile_rays, test::Soup;
 
 namespace {
 /// The soups here have every fifth triangle flat (parallel to z = 0).
@@ -251,11 +252,16 @@ void check_paths(const Scene& s, const std::vector<Ray<double>>& rays, const std
   const Accel flat(with_flat ? s : none, {BvhBuilder::median, 1u << 30}, BvhSimd::sse4);
   ASSERT_EQ(a8.simd(), BvhSimd::avx2);
   ASSERT_EQ(a4.simd(), BvhSimd::sse4);
-  ASSERT_FALSE(a8.bvh8().empty());
+  ASSERT_FALSE(a8.bvh8().empty() && a8.bvh8q().empty());  // full or compressed (RAYPROOF_BVH_NODES)
+  // Compressed nodes (RAYPROOF_BVH_NODES=compressed): the two widths' decoded leaf boxes differ, so
+  // standard traversal (not conservative) may visit different leaves; bvh_quantized_test compares
+  // compressed with full nodes. Here they are compared under conservative traversal only.
+  const bool same_leaf_boxes = a8.nodes() == BvhNodes::full && a4.nodes() == BvhNodes::full;
   for (const std::string& name : names) {
     const SceneMethod m = method(name);
     ASSERT_NE(m.fast, FastKernel::none) << name;
     const bool conservative = m.traversal == BvhTraversal::conservative;
+    if (!conservative && !same_leaf_boxes) continue;
     for (std::size_t i = 0; i < rays.size(); ++i) {
       const QueryRange q = i % 3 == 1 ? QueryRange{0.25, 1.5} : QueryRange{};
       const PrimHit c8 = a8.closest(rays[i], m, q);
@@ -269,7 +275,10 @@ void check_paths(const Scene& s, const std::vector<Ray<double>>& rays, const std
         ASSERT_EQ(all8, flat.all(rays[i], m, q)) << name << " ray " << i;
       }
       auto same_closest = [&](const PrimHit& other, const char* what) {
-        if (conservative || c8 == other) return ::testing::AssertionResult(c8 == other) << what;
+        // (With compressed nodes the same holds under conservative traversal for hostile rays, whose
+        // kernel t may fall short of a box's exact entry: which boxes are that near differs.)
+        if ((conservative && (same_leaf_boxes || closest_is_first)) || c8 == other)
+          return ::testing::AssertionResult(c8 == other) << what;
         // Standard traversal prunes closest hit with float entry distances and a float tmax, which
         // are not widened: a crossing within a few float ulps of the best t so far may be pruned,
         // so which of two such crossings is returned depends on the visit order. Both must be real
@@ -307,31 +316,6 @@ void check_paths(const Scene& s, const std::vector<Ray<double>>& rays, const std
   a8.any_batch(rays, y8, m, 2);
   a4.any_batch(rays, y4, m, 1);
   ASSERT_EQ(y8, y4);
-}
-
-/// Hostile rays near the mesh: axis-parallel with +-0 components, origins on vertices' coordinate
-/// planes (the slab planes of leaf boxes), huge and tiny scalings (the double path), NaN and zero d.
-std::vector<Ray<double>> hostile_rays(const mesh::Mesh& m, unsigned seed, int n) {
-  std::mt19937 rng(seed);
-  std::uniform_real_distribution<double> u(-1.5, 1.5);
-  std::vector<Ray<double>> out;
-  const double nan = std::numeric_limits<double>::quiet_NaN();
-  for (int i = 0; i < n; ++i) {
-    const Vec3<double>& v = m.vertices[rng() % m.vertices.size()];
-    Ray<double> r{{u(rng), u(rng), u(rng)}, {u(rng), u(rng), u(rng)}};
-    switch (i % 8) {
-      case 0: r.o = {v.x, v.y, -3.0}, r.d = {i % 16 ? 0.0 : -0.0, -0.0, 1.0}; break;  // through a vertex, axis-parallel
-      case 1: r.o = {v.x, u(rng), u(rng)}, r.d = {0.0, r.d.y, r.d.z}; break;          // in a vertex's x plane
-      case 2: r.o = v * 0x1p70, r.d = (v - r.o) * 0x1p-3; break;                        // huge origin: double path
-      case 3: r.d = r.d * 0x1p-70; break;                                               // tiny d: double path
-      case 4: r.d = (v - r.o) * 0x1p70; break;                                          // huge d, aimed at a vertex
-      case 5: r.d = {nan, 1, 0}; break;                                                 // invalid
-      case 6: r.d = {0, 0, 0}; break;                                                   // invalid
-      default: r.d = v - r.o; break;                                                    // at a vertex
-    }
-    out.push_back(r);
-  }
-  return out;
 }
 
 const std::vector<std::string> kAll = {"float", "double", "cramer-float", "cramer-double", "watertight-float",

@@ -428,6 +428,8 @@ void expect_aligned(const Accel& a) {
   };
   visit(a.bvh().nodes);
   visit(a.bvh8().nodes);
+  visit(a.bvh4q().nodes);  // compressed nodes (RAYPROOF_BVH_NODES=compressed)
+  visit(a.bvh8q().nodes);
   std::set<std::uint32_t> ids;
   for (std::size_t j = 0; j < prims.size(); ++j) {
     const std::uint32_t tag = groups[j / kLanes].tag[j % kLanes];

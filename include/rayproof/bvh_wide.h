@@ -8,6 +8,11 @@
 /// children's lo then hi planes (structure of arrays, one SSE / AVX load per plane), then per child its reference: an inner child is a
 /// node index, a leaf child is a range [first, first + count) of prim_ids (count 1..255; count 0
 /// marks an inner child). Unused slots have empty boxes and a clear bit in `valid`.
+/// Compressed nodes (BvhWideQNode, below: 128 bytes for eight children, 80 for four) hold the same
+/// references with 8-bit child planes on a per-node grid; quantize_wide makes them from a full tree,
+/// and the same loop and box tests traverse them (the planes decoded to floats that contain the
+/// full boxes, so every guarantee below carries over). RAYPROOF_BVH_NODES=full|compressed or the
+/// tree's size chooses (bvh_nodes_choice).
 ///
 /// Box tests. The ray is given in double; the traversal runs in float when the ray is within range:
 ///  - standard: the slab test on the float-rounded ray (what a float kernel intersects).
@@ -27,11 +32,17 @@
 #include <xmmintrin.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdint>
+#include <cstdlib>
+#include <cstring>
+#include <functional>
 #include <limits>
+#include <optional>
 #include <span>
 #include <stdexcept>
+#include <string>
 #include <vector>
 
 #include "rayproof/bvh.h"
@@ -44,6 +55,7 @@ template <int N>
 struct alignas(64) BvhWideNode {
   static_assert(N == 4 || N == 8, "the box tests exist for four (SSE) and eight (AVX2) lanes");
   static constexpr int kWidth = N;
+  static constexpr bool kPrefetch = true;  ///< closest hit prefetches the hit inner children (wide_push)
   float lo[3][N];  ///< lo[axis][child]
   float hi[3][N];  ///< hi[axis][child]
   std::uint32_t child[N] = {};  ///< inner: node index; leaf: first prim_ids entry
@@ -226,6 +238,198 @@ template <int N>
   return collapse_wide<8>(std::move(bin), prim_boxes, merge_leaf);
 }
 
+/// A quantized (compressed) wide node: the children's float boxes stored as 8-bit offsets from a
+/// per-node float origin in steps of a per-axis power of two (Ylitie, Karras, Laine, "Efficient
+/// incoherent ray traversal on GPUs through compressed wide BVHs", HPG 2017, without the
+/// float-exact reconstruction they drop). 128 bytes for eight children (two cache lines instead of
+/// four), 80 for four. Child references, counts and `valid` mean what they mean in BvhWideNode.
+///
+/// Decoding (traversal and build alike): plane(q) = float(q) * scale[k] + origin[k], in float.
+///  - float(q) is exact (q <= 255); scale[k] = 2^e with -126 <= e <= 119, so q * scale is exact
+///    too (at most 8 significant bits; 255 * 2^119 < 2^127; a nonzero product is >= 2^-126,
+///    normal). Only the sum rounds, once, to nearest. So decode() is one well-defined float per q
+///    (an FMA contraction of the two would give the same float: the product is exact), and it is
+///    monotonic in q (exact products increase with q; rounding to nearest is monotonic).
+///  - Build (quantize_wide): origin[k] = the smallest lo[k] over the valid children; scale[k] =
+///    the smallest power of two in range whose decode(255) >= the largest hi[k] (found by doubling
+///    and checking the decoded float itself). Each child's lo is the largest q with decode(q) <= lo
+///    (decode(0) = origin <= lo, so one exists), its hi the smallest q with decode(q) >= hi
+///    (decode(255) >= hi, so one exists): both are found by stepping from an estimate while
+///    checking the decoded float, so no estimate error or rounding can turn them inward.
+///  - Hence every decoded child box contains the child's float box, which contains its primitives.
+///    The box tests (bvh4_slab_test, bvh8_slab_test) then run unchanged on the decoded planes; their
+///    guarantee (every box the exact double segment touches passes; bvh_wide8.h's header comment)
+///    holds for any float box, so it holds for the decoded one, and a larger box only passes more.
+///  - Assumes the default floating-point environment (round to nearest, no flush-to-zero or
+///    denormals-are-zero), as the float box tests themselves do.
+///  - Empty slots (and valid children with empty boxes, which no ray can pass) have their `valid`
+///    bit clear: the tests mask every lane with `valid`, so they never pass.
+///  - A node whose boxes have a non-finite plane, or whose extent does not fit 255 * 2^119 from its
+///    origin, cannot be quantized: quantize_wide then returns nothing and the caller keeps the full
+///    nodes (the traversal is per tree, not per node).
+template <int N>
+struct alignas(N == 8 ? 64 : 16) BvhWideQNode {
+  static_assert(N == 4 || N == 8, "the box tests exist for four (SSE) and eight (AVX2) lanes");
+  static constexpr int kWidth = N;
+  /// No prefetch in wide_push: for two-line nodes it cost more than it saved. Measured with the
+  /// loop compiled with and without it side by side (raw closest hit, AVX2, generated meshes of
+  /// 82k (twice), 328k and 1.31M triangles): 0.955-0.993 of the time with it (medians of 7-9
+  /// rounds); full nodes 0.942-1.023, mixed, so they keep it.
+  static constexpr bool kPrefetch = false;
+  float origin[3] = {};
+  float scale[3] = {};
+  std::uint8_t qlo[3][N] = {};  ///< qlo[axis][child]; same plane offsets as BvhWideNode::lo
+  std::uint8_t qhi[3][N] = {};  ///< qhi[axis][child] (qlo, qhi contiguous: one array of 6 N)
+  std::uint32_t child[N] = {};  ///< inner: node index; leaf: first prim_ids entry
+  std::uint8_t count[N] = {};   ///< 0: inner child; else primitives in the leaf
+  std::uint8_t valid = 0;       ///< bit i: slot i is used (and its box is not empty)
+
+  /// The float plane q stands for on axis k (see above: exact product, one rounded sum).
+  [[nodiscard]] static float decode(std::uint8_t q, float scale, float origin) {
+    const float step = static_cast<float>(q) * scale;  // exact
+    return step + origin;
+  }
+  /// Child i's decoded box (what the box tests use).
+  [[nodiscard]] BvhBox box(int i) const {
+    BvhBox b;
+    for (int k = 0; k < 3; ++k) b.lo[k] = decode(qlo[k][i], scale[k], origin[k]), b.hi[k] = decode(qhi[k][i], scale[k], origin[k]);
+    return b;
+  }
+};
+using Bvh4QNode = BvhWideQNode<4>;
+using Bvh8QNode = BvhWideQNode<8>;
+static_assert(sizeof(Bvh4QNode) == 80);
+static_assert(sizeof(Bvh8QNode) == 128);
+
+/// A wide tree of quantized nodes (same shape, references and prim_ids as the BvhWide it came from).
+template <int N>
+struct BvhWideQ {
+  using Node = BvhWideQNode<N>;
+  static constexpr int kWidth = N;
+  static constexpr std::uint32_t kMaxLeaf = 255;
+  std::vector<Node, AlignedAllocator<Node, 64>> nodes;
+  std::vector<std::uint32_t> prim_ids;
+  int max_depth = 0;
+
+  [[nodiscard]] bool empty() const { return nodes.empty(); }
+  [[nodiscard]] std::size_t bytes() const { return nodes.size() * sizeof(Node) + prim_ids.size() * sizeof(std::uint32_t); }
+};
+using Bvh4Q = BvhWideQ<4>;
+using Bvh8Q = BvhWideQ<8>;
+
+namespace detail {
+
+/// One full node quantized (see BvhWideQNode); false when it cannot be (non-finite planes, or an
+/// extent beyond 255 * 2^119).
+template <int N>
+[[nodiscard]] bool quantize_node(const BvhWideNode<N>& in, BvhWideQNode<N>& out) {
+  out = BvhWideQNode<N>{};
+  for (int i = 0; i < N; ++i) out.child[i] = in.child[i], out.count[i] = in.count[i];
+  int live = 0;
+  for (int i = 0; i < N; ++i)
+    if ((in.valid >> i & 1) && !in.box(i).empty()) live |= 1 << i;
+  out.valid = static_cast<std::uint8_t>(live);
+  for (int k = 0; k < 3; ++k) {
+    float lo = std::numeric_limits<float>::infinity(), hi = -std::numeric_limits<float>::infinity();
+    for (int i = 0; i < N; ++i)
+      if (live >> i & 1) lo = std::min(lo, in.lo[k][i]), hi = std::max(hi, in.hi[k][i]);
+    for (int i = 0; i < N; ++i) out.qlo[k][i] = 255, out.qhi[k][i] = 0;  // empty slots: inverted (valid clear anyway)
+    if (!live) continue;
+    if (!std::isfinite(lo) || !std::isfinite(hi)) return false;
+    // The smallest power of two (from an estimate, then checked on the decoded float) whose
+    // decode(255) reaches hi.
+    const double extent = double(hi) - double(lo);
+    int e = extent > 0 ? std::ilogb(extent / 255.0) : -126;
+    e = std::clamp(e, -126, 119);
+    while (e > -126 && BvhWideQNode<N>::decode(255, std::ldexp(1.0f, e - 1), lo) >= hi) --e;
+    while (e < 119 && BvhWideQNode<N>::decode(255, std::ldexp(1.0f, e), lo) < hi) ++e;
+    const float scale = std::ldexp(1.0f, e);
+    if (!(BvhWideQNode<N>::decode(255, scale, lo) >= hi)) return false;
+    out.origin[k] = lo, out.scale[k] = scale;
+    auto dec = [&](int q) { return BvhWideQNode<N>::decode(static_cast<std::uint8_t>(q), scale, lo); };
+    for (int i = 0; i < N; ++i) {
+      if (!(live >> i & 1)) continue;
+      const float l = in.lo[k][i], h = in.hi[k][i];
+      int ql = std::clamp(static_cast<int>(std::floor((double(l) - double(lo)) / double(scale))), 0, 255);
+      while (ql > 0 && dec(ql) > l) --ql;         // decode(0) = origin <= l
+      while (ql < 255 && dec(ql + 1) <= l) ++ql;  // the largest q still <= l (tightest)
+      int qh = std::clamp(static_cast<int>(std::ceil((double(h) - double(lo)) / double(scale))), ql, 255);
+      while (qh < 255 && dec(qh) < h) ++qh;       // decode(255) >= h
+      while (qh > ql && dec(qh - 1) >= h) --qh;   // the smallest q still >= h (tightest)
+      out.qlo[k][i] = static_cast<std::uint8_t>(ql), out.qhi[k][i] = static_cast<std::uint8_t>(qh);
+    }
+  }
+  return true;
+}
+
+}  // namespace detail
+
+/// The quantized copy of a wide tree (same nodes in the same order, same references, prim_ids
+/// copied), or nothing when a node cannot be quantized (see BvhWideQNode). A separate pass after
+/// collapse_wide (and after any rewrite of the leaf references, which it copies). Nodes are
+/// independent: `parallel_for(n, f)` may run f(0) .. f(n - 1) on several threads (as build_bvh's;
+/// the default runs them in order).
+template <int N, class ParallelFor = void (*)(std::size_t, const std::function<void(std::size_t)>&)>
+[[nodiscard]] std::optional<BvhWideQ<N>> quantize_wide(
+    const BvhWide<N>& w, ParallelFor&& parallel_for = [](std::size_t n, const std::function<void(std::size_t)>& f) {
+      for (std::size_t i = 0; i < n; ++i) f(i);
+    }) {
+  BvhWideQ<N> q;
+  q.nodes.resize(w.nodes.size());
+  constexpr std::size_t kChunk = 1024;
+  std::atomic<bool> ok{true};
+  parallel_for((w.nodes.size() + kChunk - 1) / kChunk, [&](std::size_t c) {
+    for (std::size_t i = c * kChunk, end = std::min(w.nodes.size(), i + kChunk); i < end; ++i)
+      if (!detail::quantize_node(w.nodes[i], q.nodes[i])) ok.store(false, std::memory_order_relaxed);
+  });
+  if (!ok.load()) return std::nullopt;
+  q.prim_ids = w.prim_ids;
+  q.max_depth = w.max_depth;
+  return q;
+}
+
+/// Which nodes a wide tree is built with: full float boxes (BvhWideNode) or quantized ones
+/// (BvhWideQNode); automatic follows RAYPROOF_BVH_NODES, then the tree's size (bvh_nodes_choice).
+enum class BvhNodes { automatic, full, compressed };
+
+/// The automatic choice takes compressed nodes when the full ones would take more than this. Measured
+/// (bench/node_bench, AVX2, one thread, robust / certified / float, closest and any, medians of
+/// 7-9 interleaved rounds): with 1.1-1.3 MB of full nodes (bunny00, refined_elephant) compressed
+/// nodes were 0-5% slower (decoding costs more than the lines saved); with 5.9 MB (a generated mesh
+/// of 328k triangles) mixed, 0.92-1.05 of the time over two runs; with 15.7 MB (1.31M triangles)
+/// faster in each of three runs (robust 0.88-0.99). 8 MiB lies between the last two.
+inline constexpr std::size_t kCompressedNodesAbove = std::size_t(8) << 20;
+
+/// The RAYPROOF_BVH_NODES environment variable: unset, empty or "auto": automatic; "full";
+/// "compressed". Any other value throws std::invalid_argument naming them.
+[[nodiscard]] inline BvhNodes bvh_nodes_from_env() {
+  const char* e = std::getenv("RAYPROOF_BVH_NODES");
+  if (!e || !*e || std::strcmp(e, "auto") == 0) return BvhNodes::automatic;
+  if (std::strcmp(e, "full") == 0) return BvhNodes::full;
+  if (std::strcmp(e, "compressed") == 0) return BvhNodes::compressed;
+  std::string msg = "RAYPROOF_BVH_NODES='";
+  msg.append(e).append("': expected auto, full or compressed");
+  throw std::invalid_argument(msg);
+}
+
+/// The node kind for a request and a tree whose full nodes take `full_node_bytes`: automatic
+/// follows RAYPROOF_BVH_NODES, then compressed above kCompressedNodesAbove, else full. Never
+/// returns automatic.
+[[nodiscard]] inline BvhNodes bvh_nodes_choice(BvhNodes want = BvhNodes::automatic, std::size_t full_node_bytes = 0) {
+  if (want == BvhNodes::automatic) want = bvh_nodes_from_env();
+  if (want == BvhNodes::automatic) return full_node_bytes > kCompressedNodesAbove ? BvhNodes::compressed : BvhNodes::full;
+  return want;
+}
+
+[[nodiscard]] inline const char* to_string(BvhNodes n) {
+  switch (n) {
+    case BvhNodes::automatic: return "auto";
+    case BvhNodes::full: return "full";
+    case BvhNodes::compressed: return "compressed";
+  }
+  return "?";
+}
+
 namespace detail {
 
 /// A ray prepared for the SSE box test of four children.
@@ -292,15 +496,18 @@ inline float round_up_f(double x) { return bvh_float_up(x); }
 /// widening w(x) = x * (x < 0 ? 1 + 8u : 1 - 8u) - 2^-120 (and its mirror for far) is monotonic
 /// in float (rounded products by a positive constant and a rounded subtraction of a constant are
 /// monotonic), so w(max_k near_k) = max_k w(near_k): the same result as widening every axis.
-template <bool Conservative>
-inline int bvh4_test(const Bvh4Node& n, const Bvh4RayF& r, __m128 tmin, __m128 tmax, __m128& t_enter) {
-  const float* f = &n.lo[0][0];
+/// `plane(off, k)` gives the four children's planes at float offset `off` (near_off / far_off) of
+/// axis k: loaded from a full node, decoded from a quantized one (BvhWideQNode); the math after it
+/// is the same for both.
+template <bool Conservative, class Planes>
+[[gnu::always_inline]] inline int bvh4_slab_test(const Planes& plane, int valid, const Bvh4RayF& r, __m128 tmin, __m128 tmax,
+                                                 __m128& t_enter) {
   const __m128 ninf = _mm_set1_ps(-std::numeric_limits<float>::infinity());
   const __m128 pinf = _mm_set1_ps(std::numeric_limits<float>::infinity());
   __m128 t0 = Conservative ? ninf : tmin, t1 = Conservative ? pinf : tmax;
   for (int k = 0; k < 3; ++k) {
-    const __m128 near = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(f + r.near_off[k]), r.o_near[k]), r.inv[k]);
-    const __m128 far = _mm_mul_ps(_mm_sub_ps(_mm_load_ps(f + r.far_off[k]), r.o_far[k]), r.inv[k]);
+    const __m128 near = _mm_mul_ps(_mm_sub_ps(plane(r.near_off[k], k), r.o_near[k]), r.inv[k]);
+    const __m128 far = _mm_mul_ps(_mm_sub_ps(plane(r.far_off[k], k), r.o_far[k]), r.inv[k]);
     t0 = _mm_max_ps(near, t0);  // NaN near: t0 (the axis bounds nothing)
     t1 = _mm_min_ps(far, t1);   // NaN far: t1
   }
@@ -317,12 +524,30 @@ inline int bvh4_test(const Bvh4Node& n, const Bvh4RayF& r, __m128 tmin, __m128 t
     t1 = _mm_min_ps(t1, tmax);
   }
   t_enter = t0;
-  return _mm_movemask_ps(_mm_cmple_ps(t0, t1)) & n.valid;
+  return _mm_movemask_ps(_mm_cmple_ps(t0, t1)) & valid;
 }
 
-/// The scalar double test of the N children of `n` (rays out of the float path's range).
-template <bool Conservative, int N>
-inline int wide_test_double(const BvhWideNode<N>& n, const BvhRay<double>& r, double tmin, double tmax, double t_enter[N]) {
+template <bool Conservative>
+[[gnu::always_inline]] inline int bvh4_test(const Bvh4Node& n, const Bvh4RayF& r, __m128 tmin, __m128 tmax, __m128& t_enter) {
+  const float* f = &n.lo[0][0];
+  return bvh4_slab_test<Conservative>([f](int off, int) { return _mm_load_ps(f + off); }, n.valid, r, tmin, tmax, t_enter);
+}
+
+/// Four quantized planes at byte offset `off` of `q` decoded to floats: each q * scale + origin
+/// (u8 -> i32 -> float, exact; product, exact; one rounded sum: BvhWideQNode's decode()).
+[[gnu::always_inline]] inline __m128 bvh4q_decode(const std::uint8_t* q, __m128 scale, __m128 origin) {
+  std::int32_t four;
+  std::memcpy(&four, q, 4);
+  const __m128i zero = _mm_setzero_si128();
+  const __m128i i32 = _mm_unpacklo_epi16(_mm_unpacklo_epi8(_mm_cvtsi32_si128(four), zero), zero);
+  return _mm_add_ps(_mm_mul_ps(_mm_cvtepi32_ps(i32), scale), origin);
+}
+
+/// The scalar double test of the N children of `n` (rays out of the float path's range), on the
+/// node's float boxes (decoded ones for a quantized node).
+template <bool Conservative, class Node>
+inline int wide_test_double(const Node& n, const BvhRay<double>& r, double tmin, double tmax, double* t_enter) {
+  constexpr int N = Node::kWidth;
   int mask = 0;
   for (int i = 0; i < N; ++i) {
     if (!(n.valid >> i & 1)) continue;
@@ -340,12 +565,14 @@ struct WideEntry {
 };
 
 /// Pushes the hit children of `n` (mask, two or more bits) on the stack: for closest hit (Sort)
-/// farthest first, so the nearest is on top, and prefetching inner children's nodes; else in slot
+/// farthest first, so the nearest is on top, and prefetching inner children's nodes (when
+/// Node::kPrefetch); else in slot
 /// order. On equal entry t the four-wide sort puts the later slot on top; the eight-wide pair case
 /// (one comparison) puts the earlier one on top, as each did before they shared this code.
-template <bool Sort, int N, class T>
-[[gnu::always_inline]] inline void wide_push(const BvhWideNode<N>& n, const BvhWideNode<N>* nodes, int mask, const T* t,
-                                             WideEntry<T>* stack, int& top) {
+template <bool Sort, class Node, class T>
+[[gnu::always_inline]] inline void wide_push(const Node& n, const Node* nodes, int mask, const T* t, WideEntry<T>* stack,
+                                             int& top) {
+  constexpr int N = Node::kWidth;
   if constexpr (!Sort) {
     for (; mask; mask &= mask - 1) {
       const int i = __builtin_ctz(static_cast<unsigned>(mask));
@@ -354,9 +581,11 @@ template <bool Sort, int N, class T>
     return;
   }
   auto prefetch = [&](const WideEntry<T>& x) {
-    if (x.count) return;
+    if (!Node::kPrefetch || x.count) return;
     const char* p = reinterpret_cast<const char*>(nodes + x.ref);
-    for (std::size_t line = 0; line < sizeof(BvhWideNode<N>); line += 64) _mm_prefetch(p + line, _MM_HINT_T0);
+    // Every line the node touches (an 80-byte node aligned to 16 may start late in a line).
+    for (std::size_t line = 0; line < sizeof(Node) + (alignof(Node) < 64 ? 64 - alignof(Node) : 0); line += 64)
+      _mm_prefetch(p + line, _MM_HINT_T0);
   };
   if constexpr (N == 8) {
     if (__builtin_popcount(static_cast<unsigned>(mask)) == 2) {  // the common case: one comparison
@@ -389,21 +618,21 @@ template <bool Sort, int N, class T>
 #include "rayproof/bvh_wide_loop.h"
 #undef RAYPROOF_WIDE_TRAVERSE_LOOP
 
-template <bool Conservative, int N>
+template <bool Conservative, class Node>
 struct WideBoxTestDouble {
   BvhRay<double> ray;
   double tmin;
-  [[gnu::always_inline]] int operator()(const BvhWideNode<N>& n, double tmax, double* t) const {
+  [[gnu::always_inline]] int operator()(const Node& n, double tmax, double* t) const {
     return wide_test_double<Conservative>(n, ray, tmin, tmax, t);
   }
 };
 
-/// The loop with the double box test: rays out of the float path's range, either width.
-template <int N, bool Conservative, BvhQuery Query, class Leaf>
-void wide_traverse_double(const BvhWide<N>& bvh, const Ray<double>& ray, double tmin, const double& tmax, Leaf& leaf) {
-  const WideBoxTestDouble<Conservative, N> test{
+/// The loop with the double box test: rays out of the float path's range, either width and node kind.
+template <class Tree, bool Conservative, BvhQuery Query, class Leaf>
+void wide_traverse_double(const Tree& bvh, const Ray<double>& ray, double tmin, const double& tmax, Leaf& leaf) {
+  const WideBoxTestDouble<Conservative, typename Tree::Node> test{
       BvhRay<double>(ray, Conservative ? BvhTraversal::conservative : BvhTraversal::standard), tmin};
-  wide_traverse_loop<N, double, Query>(bvh, test, [&] { return tmax; }, leaf);
+  wide_traverse_loop<Tree, double, Query>(bvh, test, [&] { return tmax; }, leaf);
 }
 
 /// tmax in float for the float box tests: rounded up when conservative.
@@ -424,27 +653,53 @@ struct Bvh4BoxTest {
   }
 };
 
-/// The traversal of one width: run<Conservative, Query>(bvh, ray, tmin, tmax, leaf). The SSE one
-/// here, the AVX2 one in bvh_wide8.h.
-template <int N>
+template <bool Conservative>
+struct Bvh4QBoxTest {
+  Bvh4RayF ray;
+  __m128 tmin;
+  [[gnu::always_inline]] int operator()(const BvhWideQNode<4>& n, float tmax, float* t) const {
+    const std::uint8_t* q = &n.qlo[0][0];
+    auto plane = [&](int off, int k) { return bvh4q_decode(q + off, _mm_set1_ps(n.scale[k]), _mm_set1_ps(n.origin[k])); };
+    __m128 te;
+    const int mask = bvh4_slab_test<Conservative>(plane, n.valid, ray, tmin, _mm_set1_ps(tmax), te);
+    _mm_store_ps(t, te);
+    return mask;
+  }
+};
+
+/// The traversal of one tree type: run<Conservative, Query>(bvh, ray, tmin, tmax, leaf). The SSE
+/// ones (four-wide, full and quantized) here, the AVX2 ones in bvh_wide8.h.
+template <class Tree>
 struct WideTraversal;
 
 template <>
-struct WideTraversal<4> {
+struct WideTraversal<Bvh4> {
   template <bool Conservative, BvhQuery Query, class Leaf>
   static void run(const Bvh4& bvh, const Ray<double>& ray, double tmin, const double& tmax, Leaf& leaf) {
     Bvh4RayF rf;
     if (!make_bvh4_ray(ray, Conservative, tmin, rf))  // out of range: the double box test
-      return wide_traverse_double<4, Conservative, Query>(bvh, ray, tmin, tmax, leaf);
+      return wide_traverse_double<Bvh4, Conservative, Query>(bvh, ray, tmin, tmax, leaf);
     const Bvh4BoxTest<Conservative> test{rf, _mm_set1_ps(rf.tmin)};
-    wide_traverse_loop<4, float, Query>(bvh, test, [&] { return wide_tmax_float<Conservative>(tmax); }, leaf);
+    wide_traverse_loop<Bvh4, float, Query>(bvh, test, [&] { return wide_tmax_float<Conservative>(tmax); }, leaf);
   }
 };
 
-template <int N, bool Conservative, class Leaf>
-void wide_traverse_query(const BvhWide<N>& bvh, const Ray<double>& ray, double tmin, const double& tmax, BvhQuery query,
+template <>
+struct WideTraversal<Bvh4Q> {
+  template <bool Conservative, BvhQuery Query, class Leaf>
+  static void run(const Bvh4Q& bvh, const Ray<double>& ray, double tmin, const double& tmax, Leaf& leaf) {
+    Bvh4RayF rf;
+    if (!make_bvh4_ray(ray, Conservative, tmin, rf))
+      return wide_traverse_double<Bvh4Q, Conservative, Query>(bvh, ray, tmin, tmax, leaf);
+    const Bvh4QBoxTest<Conservative> test{rf, _mm_set1_ps(rf.tmin)};
+    wide_traverse_loop<Bvh4Q, float, Query>(bvh, test, [&] { return wide_tmax_float<Conservative>(tmax); }, leaf);
+  }
+};
+
+template <class Tree, bool Conservative, class Leaf>
+void wide_traverse_query(const Tree& bvh, const Ray<double>& ray, double tmin, const double& tmax, BvhQuery query,
                          Leaf& leaf) {
-  using Run = WideTraversal<N>;
+  using Run = WideTraversal<Tree>;
   switch (query) {
     case BvhQuery::closest: return Run::template run<Conservative, BvhQuery::closest>(bvh, ray, tmin, tmax, leaf);
     case BvhQuery::any: return Run::template run<Conservative, BvhQuery::any>(bvh, ray, tmin, tmax, leaf);
@@ -454,24 +709,26 @@ void wide_traverse_query(const BvhWide<N>& bvh, const Ray<double>& ray, double t
 
 }  // namespace detail
 
-/// The traversal with whole leaves, either width: `leaf_range(first, count)` gets the leaf-order
-/// slots [first, first + count) of one leaf and returns true to stop (honoured for any hit); for
-/// closest hit it lowers `tmax` to the best t so far. Any hit stops at the first leaf that returns
-/// true and does not sort children (slot order); closest hit visits them nearest first. The
-/// eight-wide tree needs bvh_wide8.h and AVX2: call it only when cpu_has_avx2().
-template <int N, class LeafRange>
-void wide_traverse_leaves(const BvhWide<N>& bvh, const Ray<double>& ray, double tmin, const double& tmax, BvhTraversal mode,
+/// The traversal with whole leaves, either width and node kind (Bvh4, Bvh8, Bvh4Q, Bvh8Q):
+/// `leaf_range(first, count)` gets the leaf-order slots [first, first + count) of one leaf and
+/// returns true to stop (honoured for any hit); for closest hit it lowers `tmax` to the best t so
+/// far. Any hit stops at the first leaf that returns true and does not sort children (slot order);
+/// closest hit visits them nearest first. The eight-wide trees need bvh_wide8.h and AVX2: call it
+/// only when cpu_has_avx2().
+template <class Tree, class LeafRange>
+  requires(Tree::kWidth == 4 || Tree::kWidth == 8)
+void wide_traverse_leaves(const Tree& bvh, const Ray<double>& ray, double tmin, const double& tmax, BvhTraversal mode,
                           BvhQuery query, LeafRange&& leaf_range) {
   if (bvh.empty()) return;
   // The float box test, or the double one for rays out of its range (decided per ray inside).
-  if (mode == BvhTraversal::conservative) return detail::wide_traverse_query<N, true>(bvh, ray, tmin, tmax, query, leaf_range);
-  return detail::wide_traverse_query<N, false>(bvh, ray, tmin, tmax, query, leaf_range);
+  if (mode == BvhTraversal::conservative) return detail::wide_traverse_query<Tree, true>(bvh, ray, tmin, tmax, query, leaf_range);
+  return detail::wide_traverse_query<Tree, false>(bvh, ray, tmin, tmax, query, leaf_range);
 }
 
 /// wide_traverse_leaves one slot at a time: `leaf(j)` for each leaf-order slot j, true to stop (any
 /// hit); for callers that keep their primitive data in leaf order (and may drop prim_ids).
-template <int N, class Leaf>
-void wide_traverse_slots(const BvhWide<N>& bvh, const Ray<double>& ray, double tmin, const double& tmax, BvhTraversal mode,
+template <class Tree, class Leaf>
+void wide_traverse_slots(const Tree& bvh, const Ray<double>& ray, double tmin, const double& tmax, BvhTraversal mode,
                          BvhQuery query, Leaf&& leaf) {
   const bool any = query == BvhQuery::any;
   wide_traverse_leaves(bvh, ray, tmin, tmax, mode, query, [&](std::uint32_t first, std::uint32_t count) {
@@ -484,8 +741,8 @@ void wide_traverse_slots(const BvhWide<N>& bvh, const Ray<double>& ray, double t
 /// Visits the leaves' primitives the query needs, as bvh_traverse (bvh_traverse.h) does: `leaf(prim)`
 /// returns true to stop (any hit); for closest hit it lowers `tmax` to the best t so far. `ray` is
 /// the ray the primitive kernel intersects, in double (for a float kernel: its float-rounded ray).
-template <int N, class Leaf>
-void wide_traverse(const BvhWide<N>& bvh, const Ray<double>& ray, double tmin, const double& tmax, BvhTraversal mode,
+template <class Tree, class Leaf>
+void wide_traverse(const Tree& bvh, const Ray<double>& ray, double tmin, const double& tmax, BvhTraversal mode,
                    BvhQuery query, Leaf&& leaf) {
   const std::uint32_t* ids = bvh.prim_ids.data();
   wide_traverse_slots(bvh, ray, tmin, tmax, mode, query, [&](std::uint32_t j) { return leaf(ids[j]); });

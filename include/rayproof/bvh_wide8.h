@@ -9,6 +9,9 @@
 /// (structure of arrays, one 256-bit load per plane), then `child`, `count` and `valid` with the
 /// meaning they have in Bvh4Node (both are BvhWideNode of bvh_wide.h): an inner child is a node index (count 0), a leaf child a range
 /// [child, child + count) of prim_ids (count 1..255); unused slots have empty boxes and a clear bit.
+/// Compressed eight-wide nodes (Bvh8QNode, 128 bytes, bvh_wide.h) run the same test on planes
+/// decoded by bvh8q_decode (vpmovzxbd, vcvtdq2ps, vmulps, vaddps): floats that contain the full
+/// node's planes (proof at BvhWideQNode), so the guarantee below holds for them unchanged.
 ///
 /// Box tests. The ray is prepared by make_bvh4_ray (bvh_wide.h) and its per-axis floats broadcast
 /// to eight lanes; the test then does in each lane exactly the float operations bvh4_test does in
@@ -128,17 +131,18 @@ struct Bvh8RayF {
   }
 }
 
-/// Hit mask of the eight children of `n` and their entry distances: bvh4_test in eight lanes.
-template <bool Conservative>
-[[gnu::target("avx2"), gnu::always_inline]] inline int bvh8_test(const Bvh8Node& n, const Bvh8RayF& r, __m256 tmin,
-                                                                 __m256 tmax, __m256& t_enter) {
-  const float* f = &n.lo[0][0];
+/// Hit mask of eight children and their entry distances: bvh4_slab_test in eight lanes.
+/// `plane(off, k)` gives the eight planes at float offset `off` of axis k (loaded from a full node,
+/// decoded from a quantized one: BvhWideQNode, bvh_wide.h); the math after it is the same for both.
+template <bool Conservative, class Planes>
+[[gnu::target("avx2"), gnu::always_inline]] inline int bvh8_slab_test(const Planes& plane, int valid, const Bvh8RayF& r,
+                                                                      __m256 tmin, __m256 tmax, __m256& t_enter) {
   const __m256 ninf = _mm256_set1_ps(-std::numeric_limits<float>::infinity());
   const __m256 pinf = _mm256_set1_ps(std::numeric_limits<float>::infinity());
   __m256 t0 = Conservative ? ninf : tmin, t1 = Conservative ? pinf : tmax;
   for (int k = 0; k < 3; ++k) {
-    const __m256 near = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(f + r.near_off[k]), r.o_near[k]), r.inv[k]);
-    const __m256 far = _mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(f + r.far_off[k]), r.o_far[k]), r.inv[k]);
+    const __m256 near = _mm256_mul_ps(_mm256_sub_ps(plane(r.near_off[k], k), r.o_near[k]), r.inv[k]);
+    const __m256 far = _mm256_mul_ps(_mm256_sub_ps(plane(r.far_off[k], k), r.o_far[k]), r.inv[k]);
     t0 = _mm256_max_ps(near, t0);  // NaN near: t0 (the axis bounds nothing)
     t1 = _mm256_min_ps(far, t1);   // NaN far: t1
   }
@@ -152,7 +156,28 @@ template <bool Conservative>
     t1 = _mm256_min_ps(t1, tmax);
   }
   t_enter = t0;
-  return _mm256_movemask_ps(_mm256_cmp_ps(t0, t1, _CMP_LE_OQ)) & n.valid;
+  return _mm256_movemask_ps(_mm256_cmp_ps(t0, t1, _CMP_LE_OQ)) & valid;
+}
+
+/// A full node's planes: loaded.
+struct Bvh8Planes {
+  const float* f;
+  [[gnu::target("avx2"), gnu::always_inline]] __m256 operator()(int off, int) const { return _mm256_load_ps(f + off); }
+};
+
+/// Hit mask of the eight children of `n` and their entry distances: bvh4_test in eight lanes.
+template <bool Conservative>
+[[gnu::target("avx2"), gnu::always_inline]] inline int bvh8_test(const Bvh8Node& n, const Bvh8RayF& r, __m256 tmin,
+                                                                 __m256 tmax, __m256& t_enter) {
+  return bvh8_slab_test<Conservative>(Bvh8Planes{&n.lo[0][0]}, n.valid, r, tmin, tmax, t_enter);
+}
+
+/// Eight quantized planes at byte offset `off` of `q` decoded to floats: q * scale + origin
+/// (u8 -> i32 -> float, exact; product, exact; one rounded sum, as BvhWideQNode::decode; no FMA:
+/// the target is "avx2" without "fma", and a contraction would round the same, the product being exact).
+[[gnu::target("avx2"), gnu::always_inline]] inline __m256 bvh8q_decode(const std::uint8_t* q, __m256 scale, __m256 origin) {
+  const __m256i i32 = _mm256_cvtepu8_epi32(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(q)));
+  return _mm256_add_ps(_mm256_mul_ps(_mm256_cvtepi32_ps(i32), scale), origin);
 }
 
 template <bool Conservative>
@@ -162,6 +187,26 @@ struct Bvh8BoxTest {
   [[gnu::target("avx2"), gnu::always_inline]] int operator()(const Bvh8Node& n, float tmax, float* t) const {
     __m256 te;
     const int mask = bvh8_test<Conservative>(n, ray, tmin, _mm256_set1_ps(tmax), te);
+    if (mask) _mm256_store_ps(t, te);
+    return mask;
+  }
+};
+
+/// A quantized node's planes: decoded.
+struct Bvh8QPlanes {
+  const Bvh8QNode& n;
+  [[gnu::target("avx2"), gnu::always_inline]] __m256 operator()(int off, int k) const {
+    return bvh8q_decode(&n.qlo[0][0] + off, _mm256_broadcast_ss(&n.scale[k]), _mm256_broadcast_ss(&n.origin[k]));
+  }
+};
+
+template <bool Conservative>
+struct Bvh8QBoxTest {
+  Bvh8RayF ray;
+  __m256 tmin;
+  [[gnu::target("avx2"), gnu::always_inline]] int operator()(const Bvh8QNode& n, float tmax, float* t) const {
+    __m256 te;
+    const int mask = bvh8_slab_test<Conservative>(Bvh8QPlanes{n}, n.valid, ray, tmin, _mm256_set1_ps(tmax), te);
     if (mask) _mm256_store_ps(t, te);
     return mask;
   }
@@ -187,19 +232,24 @@ struct Bvh8BoxTest {
 
 /// The eight-wide traversal: the shared loop with the AVX2 box test, compiled for AVX2; rays out of
 /// the float range take the double box test.
-template <>
-struct WideTraversal<8> {
+template <class Tree, template <bool> class BoxTest>
+struct WideTraversal8 {
   template <bool Conservative, BvhQuery Query, class Leaf>
-  [[gnu::target("avx2")]] static void run(const Bvh8& bvh, const Ray<double>& ray, double tmin, const double& tmax,
+  [[gnu::target("avx2")]] static void run(const Tree& bvh, const Ray<double>& ray, double tmin, const double& tmax,
                                           Leaf& leaf) {
     Bvh4RayF r4;
-    if (!make_bvh4_ray(ray, Conservative, tmin, r4)) return wide_traverse_double<8, Conservative, Query>(bvh, ray, tmin, tmax, leaf);
-    Bvh8BoxTest<Conservative> test;
+    if (!make_bvh4_ray(ray, Conservative, tmin, r4)) return wide_traverse_double<Tree, Conservative, Query>(bvh, ray, tmin, tmax, leaf);
+    BoxTest<Conservative> test;
     bvh8_ray(r4, test.ray);
     test.tmin = _mm256_set1_ps(r4.tmin);
-    wide_traverse_loop_avx2<8, float, Query>(bvh, test, [&] { return wide_tmax_float<Conservative>(tmax); }, leaf);
+    wide_traverse_loop_avx2<Tree, float, Query>(bvh, test, [&] { return wide_tmax_float<Conservative>(tmax); }, leaf);
   }
 };
+template <>
+struct WideTraversal<Bvh8> : WideTraversal8<Bvh8, Bvh8BoxTest> {};
+/// The eight-wide traversal of quantized nodes: the same, with the planes decoded.
+template <>
+struct WideTraversal<Bvh8Q> : WideTraversal8<Bvh8Q, Bvh8QBoxTest> {};
 
 }  // namespace detail
 

@@ -7,14 +7,17 @@
 #error "include rayproof/bvh_wide.h, not bvh_wide_loop.h"
 #endif
 
-/// The traversal loop of both widths, for the float (T = float) and double (T = double) box tests.
+/// The traversal loop of both widths and both node kinds (Tree: BvhWide<N> with full float boxes,
+/// BvhWideQ<N> with quantized ones), for the float (T = float) and double (T = double) box tests.
 /// `test(node, tmax, t)` returns the hit mask of the node's children and stores their entry
 /// distances in t[0 .. N) (at least for the hit ones); `tmax_now()` is the caller's tmax in T.
 /// `leaf(first, count)` gets the leaf-order slots [first, first + count) (indices into prim_ids, or
 /// into the caller's own leaf-order data) and returns true to stop (any hit).
-template <int N, class T, BvhQuery Query, class BoxTest, class TmaxNow, class Leaf>
-[[gnu::always_inline]] inline void RAYPROOF_WIDE_TRAVERSE_LOOP(const BvhWide<N>& bvh, const BoxTest& test, const TmaxNow& tmax_now,
+template <class Tree, class T, BvhQuery Query, class BoxTest, class TmaxNow, class Leaf>
+[[gnu::always_inline]] inline void RAYPROOF_WIDE_TRAVERSE_LOOP(const Tree& bvh, const BoxTest& test, const TmaxNow& tmax_now,
                                                                Leaf& leaf) {
+  using Node = typename Tree::Node;
+  constexpr int N = Tree::kWidth;
   using Entry = WideEntry<T>;
   constexpr std::size_t kLocal = N == 4 ? 192 : 256;  // entries on the call stack; deeper trees use the heap
   Entry local[kLocal];
@@ -23,7 +26,7 @@ template <int N, class T, BvhQuery Query, class BoxTest, class TmaxNow, class Le
   const std::size_t need = (N - 1) * static_cast<std::size_t>(bvh.max_depth) + 8;
   if (need > kLocal) heap.resize(need), stack = heap.data();
   int top = 0;
-  const BvhWideNode<N>* nodes = bvh.nodes.data();
+  const Node* nodes = bvh.nodes.data();
   T tmax_cur = tmax_now();
   // `e` is the child being visited (its entry already checked against tmax); a visit that ends
   // a path pops the next child whose entry is still within tmax.
@@ -34,7 +37,7 @@ template <int N, class T, BvhQuery Query, class BoxTest, class TmaxNow, class Le
       if (leaf(e.ref, e.count) && Query == BvhQuery::any) return;
       if constexpr (Query == BvhQuery::closest) tmax_cur = tmax_now();
     } else {
-      const BvhWideNode<N>& n = nodes[e.ref];
+      const Node& n = nodes[e.ref];
       alignas(32) T t[N];
       const int mask = test(n, tmax_cur, t);
       if (mask) {

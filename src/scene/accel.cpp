@@ -272,7 +272,7 @@ std::vector<std::string> fast_scene_method_names() {
   return out;
 }
 
-Accel::Accel(const Scene& s, const BvhBuildOptions& opt, BvhSimd simd)
+Accel::Accel(const Scene& s, const BvhBuildOptions& opt, BvhSimd simd, BvhNodes nodes)
     : scene_(s), verts_(s.mesh.vertices.data()), ntri_(std::uint32_t(s.mesh.triangles.size())),
       triangle_bytes_(s.triangle_bytes()), simd_(bvh_simd_path(simd)) {
   const auto start = std::chrono::steady_clock::now();
@@ -286,7 +286,7 @@ Accel::Accel(const Scene& s, const BvhBuildOptions& opt, BvhSimd simd)
   } else {
     s.primitive_bounds(boxes, centers);
   }
-  build(boxes, centers, opt);
+  build(boxes, centers, opt, nodes);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, leaf_prims_.size(), 4096), [&](const auto& r) {
     for (std::size_t j = r.begin(); j < r.end(); ++j)
       for (LeafPrim& p = leaf_prims_[j]; int k : {0, 1, 2}) p.v[k] = p.id < ntri_ ? s.mesh.triangles[p.id][k] : 0;
@@ -295,7 +295,7 @@ Accel::Accel(const Scene& s, const BvhBuildOptions& opt, BvhSimd simd)
   build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-Accel::Accel(const MeshRef& m, const BvhBuildOptions& opt, BvhSimd simd)
+Accel::Accel(const MeshRef& m, const BvhBuildOptions& opt, BvhSimd simd, BvhNodes nodes)
     : scene_(empty_scene()), verts_(m.vertices), ntri_(std::uint32_t(m.triangle_count)),
       triangle_bytes_(m.vertex_count * sizeof(Vec3<double>)), simd_(bvh_simd_path(simd)) {
   const auto start = std::chrono::steady_clock::now();
@@ -307,7 +307,7 @@ Accel::Accel(const MeshRef& m, const BvhBuildOptions& opt, BvhSimd simd)
       triangle_bounds({verts_[t[0]], verts_[t[1]], verts_[t[2]]}, boxes[i], centers[i]);
     }
   });
-  build(boxes, centers, opt);
+  build(boxes, centers, opt, nodes);
   tbb::parallel_for(tbb::blocked_range<std::size_t>(0, leaf_prims_.size(), 4096), [&](const auto& r) {
     for (std::size_t j = r.begin(); j < r.end(); ++j) {
       LeafPrim& p = leaf_prims_[j];
@@ -320,7 +320,10 @@ Accel::Accel(const MeshRef& m, const BvhBuildOptions& opt, BvhSimd simd)
   build_seconds_ = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
-void Accel::build(const std::vector<BvhBox>& boxes, const std::vector<Vec3<float>>& centers, const BvhBuildOptions& opt) {
+void Accel::build(const std::vector<BvhBox>& boxes, const std::vector<Vec3<float>>& centers, const BvhBuildOptions& opt,
+                  BvhNodes nodes) {
+  // Throws on a bad RAYPROOF_BVH_NODES before any work; automatic is decided by the tree's size.
+  const BvhNodes asked = nodes == BvhNodes::automatic ? bvh_nodes_from_env() : nodes;
   // Subtrees in parallel on TBB's threads (the arena of the caller).
   Bvh bin = build_bvh(boxes, centers, opt, [](std::size_t n, const auto& f) {
     tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) { f(i); });
@@ -336,20 +339,24 @@ void Accel::build(const std::vector<BvhBox>& boxes, const std::vector<Vec3<float
       leaf_prims_[j] = {{0, 0, 0}, old_of[j] == detail::kPadLane ? PrimHit::kNoPrim : tree.prim_ids[old_of[j]]};
     std::vector<std::uint32_t>().swap(tree.prim_ids);
   };
+  // Compressed nodes: a pass after the collapse and the leaf alignment (it copies the final leaf
+  // references); the full tree is dropped when every node quantized, else kept (nodes_ full).
+  auto compress = [&](auto& full, auto& q) {
+    if (bvh_nodes_choice(asked, full.nodes.size() * sizeof(full.nodes[0])) != BvhNodes::compressed) return;
+    auto c = quantize_wide(full, [](std::size_t n, const auto& f) {
+      tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) { f(i); });
+    });
+    if (c) q = std::move(*c), full = {}, nodes_ = BvhNodes::compressed;
+  };
   if (simd_ == BvhSimd::avx2) {
     bvh8_ = collapse_bvh8(std::move(bin), boxes);
     fold(bvh8_);
+    compress(bvh8_, bvh8q_);
   } else {
     bvh_ = collapse_bvh4(std::move(bin), boxes);
     fold(bvh_);
+    compress(bvh_, bvh4q_);
   }
-}
-
-/// Runs `f(tree)` with the wide tree the accel's path traverses.
-template <class F>
-decltype(auto) Accel::with_tree(F&& f) const {
-  if (simd_ == BvhSimd::avx2) return f(bvh8_);
-  return f(bvh_);
 }
 
 void Accel::build_groups() {
@@ -382,7 +389,7 @@ void Accel::build_groups() {
 
 double Accel::group_bytes_per_primitive() const {
   const std::size_t n = std::max<std::size_t>({1, scene_.size(), ntri_});
-  return double(bvh_.bytes() + bvh8_.bytes() + groups_.size() * sizeof(detail::TriGroup)) / double(n);
+  return double(tree_bytes() + groups_.size() * sizeof(detail::TriGroup)) / double(n);
 }
 
 double Accel::bytes_read_per_primitive(const SceneMethod& m) const {

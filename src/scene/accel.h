@@ -99,11 +99,16 @@ using HitSink = void (*)(void* context, std::size_t i, const PrimHit& h);
 class Accel {
  public:
   /// `simd` picks the wide tree (bvh_simd_path: automatic follows RAYPROOF_SIMD, then the CPU):
-  /// eight-wide nodes with the AVX2 box test, or four-wide with SSE.
-  Accel(const Scene& s, const BvhBuildOptions& opt = {}, BvhSimd simd = BvhSimd::automatic);
+  /// eight-wide nodes with the AVX2 box test, or four-wide with SSE. `nodes` picks full float
+  /// boxes or quantized ones (bvh_nodes_choice: automatic follows RAYPROOF_BVH_NODES, then the
+  /// tree's size: compressed when the full nodes would exceed kCompressedNodesAbove, 8 MiB);
+  /// a tree that cannot be quantized (non-finite bounds) keeps full nodes (see nodes()).
+  Accel(const Scene& s, const BvhBuildOptions& opt = {}, BvhSimd simd = BvhSimd::automatic,
+        BvhNodes nodes = BvhNodes::automatic);
   /// A BVH over a mesh read in place (triangles only; compiled methods only). The caller checks
   /// the input (indices in range, finite vertices) and keeps the vertex array alive.
-  explicit Accel(const MeshRef& m, const BvhBuildOptions& opt = {}, BvhSimd simd = BvhSimd::automatic);
+  explicit Accel(const MeshRef& m, const BvhBuildOptions& opt = {}, BvhSimd simd = BvhSimd::automatic,
+                 BvhNodes nodes = BvhNodes::automatic);
 
   [[nodiscard]] const Scene& scene() const { return scene_; }
   /// The path the queries take: BvhSimd::avx2 (bvh8()) or BvhSimd::sse4 (bvh()).
@@ -113,15 +118,23 @@ class Accel {
   [[nodiscard]] const Bvh4& bvh() const { return bvh_; }
   /// The eight-wide BVH the AVX2 path traverses; empty on the SSE path.
   [[nodiscard]] const Bvh8& bvh8() const { return bvh8_; }
+  /// The node kind in use: BvhNodes::full (bvh(), bvh8()) or BvhNodes::compressed (bvh4q(), bvh8q();
+  /// then bvh() and bvh8() are empty).
+  [[nodiscard]] BvhNodes nodes() const { return nodes_; }
+  /// The quantized trees of the compressed nodes, four-wide (SSE) and eight-wide (AVX2); empty
+  /// unless nodes() is compressed and the path is theirs.
+  [[nodiscard]] const Bvh4Q& bvh4q() const { return bvh4q_; }
+  [[nodiscard]] const Bvh8Q& bvh8q() const { return bvh8q_; }
   /// Nodes on the longest root-to-leaf path of the tree in use.
-  [[nodiscard]] int max_depth() const { return simd_ == BvhSimd::avx2 ? bvh8_.max_depth : bvh_.max_depth; }
+  [[nodiscard]] int max_depth() const {
+    return bvh_.max_depth + bvh8_.max_depth + bvh4q_.max_depth + bvh8q_.max_depth;  // the others are empty (0)
+  }
   /// The tree in use traversed for a ray: `leaf(j)` per leaf-order slot j (leaf_prims()[j]), true
   /// to stop (any hit), as bvh4_traverse_slots.
   template <class Leaf>
   void traverse_slots(const Ray<double>& r, double tmin, const double& tmax, BvhTraversal mode, BvhQuery query,
                       Leaf&& leaf) const {
-    if (simd_ == BvhSimd::avx2) return bvh8_traverse_slots(bvh8_, r, tmin, tmax, mode, query, leaf);
-    bvh4_traverse_slots(bvh_, r, tmin, tmax, mode, query, leaf);
+    with_tree([&](const auto& tree) { wide_traverse_slots(tree, r, tmin, tmax, mode, query, leaf); });
   }
   [[nodiscard]] double build_seconds() const { return build_seconds_; }
   /// BVH plus triangle data, per triangle (analytic primitives counted as triangles).
@@ -129,7 +142,7 @@ class Accel {
   /// Bytes of the BVH: its nodes (of the tree in use), the leaf-order primitive records and the
   /// packed leaf groups.
   [[nodiscard]] std::size_t bvh_bytes() const {
-    return bvh_.bytes() + bvh8_.bytes() + leaf_prims_.size() * sizeof(LeafPrim) + groups_.size() * sizeof(detail::TriGroup);
+    return tree_bytes() + leaf_prims_.size() * sizeof(LeafPrim) + groups_.size() * sizeof(detail::TriGroup);
   }
   /// Bytes the `float` and `robust` queries read: the nodes and the packed leaf groups (they do
   /// not touch the leaf records or the vertex array for triangles), per primitive.
@@ -186,9 +199,16 @@ class Accel {
 
  private:
   /// The BVH over `boxes` and leaf records with ids (vertex indices filled by the constructor).
-  void build(const std::vector<BvhBox>& boxes, const std::vector<Vec3<float>>& centers, const BvhBuildOptions& opt);
+  void build(const std::vector<BvhBox>& boxes, const std::vector<Vec3<float>>& centers, const BvhBuildOptions& opt,
+             BvhNodes nodes);
+  /// Runs `f(tree)` with the wide tree the accel's path and node kind traverse.
   template <class F>
-  decltype(auto) with_tree(F&& f) const;
+  decltype(auto) with_tree(F&& f) const {
+    if (simd_ == BvhSimd::avx2) return nodes_ == BvhNodes::compressed ? f(bvh8q_) : f(bvh8_);
+    return nodes_ == BvhNodes::compressed ? f(bvh4q_) : f(bvh_);
+  }
+  /// Bytes of the nodes of the tree in use (the others are empty).
+  [[nodiscard]] std::size_t tree_bytes() const { return bvh_.bytes() + bvh8_.bytes() + bvh4q_.bytes() + bvh8q_.bytes(); }
   /// The packed leaf groups from the leaf records (after the vertex indices are in).
   void build_groups();
   const Scene& scene_;
@@ -198,6 +218,9 @@ class Accel {
   BvhSimd simd_ = BvhSimd::sse4;
   Bvh4 bvh_;   ///< SSE path: nodes only (prim_ids is folded into leaf_prims_)
   Bvh8 bvh8_;  ///< AVX2 path: the same
+  BvhNodes nodes_ = BvhNodes::full;
+  Bvh4Q bvh4q_;  ///< SSE path, compressed nodes (then bvh_ is empty)
+  Bvh8Q bvh8q_;  ///< AVX2 path, compressed nodes (then bvh8_ is empty)
   std::vector<LeafPrim> leaf_prims_;
   std::vector<detail::TriGroup, AlignedAllocator<detail::TriGroup, 32>> groups_;
   std::size_t primitive_count_ = 0;
