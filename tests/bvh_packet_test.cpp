@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <optional>
 #include <cmath>
 #include <filesystem>
 #include <random>
@@ -30,7 +31,8 @@ namespace {
 using Visits = std::vector<std::pair<std::uint32_t, std::uint32_t>>;  // leaf ranges (first, count), sorted
 
 /// All-hits leaf visits of each ray: one at a time, and in packets of eight (lane i: rays[8p + i]).
-void visits(const Bvh8& bvh, const std::vector<Ray<double>>& rays, const std::vector<double>& tmin,
+template <class Tree>
+void visits(const Tree& bvh, const std::vector<Ray<double>>& rays, const std::vector<double>& tmin,
             const std::vector<double>& tmax, BvhTraversal mode, std::vector<Visits>& single, std::vector<Visits>& packet) {
   single.assign(rays.size(), {}), packet.assign(rays.size(), {});
   for (std::size_t i = 0; i < rays.size(); ++i) {
@@ -101,11 +103,18 @@ TEST(BvhPacket, AllHitsVisitTheSingleRayLeavesAndCornerTouches) {
   for (std::size_t i : order) rays.push_back(rays[i]), tmin.push_back(tmin[i]), tmax.push_back(tmax[i]), touched.push_back(touched[i]);
   std::vector<Visits> single, packet;
   int missed = 0, touches = 0;
-  for (BvhTraversal mode : {BvhTraversal::conservative, BvhTraversal::standard}) {
-    visits(wide, rays, tmin, tmax, mode, single, packet);
+  // Full nodes, then the same tree's compressed nodes (their decoded planes; the leaves keep their
+  // slots, so the touched primitive is found the same way).
+  const std::optional<Bvh8Q> quantized = quantize_wide(wide);
+  ASSERT_TRUE(quantized.has_value());
+  for (int kind = 0; kind < 4; ++kind) {
+    const BvhTraversal mode = kind % 2 ? BvhTraversal::standard : BvhTraversal::conservative;
+    if (kind < 2) visits(wide, rays, tmin, tmax, mode, single, packet);
+    else visits(*quantized, rays, tmin, tmax, mode, single, packet);
     std::size_t total = 0;
     for (std::size_t i = 0; i < rays.size(); ++i) {
-      ASSERT_EQ(packet[i], single[i]) << "ray " << i << (mode == BvhTraversal::conservative ? " conservative" : " standard");
+      ASSERT_EQ(packet[i], single[i]) << "ray " << i << (mode == BvhTraversal::conservative ? " conservative" : " standard")
+                                      << (kind < 2 ? " full" : " compressed");
       total += packet[i].size();
       if (mode != BvhTraversal::conservative || touched[i] == ~0u) continue;
       ++touches;
@@ -116,7 +125,7 @@ TEST(BvhPacket, AllHitsVisitTheSingleRayLeavesAndCornerTouches) {
     }
     EXPECT_GT(total, rays.size());  // the rays do reach leaves
   }
-  EXPECT_GT(touches, 2000);
+  EXPECT_GT(touches, 4000);
   EXPECT_EQ(missed, 0);
 }
 

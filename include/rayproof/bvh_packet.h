@@ -34,6 +34,7 @@
 #include <algorithm>
 #include <cstdint>
 #include <limits>
+#include <type_traits>
 #include <vector>
 
 #include "rayproof/bvh_wide.h"
@@ -99,21 +100,23 @@ struct Packet8Regs {
 
 /// Child `c` of `n` against the eight rays: the lanes' hit bits (before any lane mask) and entry
 /// distances. Per lane the operations of bvh8_test on that lane's ray (see the header comment).
+/// `planes` holds the node's float planes laid out as Bvh8Node's lo[3][8] then hi[3][8] (the node
+/// itself, or a compressed node's decoded planes: see node_planes).
 template <bool Conservative, bool Uniform>
-[[gnu::target("avx2"), gnu::always_inline]] inline int packet8_child_test(const Bvh8Node& n, int c, const Packet8Regs& r,
+[[gnu::target("avx2"), gnu::always_inline]] inline int packet8_child_test(const float* planes, int c, const Packet8Regs& r,
                                                                         __m256 tmax, __m256& t_enter) {
   const __m256 ninf = _mm256_set1_ps(-std::numeric_limits<float>::infinity());
   const __m256 pinf = _mm256_set1_ps(std::numeric_limits<float>::infinity());
   __m256 t0 = Conservative ? ninf : r.tmin, t1 = Conservative ? pinf : tmax;
-  const float* f = &n.lo[0][0] + c;
+  const float* f = planes + c;
   for (int k = 0; k < 3; ++k) {
     __m256 near, far;
     if constexpr (Uniform) {
       near = _mm256_mul_ps(_mm256_sub_ps(_mm256_broadcast_ss(f + r.near_off[k]), r.o_near[k]), r.inv[k]);
       far = _mm256_mul_ps(_mm256_sub_ps(_mm256_broadcast_ss(f + r.far_off[k]), r.o_far[k]), r.inv[k]);
     } else {
-      const __m256 tlo = _mm256_mul_ps(_mm256_sub_ps(_mm256_broadcast_ss(&n.lo[k][c]), r.o_lo[k]), r.inv[k]);
-      const __m256 thi = _mm256_mul_ps(_mm256_sub_ps(_mm256_broadcast_ss(&n.hi[k][c]), r.o_hi[k]), r.inv[k]);
+      const __m256 tlo = _mm256_mul_ps(_mm256_sub_ps(_mm256_broadcast_ss(f + 8 * k), r.o_lo[k]), r.inv[k]);
+      const __m256 thi = _mm256_mul_ps(_mm256_sub_ps(_mm256_broadcast_ss(f + 24 + 8 * k), r.o_hi[k]), r.inv[k]);
       near = _mm256_blendv_ps(tlo, thi, r.neg[k]), far = _mm256_blendv_ps(thi, tlo, r.neg[k]);
     }
     t0 = _mm256_max_ps(near, t0);  // NaN near: t0, as in bvh8_test
@@ -155,8 +158,21 @@ struct alignas(32) PacketEntry {
   std::uint32_t mask;  ///< lanes entering
 };
 
-template <bool Conservative, BvhQuery Query, bool Uniform, class Leaf>
-[[gnu::target("avx2")]] void packet8_run(const Bvh8& bvh, const Packet8Regs& r, unsigned live, const double* tmax,
+/// The float planes of a node in Bvh8Node's layout: a full node's own; a compressed node's decoded
+/// into `buf` with bvh8q_decode, the decoder of the single-ray test (the same floats, which contain
+/// the full node's planes: proof at BvhWideQNode), so the lane-by-lane argument above holds for them.
+[[gnu::target("avx2"), gnu::always_inline]] inline const float* node_planes(const Bvh8Node& n, float*) { return &n.lo[0][0]; }
+[[gnu::target("avx2"), gnu::always_inline]] inline const float* node_planes(const Bvh8QNode& n, float* buf) {
+  for (int k = 0; k < 3; ++k) {
+    const __m256 scale = _mm256_broadcast_ss(&n.scale[k]), origin = _mm256_broadcast_ss(&n.origin[k]);
+    _mm256_store_ps(buf + 8 * k, bvh8q_decode(&n.qlo[k][0], scale, origin));
+    _mm256_store_ps(buf + 24 + 8 * k, bvh8q_decode(&n.qhi[k][0], scale, origin));
+  }
+  return buf;
+}
+
+template <bool Conservative, BvhQuery Query, bool Uniform, class Tree, class Leaf>
+[[gnu::target("avx2")]] void packet8_run(const Tree& bvh, const Packet8Regs& r, unsigned live, const double* tmax,
                                          Leaf& leaf) {
   alignas(32) float tmax_f[8];
   for (int i = 0; i < 8; ++i) tmax_f[i] = (live >> i & 1) ? wide_tmax_float<Conservative>(tmax[i]) : 0.0f;
@@ -168,7 +184,8 @@ template <bool Conservative, BvhQuery Query, bool Uniform, class Leaf>
   const std::size_t need = 7 * static_cast<std::size_t>(bvh.max_depth) + 8;
   if (need > kLocal) heap.resize(need), stack = heap.data();
   int top = 0;
-  const Bvh8Node* nodes = bvh.nodes.data();
+  const auto* nodes = bvh.nodes.data();
+  alignas(32) float decoded[48];  // a compressed node's planes (unused for full nodes)
   unsigned done = 0;  // any hit: lanes that found one
   PacketEntry e{_mm256_set1_ps(-std::numeric_limits<float>::infinity()), 0, 0, live};
   if constexpr (Query == BvhQuery::closest) e.mask = packet_within(e.t, tmaxv, live);  // NaN tmax: not traversed
@@ -184,14 +201,15 @@ template <bool Conservative, BvhQuery Query, bool Uniform, class Leaf>
         }
         if constexpr (Query == BvhQuery::closest) tmaxv = _mm256_load_ps(tmax_f);
       } else {
-        const Bvh8Node& n = nodes[e.ref];
+        const auto& n = nodes[e.ref];
+        const float* planes = node_planes(n, decoded);
         PacketEntry kids[8];
         float key[8];
         int nk = 0;
         for (unsigned v = n.valid; v; v &= v - 1) {
           const int c = __builtin_ctz(v);
           __m256 t;
-          const unsigned hit = unsigned(packet8_child_test<Conservative, Uniform>(n, c, r, tmaxv, t)) & m;
+          const unsigned hit = unsigned(packet8_child_test<Conservative, Uniform>(planes, c, r, tmaxv, t)) & m;
           if (!hit) continue;
           kids[nk] = PacketEntry{t, n.child[c], n.count[c], hit};
           if constexpr (Query == BvhQuery::closest) key[nk] = packet_min(t, hit);
@@ -226,8 +244,8 @@ template <bool Conservative, BvhQuery Query, bool Uniform, class Leaf>
 }
 
 /// The packet's registers, then the loop for its mode, query and sign pattern.
-template <class Leaf>
-[[gnu::target("avx2")]] void packet8_go(const Bvh8& bvh, const Packet8RayF& p, unsigned in, const double* tmax,
+template <class Tree, class Leaf>
+[[gnu::target("avx2")]] void packet8_go(const Tree& bvh, const Packet8RayF& p, unsigned in, const double* tmax,
                                         bool conservative, BvhQuery query, Leaf& leaf) {
   const Packet8Regs r = packet_regs(p, in);
   auto go = [&]<bool C, bool U>() {
@@ -248,15 +266,16 @@ template <class Leaf>
 
 }  // namespace detail
 
-/// Up to eight rays through the eight-wide tree (needs AVX2: call only when cpu_has_avx2()).
+/// Up to eight rays through the eight-wide tree, full (Bvh8) or compressed (Bvh8Q) nodes (needs AVX2: call only when cpu_has_avx2()).
 /// `rays`, `tmin`, `tmax` have eight entries; lanes outside `live` (bit i: rays[i]) are ignored.
 /// `leaf(lane, first, count)` gets the leaf-order slots [first, first + count) of one leaf for one
 /// lane and returns true to end that lane (honoured for any hit); for closest hit it lowers
 /// tmax[lane] (read again after each leaf) to the lane's best t so far. The same rays through
 /// wide_traverse_leaves visit, lane by lane, leaves whose boxes pass the same box test (the order
 /// differs: see the header comment).
-template <class LeafLane>
-void bvh8_packet_traverse_leaves(const Bvh8& bvh, const Ray<double>* rays, const double* tmin, const double* tmax,
+template <class Tree, class LeafLane>
+  requires(std::is_same_v<Tree, Bvh8> || std::is_same_v<Tree, Bvh8Q>)
+void bvh8_packet_traverse_leaves(const Tree& bvh, const Ray<double>* rays, const double* tmin, const double* tmax,
                                  unsigned live, BvhTraversal mode, BvhQuery query, LeafLane&& leaf) {
   if (bvh.empty() || !(live &= 0xffu)) return;
   const bool conservative = mode == BvhTraversal::conservative;
@@ -272,9 +291,9 @@ void bvh8_packet_traverse_leaves(const Bvh8& bvh, const Ray<double>* rays, const
       auto one = [&](std::uint32_t first, std::uint32_t count) { return leaf(lane, first, count); };
       auto run = [&]<bool C>() {
         switch (query) {
-          case BvhQuery::closest: return detail::wide_traverse_double<8, C, BvhQuery::closest>(bvh, rays[lane], tmin[lane], tmax[lane], one);
-          case BvhQuery::any: return detail::wide_traverse_double<8, C, BvhQuery::any>(bvh, rays[lane], tmin[lane], tmax[lane], one);
-          case BvhQuery::all: return detail::wide_traverse_double<8, C, BvhQuery::all>(bvh, rays[lane], tmin[lane], tmax[lane], one);
+          case BvhQuery::closest: return detail::wide_traverse_double<Tree, C, BvhQuery::closest>(bvh, rays[lane], tmin[lane], tmax[lane], one);
+          case BvhQuery::any: return detail::wide_traverse_double<Tree, C, BvhQuery::any>(bvh, rays[lane], tmin[lane], tmax[lane], one);
+          case BvhQuery::all: return detail::wide_traverse_double<Tree, C, BvhQuery::all>(bvh, rays[lane], tmin[lane], tmax[lane], one);
         }
       };
       if (conservative) run.template operator()<true>();

@@ -571,8 +571,8 @@ struct PacketLanes {
   }
 };
 
-template <class K>
-void closest_packet(const Leaves<Bvh8>& L, K* ks, const Ray<double>* rays, int n, std::span<const QueryRange> ranges,
+template <class Tree, class K>
+void closest_packet(const Leaves<Tree>& L, K* ks, const Ray<double>* rays, int n, std::span<const QueryRange> ranges,
                     std::size_t first, BvhTraversal mode, PrimHit* out) {
   PacketLanes<K> P(ks, rays, n, ranges, first);
   for (int i = 0; i < n; ++i) out[i] = P.live >> i & 1 ? PrimHit{} : PrimHit{Contact::invalid};
@@ -594,8 +594,8 @@ void closest_packet(const Leaves<Bvh8>& L, K* ks, const Ray<double>* rays, int n
                               });
 }
 
-template <class K>
-void any_packet(const Leaves<Bvh8>& L, K* ks, const Ray<double>* rays, int n, std::span<const QueryRange> ranges,
+template <class Tree, class K>
+void any_packet(const Leaves<Tree>& L, K* ks, const Ray<double>* rays, int n, std::span<const QueryRange> ranges,
                 std::size_t first, BvhTraversal mode, std::uint8_t* out) {
   PacketLanes<K> P(ks, rays, n, ranges, first);
   for (int i = 0; i < n; ++i) out[i] = 0;
@@ -614,6 +614,10 @@ void any_packet(const Leaves<Bvh8>& L, K* ks, const Ray<double>* rays, int n, st
                                 return leaf_for_ray(L, P.kernel(lane), f, count, emit);
                               });
 }
+
+/// The trees the packet traversal runs on (the AVX2 path's); the SSE path's answer ray by ray.
+template <class Tree>
+constexpr bool is_eight_wide = std::is_same_v<Tree, Bvh8> || std::is_same_v<Tree, Bvh8Q>;
 
 /// Runs `one(kernels, first ray, n)` for each packet of a batch: eight copies of the method's kernel.
 template <class K, class One>
@@ -634,7 +638,7 @@ void Accel::closest_packets(std::span<const Ray<double>> rays, std::span<const Q
     with_tree([&](const auto& tree) {
       return with_kernel(scene_, verts_, ntri_, m, [&](auto& k) {
         const auto L = leaves_of(tree, leaf_prims_, groups_);
-        if constexpr (std::is_same_v<std::decay_t<decltype(tree)>, Bvh8>) {
+        if constexpr (is_eight_wide<std::decay_t<decltype(tree)>>) {
           packets_over(b, e, rays.size(), k, [&](auto* ks, std::size_t first, int n) {
             closest_packet(L, ks, &rays[first], n, ranges, first, m.traversal, &out[first]);
           });
@@ -655,7 +659,7 @@ void Accel::any_packets(std::span<const Ray<double>> rays, std::span<const Query
     with_tree([&](const auto& tree) {
       return with_kernel(scene_, verts_, ntri_, m, [&](auto& k) {
         const auto L = leaves_of(tree, leaf_prims_, groups_);
-        if constexpr (std::is_same_v<std::decay_t<decltype(tree)>, Bvh8>) {
+        if constexpr (is_eight_wide<std::decay_t<decltype(tree)>>) {
           packets_over(b, e, rays.size(), k, [&](auto* ks, std::size_t first, int n) {
             any_packet(L, ks, &rays[first], n, ranges, first, m.traversal, &out[first]);
           });
