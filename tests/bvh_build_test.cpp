@@ -179,6 +179,65 @@ TEST(BvhBuild, ParallelTreeAnswersAsBruteForce) {
   EXPECT_GT(hit_rays, 80);
 }
 
+TEST(BvhBuild, ChunkedPartitionIsAPartitionAndTheSameForAnyThreads) {
+  // The parallel partition of big nodes (partition_chunked): for splits that put the boundary in
+  // the first, a middle and the last chunk, every reference before it has a bin <= the split bin
+  // and every one after a greater bin, no reference is lost or repeated, the children's bounds
+  // are those of their references, and the order is the same on one thread, two threads and in
+  // reverse order.
+  const std::size_t n = 4 * detail::kBinChunk + 321;
+  const Soup s = soup(n, 13);
+  std::vector<detail::PrimRef> refs(n);
+  detail::Bounds4 all;
+  for (std::size_t i = 0; i < n; ++i) {
+    const BvhBox& b = s.boxes[i];
+    refs[i] = {{b.lo[0], b.lo[1], b.lo[2]}, std::uint32_t(i), {b.hi[0], b.hi[1], b.hi[2]}, 0.0f,
+               {b.lo[0] * 0.5f + b.hi[0] * 0.5f, b.lo[1] * 0.5f + b.hi[1] * 0.5f, b.lo[2] * 0.5f + b.hi[2] * 0.5f}, 0.0f};
+    all.add(refs[i]);
+  }
+  const detail::NodeBounds nb = all.get();
+  const detail::Bins bins(nb, n);
+  const std::size_t chunks = n / detail::kBinChunk;
+  int splits = 0;
+  for (int axis = 0; axis < 3; ++axis)
+    for (int split : {0, 3, 5, 7, 9, 12, 14}) {
+      SCOPED_TRACE(::testing::Message() << "axis " << axis << " bin " << split);
+      std::vector<std::vector<detail::PrimRef>> got;
+      for (int runner = 0; runner < 3; ++runner) {
+        std::vector<detail::PrimRef> r = refs;
+        detail::NodeBounds l, h;
+        std::size_t mid = 0;
+        if (runner == 0) {
+          detail::Sequential seq;
+          detail::partition_chunked(std::span(r), bins, axis, split, chunks, l, h, seq, mid);
+        } else if (runner == 1) {
+          TwoThreads two;
+          detail::partition_chunked(std::span(r), bins, axis, split, chunks, l, h, two, mid);
+        } else {
+          Reversed rev;
+          detail::partition_chunked(std::span(r), bins, axis, split, chunks, l, h, rev, mid);
+        }
+        detail::Bounds4 want_l, want_h;
+        std::vector<int> seen(n, 0);
+        for (std::size_t i = 0; i < n; ++i) {
+          ASSERT_EQ(bins.bin_of(r[i], axis) <= split, i < mid) << "reference " << i << " of " << mid;
+          (i < mid ? want_l : want_h).add(r[i]);
+          ++seen[r[i].id];
+        }
+        EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), std::ptrdiff_t(n));
+        if (mid > 0 && mid < n) {
+          EXPECT_TRUE(same_box(l.box, want_l.get().box) && same_box(l.centers, want_l.get().centers));
+          EXPECT_TRUE(same_box(h.box, want_h.get().box) && same_box(h.centers, want_h.get().centers));
+          splits += runner == 0 && mid / detail::kBinChunk > 0 && mid / detail::kBinChunk < chunks - 1;
+        }
+        got.push_back(std::move(r));
+      }
+      for (int runner = 1; runner < 3; ++runner)
+        EXPECT_EQ(0, std::memcmp(got[0].data(), got[runner].data(), n * sizeof(detail::PrimRef))) << "runner " << runner;
+    }
+  EXPECT_GE(splits, 3);  // boundaries inside middle chunks were exercised
+}
+
 TEST(BvhBuild, SmallAndDegenerateInputs) {
   for (std::size_t n : {1u, 2u, 3u, 9u, 100u, 4097u}) {
     const Soup s = soup(n, unsigned(n));
