@@ -185,7 +185,7 @@ TEST(BvhBuild, ChunkedPartitionIsAPartitionAndTheSameForAnyThreads) {
   // and every one after a greater bin, no reference is lost or repeated, the children's bounds
   // are those of their references, and the order is the same on one thread, two threads and in
   // reverse order.
-  const std::size_t n = 4 * detail::kBinChunk + 321;
+  const std::size_t n = 5 * detail::kBinChunk + 321;
   const Soup s = soup(n, 13);
   std::vector<detail::PrimRef> refs(n);
   detail::Bounds4 all;
@@ -196,15 +196,30 @@ TEST(BvhBuild, ChunkedPartitionIsAPartitionAndTheSameForAnyThreads) {
     all.add(refs[i]);
   }
   const detail::NodeBounds nb = all.get();
-  const detail::Bins bins(nb, n);
   const std::size_t chunks = n / detail::kBinChunk;
+  // Second input: points at x = 0 or 1, laid out per chunk as alternating, left, left, right,
+  // alternating; split at bin 0 on x, the boundary falls in chunk 3 and the misplaced right
+  // references lie in chunks 0 and 3, with whole chunks on the left between them.
+  std::vector<detail::PrimRef> layout = refs;
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t c = std::min(i / detail::kBinChunk, chunks - 1);
+    const float x = c == 1 || c == 2 ? 0.0f : c == 3 ? 1.0f : float(i % 2);
+    detail::PrimRef& r = layout[i];
+    r.lo[0] = r.hi[0] = r.c[0] = x;
+  }
+  ASSERT_EQ(chunks, 5u);
+  detail::Bounds4 layout_all;
+  for (const auto& r : layout) layout_all.add(r);
+  const detail::NodeBounds layout_nb = layout_all.get();
   int splits = 0;
+  for (const auto* input : {&refs, &layout})
   for (int axis = 0; axis < 3; ++axis)
-    for (int split : {0, 3, 5, 7, 9, 12, 14}) {
-      SCOPED_TRACE(::testing::Message() << "axis " << axis << " bin " << split);
+    for (int split : {0, 3, 7, 10, 14}) {
+      SCOPED_TRACE(::testing::Message() << "axis " << axis << " bin " << split << (input == &refs ? "" : " layout"));
       std::vector<std::vector<detail::PrimRef>> got;
       for (int runner = 0; runner < 3; ++runner) {
-        std::vector<detail::PrimRef> r = refs;
+        std::vector<detail::PrimRef> r = *input;
+        const detail::Bins bins(input == &refs ? nb : layout_nb, n);
         detail::NodeBounds l, h;
         std::size_t mid = 0;
         if (runner == 0) {

@@ -295,8 +295,9 @@ void partition_chunked(std::span<PrimRef> refs, const Bins& bn, int axis, int sp
   std::vector<Run> wrong_right, wrong_left;
   for (std::size_t c = 0; c < chunks; ++c) {
     const std::size_t b = chunk_begin(c), m = b + lefts[c], e = chunk_end(c);
-    if (m < mid) wrong_right.push_back({m, std::min(e, mid)});
-    if (e > mid && m > std::max(b, mid)) wrong_left.push_back({std::max(b, mid), m});
+    if (m < std::min(e, mid)) wrong_right.push_back({m, std::min(e, mid)});  // no empty runs:
+    if (m > std::max(b, mid)) wrong_left.push_back({std::max(b, mid), m});   // the loop below steps one run
+
   }
   std::size_t pairs = 0;
   for (const Run& r : wrong_right) pairs += r.end - r.begin;
@@ -321,6 +322,21 @@ void partition_chunked(std::span<PrimRef> refs, const Bins& bn, int axis, int sp
       _mm_store_ps(b.lo, al), _mm_store_ps(b.hi, ah), _mm_store_ps(b.c, ac);
     }
   });
+}
+
+/// Splits refs into halves by center on the centers' widest axis (ties by id; NaN centers
+/// first): a total order, so the halves do not depend on the input order. Returns n / 2.
+inline std::size_t forced_split(std::span<PrimRef> refs, const NodeBounds& nb) {
+  const int axis = nb.centers.longest_axis();
+  const std::size_t mid = refs.size() / 2;
+  const auto key = [axis](const PrimRef& r) {
+    return r.c[axis] == r.c[axis] ? r.c[axis] : -std::numeric_limits<float>::infinity();
+  };
+  std::nth_element(refs.begin(), refs.begin() + std::ptrdiff_t(mid), refs.end(), [&](const PrimRef& a, const PrimRef& b) {
+    const float ka = key(a), kb = key(b);
+    return ka < kb || (ka == kb && a.id < b.id);
+  });
+  return mid;
 }
 
 /// The binned SAH split of refs (partitioned in place): the size of the left part, or refs.size()
@@ -359,8 +375,11 @@ std::size_t sah_split(std::span<PrimRef> refs, const NodeBounds& nb, std::uint32
   const float split_cost = area > 0.0f ? 2.0f + best_cost / area : std::numeric_limits<float>::infinity();
   if (best_axis < 0 || split_cost >= leaf_cost) {
     if (n <= 2 * max_leaf) return n;
-    // Forced split (coincident centroids or a poor split on a big node): by halves.
-    return n / 2;
+    // Forced split (coincident centers, or a leaf cheaper than any split but too big): the halves
+    // by center on the centers' widest axis, ties by id (NaN first), so the halves do not depend
+    // on the order the references arrive in (the parallel partition's order differs from the
+    // sequential one's).
+    return forced_split(refs, nb);
   }
   if (chunks >= 2) {
     partition_chunked(refs, *bins, best_axis, best_bin, chunks, left_nb, right_nb, for_each, i_left);
