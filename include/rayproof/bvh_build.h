@@ -22,10 +22,13 @@
 /// Parallel build: the caller passes `for_each(n, f)` that may run f(0) .. f(n-1) concurrently
 /// (bvh_build.h stays dependency-free; the scene layer passes TBB). Nodes of more than
 /// parallel_grain(n) primitives (the top of the tree) are split level by level: the nodes of a level
-/// concurrently, and each one's binning over fixed chunks of kBinChunk references concurrently
-/// (bins merge by min, max and sums: exact, in any order). Children are numbered in a sequential
+/// concurrently, and each one's binning and partition over fixed chunks of kBinChunk references
+/// concurrently (bins merge by min, max and sums: exact, in any order; the partition runs per chunk,
+/// then swaps the misplaced pairs, see partition_chunked). Children are numbered in a sequential
 /// pass after each level. The subtrees below the grain are then built concurrently, each into its
-/// own node array, and copied behind the top at offsets from their sizes. Nothing depends on the
+/// own node array, and copied behind the top at offsets from their sizes. A split the SAH finds not
+/// worth it on a node too big for a leaf halves it by center on the widest center axis (ties by
+/// id), independent of the references' order. Nothing depends on the
 /// number of threads or the order the tasks run in: the tree (nodes, order, prim_ids) is the same
 /// for one thread and for many.
 #include <emmintrin.h>
@@ -295,8 +298,9 @@ void partition_chunked(std::span<PrimRef> refs, const Bins& bn, int axis, int sp
   std::vector<Run> wrong_right, wrong_left;
   for (std::size_t c = 0; c < chunks; ++c) {
     const std::size_t b = chunk_begin(c), m = b + lefts[c], e = chunk_end(c);
-    if (m < std::min(e, mid)) wrong_right.push_back({m, std::min(e, mid)});  // no empty runs:
-    if (m > std::max(b, mid)) wrong_left.push_back({std::max(b, mid), m});   // the loop below steps one run
+    // Only non-empty runs: the swap loop below steps over one run end at a time.
+    if (m < std::min(e, mid)) wrong_right.push_back({m, std::min(e, mid)});
+    if (m > std::max(b, mid)) wrong_left.push_back({std::max(b, mid), m});
 
   }
   std::size_t pairs = 0;
