@@ -4,7 +4,8 @@
 /// each variant reports its fastest round. Then the phases of our build at one and two threads
 /// (fastest of the rounds), the binary tree's SAH cost and the wide nodes' fullness.
 /// Run: build_bench [mesh.off | generated] [rounds] [triangles]  (default: generated, 5 rounds,
-/// 2^20 triangles as `rayproof bench`); a fourth argument `profile` times build_bvh alone on this thread.
+/// 2^20 triangles as `rayproof bench`); a fourth argument `profile` times build_bvh alone
+/// (sequential, and in TBB arenas of one and two threads).
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -57,8 +58,8 @@ int main(int argc, char** argv) {
     std::vector<BvhBox> boxes(s.size());
     std::vector<Vec3<float>> centers(s.size());
     for (std::uint32_t i = 0; i < s.size(); ++i) triangle_bounds(s.triangle(i), boxes[i], centers[i]);
-    double best = 1e30, best_tbb = 1e30;
-    tbb::task_arena one(1);
+    double best = 1e30, best_tbb = 1e30, best_two = 1e30;
+    tbb::task_arena one(1), two(2);
     for (int r = 0; r < rounds; ++r) {
       double t0 = now();
       const Bvh bin = build_bvh(boxes, centers, opt);
@@ -71,8 +72,16 @@ int main(int argc, char** argv) {
         });
         best_tbb = std::min(best_tbb, now() - t0);
       });
+      two.execute([&] {
+        t0 = now();
+        const Bvh b2 = build_bvh(boxes, centers, opt, [](std::size_t n, const auto& f) {
+          tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) { f(i); });
+        });
+        best_two = std::min(best_two, now() - t0);
+      });
     }
-    std::printf("build_bvh, one thread: %.1f ms (sequential), %.1f ms (TBB arena of one)\n", 1e3 * best, 1e3 * best_tbb);
+    std::printf("build_bvh: %.1f ms sequential, %.1f ms TBB one thread, %.1f ms two threads (%.2fx)\n", 1e3 * best,
+                1e3 * best_tbb, 1e3 * best_two, best_tbb / best_two);
     return 0;
   }
   auto for_each = [](std::size_t n, const auto& f) {
