@@ -92,7 +92,9 @@ int main(int argc, char** argv) {
   double ours[2] = {1e30, 1e30}, embree[2] = {1e30, 1e30};
   Phases ph[2];
   std::vector<compare::Competitor> comps;
-  if (compare::have_embree()) comps = compare::make_competitors(s, "embree,embree-robust", 1);
+  // Devices of two threads: an Embree device of one thread would cap TBB at one thread (its
+  // global_control) while it lives, our two-thread builds included.
+  if (compare::have_embree()) comps = compare::make_competitors(s, "embree,embree-robust", 2);
   for (int r = 0; r < rounds; ++r)
     for (int k = 0; k < 2; ++k) {
       tbb::task_arena arena(counts[k]);
