@@ -4,7 +4,8 @@
 /// each variant reports its fastest round. Then the phases of our build at one and two threads
 /// (fastest of the rounds), the binary tree's SAH cost and the wide nodes' fullness.
 /// Run: build_bench [mesh.off | generated] [rounds] [triangles]  (default: generated, 5 rounds,
-/// 2^20 triangles as `rayproof bench`); a fourth argument `profile` times build_bvh alone
+/// 2^20 triangles as `rayproof bench`); RAYPROOF_BUILD_BENCH_NO_EMBREE=1 leaves Embree out (its devices,
+/// alive through the run, slow our two-thread builds: 1.01x over one thread with them, 1.33x without); a fourth argument `profile` times build_bvh alone
 /// (sequential, and in TBB arenas of one and two threads).
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
@@ -94,7 +95,8 @@ int main(int argc, char** argv) {
   std::vector<compare::Competitor> comps;
   // Devices of two threads: an Embree device of one thread would cap TBB at one thread (its
   // global_control) while it lives, our two-thread builds included.
-  if (compare::have_embree()) comps = compare::make_competitors(s, "embree,embree-robust", 2);
+  if (compare::have_embree() && !std::getenv("RAYPROOF_BUILD_BENCH_NO_EMBREE"))
+    comps = compare::make_competitors(s, "embree,embree-robust", 2);
   for (int r = 0; r < rounds; ++r)
     for (int k = 0; k < 2; ++k) {
       tbb::task_arena arena(counts[k]);
@@ -122,12 +124,14 @@ int main(int argc, char** argv) {
         if (old_of.empty()) std::printf("empty\n");
       });
     }
+  const bool have = !comps.empty();
   for (int k = 0; k < 2; ++k)
     std::printf("threads %d: ours %.1f ms, embree %.1f ms, ours/embree %.2f | bounds %.1f  build_bvh %.1f  collapse8 %.1f  "
                 "align %.1f ms\n",
-                counts[k], 1e3 * ours[k], 1e3 * embree[k], ours[k] / embree[k], 1e3 * ph[k].bounds, 1e3 * ph[k].build,
-                1e3 * ph[k].collapse, 1e3 * ph[k].align);
-  std::printf("two threads over one: ours %.2fx, embree %.2fx\n", ours[0] / ours[1], embree[0] / embree[1]);
+                counts[k], 1e3 * ours[k], have ? 1e3 * embree[k] : 0.0, have ? ours[k] / embree[k] : 0.0, 1e3 * ph[k].bounds,
+                1e3 * ph[k].build, 1e3 * ph[k].collapse, 1e3 * ph[k].align);
+  std::printf("two threads over one: ours %.2fx, embree %.2fx%s\n", ours[0] / ours[1], have ? embree[0] / embree[1] : 0.0,
+              have ? "" : " (no Embree: its columns are 0)");
   // Tree quality.
   std::vector<BvhBox> boxes(s.size());
   std::vector<Vec3<float>> centers(s.size());
