@@ -4,8 +4,8 @@
 /// each variant reports its fastest round. Then the phases of our build at one and two threads
 /// (fastest of the rounds), the binary tree's SAH cost and the wide nodes' fullness.
 /// Run: build_bench [mesh.off | generated] [rounds] [triangles]  (default: generated, 5 rounds,
-/// 2^20 triangles as `rayproof bench`); RAYPROOF_BUILD_BENCH_NO_EMBREE=1 leaves Embree out (its devices,
-/// alive through the run, slow our two-thread builds: 1.01x over one thread with them, 1.33x without); a fourth argument `profile` times build_bvh alone
+/// 2^20 triangles as `rayproof bench`); RAYPROOF_BUILD_BENCH_NO_EMBREE=1 leaves Embree out (ours timed
+/// without Embree's devices alive); a fourth argument `profile` times build_bvh alone
 /// (sequential, and in TBB arenas of one and two threads).
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
