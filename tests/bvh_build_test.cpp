@@ -1,7 +1,8 @@
 // Issue 15 item 3: the parallel binned SAH builder. The tree is valid (every primitive exactly
 // once, boxes enclose children and primitives, max_depth right) and the same, node for node, for
 // one thread, two threads and tasks run in reverse order; triangle bounds are rounded outward as
-// BvhBox::extend rounds them.
+// BvhBox::extend rounds them. The parallel partition of big nodes is a partition (tested on a layout
+// with whole chunks between misplaced ones) and the same for any threads.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -177,6 +178,80 @@ TEST(BvhBuild, ParallelTreeAnswersAsBruteForce) {
     hit_rays += want != ~0u;
   }
   EXPECT_GT(hit_rays, 80);
+}
+
+TEST(BvhBuild, ChunkedPartitionIsAPartitionAndTheSameForAnyThreads) {
+  // The parallel partition of big nodes (partition_chunked): for splits that put the boundary in
+  // the first, a middle and the last chunk, every reference before it has a bin <= the split bin
+  // and every one after a greater bin, no reference is lost or repeated, the children's bounds
+  // are those of their references, and the order is the same on one thread, two threads and in
+  // reverse order.
+  const std::size_t n = 5 * detail::kBinChunk + 321;
+  const Soup s = soup(n, 13);
+  std::vector<detail::PrimRef> refs(n);
+  detail::Bounds4 all;
+  for (std::size_t i = 0; i < n; ++i) {
+    const BvhBox& b = s.boxes[i];
+    refs[i] = {{b.lo[0], b.lo[1], b.lo[2]}, std::uint32_t(i), {b.hi[0], b.hi[1], b.hi[2]}, 0.0f,
+               {b.lo[0] * 0.5f + b.hi[0] * 0.5f, b.lo[1] * 0.5f + b.hi[1] * 0.5f, b.lo[2] * 0.5f + b.hi[2] * 0.5f}, 0.0f};
+    all.add(refs[i]);
+  }
+  const detail::NodeBounds nb = all.get();
+  const std::size_t chunks = n / detail::kBinChunk;
+  // Second input: points at x = 0 or 1, laid out per chunk as alternating, left, left, right,
+  // alternating; split at bin 0 on x, the boundary falls in chunk 3 and the misplaced right
+  // references lie in chunks 0 and 3, with whole chunks on the left between them.
+  std::vector<detail::PrimRef> layout = refs;
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::size_t c = std::min(i / detail::kBinChunk, chunks - 1);
+    const float x = c == 1 || c == 2 ? 0.0f : c == 3 ? 1.0f : float(i % 2);
+    detail::PrimRef& r = layout[i];
+    r.lo[0] = r.hi[0] = r.c[0] = x;
+  }
+  ASSERT_EQ(chunks, 5u);
+  detail::Bounds4 layout_all;
+  for (const auto& r : layout) layout_all.add(r);
+  const detail::NodeBounds layout_nb = layout_all.get();
+  int splits = 0;
+  for (const auto* input : {&refs, &layout})
+  for (int axis = 0; axis < 3; ++axis)
+    for (int split : {0, 3, 7, 10, 14}) {
+      SCOPED_TRACE(::testing::Message() << "axis " << axis << " bin " << split << (input == &refs ? "" : " layout"));
+      std::vector<std::vector<detail::PrimRef>> got;
+      for (int runner = 0; runner < 3; ++runner) {
+        std::vector<detail::PrimRef> r = *input;
+        const detail::Bins bins(input == &refs ? nb : layout_nb, n);
+        detail::NodeBounds l, h;
+        std::size_t mid = 0;
+        if (runner == 0) {
+          detail::Sequential seq;
+          detail::partition_chunked(std::span(r), bins, axis, split, chunks, l, h, seq, mid);
+        } else if (runner == 1) {
+          TwoThreads two;
+          detail::partition_chunked(std::span(r), bins, axis, split, chunks, l, h, two, mid);
+        } else {
+          Reversed rev;
+          detail::partition_chunked(std::span(r), bins, axis, split, chunks, l, h, rev, mid);
+        }
+        detail::Bounds4 want_l, want_h;
+        std::vector<int> seen(n, 0);
+        for (std::size_t i = 0; i < n; ++i) {
+          ASSERT_EQ(bins.bin_of(r[i], axis) <= split, i < mid) << "reference " << i << " of " << mid;
+          (i < mid ? want_l : want_h).add(r[i]);
+          ++seen[r[i].id];
+        }
+        EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), std::ptrdiff_t(n));
+        if (mid > 0 && mid < n) {
+          EXPECT_TRUE(same_box(l.box, want_l.get().box) && same_box(l.centers, want_l.get().centers));
+          EXPECT_TRUE(same_box(h.box, want_h.get().box) && same_box(h.centers, want_h.get().centers));
+          splits += runner == 0 && mid / detail::kBinChunk > 0 && mid / detail::kBinChunk < chunks - 1;
+        }
+        got.push_back(std::move(r));
+      }
+      for (int runner = 1; runner < 3; ++runner)
+        EXPECT_EQ(0, std::memcmp(got[0].data(), got[runner].data(), n * sizeof(detail::PrimRef))) << "runner " << runner;
+    }
+  EXPECT_GE(splits, 3);  // boundaries inside middle chunks were exercised
 }
 
 TEST(BvhBuild, SmallAndDegenerateInputs) {

@@ -22,10 +22,13 @@
 /// Parallel build: the caller passes `for_each(n, f)` that may run f(0) .. f(n-1) concurrently
 /// (bvh_build.h stays dependency-free; the scene layer passes TBB). Nodes of more than
 /// parallel_grain(n) primitives (the top of the tree) are split level by level: the nodes of a level
-/// concurrently, and each one's binning over fixed chunks of kBinChunk references concurrently
-/// (bins merge by min, max and sums: exact, in any order). Children are numbered in a sequential
+/// concurrently, and each one's binning and partition over fixed chunks of kBinChunk references
+/// concurrently (bins merge by min, max and sums: exact, in any order; the partition runs per chunk,
+/// then swaps the misplaced pairs, see partition_chunked). Children are numbered in a sequential
 /// pass after each level. The subtrees below the grain are then built concurrently, each into its
-/// own node array, and copied behind the top at offsets from their sizes. Nothing depends on the
+/// own node array, and copied behind the top at offsets from their sizes. A split the SAH finds not
+/// worth it on a node too big for a leaf halves it by center on the widest center axis (ties by
+/// id), independent of the references' order. Nothing depends on the
 /// number of threads or the order the tasks run in: the tree (nodes, order, prim_ids) is the same
 /// for one thread and for many.
 #include <emmintrin.h>
@@ -104,9 +107,9 @@ inline __m128 neg_inf4() { return _mm_set1_ps(-std::numeric_limits<float>::infin
 struct Bounds4 {
   __m128 lo = pos_inf4(), hi = neg_inf4();
   __m128 clo = lo, chi = hi;
-  void add(const PrimRef& r) {
-    lo = _mm_min_ps(lo, ref_lo(r)), hi = _mm_max_ps(hi, ref_hi(r));
-    const __m128 c = ref_c(r);
+  void add(const PrimRef& r) { add(ref_lo(r), ref_hi(r), ref_c(r)); }
+  void add(__m128 l, __m128 h, __m128 c) {
+    lo = _mm_min_ps(lo, l), hi = _mm_max_ps(hi, h);
     clo = _mm_min_ps(clo, c), chi = _mm_max_ps(chi, c);
   }
   void add(const Bounds4& o) {
@@ -244,6 +247,102 @@ NodeBounds bounds_of(std::span<const PrimRef> refs, ForEach& for_each) {
   return part[0].get();
 }
 
+/// Partitions refs in place (two pointers) into those whose center's bin on `axis` is at most
+/// `split_bin` and the rest, gathering both sides' bounds; returns the size of the first part.
+inline std::size_t partition_range(std::span<PrimRef> refs, const Bins& bn, int axis, int split_bin, Bounds4& left,
+                                   Bounds4& right) {
+  std::size_t i = 0, j = refs.size();
+  for (;;) {
+    while (i < j && bn.bin_of(refs[i], axis) <= split_bin) left.add(refs[i++]);
+    while (i < j && bn.bin_of(refs[j - 1], axis) > split_bin) right.add(refs[--j]);
+    if (i >= j) break;
+    // Swap in SSE registers (std::swap's scalar stores stall the vector loads that follow).
+    PrimRef& a = refs[i++];
+    PrimRef& b = refs[--j];
+    const __m128 al = ref_lo(a), ah = ref_hi(a), ac = ref_c(a), bl = ref_lo(b), bh = ref_hi(b), bc = ref_c(b);
+    _mm_store_ps(a.lo, bl), _mm_store_ps(a.hi, bh), _mm_store_ps(a.c, bc);
+    _mm_store_ps(b.lo, al), _mm_store_ps(b.hi, ah), _mm_store_ps(b.c, ac);
+    left.add(bl, bh, bc), right.add(al, ah, ac);
+  }
+  return i;
+}
+
+/// The partition of a big node over its `chunks` fixed chunks (those of the binning), with
+/// for_each: each chunk is partitioned in place on its own (partition_range), which leaves
+/// [left | right] per chunk; then the right references that lie before the final boundary are
+/// swapped with the left ones behind it, the k-th of one with the k-th of the other, in blocks of
+/// kBinChunk pairs over for_each. The result depends on the chunks only (fixed by refs.size()),
+/// not on the threads or the order the tasks run in.
+template <class ForEach>
+void partition_chunked(std::span<PrimRef> refs, const Bins& bn, int axis, int split_bin, std::size_t chunks,
+                       NodeBounds& left_nb, NodeBounds& right_nb, ForEach& for_each, std::size_t& left_n) {
+  const std::size_t n = refs.size();
+  auto chunk_begin = [&](std::size_t c) { return c * kBinChunk; };
+  auto chunk_end = [&](std::size_t c) { return c + 1 == chunks ? n : (c + 1) * kBinChunk; };
+  std::vector<Bounds4> left(chunks), right(chunks);
+  std::vector<std::size_t> lefts(chunks);
+  for_each(chunks, [&](std::size_t c) {
+    lefts[c] = partition_range(refs.subspan(chunk_begin(c), chunk_end(c) - chunk_begin(c)), bn, axis, split_bin,
+                               left[c], right[c]);
+  });
+  std::size_t mid = 0;
+  for (std::size_t c = 0; c < chunks; ++c) mid += lefts[c];
+  for (std::size_t c = 1; c < chunks; ++c) left[0].add(left[c]), right[0].add(right[c]);
+  left_nb = left[0].get(), right_nb = right[0].get();
+  left_n = mid;
+  // Misplaced: per chunk, its right part within [0, mid) and its left part within [mid, n), as
+  // intervals in increasing order; both lists hold the same number of references.
+  struct Run {
+    std::size_t begin, end;
+  };
+  std::vector<Run> wrong_right, wrong_left;
+  for (std::size_t c = 0; c < chunks; ++c) {
+    const std::size_t b = chunk_begin(c), m = b + lefts[c], e = chunk_end(c);
+    // Only non-empty runs: the swap loop below steps over one run end at a time.
+    if (m < std::min(e, mid)) wrong_right.push_back({m, std::min(e, mid)});
+    if (m > std::max(b, mid)) wrong_left.push_back({std::max(b, mid), m});
+
+  }
+  std::size_t pairs = 0;
+  for (const Run& r : wrong_right) pairs += r.end - r.begin;
+  // Position of the k-th misplaced reference in a list of runs.
+  auto locate = [](const std::vector<Run>& runs, std::size_t k, std::size_t& run, std::size_t& pos) {
+    run = 0;
+    while (k >= runs[run].end - runs[run].begin) k -= runs[run].end - runs[run].begin, ++run;
+    pos = runs[run].begin + k;
+  };
+  const std::size_t blocks = (pairs + kBinChunk - 1) / kBinChunk;
+  for_each(blocks, [&](std::size_t blk) {
+    const std::size_t k0 = blk * kBinChunk, k1 = std::min(pairs, k0 + kBinChunk);
+    std::size_t ra, pa, rb, pb;
+    locate(wrong_right, k0, ra, pa), locate(wrong_left, k0, rb, pb);
+    for (std::size_t k = k0; k < k1; ++k) {
+      if (pa == wrong_right[ra].end) pa = wrong_right[++ra].begin;
+      if (pb == wrong_left[rb].end) pb = wrong_left[++rb].begin;
+      PrimRef& a = refs[pa++];
+      PrimRef& b = refs[pb++];
+      const __m128 al = ref_lo(a), ah = ref_hi(a), ac = ref_c(a);
+      _mm_store_ps(a.lo, ref_lo(b)), _mm_store_ps(a.hi, ref_hi(b)), _mm_store_ps(a.c, ref_c(b));
+      _mm_store_ps(b.lo, al), _mm_store_ps(b.hi, ah), _mm_store_ps(b.c, ac);
+    }
+  });
+}
+
+/// Splits refs into halves by center on the centers' widest axis (ties by id; NaN centers
+/// first): a total order, so the halves do not depend on the input order. Returns n / 2.
+inline std::size_t forced_split(std::span<PrimRef> refs, const NodeBounds& nb) {
+  const int axis = nb.centers.longest_axis();
+  const std::size_t mid = refs.size() / 2;
+  const auto key = [axis](const PrimRef& r) {
+    return r.c[axis] == r.c[axis] ? r.c[axis] : -std::numeric_limits<float>::infinity();
+  };
+  std::nth_element(refs.begin(), refs.begin() + std::ptrdiff_t(mid), refs.end(), [&](const PrimRef& a, const PrimRef& b) {
+    const float ka = key(a), kb = key(b);
+    return ka < kb || (ka == kb && a.id < b.id);
+  });
+  return mid;
+}
+
 /// The binned SAH split of refs (partitioned in place): the size of the left part, or refs.size()
 /// when a leaf is cheaper. When it splits by bins, the partition pass also gathers both children's
 /// bounds into `left_nb` / `right_nb` and sets `have_children_bounds` (a forced split leaves them
@@ -273,26 +372,26 @@ std::size_t sah_split(std::span<PrimRef> refs, const NodeBounds& nb, std::uint32
   }
   int best_axis, best_bin;
   float best_cost;
+  std::size_t i_left = 0;
   bins->best(best_axis, best_bin, best_cost, group, group_cost);
   const float area = nb.box.half_area();
   const float leaf_cost = float((n + group - 1) / group) * group_cost;
   const float split_cost = area > 0.0f ? 2.0f + best_cost / area : std::numeric_limits<float>::infinity();
   if (best_axis < 0 || split_cost >= leaf_cost) {
     if (n <= 2 * max_leaf) return n;
-    // Forced split (coincident centroids or a poor split on a big node): by halves.
-    return n / 2;
+    // Forced split (coincident centers, or a leaf cheaper than any split but too big): the halves
+    // by center on the centers' widest axis, ties by id (NaN first), so the halves do not depend
+    // on the order the references arrive in (the parallel partition's order differs from the
+    // sequential one's).
+    return forced_split(refs, nb);
   }
-  // Partition (two pointers), gathering both sides' bounds on the way.
-  const Bins& bn = *bins;
+  if (chunks >= 2) {
+    partition_chunked(refs, *bins, best_axis, best_bin, chunks, left_nb, right_nb, for_each, i_left);
+    have_children_bounds = true;
+    return i_left;
+  }
   Bounds4 left, right;
-  std::size_t i = 0, j = n;
-  for (;;) {
-    while (i < j && bn.bin_of(refs[i], best_axis) <= best_bin) left.add(refs[i++]);
-    while (i < j && bn.bin_of(refs[j - 1], best_axis) > best_bin) right.add(refs[--j]);
-    if (i >= j) break;
-    std::swap(refs[i], refs[j - 1]);
-    left.add(refs[i++]), right.add(refs[--j]);
-  }
+  const std::size_t i = partition_range(refs, *bins, best_axis, best_bin, left, right);
   left_nb = left.get(), right_nb = right.get();
   have_children_bounds = true;
   return i;
