@@ -54,11 +54,13 @@ BenchTarget check_target(const std::string& mesh, const std::string& what, const
 BenchTarget scaling_target(const std::string& mesh, const std::string& what, const std::string& rays,
                            const std::string& query, double speedup) {
   BenchTarget t = check_target(mesh, what, rays, query, speedup, 1.9, Goal::at_least, 2);
-  // Two threads cannot do more than twice the work of one: a speed-up printed above 2.10 says one of
-  // the two timings was disturbed (a shared machine), so it proves nothing either way.
+  // A speed-up above 2.10 on two threads is more than twice one thread's rate. It showed up on a
+  // shared machine (a disturbed one-thread timing) and also on a quiet one, for every method and for
+  // Embree alike (issue 15's runs: 2.0-2.5 on this 2-vCPU VM, cause not measured), so the pair of
+  // timings does not measure what the target asks and is not judged either way.
   if (std::strtod(t.value.c_str(), nullptr) > 2.1) {
     t.met = false;
-    t.verdict = "not judged: above 2.10 on 2 threads, a timing was disturbed";
+    t.verdict = "not judged: above 2.10, more than twice one thread's rate";
   }
   return t;
 }
