@@ -631,20 +631,17 @@ void packets_over(std::size_t b, std::size_t e, std::size_t nrays, const K& k, O
 
 }  // namespace
 
-void Accel::closest_packets(std::span<const Ray<double>> rays, std::span<const QueryRange> ranges, std::span<PrimHit> out,
-                            const SceneMethod& m, int threads) const {
-  const std::size_t packets = (rays.size() + kPacketWidth - 1) / kPacketWidth;
+template <class Packet, class Single>
+void Accel::over_packets(std::size_t nrays, const SceneMethod& m, int threads, Packet&& packet, Single&& single) const {
+  const std::size_t packets = (nrays + kPacketWidth - 1) / kPacketWidth;
   parallel_rays(packets, threads, [&](std::size_t b, std::size_t e) {
     with_tree([&](const auto& tree) {
       return with_kernel(scene_, verts_, ntri_, m, [&](auto& k) {
         const auto L = leaves_of(tree, leaf_prims_, groups_);
         if constexpr (is_eight_wide<std::decay_t<decltype(tree)>>) {
-          packets_over(b, e, rays.size(), k, [&](auto* ks, std::size_t first, int n) {
-            closest_packet(L, ks, &rays[first], n, ranges, first, m.traversal, &out[first]);
-          });
+          packets_over(b, e, nrays, k, [&](auto* ks, std::size_t first, int n) { packet(L, ks, first, n); });
         } else {  // the SSE path: ray by ray
-          for (std::size_t i = b * kPacketWidth; i < std::min(e * kPacketWidth, rays.size()); ++i)
-            out[i] = closest_with(L, k, rays[i], m.traversal, range_of(ranges, i));
+          for (std::size_t i = b * kPacketWidth; i < std::min(e * kPacketWidth, nrays); ++i) single(L, k, i);
         }
         return 0;
       });
@@ -652,25 +649,24 @@ void Accel::closest_packets(std::span<const Ray<double>> rays, std::span<const Q
   });
 }
 
+void Accel::closest_packets(std::span<const Ray<double>> rays, std::span<const QueryRange> ranges, std::span<PrimHit> out,
+                            const SceneMethod& m, int threads) const {
+  over_packets(
+      rays.size(), m, threads,
+      [&](const auto& L, auto* ks, std::size_t first, int n) {
+        closest_packet(L, ks, &rays[first], n, ranges, first, m.traversal, &out[first]);
+      },
+      [&](const auto& L, auto& k, std::size_t i) { out[i] = closest_with(L, k, rays[i], m.traversal, range_of(ranges, i)); });
+}
+
 void Accel::any_packets(std::span<const Ray<double>> rays, std::span<const QueryRange> ranges, std::span<std::uint8_t> out,
                         const SceneMethod& m, int threads) const {
-  const std::size_t packets = (rays.size() + kPacketWidth - 1) / kPacketWidth;
-  parallel_rays(packets, threads, [&](std::size_t b, std::size_t e) {
-    with_tree([&](const auto& tree) {
-      return with_kernel(scene_, verts_, ntri_, m, [&](auto& k) {
-        const auto L = leaves_of(tree, leaf_prims_, groups_);
-        if constexpr (is_eight_wide<std::decay_t<decltype(tree)>>) {
-          packets_over(b, e, rays.size(), k, [&](auto* ks, std::size_t first, int n) {
-            any_packet(L, ks, &rays[first], n, ranges, first, m.traversal, &out[first]);
-          });
-        } else {
-          for (std::size_t i = b * kPacketWidth; i < std::min(e * kPacketWidth, rays.size()); ++i)
-            out[i] = any_with(L, k, rays[i], m.traversal, range_of(ranges, i));
-        }
-        return 0;
-      });
-    });
-  });
+  over_packets(
+      rays.size(), m, threads,
+      [&](const auto& L, auto* ks, std::size_t first, int n) {
+        any_packet(L, ks, &rays[first], n, ranges, first, m.traversal, &out[first]);
+      },
+      [&](const auto& L, auto& k, std::size_t i) { out[i] = any_with(L, k, rays[i], m.traversal, range_of(ranges, i)); });
 }
 
 }  // namespace rayproof::scene

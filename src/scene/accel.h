@@ -207,6 +207,11 @@ class Accel {
     if (simd_ == BvhSimd::avx2) return nodes_ == BvhNodes::compressed ? f(bvh8q_) : f(bvh8_);
     return nodes_ == BvhNodes::compressed ? f(bvh4q_) : f(bvh_);
   }
+  /// The body of closest_packets / any_packets over threads: `packet(leaves, kernels, first, n)`
+  /// for each packet of eight rays [first, first + n) on the eight-wide trees, `single(leaves,
+  /// kernel, i)` for each ray on the SSE path (defined and used in accel.cpp only).
+  template <class Packet, class Single>
+  void over_packets(std::size_t nrays, const SceneMethod& m, int threads, Packet&& packet, Single&& single) const;
   /// Bytes of the nodes of the tree in use (the others are empty).
   [[nodiscard]] std::size_t tree_bytes() const { return bvh_.bytes() + bvh8_.bytes() + bvh4q_.bytes() + bvh8q_.bytes(); }
   /// The packed leaf groups from the leaf records (after the vertex indices are in).
