@@ -122,17 +122,7 @@ template <bool Conservative, bool Uniform>
     t0 = _mm256_max_ps(near, t0);  // NaN near: t0, as in bvh8_test
     t1 = _mm256_min_ps(far, t1);
   }
-  if constexpr (Conservative) {
-    const __m256 shrink = _mm256_set1_ps(1.0f - 0x1p-21f), grow = _mm256_set1_ps(1.0f + 0x1p-21f);
-    const __m256 tiny = _mm256_set1_ps(0x1p-120f), zero = _mm256_setzero_ps();
-    const __m256 t0_neg = _mm256_cmp_ps(t0, zero, _CMP_LT_OQ), t1_neg = _mm256_cmp_ps(t1, zero, _CMP_LT_OQ);
-    t0 = _mm256_sub_ps(_mm256_mul_ps(t0, _mm256_blendv_ps(shrink, grow, t0_neg)), tiny);
-    t1 = _mm256_add_ps(_mm256_mul_ps(t1, _mm256_blendv_ps(grow, shrink, t1_neg)), tiny);
-    t0 = _mm256_max_ps(t0, r.tmin);
-    t1 = _mm256_min_ps(t1, tmax);
-  }
-  t_enter = t0;
-  return _mm256_movemask_ps(_mm256_cmp_ps(t0, t1, _CMP_LE_OQ));
+  return bvh8_slab_finish<Conservative>(t0, t1, r.tmin, tmax, t_enter);
 }
 
 /// The lanes of `mask` whose entry distance is within their tmax (ordered: false for NaN).

@@ -134,6 +134,26 @@ struct Bvh8RayF {
 /// Hit mask of eight children and their entry distances: bvh4_slab_test in eight lanes.
 /// `plane(off, k)` gives the eight planes at float offset `off` of axis k (loaded from a full node,
 /// decoded from a quantized one: BvhWideQNode, bvh_wide.h); the math after it is the same for both.
+/// The end of the eight-lane slab test, from the largest near t0 and the smallest far t1 of each
+/// lane: for the conservative test the widening of the header comment, then the clamp to [tmin,
+/// tmax]; the entry distances and the lanes whose interval is not empty (ordered: false for NaN).
+/// Shared by bvh8_slab_test and the packet test of bvh_packet.h.
+template <bool Conservative>
+[[gnu::target("avx2"), gnu::always_inline]] inline int bvh8_slab_finish(__m256 t0, __m256 t1, __m256 tmin, __m256 tmax,
+                                                                        __m256& t_enter) {
+  if constexpr (Conservative) {
+    const __m256 shrink = _mm256_set1_ps(1.0f - 0x1p-21f), grow = _mm256_set1_ps(1.0f + 0x1p-21f);
+    const __m256 tiny = _mm256_set1_ps(0x1p-120f), zero = _mm256_setzero_ps();
+    const __m256 t0_neg = _mm256_cmp_ps(t0, zero, _CMP_LT_OQ), t1_neg = _mm256_cmp_ps(t1, zero, _CMP_LT_OQ);
+    t0 = _mm256_sub_ps(_mm256_mul_ps(t0, _mm256_blendv_ps(shrink, grow, t0_neg)), tiny);
+    t1 = _mm256_add_ps(_mm256_mul_ps(t1, _mm256_blendv_ps(grow, shrink, t1_neg)), tiny);
+    t0 = _mm256_max_ps(t0, tmin);
+    t1 = _mm256_min_ps(t1, tmax);
+  }
+  t_enter = t0;
+  return _mm256_movemask_ps(_mm256_cmp_ps(t0, t1, _CMP_LE_OQ));
+}
+
 template <bool Conservative, class Planes>
 [[gnu::target("avx2"), gnu::always_inline]] inline int bvh8_slab_test(const Planes& plane, int valid, const Bvh8RayF& r,
                                                                       __m256 tmin, __m256 tmax, __m256& t_enter) {
@@ -146,17 +166,7 @@ template <bool Conservative, class Planes>
     t0 = _mm256_max_ps(near, t0);  // NaN near: t0 (the axis bounds nothing)
     t1 = _mm256_min_ps(far, t1);   // NaN far: t1
   }
-  if constexpr (Conservative) {
-    const __m256 shrink = _mm256_set1_ps(1.0f - 0x1p-21f), grow = _mm256_set1_ps(1.0f + 0x1p-21f);
-    const __m256 tiny = _mm256_set1_ps(0x1p-120f), zero = _mm256_setzero_ps();
-    const __m256 t0_neg = _mm256_cmp_ps(t0, zero, _CMP_LT_OQ), t1_neg = _mm256_cmp_ps(t1, zero, _CMP_LT_OQ);
-    t0 = _mm256_sub_ps(_mm256_mul_ps(t0, _mm256_blendv_ps(shrink, grow, t0_neg)), tiny);
-    t1 = _mm256_add_ps(_mm256_mul_ps(t1, _mm256_blendv_ps(grow, shrink, t1_neg)), tiny);
-    t0 = _mm256_max_ps(t0, tmin);
-    t1 = _mm256_min_ps(t1, tmax);
-  }
-  t_enter = t0;
-  return _mm256_movemask_ps(_mm256_cmp_ps(t0, t1, _CMP_LE_OQ)) & valid;
+  return bvh8_slab_finish<Conservative>(t0, t1, tmin, tmax, t_enter) & valid;
 }
 
 /// A full node's planes: loaded.
