@@ -197,7 +197,14 @@ TEST(Certified, BoxTiesGrazesAndFaceStartsAtEveryScale) {
       const int pick = P(g);  // the target on lo, on hi, or at the middle of the slab
       target[a] = pick == 0 ? lo[a] : (pick == 1 ? hi[a] : 0.5 * (lo[a] + hi[a]));
     }
-    if (i % 5 == 0) o[i % 3] = (i % 2 ? lo : hi)[i % 3];  // origin on a face plane
+    if (i % 5 == 0) {  // origin on a face plane
+      // Not `(i % 2 ? lo : hi)[f]`: GCC 12 under -fsanitize=undefined evaluates the index's saved
+      // operand in one arm of that conditional only, and the other arm reads it uninitialized (wrong
+      // faces, and "index -2 out of bounds" when the stack held a negative value). See
+      // tests/lint/conditional_subscript.sh.
+      const int f = i % 3;
+      o[f] = i % 2 ? lo[f] : hi[f];
+    }
     bool zero = true;
     for (int a = 0; a < 3; ++a) {
       const double sign = i % 7 == 0 ? -1.0 : 1.0;  // some rays point away: behind
