@@ -154,13 +154,13 @@ std::string bench_json(const std::vector<BenchRow>& rows, const std::vector<Benc
     const bool has_er = er != idx.end() && er->second->mrays > 0;
     items.push_back(fmt::format(
         "{{\"method\": {}, \"rays\": {}, \"query\": {}, \"path\": {}, \"mesh\": {}, \"ray_count\": {}, \"threads\": 1, "
-        "\"mrays_per_s\": {:.4f}, \"build_s\": {:.4f}, \"bytes_per_tri\": {}, \"bytes_held_per_tri\": {}, \"ratio_to_embree_robust\": {}, \"leaks\": {}, "
+        "\"mrays_per_s\": {}, \"build_s\": {}, \"bytes_per_tri\": {}, \"bytes_held_per_tri\": {}, \"ratio_to_embree_robust\": {}, \"leaks\": {}, "
         "\"leak_rays\": {}, \"scaling_threads\": {}, \"mrays_per_s_scaled\": {}, \"scaling\": {}}}",
         json_string(r.method), json_string(r.rays), json_string(r.query), json_string(r.path), json_string(r.mesh), r.n,
         r.mrays, r.build_s, r.bytes < 0 ? "null" : fixed(r.bytes, 1),
         r.bytes_held < 0 ? "null" : fixed(r.bytes_held, 1), has_er ? fixed(r.mrays / er->second->mrays, 3) : "null",
         r.leaks < 0 ? "null" : std::to_string(r.leaks), r.leak_rays, r.scaled_threads > 0 ? std::to_string(r.scaled_threads) : "null",
-        r.scaled_threads > 0 ? fixed(r.mrays_scaled, 4) : "null",
+        r.scaled_threads > 0 ? fmt::format("{}", r.mrays_scaled) : "null",
         r.scaled_threads > 0 && r.mrays > 0 ? fixed(r.mrays_scaled / r.mrays, 3) : "null"));
   }
   for (const auto& t : targets)
