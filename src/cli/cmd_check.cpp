@@ -161,11 +161,12 @@ int run_mesh_check(const CheckCliOptions& o, const Method& kernel) {
                         {"leaks", r.leaks}, {"rays_without_candidates", r.rays_without_candidates},
                         {"failures", r.failures.size()}, {"reproducers", leaks}});
     }
-    fmt::print("{}\n", nlohmann::json{{"method", kernel.name}, {"finder", opt.finder.name}, {"seed", o.seed},
+    fmt::print("{}\n", nlohmann::json{{"method", kernel.name}, {"summary", kernel.summary}, {"finder", opt.finder.name}, {"seed", o.seed},
                                       {"meshes", meshes}, {"watertight", !leaked}}.dump(1));
   } else {
-    fmt::print("rayproof check --mesh: kernel '{}' ({} precision), candidates from {} (conservative BVH traversal)\n\n",
+    fmt::print("rayproof check --mesh: kernel '{}' ({} precision), candidates from {} (conservative BVH traversal)\n",
                kernel.name, kernel.precision == Precision::float32 ? "float" : "double", opt.finder.name);
+    fmt::print("kernel '{}': {}\n\n", kernel.name, kernel.summary);
     fmt::print("{}", mesh_table(results));
     const auto lines = leak_lines(results, opt.finder.name);
     if (!lines.empty()) {
@@ -181,10 +182,11 @@ int run_mesh_check(const CheckCliOptions& o, const Method& kernel) {
 
 int run_check(const CheckCliOptions& o) {
   // The kernel under test: exactly one of --exec, --plugin, --method.
-  const std::size_t named = o.user.exec.size() + o.user.plugin.size() + (o.method.empty() ? 0 : 1);
+  const std::size_t named =
+      o.user.exec.size() + o.user.plugin.size() + o.user.opencl.size() + (o.method.empty() ? 0 : 1);
   if (named != 1) {
-    fmt::print(stderr, "rayproof check: name one kernel to check: --exec NAME=COMMAND, --plugin NAME=PATH.so or "
-                       "--method NAME ({} given)\n", named);
+    fmt::print(stderr, "rayproof check: name one kernel to check: --exec NAME=COMMAND, --plugin NAME=PATH.so, "
+                       "--opencl NAME=FILE or --method NAME ({} given)\n", named);
     return 2;
   }
   std::vector<std::unique_ptr<Method>> owned;
@@ -278,8 +280,8 @@ int run_check(const CheckCliOptions& o) {
     auto rep = report::build_report(cases, methods, [](const std::string& msg) { fmt::print(stderr, "[report] {}\n", msg); });
     rep.title = fmt::format("rayproof check: {} among the built-in methods", kernel->name);
     rep.highlight = kernel->name;
-    rep.notes.push_back(fmt::format("kernel under test: {} ({} precision)", kernel->name,
-                                    kernel->precision == Precision::float32 ? "float" : "double"));
+    rep.notes.push_back(fmt::format("kernel under test: {} ({} precision): {}", kernel->name,
+                                    kernel->precision == Precision::float32 ? "float" : "double", kernel->summary));
     rep.notes.push_back(fmt::format("cases: {} families x {} (half built in float precision, half in double), seed {}",
                                     res.families.size(), o.count, o.seed));
     for (const auto& line : check_sentences(res)) rep.notes.push_back(line);
@@ -291,11 +293,14 @@ int run_check(const CheckCliOptions& o) {
   }
 
   if (o.json) {
-    fmt::print("{}\n", result_json(res).dump(1));
+    auto j = result_json(res);
+    j["summary"] = kernel->summary;
+    fmt::print("{}\n", j.dump(1));
   } else {
     fmt::print("rayproof check: kernel '{}' ({} precision); {} cases generated per family (half built in float "
                "precision, half in double), seed {}; the table counts those of the kinds the kernel answers\n\n",
                res.method, res.precision == Precision::float32 ? "float" : "double", o.count, o.seed);
+    fmt::print("kernel '{}': {}\n\n", kernel->name, kernel->summary);
     fmt::print("{}", check_table(res));
     const auto lines = reproducer_lines(res);
     if (!lines.empty()) {

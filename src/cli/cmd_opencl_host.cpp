@@ -1,0 +1,119 @@
+/// rayproof opencl-host (hidden): the device process of `--opencl NAME=FILE` (docs/opencl.md).
+/// Builds the user's file inside the wrapper on one OpenCL device, says `R` (ready, with the
+/// device's description) or `E` (why not), then answers batches on stdin/stdout in the private
+/// framing of methods/opencl_frames.h until its input ends. rayproof kills it when a batch runs
+/// over the timeout (OpenCL cannot stop a running kernel) and starts another.
+#include <CLI/CLI.hpp>
+#include <fmt/core.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <fstream>
+#include <memory>
+#include <sstream>
+#include <vector>
+
+#include "cli/commands.h"
+#include "methods/opencl_frames.h"
+
+#ifdef RAYPROOF_HAVE_OPENCL
+#include "methods/opencl_device.h"
+#endif
+
+namespace rayproof::cli {
+
+namespace {
+
+struct HostOptions {
+  std::string file, precision = "float", options;
+  std::vector<std::string> kinds;
+  int device = 0;
+  bool contract_off = false;
+};
+
+int run_opencl_host(const HostOptions& o) {
+  // The frames go to the original stdout; anything a driver prints to stdout goes to stderr.
+  const int out = ::dup(1);
+  ::dup2(2, 1);
+#ifndef RAYPROOF_HAVE_OPENCL
+  opencl::write_text_frame(out, 'E', "this rayproof was built without OpenCL (install ocl-icd-opencl-dev "
+                                     "opencl-headers and rebuild)");
+  (void)o;
+  return 2;
+#else
+  using namespace opencl;
+  std::ifstream in(o.file, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  if (!in) {
+    write_text_frame(out, 'E', o.file + ": cannot read it");
+    return 2;
+  }
+  std::vector<io::Kind> kinds;
+  for (const auto& k : o.kinds) {
+    auto kind = io::kind_from_string(k);
+    if (!kind) {
+      write_text_frame(out, 'E', "unknown kind " + k);
+      return 2;
+    }
+    kinds.push_back(*kind);
+  }
+  WrapperOptions wo;
+  wo.precision = o.precision == "double" ? Precision::float64 : Precision::float32;
+  wo.contract_off = o.contract_off;
+  const auto t0 = std::chrono::steady_clock::now();
+  auto built = Program::build(o.device, wrapper_source(text.str(), o.file, kinds, wo), o.options, kinds, wo.precision);
+  if (auto* why = std::get_if<std::string>(&built)) {
+    write_text_frame(out, 'E', *why);
+    return 2;
+  }
+  Program& prog = *std::get<std::unique_ptr<Program>>(built);
+  const double build_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  const DeviceInfo& d = prog.device();
+  const std::string ready = fmt::format("device\t{}\nfloat_denorms\t{}\nfloat_fma\t{}\nbuild_seconds\t{:.3f}\n",
+                                        d.describe(), d.float_denorms ? 1 : 0, d.float_fma ? 1 : 0, build_s);
+  if (!write_text_frame(out, 'R', ready)) return 2;
+
+  std::vector<double> values;
+  std::vector<RawAnswer> answers;
+  std::vector<WireAnswer> wire;
+  for (;;) {
+    FrameHeader h;
+    if (!read_all(0, &h, sizeof h)) return 0;  // end of input: done
+    if (h.tag != 'B' || h.bytes < 4 || h.bytes > (std::uint64_t{1} << 33)) {
+      write_text_frame(out, 'E', "bad frame from rayproof");
+      return 2;
+    }
+    std::int32_t kind_no = 0;
+    if (!read_all(0, &kind_no, 4)) return 2;
+    values.resize((h.bytes - 4) / sizeof(double));
+    if (!read_all(0, values.data(), values.size() * sizeof(double))) return 2;
+    const auto kind = static_cast<io::Kind>(kind_no);
+    if (auto err = prog.run(kind, values, answers)) {
+      write_text_frame(out, 'E', "OpenCL device " + std::to_string(o.device) + ": " + *err);
+      return 2;
+    }
+    wire.resize(answers.size());
+    for (std::size_t i = 0; i < answers.size(); ++i)
+      wire[i] = WireAnswer{answers[i].code, 0, answers[i].t, answers[i].b1, answers[i].b2};
+    if (!write_frame(out, 'A', wire.data(), wire.size() * sizeof(WireAnswer))) return 2;
+  }
+#endif
+}
+
+}  // namespace
+
+Run add_opencl_host(CLI::App& app) {
+  auto o = std::make_shared<HostOptions>();
+  auto* sub = app.add_subcommand("opencl-host", "The device process of --opencl (framed batches on stdin/stdout)");
+  sub->group("");  // hidden: --opencl runs it
+  sub->add_option("--file", o->file)->required();
+  sub->add_option("--device", o->device);
+  sub->add_option("--precision", o->precision);
+  sub->add_option("--kinds", o->kinds)->delimiter(',');
+  sub->add_option("--options", o->options);
+  sub->add_flag("--contract-off", o->contract_off);
+  return [o] { return run_opencl_host(*o); };
+}
+
+}  // namespace rayproof::cli
