@@ -29,9 +29,28 @@ struct HostOptions {
   std::vector<std::string> kinds;
   int device = 0;
   bool contract_off = false;
+  bool list = false;
 };
 
+/// --list: the devices, one a line, or why there is none (status 3).
+int list_devices_text() {
+#ifndef RAYPROOF_HAVE_OPENCL
+  fmt::print(stderr, "rayproof opencl-host: this rayproof was built without OpenCL (install ocl-icd-opencl-dev "
+                     "opencl-headers and rebuild)\n");
+  return 3;
+#else
+  auto devs = opencl::list_devices();
+  if (auto* why = std::get_if<std::string>(&devs)) {
+    fmt::print(stderr, "rayproof opencl-host: {}\n", *why);
+    return 3;
+  }
+  fmt::print("{}", opencl::device_list_text(std::get<std::vector<opencl::DeviceInfo>>(devs)));
+  return 0;
+#endif
+}
+
 int run_opencl_host(const HostOptions& o) {
+  if (o.list) return list_devices_text();
   // The frames go to the original stdout; anything a driver prints to stdout goes to stderr.
   const int out = ::dup(1);
   ::dup2(2, 1);
@@ -107,7 +126,8 @@ Run add_opencl_host(CLI::App& app) {
   auto o = std::make_shared<HostOptions>();
   auto* sub = app.add_subcommand("opencl-host", "The device process of --opencl (framed batches on stdin/stdout)");
   sub->group("");  // hidden: --opencl runs it
-  sub->add_option("--file", o->file)->required();
+  sub->add_option("--file", o->file);
+  sub->add_flag("--list", o->list, "List the OpenCL devices (the numbers of --device) and exit");
   sub->add_option("--device", o->device);
   sub->add_option("--precision", o->precision);
   sub->add_option("--kinds", o->kinds)->delimiter(',');

@@ -1,0 +1,148 @@
+// --opencl NAME=FILE through the CLI (docs/opencl.md): the example checked against exact on an
+// OpenCL device, a build error with the user's file and line, a kernel that loops forever timing
+// out while the run goes on, a bad FILE, no device. Needs an OpenCL device (pocl in CI); the tests
+// that need one skip with a message where there is none. pocl's kernel cache is turned off
+// (POCL_KERNEL_CACHE=0), so every build here compiles.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <string>
+
+#include "cli_support.h"
+
+namespace {
+
+using rayproof::testing::run_rayproof;
+using rayproof::testing::write_file;
+
+const std::string kNoCache = "POCL_KERNEL_CACHE=0 ";
+
+/// The first device's line of `rayproof opencl-host --list`, or empty when there is no device.
+std::string first_device() {
+  static const std::string dev = [] {
+    const auto r = run_rayproof("opencl-host --list", "", kNoCache);
+    if (r.status != 0) return std::string();
+    const auto colon = r.out.find(": ");
+    const auto paren = r.out.find(" (");
+    if (colon == std::string::npos || paren == std::string::npos) return std::string();
+    return r.out.substr(colon + 2, paren - colon - 2);
+  }();
+  return dev;
+}
+
+#define REQUIRE_OPENCL_DEVICE()                                                                    \
+  if (first_device().empty())                                                                      \
+  GTEST_SKIP() << "no OpenCL device (rayproof opencl-host --list found none; on Debian: apt-get "  \
+                  "install ocl-icd-opencl-dev pocl-opencl-icd)"
+
+const std::string kExample = std::string(RAYPROOF_EXAMPLES_DIR) + "/opencl/moller_trumbore.cl";
+
+/// The check table's row of a family: its numbers, in the table's order.
+std::vector<long> row(const std::string& out, const std::string& family) {
+  std::vector<long> v;
+  const auto at = out.find("\n" + family + " ");
+  if (at == std::string::npos) return v;
+  std::istringstream line(out.substr(at + 1 + family.size(), out.find('\n', at + 1) - at - 1 - family.size()));
+  for (std::string w; line >> w;) v.push_back(w == "-" ? -1 : std::atol(w.c_str()));
+  return v;
+}
+
+TEST(OpenclCli, ExampleCheckedAgainstExactNamesTheDevice) {
+  REQUIRE_OPENCL_DEVICE();
+  const auto r = run_rayproof("check --opencl mt-cl=" + kExample + " --families tri_edge,tri_generic --count 400 "
+                              "--expect watertight", "", kNoCache);
+  // The naive Möller–Trumbore misses rays through edges: the promise is broken (status 1).
+  EXPECT_EQ(r.status, 1) << r.out << r.err;
+  EXPECT_NE(r.out.find("kernel 'mt-cl': OpenCL C"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(first_device()), std::string::npos) << "the device is named: " << r.out;
+  EXPECT_NE(r.out.find("driver "), std::string::npos) << r.out;
+  const auto edge = row(r.out, "tri_edge"), generic = row(r.out, "tri_generic");
+  ASSERT_GE(edge.size(), 3u) << r.out;
+  ASSERT_GE(generic.size(), 3u) << r.out;
+  EXPECT_EQ(edge[0], 400);
+  EXPECT_GT(edge[2], 0) << "false misses on edges: " << r.out;
+  EXPECT_EQ(generic[0], 400);
+  EXPECT_EQ(generic[1] + generic[2] + generic[3], 0) << "no class error on generic triangles: " << r.out;
+  EXPECT_EQ(generic.back(), 0) << "no kernel failure: " << r.out;
+  EXPECT_NE(r.out.find("Promise watertight: BROKEN"), std::string::npos) << r.out;
+}
+
+TEST(OpenclCli, BuildErrorNamesTheUsersFileAndLine) {
+  REQUIRE_OPENCL_DEVICE();
+  const auto f = write_file("typo.cl",
+                            "/* line 1 */\n"
+                            "int rayproof_box(rayproof_real3 o, rayproof_real3 d, rayproof_real3 lo, rayproof_real3 hi,\n"
+                            "                 rayproof_real* t) {\n"
+                            "  return undefined_name + 1;\n"
+                            "}\n");
+  const auto r = run_rayproof("check --opencl " + f.string(), "", kNoCache);
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(r.err.find("typo.cl:4:"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("undefined_name"), std::string::npos) << r.err;
+  EXPECT_EQ(r.err.find("rayproof wrapper"), std::string::npos) << "the error is in the user's text: " << r.err;
+}
+
+TEST(OpenclCli, KernelThatLoopsForeverTimesOutAndTheRunGoesOn) {
+  REQUIRE_OPENCL_DEVICE();
+  // The sphere function never returns; the triangle function answers.
+  const auto f = write_file("loops.cl",
+                            "int rayproof_sphere(rayproof_real3 o, rayproof_real3 d, rayproof_real3 c, rayproof_real r,\n"
+                            "                    rayproof_real* t) {\n"
+                            "  volatile int k = 0;\n"
+                            "  while (k == 0) { }\n"
+                            "  return RAYPROOF_MISS;\n"
+                            "}\n"
+                            "int rayproof_triangle(rayproof_real3 o, rayproof_real3 d, rayproof_real3 p0, rayproof_real3 p1,\n"
+                            "                      rayproof_real3 p2, rayproof_real* t, rayproof_real* b1, rayproof_real* b2) {\n"
+                            "  return RAYPROOF_MISS;\n"
+                            "}\n");
+  const auto r = run_rayproof("check --opencl " + f.string() + " --families sph_generic,tri_parallel --count 40 "
+                              "--exec-timeout 0.5", "", kNoCache + "timeout 120 ");
+  EXPECT_EQ(r.status, 0) << r.out << r.err;  // no promise stated
+  const auto sph = row(r.out, "sph_generic"), tri = row(r.out, "tri_parallel");
+  ASSERT_FALSE(sph.empty()) << r.out << r.err;
+  ASSERT_FALSE(tri.empty()) << r.out << r.err;
+  EXPECT_EQ(sph.back(), 40) << "every case of the hung batch is a kernel failure: " << r.out;
+  EXPECT_NE(r.out.find("timed out: no answer after 0.5 s"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("OpenCL cannot stop a running kernel"), std::string::npos) << r.out;
+  // After the timeout a new device process answered the triangles: no failure, every miss right.
+  EXPECT_EQ(tri[0], 40);
+  EXPECT_EQ(tri.back(), 0) << r.out;
+  EXPECT_EQ(tri[1] + tri[2] + tri[3], 0) << r.out;
+}
+
+TEST(OpenclCli, BadFileIsAClearMessage) {
+  // No device needed: FILE is read before the device process starts.
+  auto r = run_rayproof("check --opencl mine=/nonexistent/k.cl");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("/nonexistent/k.cl: no such file"), std::string::npos) << r.err;
+  const auto none = write_file("none.cl", "/* int rayproof_triangle(...) in a comment only */\nint f(void) { return 0; }\n");
+  r = run_rayproof("check --opencl " + none.string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("defines none of the functions rayproof_plane"), std::string::npos) << r.err;
+  const auto bin = write_file("bin.cl", std::string("int rayproof_box(\0\1\2", 20));
+  r = run_rayproof("check --opencl " + bin.string());
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("a binary file"), std::string::npos) << r.err;
+  r = run_rayproof("check --opencl m:quad=" + kExample);
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("precision 'quad' (float or double)"), std::string::npos) << r.err;
+}
+
+TEST(OpenclCli, NoDeviceNamesThePackagesAndABadDeviceListsThem) {
+  // No ICD: the loader (ocl-icd) finds no platform.
+  auto r = run_rayproof("check --opencl " + kExample, "", "OCL_ICD_VENDORS=/nonexistent-dir ");
+  if (r.status == 0 || r.err.find("no OpenCL platform") == std::string::npos)
+    if (r.err.find("built without OpenCL") == std::string::npos)
+      GTEST_SKIP() << "this ICD loader does not read OCL_ICD_VENDORS (not ocl-icd): " << r.err;
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("ocl-icd-opencl-dev"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("pocl-opencl-icd"), std::string::npos) << r.err;
+  REQUIRE_OPENCL_DEVICE();
+  r = run_rayproof("check --opencl " + kExample + " --device 999", "", kNoCache);
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("no OpenCL device 999"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("0: " + first_device()), std::string::npos) << r.err;
+}
+
+}  // namespace
