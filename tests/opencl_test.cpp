@@ -67,6 +67,29 @@ TEST(OpenclCli, ExampleCheckedAgainstExactNamesTheDevice) {
   EXPECT_NE(r.out.find("Promise watertight: BROKEN"), std::string::npos) << r.out;
 }
 
+TEST(OpenclCli, CompareWithTheCBuildFindsFmaContraction) {
+  REQUIRE_OPENCL_DEVICE();
+  // The written-out formula differs from its C build only where the device contracts a * b + c into
+  // an FMA; a device without FMA (CL_FP_FMA) could agree everywhere, so only the sentence is fixed.
+  const auto r = run_rayproof("check --opencl mt-x=" + std::string(RAYPROOF_EXAMPLES_DIR) +
+                                  "/opencl/moller_trumbore_expanded.cl --compare-plugin " PLUGIN_MT_FLOAT_C
+                                  " --families tri_generic,tri_edge --count 400",
+                              "", kNoCache);
+  EXPECT_EQ(r.status, 0) << r.out << r.err;
+  const auto at = r.out.find("# the device build against the C build mt-c-float");
+  ASSERT_NE(at, std::string::npos) << r.out << r.err;
+  const std::string tail = r.out.substr(at);
+  if (tail.find("answers every one of 800 cases exactly as the C build") != std::string::npos) {
+    EXPECT_EQ(tail.find("FP_CONTRACT OFF"), std::string::npos) << tail;
+  } else {
+    EXPECT_NE(tail.find("of 800 cases"), std::string::npos) << tail;
+    EXPECT_NE(tail.find("Built with `#pragma OPENCL FP_CONTRACT OFF` the device agrees with the C build on every case: "
+                        "the differences are the device compiler's contraction"),
+              std::string::npos)
+        << tail;
+  }
+}
+
 TEST(OpenclCli, BuildErrorNamesTheUsersFileAndLine) {
   REQUIRE_OPENCL_DEVICE();
   const auto f = write_file("typo.cl",

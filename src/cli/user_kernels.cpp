@@ -52,6 +52,24 @@ static OpenclOptions opencl_options(const UserKernelOptions& opt) {
   return oo;
 }
 
+std::unique_ptr<Method> make_opencl_kernel(std::string_view command, const std::string& spec,
+                                           const UserKernelOptions& opt, bool contract_off, OpenclDeviceReport* report) {
+  OpenclOptions oo = opencl_options(opt);
+  oo.contract_off = oo.contract_off || contract_off;
+  fmt::print(stderr, "[opencl] building {} on OpenCL device {}{}\n", spec, opt.device,
+             oo.contract_off ? " with #pragma OPENCL FP_CONTRACT OFF" : "");
+  OpenclDeviceReport rep;
+  auto made = make_opencl_method(spec, self_executable(), oo, &rep);
+  if (auto* err = std::get_if<std::string>(&made)) {
+    fmt::print(stderr, "rayproof {}: {}\n", command, *err);
+    return nullptr;
+  }
+  if (report) *report = rep;
+  auto m = std::make_unique<Method>(std::move(std::get<Method>(made)));
+  fmt::print(stderr, "[opencl] {}: {}: built in {:.2f} s\n", m->name, m->summary, rep.build_seconds);
+  return m;
+}
+
 std::optional<std::vector<std::unique_ptr<Method>>> make_user_kernels(std::string_view command,
                                                                      const UserKernelOptions& opt) {
   std::vector<std::unique_ptr<Method>> out;
@@ -94,23 +112,16 @@ std::optional<std::vector<std::unique_ptr<Method>>> make_user_kernels(std::strin
 
   // --opencl: OpenCL C on a device, in a device process (src/methods/opencl_kernel.h).
   for (const std::string& spec : opt.opencl) {
-    fmt::print(stderr, "[opencl] building {} on OpenCL device {}\n", spec, opt.device);
-    OpenclDeviceReport rep;
-    auto made = make_opencl_method(spec, self_executable(), opencl_options(opt), &rep);
-    if (auto* err = std::get_if<std::string>(&made)) {
-      fmt::print(stderr, "rayproof {}: {}\n", command, *err);
-      return std::nullopt;
-    }
-    Method& m = std::get<Method>(made);
-    bool taken = all_methods().find(m.name) != nullptr;
-    for (const auto& other : out) taken = taken || other->name == m.name;
+    auto m = make_opencl_kernel(command, spec, opt, false);
+    if (!m) return std::nullopt;
+    bool taken = all_methods().find(m->name) != nullptr;
+    for (const auto& other : out) taken = taken || other->name == m->name;
     if (taken) {
       fmt::print(stderr, "rayproof {}: --opencl {}: the name '{}' is taken; choose another (NAME=FILE)\n", command, spec,
-                 m.name);
+                 m->name);
       return std::nullopt;
     }
-    fmt::print(stderr, "[opencl] {}: built in {:.2f} s\n", m.summary, rep.build_seconds);
-    out.push_back(std::make_unique<Method>(std::move(m)));
+    out.push_back(std::move(m));
   }
   return out;
 }

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "methods/method.h"
+#include "methods/opencl_kernel.h"
 
 namespace CLI { class App; }
 
@@ -29,6 +30,13 @@ struct UserKernelOptions {
 
 /// Adds --exec, --plugin, --opencl (with --cl-options, --device) to a subcommand.
 void add_user_kernel_options(CLI::App& sub, UserKernelOptions& opt);
+
+/// One `--opencl` spec's method, built with the options' --device, --cl-options and timeout, and
+/// without FMA contraction when `contract_off` (or --cl-contract-off). `report` receives the device
+/// process's report. A bad spec, FILE or build prints "rayproof COMMAND: ..." and gives nothing.
+[[nodiscard]] std::unique_ptr<Method> make_opencl_kernel(std::string_view command, const std::string& spec,
+                                                         const UserKernelOptions& opt, bool contract_off,
+                                                         OpenclDeviceReport* report = nullptr);
 
 /// The methods the options name, owned by the caller for the command's run. A bad spec prints
 /// "rayproof COMMAND: ..." to standard error and gives nothing.
