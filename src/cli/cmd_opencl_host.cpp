@@ -8,6 +8,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cstdlib>
 #include <fstream>
 #include <memory>
 #include <sstream>
@@ -93,6 +94,7 @@ int run_opencl_host(const HostOptions& o) {
                                         d.describe(), d.float_denorms ? 1 : 0, d.float_fma ? 1 : 0, build_s);
   if (!write_text_frame(out, 'R', ready)) return 2;
 
+  const bool timing = std::getenv("RAYPROOF_OPENCL_TIMING") != nullptr;  // docs/opencl.md, "Speed"
   std::vector<double> values;
   std::vector<RawAnswer> answers;
   std::vector<WireAnswer> wire;
@@ -108,7 +110,12 @@ int run_opencl_host(const HostOptions& o) {
     values.resize((h.bytes - 4) / sizeof(double));
     if (!read_all(0, values.data(), values.size() * sizeof(double))) return 2;
     const auto kind = static_cast<io::Kind>(kind_no);
-    if (auto err = prog.run(kind, values, answers)) {
+    const auto r0 = std::chrono::steady_clock::now();
+    auto run_err = prog.run(kind, values, answers);
+    if (timing)
+      fmt::print(stderr, "[opencl-host] {} cases: {:.3f} ms on the device (copies included)\n", answers.size(),
+                 std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - r0).count());
+    if (auto err = run_err) {
       write_text_frame(out, 'E', "OpenCL device " + std::to_string(o.device) + ": " + *err);
       return 2;
     }
