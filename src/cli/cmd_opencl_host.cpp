@@ -5,7 +5,11 @@
 /// over the timeout (OpenCL cannot stop a running kernel) and starts another.
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
+#include <sys/mman.h>
 #include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
 
 #include <chrono>
 #include <cstdlib>
@@ -31,6 +35,7 @@ struct HostOptions {
   int device = 0;
   bool contract_off = false;
   bool list = false;
+  std::size_t max_cases = 0;  ///< the shared memory's capacity in cases
 };
 
 /// --list: the devices, one a line, or why there is none (status 3).
@@ -95,34 +100,34 @@ int run_opencl_host(const HostOptions& o) {
   if (!write_text_frame(out, 'R', ready)) return 2;
 
   const bool timing = std::getenv("RAYPROOF_OPENCL_TIMING") != nullptr;  // docs/opencl.md, "Speed"
-  std::vector<double> values;
-  std::vector<RawAnswer> answers;
-  std::vector<WireAnswer> wire;
+  ShmLayout shm{o.max_cases, wo.precision == Precision::float64 ? sizeof(double) : sizeof(float)};
+  void* base = ::mmap(nullptr, shm.bytes(), PROT_READ | PROT_WRITE, MAP_SHARED, 3, 0);
+  if (base == MAP_FAILED) {
+    write_text_frame(out, 'E', std::string("cannot map the shared memory: ") + std::strerror(errno));
+    return 2;
+  }
+  auto* bytes = static_cast<unsigned char*>(base);
   for (;;) {
     FrameHeader h;
+    BatchFrame b;
     if (!read_all(0, &h, sizeof h)) return 0;  // end of input: done
-    if (h.tag != 'B' || h.bytes < 4 || h.bytes > (std::uint64_t{1} << 33)) {
+    if (h.tag != 'B' || h.bytes != sizeof b || !read_all(0, &b, sizeof b) || b.cases > o.max_cases || b.kind < 0 ||
+        b.kind > 5) {
       write_text_frame(out, 'E', "bad frame from rayproof");
       return 2;
     }
-    std::int32_t kind_no = 0;
-    if (!read_all(0, &kind_no, 4)) return 2;
-    values.resize((h.bytes - 4) / sizeof(double));
-    if (!read_all(0, values.data(), values.size() * sizeof(double))) return 2;
-    const auto kind = static_cast<io::Kind>(kind_no);
+    const auto kind = static_cast<io::Kind>(b.kind);
     const auto r0 = std::chrono::steady_clock::now();
-    auto run_err = prog.run(kind, values, answers);
+    auto err = prog.run(kind, bytes + shm.in_offset(), b.cases, reinterpret_cast<std::int32_t*>(bytes + shm.code_offset()),
+                        bytes + shm.out_offset());
     if (timing)
-      fmt::print(stderr, "[opencl-host] {} cases: {:.3f} ms on the device (copies included)\n", answers.size(),
+      fmt::print(stderr, "[opencl-host] {} cases: {:.3f} ms on the device (copies included)\n", b.cases,
                  std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - r0).count());
-    if (auto err = run_err) {
+    if (err) {
       write_text_frame(out, 'E', "OpenCL device " + std::to_string(o.device) + ": " + *err);
       return 2;
     }
-    wire.resize(answers.size());
-    for (std::size_t i = 0; i < answers.size(); ++i)
-      wire[i] = WireAnswer{answers[i].code, 0, answers[i].t, answers[i].b1, answers[i].b2};
-    if (!write_frame(out, 'A', wire.data(), wire.size() * sizeof(WireAnswer))) return 2;
+    if (!write_frame(out, 'A', &b.cases, sizeof b.cases)) return 2;
   }
 #endif
 }
@@ -140,6 +145,7 @@ Run add_opencl_host(CLI::App& app) {
   sub->add_option("--kinds", o->kinds)->delimiter(',');
   sub->add_option("--options", o->options);
   sub->add_flag("--contract-off", o->contract_off);
+  sub->add_option("--max-cases", o->max_cases);
   return [o] { return run_opencl_host(*o); };
 }
 

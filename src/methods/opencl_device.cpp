@@ -112,8 +112,6 @@ struct Program::Impl {
   std::size_t local = 64;
   cl_mem in = nullptr, code = nullptr, out = nullptr;
   std::size_t capacity = 0;  // cases the buffers hold
-  std::vector<unsigned char> host_in, host_out;
-  std::vector<cl_int> host_code;
 
   ~Impl() {
     for (auto& [k, kern] : kernels) clReleaseKernel(kern);
@@ -221,41 +219,18 @@ std::variant<std::unique_ptr<Program>, std::string> Program::build(int index, co
   return std::unique_ptr<Program>(new Program(std::move(impl)));
 }
 
-std::optional<std::string> Program::run(io::Kind kind, std::span<const double> values, std::vector<RawAnswer>& answers) {
+std::optional<std::string> Program::run(io::Kind kind, const void* in, std::size_t n, std::int32_t* codes, void* out) {
   Impl& m = *impl_;
-  const std::size_t nf = static_cast<std::size_t>(fields(kind));
-  const std::size_t n = values.size() / nf;
-  answers.assign(n, RawAnswer{});
   if (n == 0) return std::nullopt;
   if (auto err = m.reserve(n)) return err;
-  const bool dbl = m.precision == Precision::float64;
-  const std::size_t rs = m.real_size();
-  m.host_in.resize(n * nf * rs);
-  if (dbl) {
-    std::copy(values.begin(), values.end(), reinterpret_cast<double*>(m.host_in.data()));
-  } else {
-    auto* f = reinterpret_cast<float*>(m.host_in.data());
-    for (std::size_t i = 0; i < values.size(); ++i) f[i] = static_cast<float>(values[i]);
-  }
-  cl_int e = clEnqueueWriteBuffer(m.queue, m.in, CL_FALSE, 0, m.host_in.size(), m.host_in.data(), 0, nullptr, nullptr);
+  const std::size_t rs = m.real_size(), nf = static_cast<std::size_t>(fields(kind));
+  cl_int e = clEnqueueWriteBuffer(m.queue, m.in, CL_FALSE, 0, n * nf * rs, in, 0, nullptr, nullptr);
   if (e != CL_SUCCESS) return fmt::format("clEnqueueWriteBuffer failed ({})", e);
   if (auto err = m.launch(kind, n)) return err;
-  m.host_code.resize(n);
-  m.host_out.resize(n * 3 * rs);
-  e = clEnqueueReadBuffer(m.queue, m.code, CL_FALSE, 0, n * sizeof(cl_int), m.host_code.data(), 0, nullptr, nullptr);
-  e |= clEnqueueReadBuffer(m.queue, m.out, CL_TRUE, 0, m.host_out.size(), m.host_out.data(), 0, nullptr, nullptr);
+  static_assert(sizeof(cl_int) == sizeof(std::int32_t));
+  e = clEnqueueReadBuffer(m.queue, m.code, CL_FALSE, 0, n * sizeof(cl_int), codes, 0, nullptr, nullptr);
+  e |= clEnqueueReadBuffer(m.queue, m.out, CL_TRUE, 0, n * 3 * rs, out, 0, nullptr, nullptr);
   if (e != CL_SUCCESS) return fmt::format("clEnqueueReadBuffer failed ({})", e);
-  for (std::size_t i = 0; i < n; ++i) {
-    RawAnswer& a = answers[i];
-    a.code = m.host_code[i];
-    if (dbl) {
-      const auto* o = reinterpret_cast<const double*>(m.host_out.data()) + 3 * i;
-      a.t = o[0], a.b1 = o[1], a.b2 = o[2];
-    } else {
-      const auto* o = reinterpret_cast<const float*>(m.host_out.data()) + 3 * i;
-      a.t = o[0], a.b1 = o[1], a.b2 = o[2];
-    }
-  }
   return std::nullopt;
 }
 

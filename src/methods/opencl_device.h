@@ -4,6 +4,7 @@
 /// case), its build and its runs. Only the device process (`rayproof opencl-host`,
 /// src/cli/cmd_opencl_host.cpp) links OpenCL; rayproof itself talks to it over pipes
 /// (methods/opencl_kernel.h), so that a kernel that never returns can be killed.
+#include <cstdint>
 #include <memory>
 #include <optional>
 #include <span>
@@ -50,10 +51,11 @@ class Program {
       Precision precision);
 
   [[nodiscard]] const DeviceInfo& device() const;
-  /// Runs the kind's kernel on `values` (fields(kind) doubles per case) and reads the answers back.
+  /// Runs the kind's kernel on `n` cases: `in` holds fields(kind) reals (float or double, the
+  /// program's precision) per case; the return codes go to `codes`, t, b1, b2 per case to `out`.
   /// Gives a message on an OpenCL error.
-  [[nodiscard]] std::optional<std::string> run(io::Kind kind, std::span<const double> values,
-                                               std::vector<RawAnswer>& answers);
+  [[nodiscard]] std::optional<std::string> run(io::Kind kind, const void* in, std::size_t n, std::int32_t* codes,
+                                               void* out);
 
  private:
   struct Impl;

@@ -2,8 +2,9 @@
 /// The private framing between rayproof and its OpenCL device process (`rayproof opencl-host`,
 /// both the same executable): a 16-byte header (tag, payload bytes) and the payload, over pipes.
 /// R: ready (text: the device's description lines). E: an error message (text); the process then
-/// exits. B: a batch (int32 kind, then fields(kind) doubles per case). A: the answers (per case
-/// int32 code, int32 0, double t, b1, b2).
+/// exits. B: a batch (BatchFrame); its cases are in the shared memory (ShmLayout), as the kernel's
+/// reals (float or double), fields(kind) per case. A: the answers are in the shared memory (the
+/// payload repeats the case count).
 #include <unistd.h>
 
 #include <cerrno>
@@ -19,10 +20,19 @@ struct FrameHeader {
   std::uint64_t bytes = 0;
 };
 
-struct WireAnswer {
-  std::int32_t code = -1;
-  std::int32_t zero = 0;
-  double t = 0, b1 = 0, b2 = 0;
+struct BatchFrame {
+  std::int32_t kind = 0;
+  std::uint32_t cases = 0;
+};
+
+/// The shared memory of one device process (a memfd, fd 3 in the child): the inputs (15 reals a
+/// case, whatever the kind), the return codes (int32), the answers (t, b1, b2 a case).
+struct ShmLayout {
+  std::size_t max_cases = 0, real_size = 4;
+  [[nodiscard]] std::size_t in_offset() const { return 0; }
+  [[nodiscard]] std::size_t code_offset() const { return max_cases * 15 * real_size; }
+  [[nodiscard]] std::size_t out_offset() const { return code_offset() + max_cases * 4; }
+  [[nodiscard]] std::size_t bytes() const { return out_offset() + max_cases * 3 * real_size; }
 };
 
 /// Writes all of `n` bytes; false on an error (EPIPE: the other side is gone).

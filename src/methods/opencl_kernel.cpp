@@ -4,12 +4,14 @@
 #include <poll.h>
 #include <signal.h>
 #include <spawn.h>
+#include <sys/mman.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -48,6 +50,10 @@ struct State {
   std::vector<KernelFailure> failures;
   std::size_t bad_batches = 0;
   bool dropped = false;
+  bool timing = std::getenv("RAYPROOF_OPENCL_TIMING") != nullptr;  // docs/opencl.md, "Speed"
+  int shm_fd = -1;  // the cases and answers (opencl::ShmLayout), shared with every device process
+  unsigned char* shm = nullptr;
+  opencl::ShmLayout layout;
 
   ~State();
 };
@@ -83,6 +89,8 @@ State::~State() {
     // A child between batches exits at the end of its input; one cannot be running a batch here.
     end_child(ch, true);
   }
+  if (shm) ::munmap(shm, layout.bytes());
+  if (shm_fd >= 0) ::close(shm_fd);
 }
 
 enum class Read { ok, timeout, eof };
@@ -118,6 +126,16 @@ std::string precision_word(Precision p) { return p == Precision::float64 ? "doub
 
 /// Starts the device process and waits for it to be ready. A message when it is not.
 std::optional<std::string> start(State& st) {
+  if (st.shm_fd < 0) {
+    st.layout = opencl::ShmLayout{st.opt.max_batch, st.precision == Precision::float64 ? sizeof(double) : sizeof(float)};
+    st.shm_fd = ::memfd_create("rayproof-opencl", MFD_CLOEXEC);
+    if (st.shm_fd < 0) return std::string("memfd_create: ") + std::strerror(errno);
+    if (::ftruncate(st.shm_fd, static_cast<off_t>(st.layout.bytes())) != 0)
+      return std::string("ftruncate of the shared memory: ") + std::strerror(errno);
+    void* p = ::mmap(nullptr, st.layout.bytes(), PROT_READ | PROT_WRITE, MAP_SHARED, st.shm_fd, 0);
+    if (p == MAP_FAILED) return std::string("mmap of the shared memory: ") + std::strerror(errno);
+    st.shm = static_cast<unsigned char*>(p);
+  }
   int pin[2], pout[2];
   if (::pipe2(pin, O_CLOEXEC) != 0) return std::string("pipe: ") + std::strerror(errno);
   if (::pipe2(pout, O_CLOEXEC) != 0) {
@@ -129,6 +147,7 @@ std::optional<std::string> start(State& st) {
   std::string kinds;
   for (io::Kind k : st.kinds) kinds += (kinds.empty() ? "" : ",") + std::string(io::to_string(k));
   args.push_back("--kinds=" + kinds);
+  args.push_back("--max-cases=" + std::to_string(st.opt.max_batch));
   if (st.opt.cl_options) args.push_back("--options=" + *st.opt.cl_options);
   if (st.opt.contract_off) args.push_back("--contract-off");
   std::vector<char*> argv;
@@ -138,6 +157,7 @@ std::optional<std::string> start(State& st) {
   posix_spawn_file_actions_init(&fa);
   posix_spawn_file_actions_adddup2(&fa, pin[0], 0);
   posix_spawn_file_actions_adddup2(&fa, pout[1], 1);
+  posix_spawn_file_actions_adddup2(&fa, st.shm_fd, 3);
   posix_spawnattr_t at;
   posix_spawnattr_init(&at);
   sigset_t def, none;
@@ -225,17 +245,21 @@ void run_chunk(State& st, std::span<const io::Case> in, std::span<io::CaseResult
   }
   const io::Kind kind = in.front().kind;
   const std::size_t nf = static_cast<std::size_t>(opencl::fields(kind));
-  std::string frame(sizeof(opencl::FrameHeader) + 4 + in.size() * nf * sizeof(double), '\0');
-  opencl::FrameHeader h{'B', 0, frame.size() - sizeof h};
-  std::memcpy(frame.data(), &h, sizeof h);
-  const auto kind_no = static_cast<std::int32_t>(kind);
-  std::memcpy(frame.data() + sizeof h, &kind_no, 4);
-  auto* v = reinterpret_cast<double*>(frame.data() + sizeof h + 4);
-  for (std::size_t i = 0; i < in.size(); ++i) std::copy_n(in[i].v.begin(), nf, v + i * nf);
+  const auto tfill = Clock::now();
+  if (st.precision == Precision::float64) {
+    auto* v = reinterpret_cast<double*>(st.shm + st.layout.in_offset());
+    for (std::size_t i = 0; i < in.size(); ++i) std::copy_n(in[i].v.begin(), nf, v + i * nf);
+  } else {
+    auto* v = reinterpret_cast<float*>(st.shm + st.layout.in_offset());
+    for (std::size_t i = 0; i < in.size(); ++i)
+      for (std::size_t j = 0; j < nf; ++j) v[i * nf + j] = static_cast<float>(in[i].v[j]);
+  }
+  const opencl::BatchFrame bf{static_cast<std::int32_t>(kind), static_cast<std::uint32_t>(in.size())};
+  opencl::FrameHeader h;
   const auto t0 = Clock::now();
   std::string payload;
   Read r = Read::eof;
-  if (opencl::write_all(st.ch.to, frame.data(), frame.size())) {
+  if (opencl::write_frame(st.ch.to, 'B', &bf, sizeof bf)) {
     const auto deadline = t0 + std::chrono::duration_cast<Clock::duration>(
                                    std::chrono::duration<double>(st.opt.timeout_seconds));
     r = read_frame(st.ch.from, h, payload, deadline);
@@ -257,17 +281,31 @@ void run_chunk(State& st, std::span<const io::Case> in, std::span<io::CaseResult
     lose_batch(st, in, payload);
     return;
   }
-  if (h.tag != 'A' || payload.size() != in.size() * sizeof(opencl::WireAnswer)) {
+  if (h.tag != 'A' || payload.size() != sizeof bf.cases || std::memcmp(payload.data(), &bf.cases, sizeof bf.cases) != 0) {
     end_child(st.ch, false);
     lose_batch(st, in, "the OpenCL device process answered garbage");
     return;
   }
-  const auto* a = reinterpret_cast<const opencl::WireAnswer*>(payload.data());
+  const auto tanswer = Clock::now();
+  const auto* codes = reinterpret_cast<const std::int32_t*>(st.shm + st.layout.code_offset());
+  const unsigned char* o = st.shm + st.layout.out_offset();
   for (std::size_t i = 0; i < in.size(); ++i) {
-    auto res = opencl::to_result(kind, opencl::RawAnswer{a[i].code, a[i].t, a[i].b1, a[i].b2});
+    opencl::RawAnswer raw{codes[i], 0, 0, 0};
+    if (st.precision == Precision::float64) {
+      const auto* d = reinterpret_cast<const double*>(o) + 3 * i;
+      raw.t = d[0], raw.b1 = d[1], raw.b2 = d[2];
+    } else {
+      const auto* f = reinterpret_cast<const float*>(o) + 3 * i;
+      raw.t = f[0], raw.b1 = f[1], raw.b2 = f[2];
+    }
+    auto res = opencl::to_result(kind, raw);
     if (auto* ok = std::get_if<io::CaseResult>(&res)) out[i] = *ok;
     else add_failure(st, std::get<std::string>(res), in[i]);
   }
+  if (st.timing)
+    fmt::print(stderr, "[opencl] {} cases: {:.3f} ms in all, {:.3f} ms until the answers came\n", in.size(),
+               std::chrono::duration<double, std::milli>(Clock::now() - tfill).count(),
+               std::chrono::duration<double, std::milli>(tanswer - tfill).count());
 }
 
 void run_batch(State& st, std::span<const io::Case> in, std::span<io::CaseResult> out) {
