@@ -107,7 +107,7 @@ TEST(OpenclCli, BuildErrorNamesTheUsersFileAndLine) {
 
 TEST(OpenclCli, KernelThatLoopsForeverTimesOutAndTheRunGoesOn) {
   REQUIRE_OPENCL_DEVICE();
-  // The sphere function never returns; the triangle function answers.
+  // The sphere function never returns; the box function (the slab test) answers.
   const auto f = write_file("loops.cl",
                             "int rayproof_sphere(rayproof_real3 o, rayproof_real3 d, rayproof_real3 c, rayproof_real r,\n"
                             "                    rayproof_real* t) {\n"
@@ -115,23 +115,29 @@ TEST(OpenclCli, KernelThatLoopsForeverTimesOutAndTheRunGoesOn) {
                             "  while (k == 0) { }\n"
                             "  return RAYPROOF_MISS;\n"
                             "}\n"
-                            "int rayproof_triangle(rayproof_real3 o, rayproof_real3 d, rayproof_real3 p0, rayproof_real3 p1,\n"
-                            "                      rayproof_real3 p2, rayproof_real* t, rayproof_real* b1, rayproof_real* b2) {\n"
-                            "  return RAYPROOF_MISS;\n"
+                            "int rayproof_box(rayproof_real3 o, rayproof_real3 d, rayproof_real3 lo, rayproof_real3 hi,\n"
+                            "                 rayproof_real* t) {\n"
+                            "  const rayproof_real3 inv = 1 / d, a = (lo - o) * inv, b = (hi - o) * inv;\n"
+                            "  const rayproof_real3 n = fmin(a, b), f = fmax(a, b);\n"
+                            "  const rayproof_real t0 = fmax(fmax(n.x, n.y), n.z), t1 = fmin(fmin(f.x, f.y), f.z);\n"
+                            "  if (!(t0 <= t1) || t1 < 0) return RAYPROOF_MISS;\n"
+                            "  *t = t0 >= 0 ? t0 : t1;\n"
+                            "  return RAYPROOF_HIT_T;\n"
                             "}\n");
-  const auto r = run_rayproof("check --opencl " + f.string() + " --families sph_generic,tri_parallel --count 40 "
+  const auto r = run_rayproof("check --opencl " + f.string() + " --families sph_generic,box_generic --count 40 "
                               "--exec-timeout 0.5", "", kNoCache + "timeout 120 ");
   EXPECT_EQ(r.status, 0) << r.out << r.err;  // no promise stated
-  const auto sph = row(r.out, "sph_generic"), tri = row(r.out, "tri_parallel");
+  const auto sph = row(r.out, "sph_generic"), box = row(r.out, "box_generic");
   ASSERT_FALSE(sph.empty()) << r.out << r.err;
-  ASSERT_FALSE(tri.empty()) << r.out << r.err;
+  ASSERT_FALSE(box.empty()) << r.out << r.err;
   EXPECT_EQ(sph.back(), 40) << "every case of the hung batch is a kernel failure: " << r.out;
   EXPECT_NE(r.out.find("timed out: no answer after 0.5 s"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("OpenCL cannot stop a running kernel"), std::string::npos) << r.out;
-  // After the timeout a new device process answered the triangles: no failure, every miss right.
-  EXPECT_EQ(tri[0], 40);
-  EXPECT_EQ(tri.back(), 0) << r.out;
-  EXPECT_EQ(tri[1] + tri[2] + tri[3], 0) << r.out;
+  // After the timeout a new device process answered the boxes: no failure, the slab test's answers
+  // (pocl: no class error on these 40; a device may differ on a case or two, garbage on half).
+  EXPECT_EQ(box[0], 40);
+  EXPECT_EQ(box.back(), 0) << r.out;
+  EXPECT_LE(box[1] + box[2] + box[3], 4) << r.out;
 }
 
 TEST(OpenclCli, BadFileIsAClearMessage) {
