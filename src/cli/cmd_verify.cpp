@@ -102,7 +102,11 @@ int run_verify(const VerifyOptions& opt) {
     nlohmann::json kf = nlohmann::json::array();
     for (const auto& [m, f] : failures) kf.push_back({{"method", m}, {"what", f.what}, {"case", io::format_case(f.input)}});
     fmt::print("{}\n", nlohmann::json{{"files", opt.files}, {"cases", cases.size()}, {"rows", rows}, {"mismatches", mm},
-                                      {"kernel_failures", kf}}
+                                      {"kernel_failures", kf}, {"kernels", [&] {
+                                        nlohmann::json k = nlohmann::json::object();
+                                        for (const auto& m : *user) k[m->name] = m->summary;
+                                        return k;
+                                      }()}}
                            .dump(1));
   } else {
     // User kernels add two columns: kernel failures (not class errors) and coarse answers.
