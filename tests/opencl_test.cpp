@@ -175,3 +175,70 @@ TEST(OpenclCli, NoDeviceNamesThePackagesAndABadDeviceListsThem) {
 }
 
 }  // namespace
+
+// The parts that need no device: which kinds a file defines, the wrapper, the answer codes, the
+// comparison's sentences from known tallies.
+#include "cli/device_compare.h"
+#include "methods/opencl_wrapper.h"
+
+namespace {
+
+using namespace rayproof;
+
+TEST(OpenclWrapper, KindsDefinedOutsideComments) {
+  const auto k = opencl::kinds_defined("// int rayproof_plane(\n/* rayproof_disk ( */ int rayproof_box (int x);\n"
+                                       "int my_rayproof_sphere(void); int rayproof_triangle_x(void);\n"
+                                       "int rayproof_triangle\n(void);");
+  EXPECT_EQ(k, (std::vector<io::Kind>{io::Kind::triangle, io::Kind::box}));
+}
+
+TEST(OpenclWrapper, UserTextFollowsALineDirectiveNamingTheFile) {
+  const std::string src = opencl::wrapper_source("int rayproof_sphere(...);", "/a/b \"q\".cl", {io::Kind::sphere},
+                                                 opencl::WrapperOptions{Precision::float64, true});
+  const auto line = src.find("#line 1 \"/a/b \\\"q\\\".cl\"\nint rayproof_sphere(...);\n");
+  EXPECT_NE(line, std::string::npos) << src;
+  EXPECT_LT(src.find("cl_khr_fp64 : enable"), line);
+  EXPECT_LT(src.find("#pragma OPENCL FP_CONTRACT OFF"), line);
+  EXPECT_NE(src.find("typedef double rayproof_real;"), std::string::npos);
+  EXPECT_NE(src.find("__kernel void rayproof_run_sphere("), std::string::npos);
+  EXPECT_NE(src.find(", v[9], &t);"), std::string::npos) << "the radius is field 9: " << src;
+}
+
+TEST(OpenclWrapper, AnswerCodes) {
+  auto r = opencl::to_result(io::Kind::triangle, {opencl::kHitTB, 2.0, 0.25, 0.5});
+  ASSERT_TRUE(std::holds_alternative<io::CaseResult>(r));
+  EXPECT_EQ(std::get<io::CaseResult>(r).contact, Contact::hit);
+  EXPECT_EQ(std::get<io::CaseResult>(r).b2, 0.5);
+  r = opencl::to_result(io::Kind::box, {opencl::kHitTB, 2.0, 0.25, 0.5});
+  EXPECT_TRUE(std::holds_alternative<std::string>(r));
+  r = opencl::to_result(io::Kind::box, {7, 0, 0, 0});
+  ASSERT_TRUE(std::holds_alternative<std::string>(r));
+  EXPECT_NE(std::get<std::string>(r).find("returned 7"), std::string::npos);
+  r = opencl::to_result(io::Kind::box, {opencl::kHit, 2.0, 0, 0});
+  EXPECT_FALSE(std::get<io::CaseResult>(r).t.has_value());
+}
+
+TEST(OpenclCompare, SentencesFromKnownTallies) {
+  cli::BuildComparison c;
+  c.device_name = "dev", c.c_name = "c";
+  c.cases = 4000, c.differ = 1014, c.differ_hit = 225, c.agree_uncontracted = 1014, c.uncontracted_differ = 0;
+  auto s = cli::comparison_sentences(c);
+  ASSERT_EQ(s.size(), 2u);
+  EXPECT_EQ(s[0], "The device build dev answers 1014 of 4000 cases (25.35%) differently from the C build c (class, t or "
+                  "barycentrics not identical); 225 of them are hit against miss.");
+  EXPECT_NE(s[1].find("agrees with the C build on every case"), std::string::npos);
+  c.agree_uncontracted = 14, c.uncontracted_differ = 1000, c.device_flushes = true, c.differ_subnormal = 3;
+  s = cli::comparison_sentences(c);
+  ASSERT_EQ(s.size(), 3u);
+  EXPECT_NE(s[1].find("on 14 of the 1014 differing cases"), std::string::npos) << s[1];
+  EXPECT_NE(s[1].find("still differs on 1000 cases"), std::string::npos) << s[1];
+  EXPECT_NE(s[2].find("flushes subnormal floats to zero"), std::string::npos);
+  EXPECT_NE(s[2].find("3 of the differing cases"), std::string::npos);
+  c = cli::BuildComparison{};
+  c.device_name = "dev", c.c_name = "c", c.cases = 10;
+  s = cli::comparison_sentences(c);
+  ASSERT_EQ(s.size(), 1u);
+  EXPECT_EQ(s[0], "The device build dev answers every one of 10 cases exactly as the C build c does.");
+}
+
+}  // namespace
