@@ -16,6 +16,7 @@
 #include <fstream>
 #include <memory>
 #include <sstream>
+#include <thread>
 #include <vector>
 
 #include "cli/commands.h"
@@ -57,6 +58,15 @@ int list_devices_text() {
 
 int run_opencl_host(const HostOptions& o) {
   if (o.list) return list_devices_text();
+  // Dies with rayproof: a kernel spinning forever must not outlive the run that started it. (Not
+  // PR_SET_PDEATHSIG: it fires when the spawning thread ends, and a restart may come from a worker.)
+  const pid_t parent = ::getppid();
+  std::thread([parent] {
+    for (;;) {
+      if (::getppid() != parent) ::_exit(3);
+      std::this_thread::sleep_for(std::chrono::milliseconds(250));
+    }
+  }).detach();
   // The frames go to the original stdout; anything a driver prints to stdout goes to stderr.
   const int out = ::dup(1);
   ::dup2(2, 1);
