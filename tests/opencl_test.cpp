@@ -6,6 +6,7 @@
 // test's restart, which builds the same program again, finds it there.
 #include <gtest/gtest.h>
 
+#include <cctype>
 #include <cstdlib>
 #include <string>
 
@@ -90,6 +91,24 @@ TEST(OpenclCli, CompareWithTheCBuildFindsFmaContraction) {
               std::string::npos)
         << tail;
   }
+}
+
+TEST(OpenclCli, DoubleWhereTheDeviceHasIt) {
+  REQUIRE_OPENCL_DEVICE();
+  const auto r = run_rayproof("check --opencl mt:double=" + kExample + " --families tri_generic --count 200 --json", "",
+                              kNoCache);
+  if (r.status == 2 && r.err.find("has no double precision (cl_khr_fp64)") != std::string::npos)
+    GTEST_SKIP() << "the device has no cl_khr_fp64: " << r.err;
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("\"precision\": \"double\""), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(".cl (double) on OpenCL device 0"), std::string::npos) << r.out;
+  // Double Möller–Trumbore on generic triangles: every class right, t within a few double ulps.
+  EXPECT_NE(r.out.find("\"false_miss\": 0"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"false_hit\": 0"), std::string::npos) << r.out;
+  const auto at = r.out.find("\"ulp_median\": ");
+  ASSERT_NE(at, std::string::npos) << r.out;
+  ASSERT_TRUE(std::isdigit(static_cast<unsigned char>(r.out[at + 14]))) << "a t was compared: " << r.out;
+  EXPECT_LE(std::atol(r.out.c_str() + at + 14), 16) << r.out;
 }
 
 TEST(OpenclCli, BuildErrorNamesTheUsersFileAndLine) {
