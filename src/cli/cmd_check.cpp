@@ -11,9 +11,11 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/check_text.h"
+#include "cli/device_compare.h"
 #include "cli/commands.h"
 #include "cli/registry.h"
 #include "cli/user_kernels.h"
+#include "methods/plugin_kernel.h"
 #include "report/report.h"
 #include "scene/accel.h"
 #include "verify/check.h"
@@ -38,7 +40,46 @@ struct CheckCliOptions {
   std::size_t mesh_targets = 0;
   int interior = 2;
   bool plugin_in_process = false;
+  std::string compare_plugin;  ///< --compare-plugin: the C build of the --opencl kernel's formula
 };
+
+/// --compare-plugin: the --opencl kernel against the C build of its formula on the check's cases,
+/// and the same kernel built without contraction (cli/device_compare.h). Nothing on a bad option
+/// (the message is printed).
+std::optional<BuildComparison> compare_with_plugin(const CheckCliOptions& o, const Method& kernel,
+                                                   const verify::CheckResult& res) {
+  if (o.user.opencl.size() != 1) {
+    fmt::print(stderr, "rayproof check: --compare-plugin compares an --opencl kernel with the C build of its formula\n");
+    return std::nullopt;
+  }
+  auto loaded = load_plugin_method(o.compare_plugin, "");
+  if (auto* why = std::get_if<std::string>(&loaded)) {
+    fmt::print(stderr, "rayproof check: --compare-plugin: {}\n", *why);
+    return std::nullopt;
+  }
+  const Method& c = std::get<Method>(loaded);
+  if (c.precision != kernel.precision) {
+    fmt::print(stderr, "rayproof check: --compare-plugin {} is {} precision, the kernel {}: compare like with like\n",
+               o.compare_plugin, c.precision == Precision::float32 ? "float" : "double",
+               kernel.precision == Precision::float32 ? "float" : "double");
+    return std::nullopt;
+  }
+  OpenclDeviceReport rep;
+  auto uncontracted = make_opencl_kernel("check", o.user.opencl.front(), o.user, true, &rep);
+  if (!uncontracted) return std::nullopt;
+  uncontracted->name = kernel.name + "-contract-off";
+  std::vector<io::Case> cases;
+  for (const auto& fc : res.families)
+    for (auto p : {gen::Precision::float32, gen::Precision::float64}) {
+      const std::size_t n = p == gen::Precision::float32 ? o.count / 2 : o.count - o.count / 2;
+      for (auto& cs : gen::generate(*gen::find_family(fc.family), n, o.seed, p))
+        if (kernel.supports(cs.kind) && c.supports(cs.kind))
+          cases.push_back(kernel.precision == Precision::float32 ? io::round_to_float(cs) : cs);
+    }
+  const bool flushes = kernel.precision == Precision::float32 &&
+                       (!rep.float_denorms || o.user.cl_options.find("-cl-denorms-are-zero") != std::string::npos);
+  return compare_builds(kernel, c, uncontracted.get(), flushes, cases);
+}
 
 nlohmann::json ulps_json(std::uint64_t u) {
   if (u == std::numeric_limits<std::uint64_t>::max()) return nullptr;  // a NaN or missing t
@@ -161,11 +202,12 @@ int run_mesh_check(const CheckCliOptions& o, const Method& kernel) {
                         {"leaks", r.leaks}, {"rays_without_candidates", r.rays_without_candidates},
                         {"failures", r.failures.size()}, {"reproducers", leaks}});
     }
-    fmt::print("{}\n", nlohmann::json{{"method", kernel.name}, {"finder", opt.finder.name}, {"seed", o.seed},
+    fmt::print("{}\n", nlohmann::json{{"method", kernel.name}, {"summary", kernel.summary}, {"finder", opt.finder.name}, {"seed", o.seed},
                                       {"meshes", meshes}, {"watertight", !leaked}}.dump(1));
   } else {
-    fmt::print("rayproof check --mesh: kernel '{}' ({} precision), candidates from {} (conservative BVH traversal)\n\n",
+    fmt::print("rayproof check --mesh: kernel '{}' ({} precision), candidates from {} (conservative BVH traversal)\n",
                kernel.name, kernel.precision == Precision::float32 ? "float" : "double", opt.finder.name);
+    fmt::print("kernel '{}': {}\n\n", kernel.name, kernel.summary);
     fmt::print("{}", mesh_table(results));
     const auto lines = leak_lines(results, opt.finder.name);
     if (!lines.empty()) {
@@ -181,10 +223,11 @@ int run_mesh_check(const CheckCliOptions& o, const Method& kernel) {
 
 int run_check(const CheckCliOptions& o) {
   // The kernel under test: exactly one of --exec, --plugin, --method.
-  const std::size_t named = o.user.exec.size() + o.user.plugin.size() + (o.method.empty() ? 0 : 1);
+  const std::size_t named =
+      o.user.exec.size() + o.user.plugin.size() + o.user.opencl.size() + (o.method.empty() ? 0 : 1);
   if (named != 1) {
-    fmt::print(stderr, "rayproof check: name one kernel to check: --exec NAME=COMMAND, --plugin NAME=PATH.so or "
-                       "--method NAME ({} given)\n", named);
+    fmt::print(stderr, "rayproof check: name one kernel to check: --exec NAME=COMMAND, --plugin NAME=PATH.so, "
+                       "--opencl NAME=FILE or --method NAME ({} given)\n", named);
     return 2;
   }
   std::vector<std::unique_ptr<Method>> owned;
@@ -260,6 +303,11 @@ int run_check(const CheckCliOptions& o) {
                p.cases_done);
   };
   const verify::CheckResult res = verify::check(*kernel, opt);
+  std::optional<BuildComparison> cmp;
+  if (!o.compare_plugin.empty()) {
+    cmp = compare_with_plugin(o, *kernel, res);
+    if (!cmp) return 2;
+  }
 
   if (!o.out.empty()) {
     std::vector<const Method*> methods{kernel};
@@ -278,8 +326,8 @@ int run_check(const CheckCliOptions& o) {
     auto rep = report::build_report(cases, methods, [](const std::string& msg) { fmt::print(stderr, "[report] {}\n", msg); });
     rep.title = fmt::format("rayproof check: {} among the built-in methods", kernel->name);
     rep.highlight = kernel->name;
-    rep.notes.push_back(fmt::format("kernel under test: {} ({} precision)", kernel->name,
-                                    kernel->precision == Precision::float32 ? "float" : "double"));
+    rep.notes.push_back(fmt::format("kernel under test: {} ({} precision): {}", kernel->name,
+                                    kernel->precision == Precision::float32 ? "float" : "double", kernel->summary));
     rep.notes.push_back(fmt::format("cases: {} families x {} (half built in float precision, half in double), seed {}",
                                     res.families.size(), o.count, o.seed));
     for (const auto& line : check_sentences(res)) rep.notes.push_back(line);
@@ -291,11 +339,22 @@ int run_check(const CheckCliOptions& o) {
   }
 
   if (o.json) {
-    fmt::print("{}\n", result_json(res).dump(1));
+    auto j = result_json(res);
+    j["summary"] = kernel->summary;
+    if (cmp)
+      j["compare_plugin"] = {{"plugin", o.compare_plugin}, {"cases", cmp->cases}, {"differ", cmp->differ},
+                             {"differ_hit_miss", cmp->differ_hit},
+                             {"agree_without_contraction", cmp->agree_uncontracted.value_or(0)},
+                             {"differ_without_contraction", cmp->uncontracted_differ.value_or(0)},
+                             {"device_flushes_subnormals", cmp->device_flushes},
+                             {"differ_with_subnormal_input", cmp->differ_subnormal},
+                             {"sentences", comparison_sentences(*cmp)}};
+    fmt::print("{}\n", j.dump(1));
   } else {
     fmt::print("rayproof check: kernel '{}' ({} precision); {} cases generated per family (half built in float "
                "precision, half in double), seed {}; the table counts those of the kinds the kernel answers\n\n",
                res.method, res.precision == Precision::float32 ? "float" : "double", o.count, o.seed);
+    fmt::print("kernel '{}': {}\n\n", kernel->name, kernel->summary);
     fmt::print("{}", check_table(res));
     const auto lines = reproducer_lines(res);
     if (!lines.empty()) {
@@ -305,6 +364,12 @@ int run_check(const CheckCliOptions& o) {
     }
     fmt::print("\n");
     for (const auto& s : check_sentences(res)) fmt::print("{}\n", s);
+    if (cmp) {
+      fmt::print("\n# the device build against the C build {} ({}): up to 3 cases where they differ\n",
+                 cmp->c_name, o.compare_plugin);
+      for (const auto& l : cmp->examples) fmt::print("{}\n", l);
+      for (const auto& l : comparison_sentences(*cmp)) fmt::print("{}\n", l);
+    }
   }
   return res.promises_kept() ? 0 : 1;
 }
@@ -316,6 +381,9 @@ Run add_check(CLI::App& app) {
   add_user_kernel_options(*sub, o->user);
   sub->add_flag("--plugin-in-process", o->plugin_in_process,
                 "Load --plugin into rayproof itself instead of a forked child (faster; a crash ends the check)");
+  sub->add_option("--compare-plugin", o->compare_plugin,
+                  "PATH.so: the C build of the --opencl kernel's formula; says where the device answers differently "
+                  "and why where it can tell (FMA contraction, flushed subnormals)");
   sub->add_option("--method", o->method, "Check this built-in method instead of a kernel of yours");
   sub->add_option("--count", o->count, "Cases per family (half built in float precision, half in double)")
       ->check(CLI::Range(std::size_t{2}, std::size_t{10000000}))

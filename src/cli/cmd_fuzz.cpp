@@ -108,6 +108,7 @@ int run_mesh_fuzz_cli(const FuzzCliOptions& o) {
   }
   auto user = make_user_kernels("fuzz", o.user);
   if (!user) return 2;
+  for (const auto& k : *user) fmt::print("# {}: {}\n", k->name, k->summary);  // GPU kernels: the device and driver
   for (const auto& k : *user)
     if (!k->supports(io::Kind::triangle)) {
       fmt::print(stderr, "rayproof fuzz: --mesh needs triangle kernels; '{}' answers no triangles\n", k->name);
@@ -180,6 +181,7 @@ int run_fuzz_cli(const FuzzCliOptions& o) {
   opt.methods = std::move(*selected);
   auto user = make_user_kernels("fuzz", o.user);
   if (!user) return 2;
+  for (const auto& k : *user) fmt::print("# {}: {}\n", k->name, k->summary);  // GPU kernels: the device and driver
   for (const auto& k : *user) opt.methods.push_back(k.get());
   if (o.families.empty()) {
     for (const auto& f : gen::families()) opt.families.push_back(&f);

@@ -90,6 +90,7 @@ int run_report(const ReportOptions& opt) {
 
   std::vector<io::Case> cases;
   std::vector<std::string> notes;
+  for (const auto& m : *user) notes.push_back(fmt::format("kernel {}: {}", m->name, m->summary));  // names a GPU device
   if (!opt.input.empty()) {
     CaseInput in = read_case_input(opt.input);
     if (!in.error.empty() && in.entries.empty()) {
@@ -136,7 +137,13 @@ int run_report(const ReportOptions& opt) {
     return s;
   }()));
   for (const auto& m : *user)
-    if (m->classify_batch)
+    if (m->classify_batch && m->summary.rfind("OpenCL C ", 0) == 0)
+      notes.push_back(fmt::format("{} is your OpenCL kernel: its ns/case is the wall time of whole batches divided by "
+                                  "their cases, the pipes to its device process, the copies to and from the device "
+                                  "and the launch included (the build is not); the device runs a batch on all of its "
+                                  "compute units, the CPU methods on one thread",
+                                  m->name));
+    else if (m->classify_batch)
       notes.push_back(fmt::format("{} is your kernel over --exec: its ns/case is the wall time of a whole batch "
                                   "divided by its cases, the line protocol (formatting, pipes, parsing) and the "
                                   "start of its process included",

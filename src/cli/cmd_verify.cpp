@@ -102,11 +102,16 @@ int run_verify(const VerifyOptions& opt) {
     nlohmann::json kf = nlohmann::json::array();
     for (const auto& [m, f] : failures) kf.push_back({{"method", m}, {"what", f.what}, {"case", io::format_case(f.input)}});
     fmt::print("{}\n", nlohmann::json{{"files", opt.files}, {"cases", cases.size()}, {"rows", rows}, {"mismatches", mm},
-                                      {"kernel_failures", kf}}
+                                      {"kernel_failures", kf}, {"kernels", [&] {
+                                        nlohmann::json k = nlohmann::json::object();
+                                        for (const auto& m : *user) k[m->name] = m->summary;
+                                        return k;
+                                      }()}}
                            .dump(1));
   } else {
     // User kernels add two columns: kernel failures (not class errors) and coarse answers.
     const bool extra = !user->empty();
+    for (const auto& m : *user) fmt::print("# {}: {}\n", m->name, m->summary);  // GPU kernels: the device and driver
     auto row = [&](const std::string& m, const std::string& g, const verify::Stats& s) {
       fmt::print("{:<16} {:<24} {:>7} {:>7} {:>8} {:>9} {:>9} {:>6} {:>8} {:>8} {:>10} {:>9}", m, g, s.cases,
                  s.class_errors(), s.false_hit, s.false_miss, s.wrong_hit_class, s.wrong_class, ulps(s.ulp_quantile(0.5)),

@@ -6,6 +6,10 @@
 #include "cli/plugin_host.h"
 #include "cli/registry.h"
 #include "methods/exec_kernel.h"
+#include "methods/opencl_kernel.h"
+
+#include <filesystem>
+#include <system_error>
 
 namespace rayproof::cli {
 
@@ -20,6 +24,50 @@ void add_user_kernel_options(CLI::App& sub, UserKernelOptions& opt) {
   sub.add_option("--plugin", opt.plugin,
                  "NAME=PATH.so or PATH.so: a kernel of yours as a shared library (rayproof/plugin.h); repeatable")
       ->allow_extra_args(false);  // one library per --plugin: the case files that follow stay positional
+  sub.add_option("--opencl", opt.opencl,
+                 "NAME=FILE or NAME:double=FILE: OpenCL C functions of yours run on an OpenCL device "
+                 "(docs/opencl.md); repeatable")
+      ->allow_extra_args(false);
+  sub.add_option("--cl-options", opt.cl_options, "OpenCL build options for --opencl (default: the device's defaults)")
+      ->each([&opt](const std::string&) { opt.cl_options_given = true; });
+  sub.add_flag("--cl-contract-off", opt.cl_contract_off,
+               "Build --opencl kernels with `#pragma OPENCL FP_CONTRACT OFF` before their text (no FMA contraction)");
+  sub.add_option("--device", opt.device, "The device of --opencl: N over every platform (the message of a bad N lists them)")
+      ->check(CLI::Range(0, 1000))
+      ->capture_default_str();
+}
+
+static std::string self_executable() {
+  std::error_code ec;
+  const auto p = std::filesystem::read_symlink("/proc/self/exe", ec);
+  return ec ? std::string() : p.string();
+}
+
+static OpenclOptions opencl_options(const UserKernelOptions& opt) {
+  OpenclOptions oo;
+  oo.device = opt.device;
+  if (opt.cl_options_given) oo.cl_options = opt.cl_options;
+  oo.contract_off = opt.cl_contract_off;
+  oo.timeout_seconds = opt.exec_timeout;
+  return oo;
+}
+
+std::unique_ptr<Method> make_opencl_kernel(std::string_view command, const std::string& spec,
+                                           const UserKernelOptions& opt, bool contract_off, OpenclDeviceReport* report) {
+  OpenclOptions oo = opencl_options(opt);
+  oo.contract_off = oo.contract_off || contract_off;
+  fmt::print(stderr, "[opencl] building {} on OpenCL device {}{}\n", spec, opt.device,
+             oo.contract_off ? " with #pragma OPENCL FP_CONTRACT OFF" : "");
+  OpenclDeviceReport rep;
+  auto made = make_opencl_method(spec, self_executable(), oo, &rep);
+  if (auto* err = std::get_if<std::string>(&made)) {
+    fmt::print(stderr, "rayproof {}: {}\n", command, *err);
+    return nullptr;
+  }
+  if (report) *report = rep;
+  auto m = std::make_unique<Method>(std::move(std::get<Method>(made)));
+  fmt::print(stderr, "[opencl] {}: {}: built in {:.2f} s\n", m->name, m->summary, rep.build_seconds);
+  return m;
 }
 
 std::optional<std::vector<std::unique_ptr<Method>>> make_user_kernels(std::string_view command,
@@ -57,6 +105,20 @@ std::optional<std::vector<std::unique_ptr<Method>>> make_user_kernels(std::strin
     if (taken) {
       fmt::print(stderr, "rayproof {}: --plugin {}: the name '{}' is taken; choose another (NAME=PATH.so)\n", command,
                  spec, m->name);
+      return std::nullopt;
+    }
+    out.push_back(std::move(m));
+  }
+
+  // --opencl: OpenCL C on a device, in a device process (src/methods/opencl_kernel.h).
+  for (const std::string& spec : opt.opencl) {
+    auto m = make_opencl_kernel(command, spec, opt, false);
+    if (!m) return std::nullopt;
+    bool taken = all_methods().find(m->name) != nullptr;
+    for (const auto& other : out) taken = taken || other->name == m->name;
+    if (taken) {
+      fmt::print(stderr, "rayproof {}: --opencl {}: the name '{}' is taken; choose another (NAME=FILE)\n", command, spec,
+                 m->name);
       return std::nullopt;
     }
     out.push_back(std::move(m));
