@@ -181,10 +181,11 @@ int run_mesh_check(const CheckCliOptions& o, const Method& kernel) {
 
 int run_check(const CheckCliOptions& o) {
   // The kernel under test: exactly one of --exec, --plugin, --method.
-  const std::size_t named = o.user.exec.size() + o.user.plugin.size() + (o.method.empty() ? 0 : 1);
+  const std::size_t named =
+      o.user.exec.size() + o.user.plugin.size() + o.user.glsl.size() + (o.method.empty() ? 0 : 1);
   if (named != 1) {
-    fmt::print(stderr, "rayproof check: name one kernel to check: --exec NAME=COMMAND, --plugin NAME=PATH.so or "
-                       "--method NAME ({} given)\n", named);
+    fmt::print(stderr, "rayproof check: name one kernel to check: --exec NAME=COMMAND, --plugin NAME=PATH.so, "
+                       "--glsl NAME=FILE or --method NAME ({} given)\n", named);
     return 2;
   }
   std::vector<std::unique_ptr<Method>> owned;

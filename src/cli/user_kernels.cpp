@@ -3,11 +3,24 @@
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
 
+#include <filesystem>
+#include <system_error>
+
 #include "cli/plugin_host.h"
 #include "cli/registry.h"
 #include "methods/exec_kernel.h"
+#include "methods/glsl_kernel.h"
 
 namespace rayproof::cli {
+
+namespace {
+/// This rayproof's own executable, which hosts a --glsl shader as `rayproof glsl-host`.
+std::string self_executable() {
+  std::error_code ec;
+  const auto p = std::filesystem::read_symlink("/proc/self/exe", ec);
+  return ec ? std::string() : p.string();
+}
+}  // namespace
 
 void add_user_kernel_options(CLI::App& sub, UserKernelOptions& opt) {
   sub.add_option("--exec", opt.exec,
@@ -20,6 +33,15 @@ void add_user_kernel_options(CLI::App& sub, UserKernelOptions& opt) {
   sub.add_option("--plugin", opt.plugin,
                  "NAME=PATH.so or PATH.so: a kernel of yours as a shared library (rayproof/plugin.h); repeatable")
       ->allow_extra_args(false);  // one library per --plugin: the case files that follow stay positional
+  sub.add_option("--glsl", opt.glsl,
+                 "NAME=FILE (or NAME:double=FILE): your GLSL intersection functions (docs/shaders.md), run on a "
+                 "Vulkan device; repeatable")
+      ->allow_extra_args(false);
+  sub.add_option("--device", opt.device, "The GPU device of --glsl: its index in the Vulkan device list (an error lists them)")
+      ->check(CLI::Range(0, 1023))
+      ->capture_default_str();
+  sub.add_flag("--glsl-precise", opt.glsl_precise,
+               "Compile --glsl shaders with every float operation precise (SPIR-V NoContraction): no FMA contraction");
 }
 
 std::optional<std::vector<std::unique_ptr<Method>>> make_user_kernels(std::string_view command,
@@ -60,6 +82,28 @@ std::optional<std::vector<std::unique_ptr<Method>>> make_user_kernels(std::strin
       return std::nullopt;
     }
     out.push_back(std::move(m));
+  }
+  // --glsl: compiled and run on a Vulkan device in a child process (src/methods/glsl_kernel.h).
+  for (const std::string& spec : opt.glsl) {
+    GlslOptions go;
+    go.device = opt.device;
+    go.timeout_seconds = opt.exec_timeout;
+    go.host = self_executable();
+    go.no_contraction = opt.glsl_precise;
+    auto made = make_glsl_method(spec, go);
+    if (auto* err = std::get_if<std::string>(&made)) {
+      fmt::print(stderr, "rayproof {}: {}\n", command, *err);
+      return std::nullopt;
+    }
+    Method& m = std::get<Method>(made);
+    bool taken = all_methods().find(m.name) != nullptr;
+    for (const auto& other : out) taken = taken || other->name == m.name;
+    if (taken) {
+      fmt::print(stderr, "rayproof {}: --glsl {}: the name '{}' is taken; choose another (NAME=FILE)\n", command, spec,
+                 m.name);
+      return std::nullopt;
+    }
+    out.push_back(std::make_unique<Method>(std::move(m)));
   }
   return out;
 }

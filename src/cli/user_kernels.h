@@ -19,9 +19,12 @@ struct UserKernelOptions {
   std::vector<std::string> plugin;  ///< NAME=PATH.so
   bool plugin_in_process = true;    ///< false: each plugin runs in a forked child (check's default)
   double exec_timeout = 5;          ///< --exec-timeout: seconds without an answer before a kernel counts as hung
+  std::vector<std::string> glsl;    ///< NAME=FILE, NAME:float=FILE, NAME:double=FILE (docs/shaders.md)
+  int device = 0;                   ///< --device N: the GPU device of --glsl (Vulkan's device index)
+  bool glsl_precise = false;        ///< --glsl-precise: every float operation of the shader precise (NoContraction)
 };
 
-/// Adds --exec and --plugin to a subcommand.
+/// Adds --exec, --plugin, --glsl and --device to a subcommand.
 void add_user_kernel_options(CLI::App& sub, UserKernelOptions& opt);
 
 /// The methods the options name, owned by the caller for the command's run. A bad spec prints
