@@ -161,11 +161,15 @@ int run_mesh_check(const CheckCliOptions& o, const Method& kernel) {
                         {"leaks", r.leaks}, {"rays_without_candidates", r.rays_without_candidates},
                         {"failures", r.failures.size()}, {"reproducers", leaks}});
     }
-    fmt::print("{}\n", nlohmann::json{{"method", kernel.name}, {"finder", opt.finder.name}, {"seed", o.seed},
-                                      {"meshes", meshes}, {"watertight", !leaked}}.dump(1));
+    nlohmann::json j{{"method", kernel.name}, {"finder", opt.finder.name}, {"seed", o.seed},
+                     {"meshes", meshes}, {"watertight", !leaked}};
+    if (is_glsl_kernel(kernel)) j["kernel"] = kernel.summary;
+    fmt::print("{}\n", j.dump(1));
   } else {
-    fmt::print("rayproof check --mesh: kernel '{}' ({} precision), candidates from {} (conservative BVH traversal)\n\n",
+    fmt::print("rayproof check --mesh: kernel '{}' ({} precision), candidates from {} (conservative BVH traversal)\n",
                kernel.name, kernel.precision == Precision::float32 ? "float" : "double", opt.finder.name);
+    if (is_glsl_kernel(kernel)) fmt::print("kernel '{}': {}\n", kernel.name, kernel.summary);
+    fmt::print("\n");
     fmt::print("{}", mesh_table(results));
     const auto lines = leak_lines(results, opt.finder.name);
     if (!lines.empty()) {
@@ -281,6 +285,7 @@ int run_check(const CheckCliOptions& o) {
     rep.highlight = kernel->name;
     rep.notes.push_back(fmt::format("kernel under test: {} ({} precision)", kernel->name,
                                     kernel->precision == Precision::float32 ? "float" : "double"));
+    if (is_glsl_kernel(*kernel)) rep.notes.push_back(fmt::format("kernel {}: {}", kernel->name, kernel->summary));
     rep.notes.push_back(fmt::format("cases: {} families x {} (half built in float precision, half in double), seed {}",
                                     res.families.size(), o.count, o.seed));
     for (const auto& line : check_sentences(res)) rep.notes.push_back(line);
@@ -292,11 +297,14 @@ int run_check(const CheckCliOptions& o) {
   }
 
   if (o.json) {
-    fmt::print("{}\n", result_json(res).dump(1));
+    auto j = result_json(res);
+    if (is_glsl_kernel(*kernel)) j["kernel"] = kernel->summary;
+    fmt::print("{}\n", j.dump(1));
   } else {
     fmt::print("rayproof check: kernel '{}' ({} precision); {} cases generated per family (half built in float "
                "precision, half in double), seed {}; the table counts those of the kinds the kernel answers\n\n",
                res.method, res.precision == Precision::float32 ? "float" : "double", o.count, o.seed);
+    if (is_glsl_kernel(*kernel)) fmt::print("kernel '{}': {}\n\n", kernel->name, kernel->summary);
     fmt::print("{}", check_table(res));
     const auto lines = reproducer_lines(res);
     if (!lines.empty()) {

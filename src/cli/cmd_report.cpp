@@ -136,7 +136,11 @@ int run_report(const ReportOptions& opt) {
     return s;
   }()));
   for (const auto& m : *user)
-    if (m->classify_batch)
+    if (is_glsl_kernel(*m))
+      notes.push_back(fmt::format("{} is your {}: its ns/case is the wall time of whole batches (up to 65536 cases "
+                                  "per dispatch) divided by their cases, the copies through pipes to its process "
+                                  "included", m->name, m->summary));
+    else if (m->classify_batch)
       notes.push_back(fmt::format("{} is your kernel over --exec: its ns/case is the wall time of a whole batch "
                                   "divided by its cases, the line protocol (formatting, pipes, parsing) and the "
                                   "start of its process included",

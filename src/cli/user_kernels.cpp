@@ -44,6 +44,8 @@ void add_user_kernel_options(CLI::App& sub, UserKernelOptions& opt) {
                "Compile --glsl shaders with every float operation precise (SPIR-V NoContraction): no FMA contraction");
 }
 
+bool is_glsl_kernel(const Method& m) { return m.summary.rfind("GLSL shader ", 0) == 0; }
+
 std::optional<std::vector<std::unique_ptr<Method>>> make_user_kernels(std::string_view command,
                                                                      const UserKernelOptions& opt) {
   std::vector<std::unique_ptr<Method>> out;
@@ -103,6 +105,7 @@ std::optional<std::vector<std::unique_ptr<Method>>> make_user_kernels(std::strin
                  m.name);
       return std::nullopt;
     }
+    fmt::print(stderr, "rayproof {}: --glsl {}: {}\n", command, m.name, m.summary);
     out.push_back(std::make_unique<Method>(std::move(m)));
   }
   return out;

@@ -32,4 +32,7 @@ void add_user_kernel_options(CLI::App& sub, UserKernelOptions& opt);
 [[nodiscard]] std::optional<std::vector<std::unique_ptr<Method>>> make_user_kernels(std::string_view command,
                                                                                    const UserKernelOptions& opt);
 
+/// A --glsl kernel (its summary names the file, the precision, the device and its driver).
+[[nodiscard]] bool is_glsl_kernel(const Method& m);
+
 }  // namespace rayproof::cli
