@@ -4,8 +4,11 @@
 // files, the device in the output. Skipped, saying why, where no Vulkan device exists.
 #include <gtest/gtest.h>
 
+#include <fmt/core.h>
+
 #include <nlohmann/json.hpp>
 
+#include "cli/build_compare.h"
 #include "cli_support.h"
 #include "methods/glsl_kernel.h"
 #include "methods/glsl_source.h"
@@ -186,4 +189,79 @@ TEST(Glsl, InfiniteLoopTimesOutAndTheRunGoesOn) {
   EXPECT_EQ(out[1].contact, Contact::hit);
   EXPECT_EQ(out[1].t, 1.0);
   EXPECT_TRUE(m.take_failures().empty());
+}
+
+// The GPU build against the C build: each difference sorted by cause, the sentences from known tallies.
+TEST(BuildCompare, SortsDifferencesByCauseAndSaysSo) {
+  auto answer = [](double t) {
+    io::CaseResult r;
+    r.form = io::AnswerForm::coarse;
+    r.contact = Contact::hit;
+    r.t = t;
+    return r;
+  };
+  // Case i: o.x = i (case 3 has a subnormal float input). The C build answers t = 1 everywhere; the
+  // GPU build differs on cases 1, 2, 3; its precise variant agrees with C on case 1 only.
+  auto make = [&](const char* name, std::function<double(const io::Case&)> t) {
+    Method m;
+    m.name = name;
+    m.precision = Precision::float32;
+    m.kinds = {io::Kind::triangle};
+    m.classify = [t, answer](const io::Case& c) { return answer(t(c)); };
+    return m;
+  };
+  const Method c = make("c", [](const io::Case&) { return 1.0; });
+  const Method gpu = make("gpu", [](const io::Case& x) { return x.v[1] == 0 ? 1.0 : 1.5; });
+  const Method precise = make("precise", [](const io::Case& x) { return x.v[1] == 1 ? 1.0 : 2.0; });
+  std::vector<io::Case> cases;
+  for (int i = 0; i < 5; ++i) {
+    io::Case k = triangle_case(0.25);
+    k.v[1] = i == 4 ? 0 : i;
+    if (i == 3) k.v[2] = 1e-40;  // a float subnormal
+    cases.push_back(k);
+  }
+  const auto r = cli::compare_builds(gpu, c, &precise, cases, 10);
+  EXPECT_EQ(r.cases, 5u);
+  EXPECT_EQ(r.differ, 3u);
+  EXPECT_EQ(r.contraction, 1u);
+  EXPECT_EQ(r.subnormal, 1u);
+  EXPECT_EQ(r.unexplained, 1u);
+  ASSERT_EQ(r.examples.size(), 3u);
+  EXPECT_EQ(r.examples[0].why, "contraction");
+  EXPECT_EQ(r.examples[1].why, "unexplained");
+  EXPECT_EQ(r.examples[2].why, "subnormal");
+  const auto lines = cli::comparison_lines(r, "subnormal floats: may be flushed");
+  ASSERT_GE(lines.size(), 5u);
+  EXPECT_EQ(lines[1], "'gpu' and 'c' answer differently on 3 of 5 cases (60.00%):");
+  EXPECT_EQ(lines[2].rfind("  1 of them agree with the C build once every float operation of the shader is precise", 0), 0u);
+  EXPECT_NE(lines[3].find("  1 of them involve a value in the subnormal range"), std::string::npos);
+  EXPECT_NE(lines[3].find("the device: subnormal floats: may be flushed"), std::string::npos);
+  EXPECT_EQ(lines[4], "  1 of them: neither cause shows.");
+  const auto same = cli::compare_builds(c, c, nullptr, cases, 10);
+  EXPECT_EQ(cli::comparison_lines(same, "")[1],
+            "'c' and 'c' give the same answer (class, t and barycentrics, bit for bit) on all 5 cases.");
+}
+
+// The example against its C build through the CLI: the comparison's counts add up and its sentence
+// agrees with them, whatever the device (run time ~2 s).
+TEST(Glsl, ExampleAgainstItsCBuildThroughTheCli) {
+  NEED_VULKAN_DEVICE();
+  const auto r = run_rayproof("check --glsl mt=" + kExample + " --compare-plugin " + PLUGIN_MT_FLOAT +
+                              " --families tri_edge,tri_near_parallel --count 200 --json");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out)["compare_plugin"];
+  EXPECT_EQ(j["c"], "mt-float-c");
+  EXPECT_EQ(j["cases"], 400);
+  EXPECT_EQ(j["differ"].get<int>(), j["contraction"].get<int>() + j["subnormal"].get<int>() + j["unexplained"].get<int>());
+  const auto t = run_rayproof("check --glsl mt=" + kExample + " --compare-plugin " + PLUGIN_MT_FLOAT +
+                              " --families tri_edge,tri_near_parallel --count 200");
+  ASSERT_EQ(t.status, 0) << t.err;
+  const std::string want = j["differ"] == 0
+      ? "'mt' and 'mt-float-c' give the same answer (class, t and barycentrics, bit for bit) on all 400 cases."
+      : fmt::format("'mt' and 'mt-float-c' answer differently on {} of 400 cases", j["differ"].get<int>());
+  EXPECT_NE(t.out.find(want), std::string::npos) << t.out;
+  // A double C build against a float shader: refused.
+  const auto d = run_rayproof("check --glsl mt=" + kExample + " --compare-plugin " + PLUGIN_MT_C + " --count 10");
+  EXPECT_EQ(d.status, 2);
+  EXPECT_NE(d.err.find("a double plugin, the kernel is float"), std::string::npos) << d.err;
 }

@@ -10,10 +10,12 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
+#include "cli/build_compare.h"
 #include "cli/check_text.h"
 #include "cli/commands.h"
 #include "cli/registry.h"
 #include "cli/user_kernels.h"
+#include "methods/plugin_kernel.h"
 #include "report/report.h"
 #include "scene/accel.h"
 #include "verify/check.h"
@@ -38,6 +40,7 @@ struct CheckCliOptions {
   std::size_t mesh_targets = 0;
   int interior = 2;
   bool plugin_in_process = false;
+  std::string compare_plugin;  ///< --compare-plugin: the C build of a --glsl kernel's formula
 };
 
 nlohmann::json ulps_json(std::uint64_t u) {
@@ -192,6 +195,11 @@ int run_check(const CheckCliOptions& o) {
                        "--glsl NAME=FILE or --method NAME ({} given)\n", named);
     return 2;
   }
+  if (!o.compare_plugin.empty() && (o.user.glsl.empty() || !o.mesh.empty())) {
+    fmt::print(stderr, "rayproof check: --compare-plugin compares a --glsl kernel with the C build of its formula on "
+                       "the families (not with --mesh)\n");
+    return 2;
+  }
   std::vector<std::unique_ptr<Method>> owned;
   const Method* kernel = nullptr;
   if (!o.method.empty()) {
@@ -266,12 +274,8 @@ int run_check(const CheckCliOptions& o) {
   };
   const verify::CheckResult res = verify::check(*kernel, opt);
 
-  if (!o.out.empty()) {
-    std::vector<const Method*> methods{kernel};
-    auto compare = select_methods("check", o.compare, true);
-    if (!compare) return 2;
-    for (const Method* m : *compare)
-      if (m->name != kernel->name) methods.push_back(m);
+  // The cases of the families run, as the report and the build comparison see them.
+  auto family_cases = [&] {
     std::vector<io::Case> cases;
     for (const auto& fc : res.families)
       for (auto p : {gen::Precision::float32, gen::Precision::float64}) {
@@ -280,6 +284,43 @@ int run_check(const CheckCliOptions& o) {
         for (auto& c : part)
           if (kernel->supports(c.kind)) cases.push_back(std::move(c));
       }
+    return cases;
+  };
+  std::optional<BuildComparison> builds;
+  std::string device_note;
+  if (!o.compare_plugin.empty()) {
+    auto loaded = load_plugin_method(o.compare_plugin);
+    if (auto* why = std::get_if<std::string>(&loaded)) {
+      fmt::print(stderr, "rayproof check: --compare-plugin: {}\n", *why);
+      return 2;
+    }
+    const Method& c = std::get<Method>(loaded);
+    if (c.precision != kernel->precision) {
+      fmt::print(stderr, "rayproof check: --compare-plugin {}: a {} plugin, the kernel is {}: compare builds of one "
+                         "precision\n", o.compare_plugin, c.precision == Precision::float32 ? "float" : "double",
+                 kernel->precision == Precision::float32 ? "float" : "double");
+      return 2;
+    }
+    UserKernelOptions precise_opt = o.user;
+    precise_opt.glsl_precise = true;
+    auto precise = make_user_kernels("check", precise_opt);
+    if (!precise) return 2;
+    auto cases = family_cases();
+    if (kernel->precision == Precision::float32)
+      for (auto& x : cases) x = io::round_to_float(x);
+    builds = compare_builds(*kernel, c, precise->front().get(), cases, o.reproducers * 4);
+    if (kernel->take_failures) (void)kernel->take_failures();
+    if (const auto at = kernel->summary.find("; subnormal "); at != std::string::npos)
+      device_note = kernel->summary.substr(at + 2);
+  }
+
+  if (!o.out.empty()) {
+    std::vector<const Method*> methods{kernel};
+    auto compare = select_methods("check", o.compare, true);
+    if (!compare) return 2;
+    for (const Method* m : *compare)
+      if (m->name != kernel->name) methods.push_back(m);
+    std::vector<io::Case> cases = family_cases();
     auto rep = report::build_report(cases, methods, [](const std::string& msg) { fmt::print(stderr, "[report] {}\n", msg); });
     rep.title = fmt::format("rayproof check: {} among the built-in methods", kernel->name);
     rep.highlight = kernel->name;
@@ -289,6 +330,9 @@ int run_check(const CheckCliOptions& o) {
     rep.notes.push_back(fmt::format("cases: {} families x {} (half built in float precision, half in double), seed {}",
                                     res.families.size(), o.count, o.seed));
     for (const auto& line : check_sentences(res)) rep.notes.push_back(line);
+    if (builds)
+      for (const auto& line : comparison_lines(*builds, device_note))
+        if (line.rfind("# the first", 0) != 0 && line.find("  # ") == std::string::npos) rep.notes.push_back(line);
     if (auto err = report::write_report(rep, o.out); !err.empty()) {
       fmt::print(stderr, "rayproof check: {}\n", err);
       return 2;
@@ -299,6 +343,17 @@ int run_check(const CheckCliOptions& o) {
   if (o.json) {
     auto j = result_json(res);
     if (is_glsl_kernel(*kernel)) j["kernel"] = kernel->summary;
+    if (builds) {
+      nlohmann::json ex = nlohmann::json::array();
+      for (const auto& d : builds->examples)
+        ex.push_back({{"case", io::format_case(d.input)}, {"gpu", io::format_answer(d.gpu)}, {"c", io::format_answer(d.c)},
+                      {"precise", d.precise ? nlohmann::json(io::format_answer(*d.precise)) : nlohmann::json()},
+                      {"why", d.why}});
+      j["compare_plugin"] = {{"plugin", o.compare_plugin}, {"c", builds->c}, {"cases", builds->cases},
+                             {"differ", builds->differ}, {"contraction", builds->contraction},
+                             {"subnormal", builds->subnormal}, {"unexplained", builds->unexplained},
+                             {"examples", ex}};
+    }
     fmt::print("{}\n", j.dump(1));
   } else {
     fmt::print("rayproof check: kernel '{}' ({} precision); {} cases generated per family (half built in float "
@@ -314,6 +369,10 @@ int run_check(const CheckCliOptions& o) {
     }
     fmt::print("\n");
     for (const auto& s : check_sentences(res)) fmt::print("{}\n", s);
+    if (builds) {
+      fmt::print("\n");
+      for (const auto& l : comparison_lines(*builds, device_note)) fmt::print("{}\n", l);
+    }
   }
   return res.promises_kept() ? 0 : 1;
 }
@@ -342,6 +401,9 @@ Run add_check(CLI::App& app) {
   sub->add_option("--out", o->out, "Write report.md, report.csv and error_vs_time.svg here");
   sub->add_option("--compare", o->compare, "Built-in methods placed beside the kernel in the report (default: all)")
       ->delimiter(',')->allow_extra_args(false);
+  sub->add_option("--compare-plugin", o->compare_plugin,
+                  "With --glsl: the C build of the same formula (PATH.so, rayproof/plugin.h); say where the GPU "
+                  "build answers differently and why (FMA contraction, subnormals)");
   sub->add_flag("--json", o->json, "Print the result as JSON instead of the table");
   sub->add_option("--mesh", o->mesh,
                   "Leak check on closed meshes instead of the families: mesh files (.off .obj .ply .stl), or "

@@ -3,9 +3,7 @@
 #include <unistd.h>
 
 #include <array>
-#include <chrono>
-#include <cstdio>
-#include <cstdlib>
+#include <cerrno>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -73,9 +71,7 @@ int run_glsl_host(const std::string& file, Precision precision, int device, bool
     in.resize(n * glsl::kInReals);
     out.assign(n * glsl::kOutReals, 0.0);
     if (!get(in.data(), in.size() * sizeof(double))) return 0;
-    auto t0 = std::chrono::steady_clock::now();
     const std::string why = runner.run(static_cast<io::Kind>(head[0]), in.data(), n, out.data());
-    if (getenv("RP_DEBUG_TIME")) fprintf(stderr, "dispatch %zu: %.3f s\n", n, std::chrono::duration<double>(std::chrono::steady_clock::now()-t0).count());
     if (!why.empty()) {
       (void)put_text(1, why);
       return 3;

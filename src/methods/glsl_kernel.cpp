@@ -338,6 +338,7 @@ std::variant<Method, std::string> make_glsl_method(const std::string& spec, cons
   m.kinds = st->kinds;
   m.summary = fmt::format("GLSL shader {} ({}{}) on {}", file, precision == Precision::float32 ? "float" : "double",
                           opt.no_contraction ? ", every float operation precise" : "", st->device);
+  if (!st->subnormals.empty()) m.summary += "; " + st->subnormals;
   m.classify_batch = [st](std::span<const io::Case> in, std::span<io::CaseResult> out) { st->classify(in, out); };
   m.classify = [st](const io::Case& c) {
     io::CaseResult r;
