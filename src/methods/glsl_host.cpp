@@ -62,22 +62,23 @@ int run_glsl_host(const std::string& file, Precision precision, int device, bool
   if (!put_text(0, "kinds\t" + kinds + "\ndevice\t" + runner.info().describe() + "\nsubnormals\t" +
                        runner.info().subnormals(precision) + "\n"))
     return 2;
-  std::vector<double> in, out;
+  const std::size_t real = precision == Precision::float64 ? sizeof(double) : sizeof(float);
+  std::vector<unsigned char> in, out;
   for (;;) {
     std::array<std::uint32_t, 2> head{};
     if (!get(head.data(), sizeof head)) return 0;  // the parent went away
     if (head[0] == 0xffffffffu || head[0] > 5 || head[1] > runner.max_cases()) return 0;
     const std::size_t n = head[1];
-    in.resize(n * glsl::kInReals);
-    out.assign(n * glsl::kOutReals, 0.0);
-    if (!get(in.data(), in.size() * sizeof(double))) return 0;
+    in.resize(n * glsl::kInReals * real);
+    out.assign(n * glsl::kOutReals * real, 0);
+    if (!get(in.data(), in.size())) return 0;
     const std::string why = runner.run(static_cast<io::Kind>(head[0]), in.data(), n, out.data());
     if (!why.empty()) {
       (void)put_text(1, why);
       return 3;
     }
     const std::uint32_t ok = 0;
-    if (!put(&ok, sizeof ok) || !put(out.data(), out.size() * sizeof(double))) return 0;
+    if (!put(&ok, sizeof ok) || !put(out.data(), out.size())) return 0;
   }
 }
 

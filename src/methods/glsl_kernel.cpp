@@ -32,8 +32,9 @@ namespace {
 /// Frames between rayproof and `rayproof glsl-host` (both sides of this file):
 ///   hello (child):    u32 status (0 ready, 1 failed), u32 length, text
 ///                     ready: "kinds\tK,K..\ndevice\tDESCRIPTION\nsubnormals\tTEXT\n"; failed: the message
-///   request (parent): u32 kind, u32 n, n * kInReals doubles; kind kStop ends the child
-///   answer (child):   u32 status (0), n * kOutReals doubles (code, t, b1, b2); or u32 1, u32 length, text
+///   request (parent): u32 kind, u32 n, n * kInReals reals; kind kStop ends the child
+///   answer (child):   u32 status (0), n * kOutReals reals (code, t, b1, b2); or u32 1, u32 length, text
+///                     reals: float for a float shader, double for a double one
 ///                     (the device was lost, ...), after which the child exits
 constexpr std::uint32_t kStop = 0xffffffffu;
 constexpr std::size_t kChunk = 65536;   // cases per request (Runner::max_cases)
@@ -114,6 +115,7 @@ struct State {
   std::string dropped;  ///< why the kernel cannot run any more (a restart failed)
   std::vector<KernelFailure> failures;
   std::vector<double> out;
+  std::vector<unsigned char> inbuf, outbuf;  ///< the frames' reals (float or double)
 
   ~State() {
     if (child.pid > 0) {
@@ -222,18 +224,30 @@ struct State {
       }
     }
     std::array<std::uint32_t, 2> head{static_cast<std::uint32_t>(k), static_cast<std::uint32_t>(n)};
-    std::vector<double> buf(n * glsl::kInReals, 0.0);
-    for (std::size_t j = 0; j < n; ++j)
-      std::copy(cases[idx[j]].v.begin(), cases[idx[j]].v.end(), buf.begin() + std::ptrdiff_t(j * glsl::kInReals));
+    const bool dbl = precision == Precision::float64;
+    const std::size_t real = dbl ? sizeof(double) : sizeof(float);
+    inbuf.assign(n * glsl::kInReals * real, 0);
+    if (dbl) {
+      auto* p = reinterpret_cast<double*>(inbuf.data());
+      for (std::size_t j = 0; j < n; ++j) std::copy(cases[idx[j]].v.begin(), cases[idx[j]].v.end(), p + j * glsl::kInReals);
+    } else {
+      auto* p = reinterpret_cast<float*>(inbuf.data());
+      for (std::size_t j = 0; j < n; ++j)
+        for (std::size_t f = 0; f < 15; ++f) p[j * glsl::kInReals + f] = static_cast<float>(cases[idx[j]].v[f]);
+    }
     const auto deadline =
         Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(opt.timeout_seconds));
     Io r = write_all(child.to, head.data(), sizeof head, deadline);
-    if (r == Io::ok) r = write_all(child.to, buf.data(), buf.size() * sizeof(double), deadline);
+    if (r == Io::ok) r = write_all(child.to, inbuf.data(), inbuf.size(), deadline);
     std::uint32_t status = 0;
     if (r == Io::ok) r = read_all(child.from, &status, sizeof status, deadline);
     if (r == Io::ok && status == 0) {
+      outbuf.resize(n * glsl::kOutReals * real);
+      r = read_all(child.from, outbuf.data(), outbuf.size(), deadline);
       out.resize(n * glsl::kOutReals);
-      r = read_all(child.from, out.data(), out.size() * sizeof(double), deadline);
+      if (dbl) std::memcpy(out.data(), outbuf.data(), outbuf.size());
+      else
+        for (std::size_t i = 0; i < out.size(); ++i) out[i] = reinterpret_cast<const float*>(outbuf.data())[i];
     } else if (r == Io::ok) {
       std::uint32_t len = 0;
       std::string text;

@@ -428,21 +428,15 @@ std::variant<std::unique_ptr<Runner>, std::string> Runner::create(const RunnerSp
   return runner;
 }
 
-std::string Runner::run(io::Kind k, const double* in, std::size_t n, double* out) {
+std::string Runner::run(io::Kind k, const void* in, std::size_t n, void* out) {
   Impl& m = *impl_;
   if (m.lost) return "the Vulkan device was lost";
   const auto ki = static_cast<std::size_t>(k);
   if (!m.pipelines[ki]) return "the shader has no " + function_name(k);
   if (n > kMaxCases) return "too many cases for one dispatch";
   const bool dbl = m.spec.precision == Precision::float64;
-  const std::size_t nin = n * kInReals, nout = n * kOutReals;
-  if (n == 0) {
-  } else if (dbl) {
-    std::memcpy(m.in.map, in, nin * sizeof(double));
-  } else {
-    auto* f = static_cast<float*>(m.in.map);
-    for (std::size_t i = 0; i < nin; ++i) f[i] = static_cast<float>(in[i]);
-  }
+  const std::size_t real = dbl ? sizeof(double) : sizeof(float);
+  if (n > 0) std::memcpy(m.in.map, in, n * kInReals * real);
   vkResetCommandBuffer(m.cmd, 0);
   VkCommandBufferBeginInfo bi{VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO};
   bi.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
@@ -473,13 +467,7 @@ std::string Runner::run(io::Kind k, const double* in, std::size_t n, double* out
     return r == VK_ERROR_DEVICE_LOST ? std::string("the Vulkan device was lost during the dispatch (VK_ERROR_DEVICE_LOST)")
                                      : vk_error("vkWaitForFences", r);
   }
-  if (n == 0) {
-  } else if (dbl) {
-    std::memcpy(out, m.out.map, nout * sizeof(double));
-  } else {
-    const auto* f = static_cast<const float*>(m.out.map);
-    for (std::size_t i = 0; i < nout; ++i) out[i] = f[i];
-  }
+  if (n > 0) std::memcpy(out, m.out.map, n * kOutReals * real);
   return {};
 }
 

@@ -55,8 +55,9 @@ class Runner {
   /// Most cases per run call.
   [[nodiscard]] std::size_t max_cases() const;
   /// Answers n <= max_cases() cases of kind k: in = n * kInReals inputs, out = n * kOutReals reals
-  /// (code, t, b1, b2). Empty on success, else why not (device lost, ...): the runner is unusable then.
-  [[nodiscard]] std::string run(io::Kind k, const double* in, std::size_t n, double* out);
+  /// (code, t, b1, b2), reals of the shader's precision (float or double). Empty on success, else
+  /// why not (device lost, ...): the runner is unusable then.
+  [[nodiscard]] std::string run(io::Kind k, const void* in, std::size_t n, void* out);
 
   struct Impl;
 
