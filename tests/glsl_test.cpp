@@ -140,6 +140,16 @@ TEST(Glsl, BadFilesGetAClearMessage) {
   EXPECT_NE(r.err.find("not a GLSL text file"), std::string::npos) << r.err;
 }
 
+// No Vulkan driver (the loader pointed at none): the message names the Debian packages (needs no device).
+TEST(Glsl, NoDeviceNamesTheDebianPackages) {
+  const auto r = run_rayproof("check --glsl mt=" + kExample, "",
+                              "VK_DRIVER_FILES=/nonexistent.json VK_ICD_FILENAMES=/nonexistent.json ");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("no Vulkan device: install a Vulkan driver (on Debian: mesa-vulkan-drivers"), std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("libvulkan"), std::string::npos) << r.err;
+}
+
 // A device index that does not exist: the message lists the devices.
 TEST(Glsl, UnknownDeviceListsTheDevices) {
   NEED_VULKAN_DEVICE();
