@@ -240,15 +240,22 @@ TEST(BuildCompare, SortsDifferencesByCauseAndSaysSo) {
   EXPECT_EQ(r.examples[0].why, "contraction");
   EXPECT_EQ(r.examples[1].why, "unexplained");
   EXPECT_EQ(r.examples[2].why, "subnormal");
-  const auto lines = cli::comparison_lines(r, "subnormal floats: may be flushed");
-  ASSERT_GE(lines.size(), 5u);
+  auto lines = cli::comparison_lines(r, "subnormal floats: may be flushed");
+  ASSERT_GE(lines.size(), 6u);
+  EXPECT_EQ(lines[1].rfind("speed on these 5 cases, one pass each, side by side: 'gpu' ", 0), 0u) << lines[1];
+  lines.erase(lines.begin() + 1);
   EXPECT_EQ(lines[1], "'gpu' and 'c' answer differently on 3 of 5 cases (60.00%):");
   EXPECT_EQ(lines[2].rfind("  1 of them agree with the C build once every float operation of the shader is precise", 0), 0u);
   EXPECT_NE(lines[3].find("  1 of them involve a value in the subnormal range"), std::string::npos);
   EXPECT_NE(lines[3].find("the device: subnormal floats: may be flushed"), std::string::npos);
   EXPECT_EQ(lines[4], "  1 of them: neither cause shows.");
   const auto same = cli::compare_builds(c, c, nullptr, cases, 10);
-  EXPECT_EQ(cli::comparison_lines(same, "")[1],
+  auto timed = same;
+  timed.gpu_seconds = 0.5, timed.c_seconds = 0.001;
+  EXPECT_EQ(cli::comparison_lines(timed, "")[1],
+            "speed on these 5 cases, one pass each, side by side: 'c' 0.00 M cases/s (batches through the device, "
+            "copies and pipes included), 'c' 0.01 M cases/s (one thread)");
+  EXPECT_EQ(cli::comparison_lines(same, "")[2],
             "'c' and 'c' give the same answer (class, t and barycentrics, bit for bit) on all 5 cases.");
 }
 

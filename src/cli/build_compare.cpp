@@ -3,6 +3,7 @@
 #include <fmt/core.h>
 
 #include <cfloat>
+#include <chrono>
 #include <cmath>
 
 namespace rayproof::cli {
@@ -51,8 +52,14 @@ BuildComparison compare_builds(const Method& gpu, const Method& c, const Method*
   for (const auto& x : cases)
     if (gpu.supports(x.kind) && c.supports(x.kind)) both.push_back(x);
   std::vector<io::CaseResult> g(both.size()), k(both.size());
+  using clock = std::chrono::steady_clock;
+  const auto t0 = clock::now();
   gpu.classify_many(both, g);
+  const auto t1 = clock::now();
   c.classify_many(both, k);
+  const auto t2 = clock::now();
+  r.gpu_seconds = std::chrono::duration<double>(t1 - t0).count();
+  r.c_seconds = std::chrono::duration<double>(t2 - t1).count();
   std::vector<BuildDifference> diffs;
   std::vector<io::Case> differing;
   for (std::size_t i = 0; i < both.size(); ++i) {
@@ -86,6 +93,13 @@ std::vector<std::string> comparison_lines(const BuildComparison& r, const std::s
   std::vector<std::string> out;
   out.push_back(fmt::format("# the GPU build '{}' against the C build '{}' of the same formula, on the same inputs",
                             r.gpu, r.c));
+  auto rate = [](std::size_t n, double s) {
+    return s > 0 ? fmt::format("{:.2f} M cases/s", double(n) / s / 1e6) : std::string("too fast to time");
+  };
+  if (r.cases > 0)
+    out.push_back(fmt::format("speed on these {} cases, one pass each, side by side: '{}' {} (batches through the "
+                              "device, copies and pipes included), '{}' {} (one thread)",
+                              r.cases, r.gpu, rate(r.cases, r.gpu_seconds), r.c, rate(r.cases, r.c_seconds)));
   if (r.differ == 0) {
     out.push_back(fmt::format("'{}' and '{}' give the same answer (class, t and barycentrics, bit for bit) on all {}.",
                               r.gpu, r.c, plural(r.cases, "case", "cases")));

@@ -24,6 +24,7 @@ struct BuildComparison {
   std::string gpu, c, precise;  ///< method names (precise empty when no precise variant ran)
   std::size_t cases = 0, differ = 0, contraction = 0, subnormal = 0, unexplained = 0;
   std::vector<BuildDifference> examples;  ///< the first `keep` differences
+  double gpu_seconds = 0, c_seconds = 0;  ///< wall time of each build's one pass over the cases, side by side
 };
 
 /// The two answers are the same: same contact, same t and barycentrics (bit for bit; NaN equals NaN).
@@ -37,7 +38,7 @@ struct BuildComparison {
 [[nodiscard]] BuildComparison compare_builds(const Method& gpu, const Method& c, const Method* precise,
                                              std::span<const io::Case> cases, std::size_t keep);
 
-/// The text: a heading, one sentence per cause with its count, the example lines. `device_note`
+/// The text: a heading, the speed of both builds, one sentence per cause with its count, the example lines. `device_note`
 /// (the device's float-controls statement) goes with the subnormal count.
 [[nodiscard]] std::vector<std::string> comparison_lines(const BuildComparison& r, const std::string& device_note);
 
