@@ -240,24 +240,24 @@ TEST(OpenclWrapper, AnswerCodes) {
 }
 
 TEST(OpenclCompare, SentencesFromKnownTallies) {
-  cli::BuildComparison c;
+  cli::DeviceComparison c;
   c.device_name = "dev", c.c_name = "c";
   c.cases = 4000, c.differ = 1014, c.differ_hit = 225, c.agree_uncontracted = 1014, c.uncontracted_differ = 0;
-  auto s = cli::comparison_sentences(c);
+  auto s = cli::device_comparison_sentences(c);
   ASSERT_EQ(s.size(), 2u);
   EXPECT_EQ(s[0], "The device build dev answers 1014 of 4000 cases (25.35%) differently from the C build c (class, t or "
                   "barycentrics not identical); 225 of them are hit against miss.");
   EXPECT_NE(s[1].find("agrees with the C build on every case"), std::string::npos);
   c.agree_uncontracted = 14, c.uncontracted_differ = 1000, c.device_flushes = true, c.differ_subnormal = 3;
-  s = cli::comparison_sentences(c);
+  s = cli::device_comparison_sentences(c);
   ASSERT_EQ(s.size(), 3u);
   EXPECT_NE(s[1].find("on 14 of the 1014 differing cases"), std::string::npos) << s[1];
   EXPECT_NE(s[1].find("still differs on 1000 cases"), std::string::npos) << s[1];
   EXPECT_NE(s[2].find("flushes subnormal floats to zero"), std::string::npos);
   EXPECT_NE(s[2].find("3 of the differing cases"), std::string::npos);
-  c = cli::BuildComparison{};
+  c = cli::DeviceComparison{};
   c.device_name = "dev", c.c_name = "c", c.cases = 10;
-  s = cli::comparison_sentences(c);
+  s = cli::device_comparison_sentences(c);
   ASSERT_EQ(s.size(), 1u);
   EXPECT_EQ(s[0], "The device build dev answers every one of 10 cases exactly as the C build c does.");
 }

@@ -10,6 +10,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
+#include "cli/build_compare.h"
 #include "cli/check_text.h"
 #include "cli/device_compare.h"
 #include "cli/commands.h"
@@ -40,13 +41,13 @@ struct CheckCliOptions {
   std::size_t mesh_targets = 0;
   int interior = 2;
   bool plugin_in_process = false;
-  std::string compare_plugin;  ///< --compare-plugin: the C build of the --opencl kernel's formula
+  std::string compare_plugin;  ///< --compare-plugin: the C build of an --opencl or --glsl kernel's formula
 };
 
 /// --compare-plugin: the --opencl kernel against the C build of its formula on the check's cases,
 /// and the same kernel built without contraction (cli/device_compare.h). Nothing on a bad option
 /// (the message is printed).
-std::optional<BuildComparison> compare_with_plugin(const CheckCliOptions& o, const Method& kernel,
+std::optional<DeviceComparison> compare_with_plugin(const CheckCliOptions& o, const Method& kernel,
                                                    const verify::CheckResult& res) {
   if (o.user.opencl.size() != 1) {
     fmt::print(stderr, "rayproof check: --compare-plugin compares an --opencl kernel with the C build of its formula\n");
@@ -78,7 +79,7 @@ std::optional<BuildComparison> compare_with_plugin(const CheckCliOptions& o, con
     }
   const bool flushes = kernel.precision == Precision::float32 &&
                        (!rep.float_denorms || o.user.cl_options.find("-cl-denorms-are-zero") != std::string::npos);
-  return compare_builds(kernel, c, uncontracted.get(), flushes, cases);
+  return compare_device_builds(kernel, c, uncontracted.get(), flushes, cases);
 }
 
 nlohmann::json ulps_json(std::uint64_t u) {
@@ -202,8 +203,10 @@ int run_mesh_check(const CheckCliOptions& o, const Method& kernel) {
                         {"leaks", r.leaks}, {"rays_without_candidates", r.rays_without_candidates},
                         {"failures", r.failures.size()}, {"reproducers", leaks}});
     }
-    fmt::print("{}\n", nlohmann::json{{"method", kernel.name}, {"summary", kernel.summary}, {"finder", opt.finder.name}, {"seed", o.seed},
-                                      {"meshes", meshes}, {"watertight", !leaked}}.dump(1));
+    nlohmann::json j{{"method", kernel.name}, {"summary", kernel.summary}, {"finder", opt.finder.name}, {"seed", o.seed},
+                     {"meshes", meshes}, {"watertight", !leaked}};
+    if (is_glsl_kernel(kernel)) j["kernel"] = kernel.summary;
+    fmt::print("{}\n", j.dump(1));
   } else {
     fmt::print("rayproof check --mesh: kernel '{}' ({} precision), candidates from {} (conservative BVH traversal)\n",
                kernel.name, kernel.precision == Precision::float32 ? "float" : "double", opt.finder.name);
@@ -224,10 +227,15 @@ int run_mesh_check(const CheckCliOptions& o, const Method& kernel) {
 int run_check(const CheckCliOptions& o) {
   // The kernel under test: exactly one of --exec, --plugin, --method.
   const std::size_t named =
-      o.user.exec.size() + o.user.plugin.size() + o.user.opencl.size() + (o.method.empty() ? 0 : 1);
+      o.user.exec.size() + o.user.plugin.size() + o.user.opencl.size() + o.user.glsl.size() + (o.method.empty() ? 0 : 1);
   if (named != 1) {
     fmt::print(stderr, "rayproof check: name one kernel to check: --exec NAME=COMMAND, --plugin NAME=PATH.so, "
-                       "--opencl NAME=FILE or --method NAME ({} given)\n", named);
+                       "--glsl NAME=FILE, --opencl NAME=FILE or --method NAME ({} given)\n", named);
+    return 2;
+  }
+  if (!o.compare_plugin.empty() && ((o.user.glsl.empty() && o.user.opencl.empty()) || !o.mesh.empty())) {
+    fmt::print(stderr, "rayproof check: --compare-plugin compares a --glsl or --opencl kernel with the C build of its "
+                       "formula on the families (not with --mesh)\n");
     return 2;
   }
   std::vector<std::unique_ptr<Method>> owned;
@@ -303,18 +311,14 @@ int run_check(const CheckCliOptions& o) {
                p.cases_done);
   };
   const verify::CheckResult res = verify::check(*kernel, opt);
-  std::optional<BuildComparison> cmp;
-  if (!o.compare_plugin.empty()) {
+  std::optional<DeviceComparison> cmp;
+  if (!o.compare_plugin.empty() && !o.user.opencl.empty()) {  // the --glsl comparison follows
     cmp = compare_with_plugin(o, *kernel, res);
     if (!cmp) return 2;
   }
 
-  if (!o.out.empty()) {
-    std::vector<const Method*> methods{kernel};
-    auto compare = select_methods("check", o.compare, true);
-    if (!compare) return 2;
-    for (const Method* m : *compare)
-      if (m->name != kernel->name) methods.push_back(m);
+  // The cases of the families run, as the report and the build comparison see them.
+  auto family_cases = [&] {
     std::vector<io::Case> cases;
     for (const auto& fc : res.families)
       for (auto p : {gen::Precision::float32, gen::Precision::float64}) {
@@ -323,6 +327,43 @@ int run_check(const CheckCliOptions& o) {
         for (auto& c : part)
           if (kernel->supports(c.kind)) cases.push_back(std::move(c));
       }
+    return cases;
+  };
+  std::optional<BuildComparison> builds;
+  std::string device_note;
+  if (!o.compare_plugin.empty() && !o.user.glsl.empty()) {
+    auto loaded = load_plugin_method(o.compare_plugin);
+    if (auto* why = std::get_if<std::string>(&loaded)) {
+      fmt::print(stderr, "rayproof check: --compare-plugin: {}\n", *why);
+      return 2;
+    }
+    const Method& c = std::get<Method>(loaded);
+    if (c.precision != kernel->precision) {
+      fmt::print(stderr, "rayproof check: --compare-plugin {}: a {} plugin, the kernel is {}: compare builds of one "
+                         "precision\n", o.compare_plugin, c.precision == Precision::float32 ? "float" : "double",
+                 kernel->precision == Precision::float32 ? "float" : "double");
+      return 2;
+    }
+    UserKernelOptions precise_opt = o.user;
+    precise_opt.glsl_precise = true;
+    auto precise = make_user_kernels("check", precise_opt);
+    if (!precise) return 2;
+    auto cases = family_cases();
+    if (kernel->precision == Precision::float32)
+      for (auto& x : cases) x = io::round_to_float(x);
+    builds = compare_builds(*kernel, c, precise->front().get(), cases, o.reproducers * 4);
+    if (kernel->take_failures) (void)kernel->take_failures();
+    if (const auto at = kernel->summary.find("; subnormal "); at != std::string::npos)
+      device_note = kernel->summary.substr(at + 2);
+  }
+
+  if (!o.out.empty()) {
+    std::vector<const Method*> methods{kernel};
+    auto compare = select_methods("check", o.compare, true);
+    if (!compare) return 2;
+    for (const Method* m : *compare)
+      if (m->name != kernel->name) methods.push_back(m);
+    std::vector<io::Case> cases = family_cases();
     auto rep = report::build_report(cases, methods, [](const std::string& msg) { fmt::print(stderr, "[report] {}\n", msg); });
     rep.title = fmt::format("rayproof check: {} among the built-in methods", kernel->name);
     rep.highlight = kernel->name;
@@ -331,6 +372,9 @@ int run_check(const CheckCliOptions& o) {
     rep.notes.push_back(fmt::format("cases: {} families x {} (half built in float precision, half in double), seed {}",
                                     res.families.size(), o.count, o.seed));
     for (const auto& line : check_sentences(res)) rep.notes.push_back(line);
+    if (builds)
+      for (const auto& line : comparison_lines(*builds, device_note))
+        if (line.rfind("# the first", 0) != 0 && line.find("  # ") == std::string::npos) rep.notes.push_back(line);
     if (auto err = report::write_report(rep, o.out); !err.empty()) {
       fmt::print(stderr, "rayproof check: {}\n", err);
       return 2;
@@ -348,7 +392,19 @@ int run_check(const CheckCliOptions& o) {
                              {"differ_without_contraction", cmp->uncontracted_differ.value_or(0)},
                              {"device_flushes_subnormals", cmp->device_flushes},
                              {"differ_with_subnormal_input", cmp->differ_subnormal},
-                             {"sentences", comparison_sentences(*cmp)}};
+                             {"sentences", device_comparison_sentences(*cmp)}};
+    if (is_glsl_kernel(*kernel)) j["kernel"] = kernel->summary;
+    if (builds) {
+      nlohmann::json ex = nlohmann::json::array();
+      for (const auto& d : builds->examples)
+        ex.push_back({{"case", io::format_case(d.input)}, {"gpu", io::format_answer(d.gpu)}, {"c", io::format_answer(d.c)},
+                      {"precise", d.precise ? nlohmann::json(io::format_answer(*d.precise)) : nlohmann::json()},
+                      {"why", d.why}});
+      j["compare_plugin"] = {{"plugin", o.compare_plugin}, {"c", builds->c}, {"cases", builds->cases},
+                             {"differ", builds->differ}, {"contraction", builds->contraction},
+                             {"subnormal", builds->subnormal}, {"unexplained", builds->unexplained},
+                             {"examples", ex}};
+    }
     fmt::print("{}\n", j.dump(1));
   } else {
     fmt::print("rayproof check: kernel '{}' ({} precision); {} cases generated per family (half built in float "
@@ -368,7 +424,11 @@ int run_check(const CheckCliOptions& o) {
       fmt::print("\n# the device build against the C build {} ({}): up to 3 cases where they differ\n",
                  cmp->c_name, o.compare_plugin);
       for (const auto& l : cmp->examples) fmt::print("{}\n", l);
-      for (const auto& l : comparison_sentences(*cmp)) fmt::print("{}\n", l);
+      for (const auto& l : device_comparison_sentences(*cmp)) fmt::print("{}\n", l);
+    }
+    if (builds) {
+      fmt::print("\n");
+      for (const auto& l : comparison_lines(*builds, device_note)) fmt::print("{}\n", l);
     }
   }
   return res.promises_kept() ? 0 : 1;
@@ -401,6 +461,9 @@ Run add_check(CLI::App& app) {
   sub->add_option("--out", o->out, "Write report.md, report.csv and error_vs_time.svg here");
   sub->add_option("--compare", o->compare, "Built-in methods placed beside the kernel in the report (default: all)")
       ->delimiter(',')->allow_extra_args(false);
+  sub->add_option("--compare-plugin", o->compare_plugin,
+                  "With --glsl: the C build of the same formula (PATH.so, rayproof/plugin.h); say where the GPU "
+                  "build answers differently and why (FMA contraction, subnormals)");
   sub->add_flag("--json", o->json, "Print the result as JSON instead of the table");
   sub->add_option("--mesh", o->mesh,
                   "Leak check on closed meshes instead of the families: mesh files (.off .obj .ply .stl), or "

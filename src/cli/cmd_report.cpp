@@ -137,7 +137,11 @@ int run_report(const ReportOptions& opt) {
     return s;
   }()));
   for (const auto& m : *user)
-    if (m->classify_batch && m->summary.rfind("OpenCL C ", 0) == 0)
+    if (is_glsl_kernel(*m))
+      notes.push_back(fmt::format("{} is your {}: its ns/case is the wall time of whole batches (up to 65536 cases "
+                                  "per dispatch) divided by their cases, the copies through pipes to its process "
+                                  "included", m->name, m->summary));
+    else if (m->classify_batch && m->summary.rfind("OpenCL C ", 0) == 0)
       notes.push_back(fmt::format("{} is your OpenCL kernel: its ns/case is the wall time of whole batches divided by "
                                   "their cases, the pipes to its device process, the copies to and from the device "
                                   "and the launch included (the build is not); the device runs a batch on all of its "

@@ -21,6 +21,7 @@ Run add_check(CLI::App& app);
 Run add_serve(CLI::App& app);
 Run add_plugin_host(CLI::App& app);
 Run add_opencl_host(CLI::App& app);
+Run add_glsl_host(CLI::App& app);
 Run add_irradiance(CLI::App& app);
 Run add_spawn(CLI::App& app);
 Run add_advise(CLI::App& app);

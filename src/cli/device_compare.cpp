@@ -1,5 +1,7 @@
 #include "cli/device_compare.h"
 
+#include "cli/build_compare.h"
+
 #include <fmt/core.h>
 
 #include <cmath>
@@ -9,12 +11,6 @@ namespace rayproof::cli {
 
 namespace {
 
-bool same_value(const std::optional<double>& a, const std::optional<double>& b) {
-  if (a.has_value() != b.has_value()) return false;
-  if (!a) return true;
-  if (std::isnan(*a) && std::isnan(*b)) return true;
-  return std::memcmp(&*a, &*b, sizeof(double)) == 0;
-}
 
 bool has_subnormal_float_input(const io::Case& c) {
   for (int i = 0; i < io::field_count(c.kind); ++i)
@@ -26,14 +22,9 @@ std::string plural(std::size_t n, const char* one, const char* many) { return fm
 
 }  // namespace
 
-bool same_answer(const io::CaseResult& a, const io::CaseResult& b) {
-  return a.contact == b.contact && same_value(a.t, b.t) && same_value(a.t2, b.t2) && same_value(a.b1, b.b1) &&
-         same_value(a.b2, b.b2);
-}
-
-BuildComparison compare_builds(const Method& device, const Method& c_build, const Method* uncontracted,
+DeviceComparison compare_device_builds(const Method& device, const Method& c_build, const Method* uncontracted,
                                bool device_flushes, std::span<const io::Case> cases) {
-  BuildComparison r;
+  DeviceComparison r;
   r.device_name = device.name;
   r.c_name = c_build.name;
   r.device_flushes = device_flushes;
@@ -67,7 +58,7 @@ BuildComparison compare_builds(const Method& device, const Method& c_build, cons
   return r;
 }
 
-std::vector<std::string> comparison_sentences(const BuildComparison& c) {
+std::vector<std::string> device_comparison_sentences(const DeviceComparison& c) {
   std::vector<std::string> s;
   if (c.cases == 0) {
     s.push_back(fmt::format("No case was answered by both {} and {}: nothing to compare.", c.device_name, c.c_name));

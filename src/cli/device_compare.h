@@ -14,8 +14,10 @@
 
 namespace rayproof::cli {
 
+// same_answer (bit for bit) is cli/build_compare.h's, shared with the --glsl comparison.
+
 /// The tallies of one comparison, from which the sentences are built.
-struct BuildComparison {
+struct DeviceComparison {
   std::string device_name, c_name;         ///< the two methods
   std::size_t cases = 0;                   ///< cases both answered (no failure on either side)
   std::size_t differ = 0;                  ///< answers not identical (class, t or barycentrics, bit for bit)
@@ -27,15 +29,12 @@ struct BuildComparison {
   std::vector<std::string> examples;       ///< up to 3: the case line and both answers
 };
 
-/// Whether two answers are the same, bit for bit (NaN equal to NaN).
-[[nodiscard]] bool same_answer(const io::CaseResult& a, const io::CaseResult& b);
-
 /// Compares `device` with `c_build` on `cases` (already rounded for float methods); `uncontracted`,
 /// when not null, is the device build without contraction.
-[[nodiscard]] BuildComparison compare_builds(const Method& device, const Method& c_build, const Method* uncontracted,
+[[nodiscard]] DeviceComparison compare_device_builds(const Method& device, const Method& c_build, const Method* uncontracted,
                                              bool device_flushes, std::span<const io::Case> cases);
 
 /// The report's sentences for the tallies.
-[[nodiscard]] std::vector<std::string> comparison_sentences(const BuildComparison& c);
+[[nodiscard]] std::vector<std::string> device_comparison_sentences(const DeviceComparison& c);
 
 }  // namespace rayproof::cli

@@ -26,6 +26,7 @@ int main(int argc, char** argv) {
   add(add_serve(app));
   add(add_plugin_host(app));
   add(add_opencl_host(app));
+  add(add_glsl_host(app));
   add(add_irradiance(app));
   add(add_spawn(app));
   add(add_advise(app));

@@ -3,15 +3,26 @@
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
 
-#include "cli/plugin_host.h"
-#include "cli/registry.h"
-#include "methods/exec_kernel.h"
-#include "methods/opencl_kernel.h"
-
 #include <filesystem>
 #include <system_error>
 
+#include "cli/plugin_host.h"
+#include "cli/registry.h"
+#include "methods/exec_kernel.h"
+#include "methods/glsl_kernel.h"
+#include "methods/opencl_kernel.h"
+
 namespace rayproof::cli {
+
+namespace {
+/// This rayproof's own executable, which hosts a --glsl shader as `rayproof glsl-host` and an
+/// --opencl kernel as `rayproof opencl-host`.
+std::string self_executable() {
+  std::error_code ec;
+  const auto p = std::filesystem::read_symlink("/proc/self/exe", ec);
+  return ec ? std::string() : p.string();
+}
+}  // namespace
 
 void add_user_kernel_options(CLI::App& sub, UserKernelOptions& opt) {
   sub.add_option("--exec", opt.exec,
@@ -24,6 +35,12 @@ void add_user_kernel_options(CLI::App& sub, UserKernelOptions& opt) {
   sub.add_option("--plugin", opt.plugin,
                  "NAME=PATH.so or PATH.so: a kernel of yours as a shared library (rayproof/plugin.h); repeatable")
       ->allow_extra_args(false);  // one library per --plugin: the case files that follow stay positional
+  sub.add_option("--glsl", opt.glsl,
+                 "NAME=FILE (or NAME:double=FILE): your GLSL intersection functions (docs/shaders.md), run on a "
+                 "Vulkan device; repeatable")
+      ->allow_extra_args(false);
+  sub.add_flag("--glsl-precise", opt.glsl_precise,
+               "Compile --glsl shaders with every float operation precise (SPIR-V NoContraction): no FMA contraction");
   sub.add_option("--opencl", opt.opencl,
                  "NAME=FILE or NAME:double=FILE: OpenCL C functions of yours run on an OpenCL device "
                  "(docs/opencl.md); repeatable")
@@ -32,15 +49,11 @@ void add_user_kernel_options(CLI::App& sub, UserKernelOptions& opt) {
       ->each([&opt](const std::string&) { opt.cl_options_given = true; });
   sub.add_flag("--cl-contract-off", opt.cl_contract_off,
                "Build --opencl kernels with `#pragma OPENCL FP_CONTRACT OFF` before their text (no FMA contraction)");
-  sub.add_option("--device", opt.device, "The device of --opencl: N over every platform (the message of a bad N lists them)")
+  sub.add_option("--device", opt.device,
+                 "The GPU device: for --glsl its index in the Vulkan device list, for --opencl N over every "
+                 "platform (a bad N's message lists them)")
       ->check(CLI::Range(0, 1000))
       ->capture_default_str();
-}
-
-static std::string self_executable() {
-  std::error_code ec;
-  const auto p = std::filesystem::read_symlink("/proc/self/exe", ec);
-  return ec ? std::string() : p.string();
 }
 
 static OpenclOptions opencl_options(const UserKernelOptions& opt) {
@@ -51,7 +64,6 @@ static OpenclOptions opencl_options(const UserKernelOptions& opt) {
   oo.timeout_seconds = opt.exec_timeout;
   return oo;
 }
-
 std::unique_ptr<Method> make_opencl_kernel(std::string_view command, const std::string& spec,
                                            const UserKernelOptions& opt, bool contract_off, OpenclDeviceReport* report) {
   OpenclOptions oo = opencl_options(opt);
@@ -69,6 +81,8 @@ std::unique_ptr<Method> make_opencl_kernel(std::string_view command, const std::
   fmt::print(stderr, "[opencl] {}: {}: built in {:.2f} s\n", m->name, m->summary, rep.build_seconds);
   return m;
 }
+
+bool is_glsl_kernel(const Method& m) { return m.summary.rfind("GLSL shader ", 0) == 0; }
 
 std::optional<std::vector<std::unique_ptr<Method>>> make_user_kernels(std::string_view command,
                                                                      const UserKernelOptions& opt) {
@@ -108,6 +122,29 @@ std::optional<std::vector<std::unique_ptr<Method>>> make_user_kernels(std::strin
       return std::nullopt;
     }
     out.push_back(std::move(m));
+  }
+  // --glsl: compiled and run on a Vulkan device in a child process (src/methods/glsl_kernel.h).
+  for (const std::string& spec : opt.glsl) {
+    GlslOptions go;
+    go.device = opt.device;
+    go.timeout_seconds = opt.exec_timeout;
+    go.host = self_executable();
+    go.no_contraction = opt.glsl_precise;
+    auto made = make_glsl_method(spec, go);
+    if (auto* err = std::get_if<std::string>(&made)) {
+      fmt::print(stderr, "rayproof {}: {}\n", command, *err);
+      return std::nullopt;
+    }
+    Method& m = std::get<Method>(made);
+    bool taken = all_methods().find(m.name) != nullptr;
+    for (const auto& other : out) taken = taken || other->name == m.name;
+    if (taken) {
+      fmt::print(stderr, "rayproof {}: --glsl {}: the name '{}' is taken; choose another (NAME=FILE)\n", command, spec,
+                 m.name);
+      return std::nullopt;
+    }
+    fmt::print(stderr, "rayproof {}: --glsl {}: {}\n", command, m.name, m.summary);
+    out.push_back(std::make_unique<Method>(std::move(m)));
   }
 
   // --opencl: OpenCL C on a device, in a device process (src/methods/opencl_kernel.h).

@@ -25,10 +25,12 @@ struct UserKernelOptions {
   std::string cl_options;           ///< --cl-options: OpenCL build options (unset: the device's defaults)
   bool cl_options_given = false;
   bool cl_contract_off = false;     ///< --cl-contract-off: `#pragma OPENCL FP_CONTRACT OFF` before FILE
-  int device = 0;                   ///< --device N: the GPU-API device (OpenCL: the Nth over every platform)
+  std::vector<std::string> glsl;    ///< NAME=FILE, NAME:float=FILE, NAME:double=FILE (docs/shaders.md)
+  bool glsl_precise = false;        ///< --glsl-precise: every float operation of the shader precise (NoContraction)
+  int device = 0;                   ///< --device N: Vulkan's device index (--glsl); the Nth over every platform (--opencl)
 };
 
-/// Adds --exec, --plugin, --opencl (with --cl-options, --device) to a subcommand.
+/// Adds --exec, --plugin, --glsl, --opencl (with --cl-options) and --device to a subcommand.
 void add_user_kernel_options(CLI::App& sub, UserKernelOptions& opt);
 
 /// One `--opencl` spec's method, built with the options' --device, --cl-options and timeout, and
@@ -42,5 +44,8 @@ void add_user_kernel_options(CLI::App& sub, UserKernelOptions& opt);
 /// "rayproof COMMAND: ..." to standard error and gives nothing.
 [[nodiscard]] std::optional<std::vector<std::unique_ptr<Method>>> make_user_kernels(std::string_view command,
                                                                                    const UserKernelOptions& opt);
+
+/// A --glsl kernel (its summary names the file, the precision, the device and its driver).
+[[nodiscard]] bool is_glsl_kernel(const Method& m);
 
 }  // namespace rayproof::cli
