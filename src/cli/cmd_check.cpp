@@ -13,6 +13,7 @@
 #include "cli/check_text.h"
 #include "cli/commands.h"
 #include "cli/registry.h"
+#include "cli/scene_input.h"
 #include "cli/user_kernels.h"
 #include "report/report.h"
 #include "scene/accel.h"
@@ -126,6 +127,7 @@ int run_mesh_check(const CheckCliOptions& o, const Method& kernel) {
     mt.name = name;
     try {
       mt.mesh = mesh::read_mesh(name);
+      fmt::print(stderr, "rayproof check: {}: {} triangles{}\n", name, mt.mesh.triangles.size(), reader_note(name));
     } catch (const std::exception& e) {
       fmt::print(stderr, "rayproof check: {}\n", e.what());
       return 2;
@@ -335,7 +337,7 @@ Run add_check(CLI::App& app) {
       ->delimiter(',')->allow_extra_args(false);
   sub->add_flag("--json", o->json, "Print the result as JSON instead of the table");
   sub->add_option("--mesh", o->mesh,
-                  "Leak check on closed meshes instead of the families: mesh files (.off .obj .ply .stl), or "
+                  "Leak check on closed meshes instead of the families: mesh files (.off .obj .ply .stl .gltf .glb), or "
                   "`generated` for the generated meshes of fuzz --mesh; leaks break the promise watertight")
       ->expected(1, -1);
   sub->add_option("--meshes", o->meshes, "How many generated meshes `--mesh generated` checks")

@@ -8,6 +8,7 @@
 
 #include "cli/commands.h"
 #include "cli/registry.h"
+#include "cli/scene_input.h"
 #include "light/spawn_count.h"
 #include "light/spawn_mesh.h"
 #include "mesh/mesh.h"
@@ -41,6 +42,8 @@ int run_spawn_mesh(const SpawnOptions& opt) {
                                                             mag == 0 ? 0.0 : std::ldexp(1.0, mag)));
     } else {
       meshes.emplace_back(opt.mesh, mesh::read_mesh(opt.mesh));
+      fmt::print(stderr, "{}: {}: {} triangles{}\n", kCmd, opt.mesh, meshes.back().second.triangles.size(),
+                 reader_note(opt.mesh));
     }
   } catch (const std::exception& e) {
     fmt::print(stderr, "{}: {}\n", kCmd, e.what());
