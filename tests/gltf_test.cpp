@@ -125,8 +125,8 @@ TEST(Gltf, BadFilesAreRefusedWithTheFileAndTheObjectNamed) {
                              "primitives (mode 4) only");
   const auto strip = write_file("tet_strip.gltf", json("tet.bin", 5));
   EXPECT_NE(error_of(strip.string()).find("mode 5 (triangle strip) is not a triangle list"), std::string::npos);
-  const auto short_indices = write_file("tet_count.gltf", json("tet.bin", 4, R"({"mesh": 0})", 15));
-  EXPECT_EQ(error_of(short_indices.string()), short_indices.string() + ": accessors[1]: 15 indices: not a multiple of 3");
+  const auto short_indices = write_file("tet_count.gltf", json("tet.bin", 4, R"({"mesh": 0})", 14));
+  EXPECT_EQ(error_of(short_indices.string()), short_indices.string() + ": accessors[1]: 14 indices: not a multiple of 3");
   const auto long_indices = write_file("tet_long.gltf", json("tet.bin", 4, R"({"mesh": 0})", 18));
   EXPECT_EQ(error_of(long_indices.string()),
             long_indices.string() + ": accessors[1]: 18 elements need 36 bytes of bufferViews[1], which has 24");
