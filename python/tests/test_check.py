@@ -217,3 +217,4 @@ def test_t_errors_are_worded_as_report_and_the_cli_word_them():
     assert "t max" in res["table"] and "> 1 ulp" in res["table"]  # the CLI check's columns
     worded = [r["t_error"] for r in res["reproducers"] if r["verdict"] == "agree"]
     assert worded and all(w.endswith("(leading bits wrong)") for w in worded)
+    assert all(r["t_error"] is None for r in res["reproducers"] if r["verdict"] != "agree")
