@@ -23,6 +23,10 @@ set(CPACK_INSTALL_CMAKE_PROJECTS "${PROJECT_BINARY_DIR};${PROJECT_NAME};${RAYPRO
 set(_rp_deb_runtime)
 if(TARGET rayproof)
   set(_rp_deb_runtime libc6 libstdc++6 libgcc-s1 libgmp10 libmpfr6 libtbb12 libfmt9 libpng16-16)
+  get_property(_rp_gltf GLOBAL PROPERTY RAYPROOF_HAVE_TINYGLTF)  # src/CMakeLists.txt
+  if(_rp_gltf)
+    list(APPEND _rp_deb_runtime libtinygltf2d)
+  endif()
   find_package(embree 3 QUIET)
   if(embree_FOUND)
     list(APPEND _rp_deb_runtime libembree3-3)

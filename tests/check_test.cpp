@@ -8,10 +8,12 @@
 #include "cli/check_text.h"
 #include "cli/registry.h"
 #include "cli_support.h"
+#include "report/report_text.h"
 #include "verify/check.h"
 #include "verify/exact.h"
 #include "verify/mesh_check.h"
 #include "verify/mesh_fuzz.h"
+#include "verify/ulp_text.h"
 
 using namespace rayproof;
 using rayproof::testing::run_rayproof;
@@ -140,6 +142,46 @@ TEST(Check, CallableOverloadChecksACppKernel) {
   EXPECT_EQ(res.method, "mine");
   EXPECT_EQ(res.families[0].stats.ulps, ref.families[0].stats.ulps);
   EXPECT_EQ(res.families[0].stats.class_errors(), ref.families[0].stats.class_errors());
+}
+
+// Issue 24, item 2: one wording of t errors in check (the command and Python's table, which is this
+// function's) and report: no raw 19-digit ulp count.
+TEST(CheckText, TErrorsAreWordedAsReportWordsThem) {
+  verify::CheckResult r;
+  r.precision = Precision::float64;
+  verify::FamilyCheck a;
+  a.family = "tri_generic";
+  a.stats.cases = 100;
+  a.stats.ulps.assign(96, 3);
+  a.stats.ulps.insert(a.stats.ulps.end(), {4527287023342080819ULL, 4527287023342080819ULL, 4527287023342080819ULL,
+                                           verify::kNaNUlps});
+  r.families = {a};
+  const std::string table = cli::check_table(r);
+  EXPECT_NE(table.find(" 4.5e+18 (leading bits wrong) "), std::string::npos) << table;  // p99
+  EXPECT_NE(table.find(" NaN t "), std::string::npos) << table;
+  EXPECT_EQ(table.find("4527287023342080819"), std::string::npos) << table;
+  // The same words as report's tables, number for number and in both precisions.
+  const std::vector<std::uint64_t> samples{0, 999999, 1000000, std::uint64_t{1} << 23, std::uint64_t{1} << 52,
+                                           4527287023342080819ULL, verify::kNaNUlps};
+  for (const std::uint64_t u : samples)
+    for (const Precision p : {Precision::float32, Precision::float64})
+      EXPECT_EQ(verify::ulp_text(u, p), report::ulp_text(u, p)) << u;
+  EXPECT_EQ(verify::ulp_text(3, Precision::float64), "3");
+  EXPECT_EQ(verify::ulp_text(std::uint64_t{1} << 23, Precision::float32), "8.4e+06 (leading bits wrong)");
+  EXPECT_EQ(verify::ulp_text(std::uint64_t{1} << 23, Precision::float64), "8.4e+06 (rel. <= 2e-09)");
+  // Every line of the table as wide as the header: the widened columns stay aligned.
+  const auto first = table.find('\n');
+  for (std::size_t at = 0; at < table.size();) {
+    const auto end = table.find('\n', at);
+    EXPECT_EQ(end - at, first) << table;
+    at = end + 1;
+  }
+  r.families[0].worst.push_back({"tri_generic", {}, false});
+  r.families[0].worst[0].judged.verdict = verify::Verdict::agree;
+  r.families[0].worst[0].judged.ulps = 4527287023342080819ULL;
+  const auto lines = cli::reproducer_lines(r);
+  ASSERT_EQ(lines.size(), 1u);
+  EXPECT_NE(lines[0].find("(4.5e+18 (leading bits wrong) ulps)"), std::string::npos) << lines[0];
 }
 
 TEST(CheckText, SentencesStateTheTalliesBesideThem) {

@@ -8,6 +8,7 @@
 
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
 #include <string>
 #include <variant>
 #include <vector>
@@ -257,5 +258,63 @@ TEST(ExecKernel, KernelThatReadsNothingDoesNotKillRayproofWithSigpipe) {
   const auto failures = quit.take_failures();
   ASSERT_EQ(failures.size(), 20u);  // then dropped
   EXPECT_NE(failures[0].what.find("exited early (status 0)"), std::string::npos) << failures[0].what;
+  expect_no_children();
+}
+
+// Issue 24, item 3: a user's kernel is a method like the others for --methods, in verify, report and
+// fuzz (cases and --mesh): named alone it runs alone, named in a list it takes its place in the order.
+TEST(ExecKernel, MethodsNamesYourKernelInVerifyReportAndFuzz) {
+  using rayproof::testing::run_rayproof;
+  std::string text;
+  for (const auto& c : triangles(30)) io::append_case_line(text, c);
+  const auto file = rayproof::testing::write_file("exec_methods.txt", text).string();
+  const std::string mine = " --exec 'mine:double:triangle=" + kKernel + " mt' ";
+  auto rows_of = [](const std::string& out) {  // the method column of a verify table, in order
+    std::vector<std::string> names;
+    std::size_t at = 0;
+    while (at < out.size()) {
+      const auto end = out.find('\n', at);
+      const std::string line = out.substr(at, end == std::string::npos ? std::string::npos : end - at);
+      at = end == std::string::npos ? out.size() : end + 1;
+      if (line.empty() && !names.empty()) break;  // the table ends at its first blank line
+      const std::string first = line.substr(0, line.find(' '));
+      if (!first.empty() && first != "method" && first[0] != '#' && (names.empty() || names.back() != first))
+        names.push_back(first);
+    }
+    return names;
+  };
+
+  auto v = run_rayproof("verify --methods mine" + mine + file);
+  ASSERT_EQ(v.status, 0) << v.err;
+  EXPECT_EQ(rows_of(v.out), (std::vector<std::string>{"mine"})) << v.out;
+  v = run_rayproof("verify --methods mine,double" + mine + file);  // the order of the list
+  ASSERT_EQ(v.status, 0) << v.err;
+  EXPECT_EQ(rows_of(v.out), (std::vector<std::string>{"mine", "double"})) << v.out;
+  v = run_rayproof("verify --methods double" + mine + file);  // given but not named: still run, after
+  ASSERT_EQ(v.status, 0) << v.err;
+  EXPECT_EQ(rows_of(v.out), (std::vector<std::string>{"double", "mine"})) << v.out;
+  v = run_rayproof("verify --methods yours" + mine + file);
+  EXPECT_EQ(v.status, 2);
+  EXPECT_NE(v.err.find("unknown method 'yours'"), std::string::npos) << v.err;
+  EXPECT_NE(v.err.find("your kernels: mine"), std::string::npos) << v.err;
+
+  const auto dir = rayproof::testing::scratch_dir() / "exec_methods_report";
+  std::filesystem::remove_all(dir);
+  const auto r = run_rayproof("report --count 4 --families tri_edge --irradiance-samples 0 --methods mine" + mine +
+                              "--out " + dir.string());
+  ASSERT_EQ(r.status, 0) << r.err;
+  const std::string md = rayproof::testing::slurp(dir / "report.md");
+  EXPECT_NE(md.find("methods: mine\n"), std::string::npos) << md.substr(0, 2000);
+
+  const auto fdir = rayproof::testing::scratch_dir() / "exec_methods_fuzz";
+  const auto f = run_rayproof("fuzz --cases 20 --families tri_edge --methods mine" + mine + "--out " + fdir.string());
+  EXPECT_NE(f.status, 2) << f.err;
+  EXPECT_NE(f.out.find("mine"), std::string::npos) << f.out;
+  EXPECT_EQ(f.out.find("float"), std::string::npos) << f.out;  // no registered method ran
+
+  const auto m = run_rayproof("fuzz --mesh --cases 1 --seed 3 --methods mine" + mine);
+  EXPECT_NE(m.status, 2) << m.err;
+  EXPECT_NE(m.out.find("mine "), std::string::npos) << m.out;
+  EXPECT_EQ(m.out.find("robust"), std::string::npos) << m.out;  // no built-in mesh method ran
   expect_no_children();
 }

@@ -241,6 +241,22 @@ TEST(PluginOption, VerifyJsonJudgesPluginsLikeBuiltInMethods) {
   EXPECT_EQ(rows.count({"mt-c", "box_graze"}), 0u);  // triangles only
 }
 
+TEST(PluginOption, MethodsNamesAPluginLikeABuiltInMethod) {
+  // Issue 24, item 3: `--methods mine` with `--plugin mine=...` runs the plugin alone.
+  const auto g = run_rayproof("gen tri_edge -n 30 -s 5");
+  ASSERT_EQ(g.status, 0) << g.err;
+  const auto file = testing::write_file("plugin_methods.txt", g.out).string();
+  auto r = run_rayproof(std::string("verify --json --methods mine --plugin mine=") + PLUGIN_MT_C + " -- " + file);
+  ASSERT_EQ(r.status, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j["rows"].size(), 1u) << r.out;
+  EXPECT_EQ(j["rows"][0]["method"], "mine");
+  EXPECT_EQ(j["rows"][0]["cases"], 30);
+  r = run_rayproof(std::string("verify --methods mine,nosuch --plugin mine=") + PLUGIN_MT_C + " -- " + file);
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("unknown method 'nosuch'"), std::string::npos) << r.err;
+}
+
 // --- plugins against the built-in methods and exact ----------------------------------------------------
 
 TEST(PluginMethods, FloatPluginGivesTheBuiltInFloatTallies) {

@@ -53,5 +53,6 @@ enum class DtypeRule { real, floating, integer };
 void bind_classify(py::module_& m);
 void bind_cast(py::module_& m);
 void bind_check(py::module_& m);
+void bind_load_mesh(py::module_& m);
 
 }  // namespace rayproof::python

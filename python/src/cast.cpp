@@ -183,7 +183,7 @@ class PyMesh {
 
 void bind_cast(py::module_& m) {
   using namespace pybind11::literals;
-  py::class_<PyMesh>(m, "Mesh", R"doc(A triangle mesh in a four-wide BVH, for ray casting (rayproof::MeshCaster).
+  py::class_<PyMesh>(m, "Mesh", R"doc(A triangle mesh in a BVH, for ray casting (rayproof::MeshCaster).
 
 Mesh(vertices, indices): vertices (n, 3) float32 or float64 (integers are converted), indices (m, 3) of an integer dtype
 (uint32, int32, int64, ...), each in [0, n); the vertices the triangles use must be finite. The

@@ -17,6 +17,8 @@
 #include "bindings.h"
 #include "gen/families.h"
 #include "verify/check.h"
+#include "verify/check_text.h"
+#include "verify/ulp_text.h"
 
 namespace rayproof::python {
 
@@ -229,11 +231,6 @@ py::dict stats_dict(const verify::Stats& s, std::size_t over, std::size_t failur
   return d;
 }
 
-std::string row(const std::string& name, const verify::Stats& s, std::size_t failures) {
-  return fmt::format("{:<24} {:>7} {:>10} {:>11} {:>7} {:>10} {:>8} {:>8}\n", name, s.cases, s.false_hit, s.false_miss,
-                     failures, s.ulp_quantile(0.5), s.ulp_quantile(0.99), s.ulp_quantile(1.0));
-}
-
 py::dict check(py::object f_obj, const std::string& kind_name, std::size_t count, std::uint64_t seed,
                const std::string& precision, bool vectorized, std::optional<std::vector<std::string>> family_names,
                std::size_t reproducers, std::uint64_t ulp_tolerance, bool watertight, bool exact_class,
@@ -294,11 +291,8 @@ py::dict check(py::object f_obj, const std::string& kind_name, std::size_t count
 
   py::dict per_family;
   py::list repro, failures_out;
-  std::string table = fmt::format("{:<24} {:>7} {:>10} {:>11} {:>7} {:>10} {:>8} {:>8}\n", "family", "cases",
-                                  "false hit", "false miss", "raised", "t med ulp", "p99", "max");
   for (const auto& fc : res.families) {
     per_family[py::str(fc.family)] = stats_dict(fc.stats, fc.over_tolerance, fc.failures.size());
-    table += row(fc.family, fc.stats, fc.failures.size());
     for (const auto& w : fc.worst) {
       py::dict r;
       r["family"] = w.family;
@@ -307,6 +301,9 @@ py::dict check(py::object f_obj, const std::string& kind_name, std::size_t count
       r["got"] = io::format_result(w.judged.got);
       r["want"] = io::format_result(w.judged.want);
       r["ulps"] = w.judged.ulps;
+      // The t error in report's words; none for a class error, whose t is not compared.
+      r["t_error"] = w.judged.verdict == verify::Verdict::agree ? py::object(py::str(verify::ulp_text(w.judged.ulps, res.precision)))
+                                                                : py::object(py::none());
       r["minimized"] = w.minimized;
       repro.append(r);
     }
@@ -319,7 +316,6 @@ py::dict check(py::object f_obj, const std::string& kind_name, std::size_t count
     }
   }
   const verify::Stats total = res.total();
-  table += row("total", total, res.failures());
   py::list promises;
   for (const auto& p : res.promises) {
     py::dict d;
@@ -339,7 +335,7 @@ py::dict check(py::object f_obj, const std::string& kind_name, std::size_t count
   out["failures"] = failures_out;
   out["promises"] = promises;
   out["promises_kept"] = res.promises_kept();
-  out["table"] = table;
+  out["table"] = verify::check_table(res);  // the table `rayproof check` prints
   return out;
 }
 

@@ -128,4 +128,5 @@ PYBIND11_MODULE(rayproof, m) {
   bind_classify(m);
   bind_cast(m);
   bind_check(m);
+  bind_load_mesh(m);
 }

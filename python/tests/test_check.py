@@ -199,3 +199,22 @@ def test_barycentrics_are_judged():
     assert bad["bary_count"] == good["bary_count"] and bad["bary_error_max"] > 1e-3
     # Without barycentrics nothing is judged.
     assert rayproof.check(moller_trumbore, **kw)["families"]["tri_interior_exact"]["bary_count"] == 0
+
+
+def test_t_errors_are_worded_as_report_and_the_cli_word_them():
+    """A t three times too large plus one is 'leading bits wrong', not a raw 19-digit ulp count (the table is the CLI
+    check's; its NaN wording is tested in C++, CheckText.TErrorsAreWordedAsReportWordsThem)."""
+    def far(o, d, p0, p1, p2):
+        r = rayproof.classify("triangle", o, d, np.concatenate([p0, p1, p2]), method="certified")
+        c = r["classes"][0]
+        hit = c in TOUCH or (c == "coplanar" and not np.isnan(r["t"][0]))
+        return hit, 3 * float(r["t"][0]) + 1
+
+    res = rayproof.check(far, count=20, seed=4, precision="double", families=["tri_generic"], minimize=False)
+    assert res["total"]["t_ulps_max"] > 10**15
+    assert "(leading bits wrong)" in res["table"]
+    assert not any(len(tok) > 12 and tok.isdigit() for tok in res["table"].split()), res["table"]
+    assert "t max" in res["table"] and "> 1 ulp" in res["table"]  # the CLI check's columns
+    worded = [r["t_error"] for r in res["reproducers"] if r["verdict"] == "agree"]
+    assert worded and all(w.endswith("(leading bits wrong)") for w in worded)
+    assert all(r["t_error"] is None for r in res["reproducers"] if r["verdict"] != "agree")

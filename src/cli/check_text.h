@@ -1,26 +1,17 @@
 #pragma once
-/// What `rayproof check` prints about a CheckResult: the verdict table, the reproducer lines and the
-/// sentences. Kept apart from the command so that a test can build them from known tallies.
+/// What `rayproof check` prints: about a CheckResult, verify/check_text.h (shared with the Python
+/// module); about a mesh check, the table, the leak lines and the sentences below. Kept apart from the
+/// command so that a test can build them from known tallies.
 #include <string>
 #include <vector>
 
-#include "verify/check.h"
+#include "verify/check_text.h"
 
 namespace rayproof::cli {
 
-/// "NaN t" for a missing or NaN t (the maximum ulp distance), else the number.
-[[nodiscard]] std::string ulp_text(std::uint64_t u);
-
-/// One row per family and an "(all)" row: cases, false hits, false misses, wrong class, t error
-/// median/p99/max, over tolerance, failures.
-[[nodiscard]] std::string check_table(const verify::CheckResult& r);
-
-/// The worst reproducers as case-file lines with a comment (family, verdict, answer, exact answer).
-[[nodiscard]] std::vector<std::string> reproducer_lines(const verify::CheckResult& r);
-
-/// The sentences about the result, each true for the counts it states: class errors, t error,
-/// failures, then one per stated promise and the overall verdict.
-[[nodiscard]] std::vector<std::string> check_sentences(const verify::CheckResult& r);
+using verify::check_sentences;
+using verify::check_table;
+using verify::reproducer_lines;
 
 }  // namespace rayproof::cli
 

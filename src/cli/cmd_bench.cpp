@@ -120,8 +120,8 @@ int bench_scene(const BenchOptions& opt, const std::string& path, int threads, s
   std::vector<int> counts{1};
   if (threads > 1) counts.push_back(threads);
   if (!opt.json)
-    fmt::print(stderr, "{}: {} triangles, {} primitives; one thread{}\n", mesh_name, s.mesh.triangles.size(), s.size(),
-               threads > 1 ? fmt::format(" and {} threads", threads) : "");
+    fmt::print(stderr, "{}: {} triangles, {} primitives{}; one thread{}\n", mesh_name, s.mesh.triangles.size(), s.size(),
+               reader_note(path), threads > 1 ? fmt::format(" and {} threads", threads) : "");
   // Builds run on `threads` threads, as Embree's (its device is created with threads=N).
   tbb::task_arena build_arena(threads);
   std::optional<scene::Accel> accel_a;

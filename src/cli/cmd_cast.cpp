@@ -23,6 +23,7 @@ struct CastOptions {
   std::string scene, rays, method = "double", query = "closest", builder = "sah";
   int threads = 0;
   double tmin = 0, tmax = std::numeric_limits<double>::infinity();
+  bool verbose = false;
 };
 
 std::string format_hit(const CastHit& h) {
@@ -31,7 +32,7 @@ std::string format_hit(const CastHit& h) {
 }
 
 int run_cast(const CastOptions& opt) {
-  const auto loaded = load_scene_for_cli("cast", opt.scene, opt.method, opt.builder);
+  const auto loaded = load_scene_for_cli("cast", opt.scene, opt.method, opt.builder, opt.verbose);
   if (!loaded) return 2;
   Input in = open_input(opt.rays);
   if (!in.stream) {
@@ -88,7 +89,7 @@ int run_cast(const CastOptions& opt) {
 Run add_cast(CLI::App& app) {
   auto opt = std::make_shared<CastOptions>();
   auto* sub = app.add_subcommand("cast", "Cast rays into a scene or mesh: one result line per ray");
-  sub->add_option("scene", opt->scene, "Mesh file (.off .obj .ply .stl), scene JSON, or 'default'")->required();
+  sub->add_option("scene", opt->scene, "Mesh file (.off .obj .ply .stl .gltf .glb), scene JSON, or 'default'")->required();
   sub->add_option("rays", opt->rays, "Ray file (ox oy oz dx dy dz per line), or - for standard input")->required();
   sub->add_option("--method,-m", opt->method, "Method (compiled: float, double, cramer-*, watertight*; or any registry method)")
       ->capture_default_str();
@@ -101,6 +102,7 @@ Run add_cast(CLI::App& app) {
   sub->add_option("--threads,-j", opt->threads, "Threads (0: all)")->capture_default_str();
   sub->add_option("--tmin", opt->tmin, "Smallest t counted")->capture_default_str();
   sub->add_option("--tmax", opt->tmax, "Largest t counted");
+  sub->add_flag("--verbose,-v", opt->verbose, "Say on stderr what was loaded and which reader read it");
   return [opt] { return run_cast(*opt); };
 }
 

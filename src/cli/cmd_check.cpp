@@ -15,6 +15,7 @@
 #include "cli/device_compare.h"
 #include "cli/commands.h"
 #include "cli/registry.h"
+#include "cli/scene_input.h"
 #include "cli/user_kernels.h"
 #include "methods/plugin_kernel.h"
 #include "report/report.h"
@@ -168,6 +169,7 @@ int run_mesh_check(const CheckCliOptions& o, const Method& kernel) {
     mt.name = name;
     try {
       mt.mesh = mesh::read_mesh(name);
+      fmt::print(stderr, "rayproof check: {}: {} triangles{}\n", name, mt.mesh.triangles.size(), reader_note(name));
     } catch (const std::exception& e) {
       fmt::print(stderr, "rayproof check: {}\n", e.what());
       return 2;
@@ -466,7 +468,7 @@ Run add_check(CLI::App& app) {
                   "build answers differently and why (FMA contraction, subnormals)");
   sub->add_flag("--json", o->json, "Print the result as JSON instead of the table");
   sub->add_option("--mesh", o->mesh,
-                  "Leak check on closed meshes instead of the families: mesh files (.off .obj .ply .stl), or "
+                  "Leak check on closed meshes instead of the families: mesh files (.off .obj .ply .stl .gltf .glb), or "
                   "`generated` for the generated meshes of fuzz --mesh; leaks break the promise watertight")
       ->expected(1, -1);
   sub->add_option("--meshes", o->meshes, "How many generated meshes `--mesh generated` checks")

@@ -87,9 +87,14 @@ bool must_not_leak(const std::string& m) { return m == "robust" || m == "certifi
 
 int run_mesh_fuzz_cli(const FuzzCliOptions& o) {
   verify::MeshFuzzOptions opt;
-  const std::vector<std::string> names =
-      o.methods.empty() ? std::vector<std::string>{"float", "double", "watertight-float", "watertight", "robust", "certified"}
-                        : o.methods;
+  auto user = make_user_kernels("fuzz", o.user);
+  if (!user) return 2;
+  for (const auto& k : *user) fmt::print("# {}: {}\n", k->name, k->summary);  // GPU kernels: the device and driver
+  // --methods names the mesh methods and may name your kernels (checked below, whether named or not).
+  std::vector<std::string> names;
+  if (o.methods.empty()) names = {"float", "double", "watertight-float", "watertight", "robust", "certified"};
+  for (const auto& name : o.methods)
+    if (!is_user_kernel(name, *user)) names.push_back(name);
   for (const auto& name : names) {
     try {
       opt.methods.push_back(scene::find_scene_method(name, all_methods()));
@@ -106,9 +111,6 @@ int run_mesh_fuzz_cli(const FuzzCliOptions& o) {
     fmt::print(stderr, "rayproof fuzz: --shard and --summary apply to case campaigns, not to --mesh\n");
     return 2;
   }
-  auto user = make_user_kernels("fuzz", o.user);
-  if (!user) return 2;
-  for (const auto& k : *user) fmt::print("# {}: {}\n", k->name, k->summary);  // GPU kernels: the device and driver
   for (const auto& k : *user)
     if (!k->supports(io::Kind::triangle)) {
       fmt::print(stderr, "rayproof fuzz: --mesh needs triangle kernels; '{}' answers no triangles\n", k->name);
@@ -176,13 +178,12 @@ int run_fuzz_cli(const FuzzCliOptions& o) {
     }
     opt.shard_index = k->first, opt.shard_count = k->second;
   }
-  auto selected = select_methods("fuzz", o.methods, false);
-  if (!selected) return 2;
-  opt.methods = std::move(*selected);
   auto user = make_user_kernels("fuzz", o.user);
   if (!user) return 2;
   for (const auto& k : *user) fmt::print("# {}: {}\n", k->name, k->summary);  // GPU kernels: the device and driver
-  for (const auto& k : *user) opt.methods.push_back(k.get());
+  auto selected = select_methods("fuzz", o.methods, false, *user);
+  if (!selected) return 2;
+  opt.methods = std::move(*selected);
   if (o.families.empty()) {
     for (const auto& f : gen::families()) opt.families.push_back(&f);
   } else {
@@ -265,7 +266,8 @@ int run_fuzz_cli(const FuzzCliOptions& o) {
 Run add_fuzz(CLI::App& app) {
   auto o = std::make_shared<FuzzCliOptions>();
   auto* sub = app.add_subcommand("fuzz", "Differential fuzz campaign of methods against exact over the case families");
-  sub->add_option("--methods", o->methods, "Methods (default: all but exact)")->delimiter(',')->allow_extra_args(false);
+  sub->add_option("--methods", o->methods, "Methods, registered or your --exec/--plugin kernels (default: all but exact; your kernels run "
+                  "whether named or not)")->delimiter(',')->allow_extra_args(false);
   sub->add_option("--families", o->families, "Families (default: all)")->delimiter(',')->allow_extra_args(false);
   auto* secs = sub->add_option("--seconds", o->seconds, "Run this long (stops at a round boundary)")
                    ->check(CLI::Range(0.0, 1e7));

@@ -26,7 +26,7 @@ namespace {
 struct RenderOptions {
   std::string scene, out, method = "double", builder = "sah", verify_out;
   int width = 0, height = 0, threads = 0;
-  bool verify = false;
+  bool verify = false, verbose = false;
   bool light = false;
   int shadow_rays = 4;
   std::string estimator = "area", spawn = "error-bounded";
@@ -133,7 +133,7 @@ int run_render_light(const RenderOptions& opt, const scene::Scene& s, const Scen
 }
 
 int run_render(const RenderOptions& opt) {
-  auto loaded = load_scene_for_cli("render", opt.scene, opt.method, opt.builder);
+  auto loaded = load_scene_for_cli("render", opt.scene, opt.method, opt.builder, opt.verbose);
   if (!loaded) return 2;
   const scene::Scene& s = *loaded->scene;
   scene::Camera cam = s.camera ? *s.camera : scene::default_camera(s, 512, 384);
@@ -218,6 +218,7 @@ Run add_render(CLI::App& app) {
   sub->add_option("--epsilon", opt->epsilon, "--light: the epsilon strategy's offset")
       ->check(CLI::Range(0.0, 1e30))->capture_default_str();
   sub->add_option("--seed", opt->seed, "--light: seed of the light samples")->capture_default_str();
+  sub->add_flag("--verbose,-v", opt->verbose, "Say on stderr what was loaded and which reader read it");
   return [opt] { return run_render(*opt); };
 }
 

@@ -69,12 +69,11 @@ int run_report(const ReportOptions& opt) {
     const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     fmt::print(stderr, "[{:6.1f}s] {}\n", s, msg);
   };
-  const auto selected = select_methods("report", opt.methods, true);
-  if (!selected) return 2;
   auto user = make_user_kernels("report", opt.user);
   if (!user) return 2;
-  std::vector<const Method*> methods = *selected;
-  for (const auto& m : *user) methods.push_back(m.get());
+  const auto selected = select_methods("report", opt.methods, true, *user);
+  if (!selected) return 2;
+  const std::vector<const Method*>& methods = *selected;
 
   if (opt.stability_only) {
     if (opt.stability_count == 0) {
@@ -197,7 +196,8 @@ Run add_report(CLI::App& app) {
       ->check(CLI::Range(std::uint64_t{0}, std::uint64_t{1} << 62))
       ->capture_default_str();
   sub->add_option("--out", opt->out, "Output directory")->capture_default_str();
-  sub->add_option("--methods", opt->methods, "Methods (default: all registered)")->delimiter(',')->allow_extra_args(false);
+  sub->add_option("--methods", opt->methods, "Methods, registered or your --exec/--plugin kernels (default: all registered; your "
+                  "kernels run whether named or not)")->delimiter(',')->allow_extra_args(false);
   sub->add_option("--families", opt->families, "Families (default: all)")->delimiter(',')->allow_extra_args(false);
   sub->add_option("--input", opt->input, "Use the cases of this file instead of generated families");
   sub->add_flag("--stability", opt->stability_only,

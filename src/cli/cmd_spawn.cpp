@@ -8,6 +8,7 @@
 
 #include "cli/commands.h"
 #include "cli/registry.h"
+#include "cli/scene_input.h"
 #include "light/spawn_count.h"
 #include "light/spawn_mesh.h"
 #include "mesh/mesh.h"
@@ -41,13 +42,16 @@ int run_spawn_mesh(const SpawnOptions& opt) {
                                                             mag == 0 ? 0.0 : std::ldexp(1.0, mag)));
     } else {
       meshes.emplace_back(opt.mesh, mesh::read_mesh(opt.mesh));
+      fmt::print(stderr, "{}: {}: {} triangles{}\n", kCmd, opt.mesh, meshes.back().second.triangles.size(),
+                 reader_note(opt.mesh));
     }
   } catch (const std::exception& e) {
     fmt::print(stderr, "{}: {}\n", kCmd, e.what());
     return 2;
   }
-  fmt::print("{:<20} {:<14} {:<10} {:>8} {:>7} {:>10} {:>10} {:>7} {:>9} {:>6}\n", "mesh", "strategy", "method", "spawned",
-             "misses", "self(own)", "self(exact)", "shadow", "false-occ", "leaks");
+  fmt::print("{:<20} {:<14} {:<10} {:>8} {:>7} {:>10} {:>10} {:>7} {:>9} {:>6} {:>8} {:>9} {:>11}\n", "mesh", "strategy",
+             "method", "spawned", "misses", "self(own)", "self(exact)", "shadow", "false-occ", "leaks", "occ(ray)", "leaks(ray)",
+             "misses(ray)");
   for (const auto& [name, m] : meshes) {
     if (m.triangles.empty()) {
       fmt::print(stderr, "{}: {} has no triangles\n", kCmd, name);
@@ -61,8 +65,9 @@ int run_spawn_mesh(const SpawnOptions& opt) {
       return 2;
     }
     for (const auto& r : rows)
-      fmt::print("{:<20} {:<14} {:<10} {:>8} {:>7} {:>10} {:>10} {:>7} {:>9} {:>6}\n", name, light::to_string(r.strategy),
-                 r.method, r.spawned, r.primary_misses, r.self_hits, r.exact_self_hits, r.shadow, r.false_occlusions, r.leaks);
+      fmt::print("{:<20} {:<14} {:<10} {:>8} {:>7} {:>10} {:>10} {:>7} {:>9} {:>6} {:>8} {:>9} {:>11}\n", name,
+                 light::to_string(r.strategy), r.method, r.spawned, r.primary_misses, r.self_hits, r.exact_self_hits, r.shadow,
+                 r.false_occlusions, r.leaks, r.false_occlusions_ray, r.leaks_ray, r.primary_misses_ray);
   }
   return 0;
 }

@@ -48,12 +48,11 @@ nlohmann::json stats_json(const verify::Stats& s) {
 }
 
 int run_verify(const VerifyOptions& opt) {
-  const auto selected = select_methods("verify", opt.methods, false);
-  if (!selected) return 2;
   auto user = make_user_kernels("verify", opt.user);
   if (!user) return 2;
-  std::vector<const Method*> methods = *selected;
-  for (const auto& m : *user) methods.push_back(m.get());
+  const auto selected = select_methods("verify", opt.methods, false, *user);
+  if (!selected) return 2;
+  const std::vector<const Method*>& methods = *selected;
   std::vector<io::Case> cases;
   int errors = 0, bad_files = 0;
   for (const std::string& file : opt.files) {
@@ -174,7 +173,8 @@ int run_verify(const VerifyOptions& opt) {
 Run add_verify(CLI::App& app) {
   auto opt = std::make_shared<VerifyOptions>();
   auto* sub = app.add_subcommand("verify", "Compare methods with exact arithmetic on a case file, per method x family");
-  sub->add_option("--methods", opt->methods, "Methods to compare (default: every registered method but exact)")
+  sub->add_option("--methods", opt->methods, "Methods to compare, registered or your --exec/--plugin kernels (default: every registered method but exact; "
+                  "your kernels run whether named or not)")
       ->delimiter(',')->allow_extra_args(false);
   sub->add_flag("--json", opt->json, "Print JSON instead of a table");
   sub->add_option("--mismatches", opt->mismatches, "Print the first N disagreeing cases of each method as case lines")

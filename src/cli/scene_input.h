@@ -8,10 +8,17 @@
 #include <string>
 
 #include "cli/registry.h"
+#include "mesh/mesh.h"
 #include "cli/scene_caster.h"
 #include "scene/accel.h"
 
 namespace rayproof::cli {
+
+/// " (read by tinygltf 2.7.0)", " (read by rayproof's OFF reader)", ... for a mesh file; "" else.
+inline std::string reader_note(const std::string& path) {
+  if (!mesh::is_mesh_path(path)) return "";
+  return " (read by " + mesh::reader_name(mesh::format_of(path)) + ")";
+}
 
 struct LoadedScene {
   std::unique_ptr<scene::Scene> scene;
@@ -20,15 +27,19 @@ struct LoadedScene {
 };
 
 /// `path` is a mesh file, a scene JSON, or "default" (the built-in scene). Prints
-/// "rayproof CMD: message" and returns nothing on failure.
+/// "rayproof CMD: message" and returns nothing on failure. `verbose`: says on standard error what
+/// was loaded and which reader read it.
 inline std::optional<LoadedScene> load_scene_for_cli(const char* cmd, const std::string& path, const std::string& method,
-                                                     const std::string& builder) {
+                                                     const std::string& builder, bool verbose = false) {
   try {
     LoadedScene l;
     l.method = scene::find_scene_method(method, all_methods());
     l.scene = std::make_unique<scene::Scene>(path == "default" ? scene::default_scene() : scene::load_scene(path));
     BvhBuildOptions opt;
     opt.builder = builder == "median" ? BvhBuilder::median : BvhBuilder::sah;
+    if (verbose)
+      fmt::print(stderr, "rayproof {}: {}: {} triangles, {} primitives{}\n", cmd, path, l.scene->mesh.triangles.size(),
+                 l.scene->size(), reader_note(path));
     l.caster = std::make_unique<SceneCaster>(*l.scene, l.method, opt);
     return l;
   } catch (const std::exception& e) {

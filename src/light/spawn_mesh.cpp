@@ -207,7 +207,19 @@ std::vector<MeshSpawnCount> count_mesh_spawn(const mesh::Mesh& input, std::uint6
   if (input.triangles.empty()) throw std::invalid_argument("the mesh has no triangles");
   mesh::Mesh m = input;
   for (auto& v : m.vertices) v = V{double(float(v.x)), double(float(v.y)), double(float(v.z))};
-  const Geometry g(m);
+  // Neighbours (the triangles a spawned ray cannot meet, the crease at t ~ 0) are found through
+  // shared vertices: vertices at one position are one vertex there, as in a mesh read from STL or
+  // one whose faces repeat their corners. The casters see the mesh as given.
+  mesh::Mesh welded = m;
+  {
+    std::map<std::array<double, 3>, std::uint32_t> first;
+    std::vector<std::uint32_t> canon(m.vertices.size());
+    for (std::uint32_t i = 0; i < m.vertices.size(); ++i)
+      canon[i] = first.try_emplace({m.vertices[i].x, m.vertices[i].y, m.vertices[i].z}, i).first->second;
+    for (auto& t : welded.triangles)
+      for (auto& v : t) v = canon[v];
+  }
+  const Geometry g(welded);
   const VertexArray va(&m.vertices[0].x, m.vertices.size());
   const IndexArray ia{m.triangles[0].data(), m.triangles.size()};
   const MeshCaster<cast::Float> c_float(va, ia);
@@ -224,8 +236,8 @@ std::vector<MeshSpawnCount> count_mesh_spawn(const mesh::Mesh& input, std::uint6
 
   const double near = std::ldexp(size, -30);
   auto shares_vertex = [&](std::uint32_t a, std::uint32_t b) {
-    for (auto u : m.triangles[a])
-      for (auto v : m.triangles[b])
+    for (auto u : welded.triangles[a])
+      for (auto v : welded.triangles[b])
         if (u == v) return true;
     return false;
   };
@@ -279,7 +291,10 @@ std::vector<MeshSpawnCount> count_mesh_spawn(const mesh::Mesh& input, std::uint6
       else if (mi == 1) h = c_robust.closest(primary);
       else h = href;
       if (!h.hit()) {
-        for (std::size_t s = 0; s < kStrategies.size(); ++s) ++row[s].primary_misses;
+        const Ray<double> rounded{V{double(float(primary.o.x)), double(float(primary.o.y)), double(float(primary.o.z))},
+                                  V{double(float(primary.d.x)), double(float(primary.d.y)), double(float(primary.d.z))}};
+        const bool ray_misses = mi < 2 && !c_cert.closest(rounded).hit();
+        for (std::size_t s = 0; s < kStrategies.size(); ++s) ++row[s].primary_misses, row[s].primary_misses_ray += ray_misses;
         continue;
       }
       std::array<std::array<Ray<double>, 3>, 4> rays;
@@ -320,8 +335,14 @@ std::vector<MeshSpawnCount> count_mesh_spawn(const mesh::Mesh& input, std::uint6
               std::find(imp[j].begin(), imp[j].end(), xs[0].triangle) == imp[j].end())
             continue;  // a concave crease at t ~ 0
           ++row[s].shadow;
-          if (blocked && !ref_blocked[j]) ++row[s].false_occlusions;
-          if (!blocked && ref_blocked[j]) ++row[s].leaks;
+          if (blocked == ref_blocked[j]) continue;
+          // The same ray through the certified caster: does it answer as the method's caster did?
+          std::vector<MeshHit> cx = mi == 2 ? xs : c_cert.all(shadow, {kTmin, 1});
+          if (kStrategies[s] == SpawnStrategy::certified)
+            std::erase_if(cx, [&](const MeshHit& x) { return std::find(imp[j].begin(), imp[j].end(), x.triangle) != imp[j].end(); });
+          const bool ray_agrees = cx.empty() != blocked;
+          if (blocked) ++row[s].false_occlusions, row[s].false_occlusions_ray += ray_agrees;
+          else ++row[s].leaks, row[s].leaks_ray += ray_agrees;
         }
     }
   }

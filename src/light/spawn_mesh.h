@@ -41,11 +41,18 @@ struct MeshSpawnCount {
   std::string method;                 ///< float, robust, certified
   std::uint64_t spawned = 0;          ///< spawned rays (up to 3 per primary hit)
   std::uint64_t primary_misses = 0;   ///< primary rays the method's caster did not see hit
+  /// Of those: the certified caster misses the float-rounded primary ray too (float and robust cast
+  /// rays rounded to float: a target on a silhouette edge or vertex can lie beside the rounded ray).
+  std::uint64_t primary_misses_ray = 0;
   std::uint64_t self_hits = 0;        ///< the method's own caster finds an impossible crossing
   std::uint64_t exact_self_hits = 0;  ///< the certified caster does, on the same spawned ray
   std::uint64_t shadow = 0;           ///< shadow rays compared with the reference visibility
   std::uint64_t false_occlusions = 0; ///< own caster: blocked, reference: visible
   std::uint64_t leaks = 0;            ///< own caster: visible, reference: blocked
+  /// Of the false occlusions and leaks: those where the certified caster, cast along the method's
+  /// own shadow ray (its origin, its direction), answers as the method did. There the method's hit
+  /// point and origin, not its caster, decide; the others are its caster's errors.
+  std::uint64_t false_occlusions_ray = 0, leaks_ray = 0;
 };
 
 /// A closed test mesh: an octahedron subdivided `subdivisions` times onto the unit sphere and,

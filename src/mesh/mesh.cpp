@@ -141,7 +141,8 @@ MeshFormat format_of(const std::string& path) {
   if (ext == ".obj") return MeshFormat::obj;
   if (ext == ".ply") return MeshFormat::ply;
   if (ext == ".stl") return MeshFormat::stl;
-  throw MeshError(path + ": unknown mesh format '" + ext + "' (expected .off, .obj, .ply or .stl)");
+  if (ext == ".gltf" || ext == ".glb") return MeshFormat::gltf;
+  throw MeshError(path + ": unknown mesh format '" + ext + "' (expected .off, .obj, .ply, .stl, .gltf or .glb)");
 }
 
 bool is_mesh_path(const std::string& path) {
@@ -158,9 +159,23 @@ Mesh read_mesh(std::istream& in, MeshFormat f, const std::string& name) {
     case MeshFormat::off: return read_off(in, name);
     case MeshFormat::obj: return read_obj(in, name);
     case MeshFormat::ply: return read_ply(in, name);
+    case MeshFormat::gltf: return read_gltf(in, name);
     case MeshFormat::stl: break;
   }
   return read_stl(in, name);
+}
+
+std::string gltf_reader_name();  // gltf.cpp
+
+std::string reader_name(MeshFormat f) {
+  switch (f) {
+    case MeshFormat::off: return "rayproof's OFF reader";
+    case MeshFormat::obj: return "rayproof's OBJ reader";
+    case MeshFormat::ply: return "rayproof's PLY reader";
+    case MeshFormat::gltf: return gltf_reader_name();
+    case MeshFormat::stl: break;
+  }
+  return "rayproof's STL reader";
 }
 
 Mesh read_mesh(const std::string& path) {

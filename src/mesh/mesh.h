@@ -1,8 +1,10 @@
 #pragma once
 /// Triangle meshes read from OFF, OBJ, PLY (ASCII, binary little and big endian) and STL (ASCII
-/// and binary). Polygons are fan-triangulated. Bad input is a MeshError whose message names the
-/// file and the line (text formats) or byte offset (binary formats); no reader trusts a count from
-/// a header to size an allocation before the file has shown it holds that much data.
+/// and binary) by rayproof's own readers, and glTF 2.0 (.gltf, .glb) through Debian's tinygltf.
+/// Polygons are fan-triangulated. Bad input is a MeshError whose message names the file and the
+/// line (text formats), the byte offset (binary formats) or, for glTF, the object ("FILE:
+/// meshes[0].primitives[1]: ..."); no reader trusts a count from a header to size an allocation
+/// before the file has shown it holds that much data.
 #include <array>
 #include <cstdint>
 #include <iosfwd>
@@ -19,17 +21,22 @@ struct Mesh {
   std::vector<std::array<std::uint32_t, 3>> triangles;  ///< indices into vertices
 };
 
-/// Malformed input: "FILE:LINE: what" or "FILE: byte N: what".
+/// Malformed input: "FILE:LINE: what", "FILE: byte N: what", or for glTF "FILE: WHERE: what"
+/// (WHERE a glTF object such as accessors[3]) and "FILE: glTF (tinygltf): what" (tinygltf's message).
 class MeshError : public std::runtime_error {
  public:
   using std::runtime_error::runtime_error;
 };
 
-enum class MeshFormat { off, obj, ply, stl };
+enum class MeshFormat { off, obj, ply, stl, gltf };  ///< gltf: .gltf and .glb
 
 /// The format named by a file's extension (case-insensitive); throws MeshError when unknown.
 [[nodiscard]] MeshFormat format_of(const std::string& path);
 [[nodiscard]] bool is_mesh_path(const std::string& path);
+
+/// Which reader answers a format: "rayproof's OFF reader", ..., "tinygltf 2.7.0" (or, built
+/// without it, a sentence saying so). The commands print it in their load messages.
+[[nodiscard]] std::string reader_name(MeshFormat f);
 
 /// Reads a mesh file; throws MeshError on any problem (missing file included).
 [[nodiscard]] Mesh read_mesh(const std::string& path);
@@ -40,6 +47,11 @@ enum class MeshFormat { off, obj, ply, stl };
 [[nodiscard]] Mesh read_obj(std::istream& in, const std::string& name);
 [[nodiscard]] Mesh read_ply(std::istream& in, const std::string& name);
 [[nodiscard]] Mesh read_stl(std::istream& in, const std::string& name);
+/// glTF 2.0, text (.gltf; buffers in data: URIs or in files beside `name`) or binary (.glb; the
+/// magic decides): the triangle primitives (mode 4) of the default scene's nodes, in world space
+/// (node matrices or TRS applied); with no scene, every mesh untransformed. Other primitive modes,
+/// sparse accessors and geometry extensions (Draco, meshopt, quantization) are refused.
+[[nodiscard]] Mesh read_gltf(std::istream& in, const std::string& name);
 
 /// Writers for tests and generated data (OFF text; binary STL).
 void write_off(std::ostream& out, const Mesh& m);

@@ -1,5 +1,7 @@
 #include "report/report_text.h"
 
+#include "verify/ulp_text.h"
+
 #include <fmt/core.h>
 
 #include <algorithm>
@@ -12,8 +14,6 @@ namespace rayproof::report {
 namespace {
 
 constexpr std::uint64_t kNaN = std::numeric_limits<std::uint64_t>::max();
-
-int mantissa_bits(Precision p) { return p == Precision::float32 ? 23 : 52; }
 
 std::string precision_name(Precision p) { return p == Precision::float32 ? "float" : "double"; }
 
@@ -48,24 +48,10 @@ std::string t_text(const std::optional<double>& t) { return t ? fmt::format("{}"
 
 }  // namespace
 
-namespace {
-/// The reading of u ulps beyond 10^6: "leading bits wrong" or "rel. <= x"; "" below.
-std::string ulp_note(std::uint64_t u, Precision p) {
-  if (u == kNaN || u < 1000000) return "";
-  const int m = mantissa_bits(p);
-  if ((u >> m) != 0) return "leading bits wrong";
-  return fmt::format("rel. <= {:.0e}", std::ldexp(double(u), -m));
-}
-std::string ulp_number(std::uint64_t u) {
-  if (u == kNaN) return "NaN t";
-  return u < 1000000 ? std::to_string(u) : fmt::format("{:.2g}", double(u));
-}
-}  // namespace
+using verify::ulp_note;
+using verify::ulp_number;
 
-std::string ulp_text(std::uint64_t u, Precision p) {
-  const std::string note = ulp_note(u, p);
-  return note.empty() ? ulp_number(u) : ulp_number(u) + " (" + note + ")";
-}
+std::string ulp_text(std::uint64_t u, Precision p) { return verify::ulp_text(u, p); }
 
 std::uint64_t tolerance(const Promise& promised, std::uint64_t report_tolerance) {
   return promised.t_ulps ? *promised.t_ulps : report_tolerance;

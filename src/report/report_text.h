@@ -11,11 +11,8 @@
 
 namespace rayproof::report {
 
-/// A t error of `u` ulps in precision p as a table cell: the number below 10^6; above, the number
-/// in exponent form with what it means: "(rel. <= 2e-07)" (an upper bound on the relative error:
-/// u ulps of a normal t are at most u 2^-52 of it in double, u 2^-23 in float), or "(leading bits
-/// wrong)" once u reaches 2^52 (2^23): t off by about a factor of 2 or more, or on the other side of
-/// zero. "NaN t" for a NaN t (or one present on one side only: the largest distance).
+/// A t error of `u` ulps in precision p as a table cell: verify::ulp_text (verify/ulp_text.h), the
+/// one wording of report, check and Python's rayproof.check.
 [[nodiscard]] std::string ulp_text(std::uint64_t u, Precision p);
 
 /// The t tolerance a row is judged under: what the method promises on the kind (Promise::t_ulps),

@@ -71,7 +71,7 @@ void triangle_bounds(const Triangle<double>& t, BvhBox& box, Vec3<float>& center
 /// Adds a mesh, transformed by world_from_object, to the scene's mesh.
 void add_mesh(Scene& s, const mesh::Mesh& m, const Transform<double>& world_from_object = {});
 
-/// A scene file: a mesh file (.off .obj .ply .stl) or a JSON scene description (see scene_json.cpp).
+/// A scene file: a mesh file (.off .obj .ply .stl .gltf .glb) or a JSON scene description (see scene_json.cpp).
 [[nodiscard]] Scene load_scene(const std::string& path);
 /// A JSON scene from text; `base_dir` resolves relative mesh paths, `name` is used in messages.
 [[nodiscard]] Scene parse_scene_json(const std::string& text, const std::string& base_dir, const std::string& name);
