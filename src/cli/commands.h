@@ -23,5 +23,6 @@ Run add_plugin_host(CLI::App& app);
 Run add_irradiance(CLI::App& app);
 Run add_spawn(CLI::App& app);
 Run add_advise(CLI::App& app);
+Run add_contains(CLI::App& app);
 
 }  // namespace rayproof::cli

@@ -28,6 +28,7 @@ int main(int argc, char** argv) {
   add(add_irradiance(app));
   add(add_spawn(app));
   add(add_advise(app));
+  add(add_contains(app));
   auto* methods = app.add_subcommand("methods", "List the registered methods");
   try {
     app.parse(argc, argv);
