@@ -68,3 +68,20 @@ TEST(ContainsCli, ClearErrors) {
 }
 
 }  // namespace
+
+namespace {
+
+TEST(ContainsCli, BenchContainsTalliesAndVerdicts) {
+  // A small run: the cube as a mesh (Epick and Embree beside contains, no Epeck: no reference for
+  // the mesh's own sets), then the three shapes against their closed forms.
+  const auto mesh = write_file("cube.off", cube_off());
+  const auto r = run_rayproof("bench contains " + mesh.string() + " --points 300 --hard-vertices 4 --repeat 1 --no-epeck");
+  ASSERT_EQ(r.status, 0) << r.err << r.out;
+  EXPECT_NE(r.out.find("cube random: 300 points, 0 of them on the surface (reference: none;"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("cube hard: 40 points"), std::string::npos) << r.out;  // 10 per sampled vertex
+  EXPECT_NE(r.out.find("cube lattice+ulp: 24853 points, 7682 of them on the surface (reference: closed form;"), std::string::npos)
+      << r.out;
+  EXPECT_NE(r.out.find("contains: 0 wrong answers over every point set with a reference (target 0): met"), std::string::npos) << r.out;
+}
+
+}  // namespace
