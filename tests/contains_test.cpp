@@ -14,6 +14,7 @@
 #include "mesh/mesh.h"
 #include "rayproof/contains.h"
 #include "rayproof/orient.h"
+#include "scene/contains_exact.h"
 
 namespace {
 
@@ -244,6 +245,36 @@ TEST(ClosedMesh, Segments) {
   h = c.segment({-0.1, 0.3, 0.7}, {1.7, 0.3, 0.7});
   EXPECT_TRUE(h.crosses);
   EXPECT_NEAR(h.t, 0.1 / 1.8, 1e-15);
+}
+
+TEST(Orient, FilterAndExpansionsAgreeWithGmpOnNearDegenerateInputs) {
+  // Points nearly on a plane / line (one coordinate nudged by a few ulps), at several scales, and
+  // inputs spanning huge exponent ranges (the expansions' window left: GMP decides).
+  using namespace rayproof::scene::detail;
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-1, 1);
+  int zeros = 0;
+  for (int i = 0; i < 4000; ++i) {
+    const double scale = std::ldexp(1.0, int(rng() % 1200) - 600);
+    const Vec3<double> a{u(rng) * scale, u(rng) * scale, u(rng) * scale}, b{u(rng) * scale, u(rng) * scale, u(rng) * scale};
+    const double s = u(rng);
+    Vec3<double> c{a.x + s * (b.x - a.x), a.y + s * (b.y - a.y), u(rng) * scale};
+    Vec3<double> p{a.x + 0.5 * (b.x - a.x), a.y + 0.5 * (b.y - a.y), a.z + 0.5 * (b.z - a.z)};  // near the segment ab
+    for (int k = 0; k < int(rng() % 3); ++k) p.z = std::nextafter(p.z, (rng() & 1) ? 1e300 : -1e300);
+    if (i % 4 == 0) c = {std::ldexp(u(rng), -1000), std::ldexp(u(rng), 900), 0};  // a huge exponent spread
+    const int o3 = rayproof::orient::orient3d(a, b, c, p), g3 = orient3d_gmp(a, b, c, p);
+    if (o3 != rayproof::orient::kUnknown) EXPECT_EQ(o3, g3) << i;
+    EXPECT_EQ(orient3d_exact(a, b, c, p), g3) << i;
+    const int o2 = rayproof::orient::orient2d(a.x, a.y, b.x, b.y, c.x, c.y), g2 = orient2d_gmp(a.x, a.y, b.x, b.y, c.x, c.y);
+    if (o2 != rayproof::orient::kUnknown) EXPECT_EQ(o2, g2) << i;
+    EXPECT_EQ(orient2d_exact(a.x, a.y, b.x, b.y, c.x, c.y), g2) << i;
+    zeros += g2 == 0;
+  }
+  // Exactly degenerate: collinear and coplanar points with exact coordinates.
+  EXPECT_EQ(orient3d_exact({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0x1p-1074, 0x1p600, 0}), 0);
+  EXPECT_EQ(orient3d_exact({0, 0, 0}, {0x1p600, 0, 0}, {0, 0x1p-600, 0}, {0, 0, 0x1p-1074}), 1);
+  EXPECT_EQ(orient2d_exact(0, 0, 0x1p-1074, 0x1p-1074, 0x1p1000, 0x1p1000), 0);
+  (void)zeros;
 }
 
 /// The winding number of the perturbed ray along +z, over every triangle (no BVH): an independent count.

@@ -66,7 +66,12 @@ inline constexpr double kTiny = 0x1p-900;
   const double det = wx * (m1 - m2) + wy * (m3 - m4) + wz * (m5 - m6);
   const double perm = (std::fabs(m1) + std::fabs(m2)) * std::fabs(wx) + (std::fabs(m3) + std::fabs(m4)) * std::fabs(wy) +
                       (std::fabs(m5) + std::fabs(m6)) * std::fabs(wz);
-  if (perm > detail::kTiny && std::fabs(det) > detail::kO3dBound * perm) return det > 0 ? 1 : -1;
+  // The minors' products must not underflow (their error would be multiplied by |w|): every
+  // nonzero difference at least 2^-480 keeps them normal; the final products' underflow
+  // (2^-1075 each) is far inside the bound once perm > kTiny.
+  if (perm > detail::kTiny && std::fabs(det) > detail::kO3dBound * perm &&
+      certified::in_range<-480, 1023>(ux, uy, uz, vx, vy, vz, wx, wy, wz))
+    return det > 0 ? 1 : -1;
   return orient3d_expansion(a, b, c, p);
 }
 

@@ -9,7 +9,7 @@ namespace rayproof::scene::detail {
 [[nodiscard]] int orient3d_gmp(const Vec3<double>& a, const Vec3<double>& b, const Vec3<double>& c,
                                const Vec3<double>& p);
 
-/// orient3d's value rounded (GMP: to nearest double).
+/// orient3d's value as a double (GMP: truncated towards zero, so within one ulp).
 [[nodiscard]] double orient3d_value_gmp(const Vec3<double>& a, const Vec3<double>& b, const Vec3<double>& c,
                                         const Vec3<double>& p);
 [[nodiscard]] inline double orient3d_value_exact(const Vec3<double>& a, const Vec3<double>& b, const Vec3<double>& c,
