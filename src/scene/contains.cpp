@@ -165,13 +165,13 @@ PointQuery query_point(const ContainsState& s, const Vec3<double>& p) {
   Ray<double> ray{p, {0, 0, 0}};
   reinterpret_cast<double*>(&ray.d)[k] = sigma;
   const double pu = coord(p, u), pv = coord(p, v);
-  const Vec3<double>* V = s.vertices.data();
   const scene::LeafPrim* leaves = s.accel->leaf_prims().data();
+  const std::array<Vec3<double>, 3>* slots = s.slots.data();
   const double tmax = std::numeric_limits<double>::infinity();
   s.accel->traverse_slots(ray, 0.0, tmax, BvhTraversal::conservative, BvhQuery::any, [&](std::uint32_t j) {
     const scene::LeafPrim& lp = leaves[j];
     if (lp.id == scene::PrimHit::kNoPrim) return false;
-    const Vec3<double>&a = V[lp.v[0]], &b = V[lp.v[1]], &c = V[lp.v[2]];
+    const Vec3<double>&a = slots[j][0], &b = slots[j][1], &c = slots[j][2];
     const double au = coord(a, u), av = coord(a, v), bu = coord(b, u), bv = coord(b, v), cu = coord(c, u), cv = coord(c, v);
     const int e0 = orient2d_exact(au, av, bu, bv, pu, pv);
     const int e1 = orient2d_exact(bu, bv, cu, cv, pu, pv);

@@ -81,6 +81,11 @@ void load_contains_state(ContainsState& s, const VertexArray& v, const IndexArra
   ref.index_stride = sizeof(std::array<std::uint32_t, 3>);
   ref.triangle_count = s.triangles.size();
   s.accel.emplace(ref, BvhBuildOptions{});
+  const auto& leaves = s.accel->leaf_prims();
+  s.slots.assign(leaves.size(), {Vec3<double>{0, 0, 0}, Vec3<double>{0, 0, 0}, Vec3<double>{0, 0, 0}});
+  for (std::size_t j = 0; j < leaves.size(); ++j)
+    if (leaves[j].id != scene::PrimHit::kNoPrim)
+      for (int k = 0; k < 3; ++k) s.slots[j][k] = s.vertices[leaves[j].v[k]];
 }
 
 }  // namespace rayproof::detail

@@ -27,6 +27,9 @@ struct ContainsState {
   ContainsRule rule = ContainsRule::nonzero;
   Vec3<double> lo{0, 0, 0}, hi{-1, -1, -1};  ///< the bounding box of the used vertices (empty: lo > hi)
   std::optional<scene::Accel> accel;
+  /// The triangles' vertices in the BVH's leaf order (slot j: leaf_prims()[j]; padding slots
+  /// zero), read contiguously by the point query instead of through the vertex indices.
+  std::vector<std::array<Vec3<double>, 3>> slots;
 };
 
 [[nodiscard]] ClosureReport check_closure(const std::vector<Vec3<double>>& v,
