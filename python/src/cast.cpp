@@ -11,6 +11,7 @@
 #include <variant>
 
 #include "bindings.h"
+#include "rayproof/contains.h"
 #include "rayproof/mesh_caster.h"
 
 namespace rayproof::python {
@@ -23,6 +24,13 @@ template <class M>
 struct Lazy {
   std::once_flag once;
   std::unique_ptr<MeshCaster<M>> caster;
+};
+
+/// A ClosedMesh for one rule, built on first use.
+struct LazyClosed {
+  std::once_flag once;
+  std::unique_ptr<ClosedMesh> mesh;
+  std::string error;
 };
 
 class PyMesh {
@@ -103,7 +111,98 @@ class PyMesh {
     return out;
   }
 
+  /// contains(): one uint8 code per point (Side: 0 outside, 1 inside, 2 surface, 3 invalid). float64
+  /// C-contiguous (n, 3) points are read in place (other dtypes and layouts are converted once).
+  py::array_t<std::uint8_t> contains(py::handle points, const std::string& rule, int threads) {
+    const Rows p = rows_of(points, "points", 3, true);
+    const std::size_t n = p.broadcast ? 1 : p.rows;
+    const ClosedMesh& cm = closed(rule);
+    py::array_t<std::uint8_t> out(static_cast<py::ssize_t>(n));
+    const double* xyz = p.data.data();
+    std::uint8_t* o = out.mutable_data();
+    {
+      py::gil_scoped_release unlocked;
+      cm.contains(xyz, n, 3 * sizeof(double), o, threads);
+    }
+    return out;
+  }
+
+  /// winding(): the exact winding number per point (int32; INT32_MIN on the surface, 0 when invalid).
+  py::array_t<std::int32_t> winding(py::handle points) {
+    const Rows p = rows_of(points, "points", 3, true);
+    const std::size_t n = p.broadcast ? 1 : p.rows;
+    const ClosedMesh& cm = closed("nonzero");
+    py::array_t<std::int32_t> out(static_cast<py::ssize_t>(n));
+    std::int32_t* o = out.mutable_data();
+    {
+      py::gil_scoped_release unlocked;
+      for (std::size_t i = 0; i < n; ++i) {
+        const double* r = p.row(i);
+        o[i] = cm.winding({r[0], r[1], r[2]});
+      }
+    }
+    return out;
+  }
+
+  /// segment(): per segment p -> q whether it meets the surface, the first contact's t, triangle,
+  /// class, and the endpoints' sides.
+  py::dict segment(py::handle ps, py::handle qs) {
+    const Rows p = rows_of(ps, "p", 3, true), q = rows_of(qs, "q", 3, true);
+    const std::size_t n = common_rows({{"p", &p}, {"q", &q}});
+    const ClosedMesh& cm = closed("automatic");
+    const auto sn = static_cast<py::ssize_t>(n);
+    py::array_t<bool> crosses(sn);
+    py::array_t<double> t(sn);
+    py::array_t<std::int64_t> prim(sn);
+    py::array_t<std::uint8_t> codes(sn), pside(sn), qside(sn);
+    {
+      py::gil_scoped_release unlocked;
+      for (std::size_t i = 0; i < n; ++i) {
+        const double *a = p.row(i), *b = q.row(i);
+        const SegmentHit h = cm.segment({a[0], a[1], a[2]}, {b[0], b[1], b[2]});
+        crosses.mutable_data()[i] = h.crosses;
+        t.mutable_data()[i] = h.t;
+        prim.mutable_data()[i] = h.crosses ? static_cast<std::int64_t>(h.triangle) : -1;
+        codes.mutable_data()[i] = static_cast<std::uint8_t>(h.contact);
+        pside.mutable_data()[i] = static_cast<std::uint8_t>(h.p_side);
+        qside.mutable_data()[i] = static_cast<std::uint8_t>(h.q_side);
+      }
+    }
+    py::dict out;
+    out["crosses"] = crosses;
+    out["t"] = t;
+    out["prim"] = prim;
+    out["classes"] = class_names(codes);
+    out["codes"] = codes;
+    out["p_side"] = pside;
+    out["q_side"] = qside;
+    return out;
+  }
+
+  [[nodiscard]] bool oriented() { return closed("automatic").oriented(); }
+
  private:
+  /// The ClosedMesh of `rule`, built once (GIL released); MeshNotClosedError becomes ValueError.
+  const ClosedMesh& closed(const std::string& rule) {
+    const int k = rule == "automatic" ? 0 : rule == "nonzero" ? 1 : rule == "parity" ? 2 : -1;
+    if (k < 0) throw py::value_error(fmt::format("rule: '{}' is not a rule (automatic, nonzero, parity)", rule));
+    LazyClosed& lazy = closed_[k];
+    {
+      py::gil_scoped_release unlocked;
+      std::call_once(lazy.once, [&] {
+        try {
+          const ContainsRule r = k == 0 ? ContainsRule::automatic : k == 1 ? ContainsRule::nonzero : ContainsRule::parity;
+          lazy.mesh = std::make_unique<ClosedMesh>(VertexArray(vertices_.data(), vertices()),
+                                                   IndexArray{indices_.data(), triangles()}, r);
+        } catch (const std::invalid_argument& e) {
+          lazy.error = e.what();
+        }
+      });
+    }
+    if (!lazy.mesh) throw py::value_error(fmt::format("mesh: {}", lazy.error));
+    return *lazy.mesh;
+  }
+
   /// The per-hit arrays of `hits`: hit, prim (-1 for a miss), t, b1, b2, classes, codes.
   static py::dict hit_arrays(std::span<const MeshHit> hits) {
     const auto n = static_cast<py::ssize_t>(hits.size());
@@ -177,6 +276,7 @@ class PyMesh {
   std::vector<double> vertices_;
   std::vector<std::uint32_t> indices_;
   std::tuple<Lazy<cast::Float>, Lazy<cast::Robust>, Lazy<cast::Certified>> casters_;
+  LazyClosed closed_[3];  ///< automatic, nonzero, parity
 };
 
 }  // namespace
@@ -210,7 +310,25 @@ A ray with a NaN or infinite component or a zero direction has no crossing (clos
       .def("all", &PyMesh::all, "origins"_a, "directions"_a, "method"_a = "robust", "tmin"_a = 0.0, "tmax"_a = kInf,
            "Every crossing of every ray, sorted by t then triangle within a ray: a dict of flat arrays 'ray', "
            "'prim', 't', 'b1', 'b2', 'classes', 'codes', and 'offsets' (r + 1: ray i's crossings are "
-           "offsets[i]:offsets[i+1]). The GIL is released.");
+           "offsets[i]:offsets[i+1]). The GIL is released.")
+      .def("contains", &PyMesh::contains, "points"_a, "rule"_a = "automatic", "threads"_a = 0,
+           "Exact side of each point ((n, 3) or (3,)) against the closed mesh: a uint8 array, "
+           "rayproof.OUTSIDE (0), INSIDE (1), SURFACE (2: on a triangle, edges and vertices included) or "
+           "INVALID (3: a NaN or infinite coordinate). rule: 'automatic' (nonzero winding number when the mesh "
+           "is oriented, else parity), 'nonzero' or 'parity'. A mesh that is not closed raises ValueError naming "
+           "an open edge. float64 C-contiguous points are read in place; the GIL is released. docs/contains.md.")
+      .def("winding", &PyMesh::winding, "points"_a,
+           "Exact winding number of the closed oriented mesh at each point (int32; -2**31 on the surface).")
+      .def("segment", &PyMesh::segment, "p"_a, "q"_a,
+           "Whether each closed segment p -> q meets the surface (exact) and its first contact: a dict of "
+           "'crosses', 't' (in [0, 1], within a few ulps; NaN for none), 'prim' (-1 for none), 'classes', "
+           "'codes' (interior, edge, vertex, coplanar), 'p_side', 'q_side' (as contains).")
+      .def_property_readonly("oriented", &PyMesh::oriented,
+                             "Whether the closed mesh is oriented (winding numbers defined).");
+  m.attr("OUTSIDE") = static_cast<int>(Side::outside);
+  m.attr("INSIDE") = static_cast<int>(Side::inside);
+  m.attr("SURFACE") = static_cast<int>(Side::surface);
+  m.attr("INVALID") = static_cast<int>(Side::invalid);
 }
 
 }  // namespace rayproof::python

@@ -25,5 +25,8 @@ Run add_glsl_host(CLI::App& app);
 Run add_irradiance(CLI::App& app);
 Run add_spawn(CLI::App& app);
 Run add_advise(CLI::App& app);
+Run add_contains(CLI::App& app);
+/// `rayproof bench contains`: registered on the bench subcommand; main runs it before bench.
+Run add_bench_contains(CLI::App& bench);
 
 }  // namespace rayproof::cli

@@ -22,6 +22,11 @@ int main(int argc, char** argv) {
   add(add_cast(app));
   add(add_render(app));
   add(add_bench(app));
+  {  // `bench contains` before bench itself: the loop below runs the first parsed command
+    CLI::App* bench = app.get_subcommands({}).back();
+    Run run = add_bench_contains(*bench);
+    commands.insert(commands.begin(), {bench->get_subcommand("contains"), std::move(run)});
+  }
   add(add_check(app));
   add(add_serve(app));
   add(add_plugin_host(app));
@@ -30,6 +35,7 @@ int main(int argc, char** argv) {
   add(add_irradiance(app));
   add(add_spawn(app));
   add(add_advise(app));
+  add(add_contains(app));
   auto* methods = app.add_subcommand("methods", "List the registered methods");
   try {
     app.parse(argc, argv);

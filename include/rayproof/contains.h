@@ -1,0 +1,104 @@
+#pragma once
+/// ClosedMesh: exact point containment ("is p inside?") and segment queries on a closed triangle
+/// mesh, at BVH speed. The rule and its proof: docs/contains.md.
+///
+/// Contract:
+/// - Input: the arrays of MeshCaster (rayproof/mesh_caster.h, the same checks and MeshInputError).
+///   The vertices and indices are copied (packed doubles); the arrays may be freed afterwards.
+/// - Closed: vertices with equal coordinates are one vertex; every edge must be used by an even
+///   number of triangles (edges of zero length ignored). Otherwise the constructor throws
+///   MeshNotClosedError naming the number of open edges and one of them (its vertices and their
+///   coordinates). No guess is made for open meshes.
+/// - Oriented: when moreover every edge is used as often a->b as b->a, the mesh is a closed oriented
+///   surface (oriented() is true) and winding() is its exact winding number at p; inside means
+///   winding != 0 (the nonzero rule; for a mesh that does not intersect itself the winding number
+///   is 0 outside and +1 inside, -1 when the triangles face inwards). A closed mesh whose
+///   orientations disagree (oriented() false) is answered by parity: inside means an odd number of
+///   crossings. ContainsRule::parity asks for parity on oriented meshes too; on a self-intersecting
+///   mesh the two rules differ where the winding number is even and nonzero.
+/// - Exact for the double inputs: a point on a triangle (closed: its edges and vertices included)
+///   is Side::surface; every other answer is that of the exact winding number (or parity). Ties of
+///   the parity ray with edges and vertices are decided by Simulation of Simplicity: no retry, no
+///   epsilon. Zero-area triangles are never crossed and are not surface.
+/// - A point with a NaN or infinite coordinate is Side::invalid.
+/// - Threads: queries are const and may run concurrently; the batch calls run on a TBB arena of
+///   `threads` threads (0: TBB's default).
+/// Link rayproof::scene_certified (its exact fallback for inputs outside the expansions' exponent
+/// window uses GMP).
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <memory>
+#include <span>
+#include <stdexcept>
+#include <string>
+
+#include "rayproof/float_util.h"
+#include "rayproof/mesh_caster.h"
+#include "rayproof/vec3.h"
+
+namespace rayproof {
+
+/// Where a point is, relative to a closed mesh.
+enum class Side : std::uint8_t { outside = 0, inside = 1, surface = 2, invalid = 3 };
+[[nodiscard]] const char* to_string(Side s);
+
+/// Inside by the winding number (nonzero; needs an oriented mesh) or by crossing parity.
+enum class ContainsRule : std::uint8_t { automatic, nonzero, parity };
+
+/// The mesh is not closed: message says how many edges are open and names one.
+class MeshNotClosedError : public std::invalid_argument {
+ public:
+  using std::invalid_argument::invalid_argument;
+};
+
+/// Where a segment p->q first meets the mesh.
+struct SegmentHit {
+  Side p_side = Side::invalid, q_side = Side::invalid;  ///< the endpoints' sides (exact)
+  bool crosses = false;          ///< the closed segment meets the surface (exact)
+  std::uint32_t triangle = MeshHit::kNoTriangle;  ///< the triangle of the first contact
+  Contact contact = Contact::miss;  ///< its class: interior, edge, vertex or coplanar (exact)
+  /// The first contact's parameter along p + t (q - p), t in [0, 1], within a few ulps (0 when p is
+  /// on the surface). Two contacts whose t are that close may be ordered either way.
+  double t = kNaN<double>;
+};
+
+class ClosedMesh {
+ public:
+  static constexpr std::int32_t kOnSurface = std::numeric_limits<std::int32_t>::min();
+
+  /// Checks and copies the arrays, checks closure, builds the BVH. Throws MeshInputError,
+  /// MeshNotClosedError; ContainsRule::nonzero on a mesh that is not oriented throws
+  /// MeshNotClosedError too (its message names a misoriented edge).
+  ClosedMesh(const VertexArray& vertices, const IndexArray& indices, ContainsRule rule = ContainsRule::automatic);
+  ~ClosedMesh();
+  ClosedMesh(ClosedMesh&&) noexcept;
+  ClosedMesh& operator=(ClosedMesh&&) noexcept;
+
+  [[nodiscard]] std::size_t triangle_count() const;
+  /// Every edge used as often in each direction: the winding number is defined.
+  [[nodiscard]] bool oriented() const;
+  /// The rule contains() applies: nonzero or parity.
+  [[nodiscard]] ContainsRule rule() const;
+
+  [[nodiscard]] Side contains(const Vec3<double>& p) const;
+  /// The exact winding number at p; kOnSurface on the surface, 0 for an invalid point. Throws
+  /// std::logic_error when the mesh is not oriented.
+  [[nodiscard]] std::int32_t winding(const Vec3<double>& p) const;
+  /// Crossings of the perturbed parity ray (the parity rule's count; mainly for tests).
+  [[nodiscard]] std::uint32_t crossings(const Vec3<double>& p) const;
+
+  /// contains() of every point into `out` (same size; MeshInputError otherwise).
+  void contains(std::span<const Vec3<double>> points, std::span<Side> out, int threads = 0) const;
+  /// The same on packed x y z doubles `stride` bytes apart (the Python binding's arrays).
+  void contains(const double* xyz, std::size_t n, std::size_t stride, std::uint8_t* out, int threads = 0) const;
+
+  /// Whether the closed segment p->q meets the surface, and where first.
+  [[nodiscard]] SegmentHit segment(const Vec3<double>& p, const Vec3<double>& q) const;
+
+ private:
+  struct State;
+  std::unique_ptr<State> s_;
+};
+
+}  // namespace rayproof

@@ -1,0 +1,46 @@
+#pragma once
+/// What a rayproof::ClosedMesh holds (internal to rayproof_scene_certified): packed copies of the
+/// vertices and triangles, the closure report, the bounding box and the BVH over the copies.
+#include <array>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "rayproof/contains.h"
+#include "scene/accel.h"
+
+namespace rayproof::detail {
+
+/// Edges of nonzero length after welding equal vertices: used an odd number of times (open), or
+/// an even number but not as often in each direction (misoriented). Examples: welded vertex
+/// numbers and the number of triangles using the edge.
+struct ClosureReport {
+  std::size_t open_edges = 0, misoriented_edges = 0;
+  std::array<std::uint32_t, 3> open_example{}, misoriented_example{};
+};
+
+struct ContainsState {
+  std::vector<Vec3<double>> vertices;
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+  ClosureReport closure;
+  ContainsRule rule = ContainsRule::nonzero;
+  Vec3<double> lo{0, 0, 0}, hi{-1, -1, -1};  ///< the bounding box of the used vertices (empty: lo > hi)
+  std::optional<scene::Accel> accel;
+  /// The triangles' vertices in the BVH's leaf order (slot j: leaf_prims()[j]; padding slots
+  /// zero), read contiguously by the point query instead of through the vertex indices.
+  std::vector<std::array<Vec3<double>, 3>> slots;
+};
+
+[[nodiscard]] ClosureReport check_closure(const std::vector<Vec3<double>>& v,
+                                          const std::vector<std::array<std::uint32_t, 3>>& tris);
+/// "vertex A (x, y, z) - vertex B (x, y, z), used by N triangles".
+[[nodiscard]] std::string edge_text(const std::vector<Vec3<double>>& v, const std::array<std::uint32_t, 3>& e);
+/// Checks and copies the arrays, checks closure (MeshNotClosedError), builds the BVH.
+void load_contains_state(ContainsState& s, const VertexArray& v, const IndexArray& ix, ContainsRule rule);
+
+}  // namespace rayproof::detail
+
+namespace rayproof {
+struct ClosedMesh::State : detail::ContainsState {};
+}  // namespace rayproof
