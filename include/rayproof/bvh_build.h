@@ -50,6 +50,11 @@ namespace rayproof {
 
 enum class BvhBuilder { median, sah };
 
+/// How a binary tree becomes a wide one (bvh_wide_sah.h): greedy (collapse_wide, bvh_wide.h: open
+/// the largest child until the node is full) or the SAH-optimal collapse (collapse_wide_sah);
+/// automatic: RAYPROOF_BVH_COLLAPSE, else sah.
+enum class BvhCollapse { automatic, greedy, sah };
+
 struct BvhBuildOptions {
   BvhBuilder builder = BvhBuilder::sah;
   std::uint32_t max_leaf = 4;  ///< median: split above this; sah: forced split above 2 * max_leaf
@@ -65,6 +70,8 @@ struct BvhBuildOptions {
   /// lanes used, 10% fewer bytes and, in `rayproof bench`, equal or better ratios to Embree-robust
   /// than 4 or 1.5.
   float group_cost = 2;
+  /// The wide tree's collapse (users of build_bvh alone ignore it; Accel follows it).
+  BvhCollapse collapse = BvhCollapse::automatic;
 };
 
 /// One group test's cost as the SAH builder uses it (1 when leaf_group is 1).

@@ -108,6 +108,7 @@ void Accel::build(const std::vector<BvhBox>& boxes, const std::vector<Vec3<float
                   BvhNodes nodes) {
   // Throws on a bad RAYPROOF_BVH_NODES before any work; automatic is decided by the tree's size.
   const BvhNodes asked = nodes == BvhNodes::automatic ? bvh_nodes_from_env() : nodes;
+  const BvhCollapse collapse = bvh_collapse_choice(opt.collapse);
   // Subtrees in parallel on TBB's threads (the arena of the caller).
   Bvh bin = build_bvh(boxes, centers, opt, [](std::size_t n, const auto& f) {
     tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) { f(i); });
@@ -132,12 +133,16 @@ void Accel::build(const std::vector<BvhBox>& boxes, const std::vector<Vec3<float
     });
     if (c) q = std::move(*c), full = {}, nodes_ = BvhNodes::compressed;
   };
+  // The collapse weighs leaves as the builder does (groups of leaf_group at group_cost each).
+  BvhCollapseCosts costs;
+  costs.leaf_group = std::max<std::uint32_t>(1, opt.leaf_group);
+  costs.group_cost = bvh_group_cost(opt.leaf_group, opt.group_cost);
   if (simd_ == BvhSimd::avx2) {
-    bvh8_ = collapse_bvh8(std::move(bin), boxes);
+    bvh8_ = collapse_wide_as<8>(std::move(bin), boxes, collapse, costs);
     fold(bvh8_);
     compress(bvh8_, bvh8q_);
   } else {
-    bvh_ = collapse_bvh4(std::move(bin), boxes);
+    bvh_ = collapse_wide_as<4>(std::move(bin), boxes, collapse, costs);
     fold(bvh_);
     compress(bvh_, bvh4q_);
   }
