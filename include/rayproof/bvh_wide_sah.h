@@ -30,6 +30,7 @@
 #include <utility>
 #include <vector>
 
+#include "rayproof/bvh_build.h"  // BvhCollapse
 #include "rayproof/bvh_wide.h"
 
 namespace rayproof {
