@@ -9,7 +9,7 @@
 /// (structure of arrays, one 256-bit load per plane), then `child`, `count` and `valid` with the
 /// meaning they have in Bvh4Node (both are BvhWideNode of bvh_wide.h): an inner child is a node index (count 0), a leaf child a range
 /// [child, child + count) of prim_ids (count 1..255); unused slots have empty boxes and a clear bit.
-/// Compressed eight-wide nodes (Bvh8QNode, 128 bytes, bvh_wide.h) run the same test on planes
+/// Compressed eight-wide nodes (Bvh8QNode, 128 bytes, bvh_wide_quantized.h) run the same test on planes
 /// decoded by bvh8q_decode (vpmovzxbd, vcvtdq2ps, vmulps, vaddps): floats that contain the full
 /// node's planes (proof at BvhWideQNode), so the guarantee below holds for them unchanged.
 ///
@@ -133,7 +133,7 @@ struct Bvh8RayF {
 
 /// Hit mask of eight children and their entry distances: bvh4_slab_test in eight lanes.
 /// `plane(off, k)` gives the eight planes at float offset `off` of axis k (loaded from a full node,
-/// decoded from a quantized one: BvhWideQNode, bvh_wide.h); the math after it is the same for both.
+/// decoded from a quantized one: BvhWideQNode, bvh_wide_quantized.h); the math after it is the same for both.
 /// The end of the eight-lane slab test, from the largest near t0 and the smallest far t1 of each
 /// lane: for the conservative test the widening of the header comment, then the clamp to [tmin,
 /// tmax]; the entry distances and the lanes whose interval is not empty (ordered: false for NaN).

@@ -12,7 +12,8 @@
 /// `test(node, tmax, t)` returns the hit mask of the node's children and stores their entry
 /// distances in t[0 .. N) (at least for the hit ones); `tmax_now()` is the caller's tmax in T.
 /// `leaf(first, count)` gets the leaf-order slots [first, first + count) (indices into prim_ids, or
-/// into the caller's own leaf-order data) and returns true to stop (any hit).
+/// into the caller's own leaf-order data) and returns true to stop (any hit); when it also has
+/// `prefetch(first)`, that is called for each leaf child put on the stack.
 template <class Tree, class T, BvhQuery Query, class BoxTest, class TmaxNow, class Leaf>
 [[gnu::always_inline]] inline void RAYPROOF_WIDE_TRAVERSE_LOOP(const Tree& bvh, const BoxTest& test, const TmaxNow& tmax_now,
                                                                Leaf& leaf) {
@@ -45,6 +46,14 @@ template <class Tree, class T, BvhQuery Query, class BoxTest, class TmaxNow, cla
           const int i = __builtin_ctz(static_cast<unsigned>(mask));
           e = Entry{n.child[i], n.count[i], t[i]};
         } else {  // several: for closest hit the nearest next, the farther ones on the stack
+          // A leaf callable with prefetch(first) gets it for every leaf child pushed, so that the
+          // leaf's data is on its way while the nearer children are visited.
+          if constexpr (requires { leaf.prefetch(std::uint32_t{}); }) {
+            for (int m = mask; m; m &= m - 1) {
+              const int i = __builtin_ctz(static_cast<unsigned>(m));
+              if (n.count[i]) leaf.prefetch(n.child[i]);
+            }
+          }
           wide_push<Query == BvhQuery::closest>(n, nodes, mask, t, stack, top);
           e = stack[--top];
         }

@@ -1,0 +1,131 @@
+/// Issue 20's ablation in one run: Accel with the greedy collapse and with the SAH-optimal one
+/// (BvhBuildOptions::collapse), beside Embree (default build: the reference of `float`) and
+/// Embree-robust (the reference of `robust` and `certified`), one ray at a time on one thread,
+/// the four interleaved in blocks of 500 rays with the order rotating block by block, thread CPU
+/// time (so a busy machine's other processes are not counted and all four see the same load).
+/// Each round gives each of ours its reference's time over its own (the bench's ratio: above 1
+/// is faster than Embree); the table shows the median and range over the rounds, and whether the
+/// two trees answered alike (closest: the primitive; any: hit or not). RAYPROOF_SIMD and
+/// RAYPROOF_BVH_NODES apply to both Accels.
+/// Run: ablation_bench [mesh.off | generated[:N]] [rounds] [rays] [method]
+/// (default: generated 2^20 triangles, 5 rounds, 40000 rays per set, robust, certified and float).
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <ctime>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "cli/registry.h"
+#include "scene/accel.h"
+#include "scene/compare/competitors.h"
+#include "scene/watertight.h"
+
+using namespace rayproof;
+using namespace rayproof::scene;
+
+namespace {
+
+double now() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
+
+volatile std::uint64_t sink_value = 0;
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const std::string mesh = argc > 1 ? argv[1] : "generated";
+  const int rounds = argc > 2 ? std::max(1, std::atoi(argv[2])) : 5;
+  const int nrays = argc > 3 ? std::max(1, std::atoi(argv[3])) : 40000;
+  const std::string only = argc > 4 ? argv[4] : "";
+  Scene s;
+  if (mesh.rfind("generated", 0) == 0) add_mesh(s, bumpy_sphere(mesh.size() > 10 ? std::size_t(std::atoll(mesh.c_str() + 10)) : std::size_t(1) << 20));
+  else s = load_scene(mesh);
+  BvhBuildOptions og{BvhBuilder::sah, 4}, os{BvhBuilder::sah, 4};
+  og.collapse = BvhCollapse::greedy, os.collapse = BvhCollapse::sah;
+  const Accel greedy(s, og), sah(s, os);
+  if (!compare::have_embree()) return std::fprintf(stderr, "ablation_bench: built without Embree\n"), 1;
+  std::vector<compare::Competitor> comps = compare::make_competitors(s, "embree,embree-robust", 1);
+  const compare::Competitor& embree = comps.at(0);
+  const compare::Competitor& embree_r = comps.at(1);
+  std::printf("%s: %zu triangles; %s path, %s nodes; build greedy %.1f ms, sah %.1f ms, embree %.1f ms, embree-robust %.1f ms\n",
+              mesh.c_str(), s.mesh.triangles.size(), to_string(sah.simd()), to_string(sah.nodes()), 1e3 * greedy.build_seconds(),
+              1e3 * sah.build_seconds(), 1e3 * embree.build_s, 1e3 * embree_r.build_s);
+  // Rays as node_bench makes them: from an eye outside the bounds into them, and between two points inside.
+  const BvhBox b = s.bounds();
+  std::mt19937 rng(9);
+  auto in_box = [&] {
+    Vec3<double> p;
+    for (int k = 0; k < 3; ++k) p[k] = std::uniform_real_distribution<double>(b.lo[k], b.hi[k])(rng);
+    return p;
+  };
+  Vec3<double> center, ext;
+  for (int k = 0; k < 3; ++k) center[k] = 0.5 * (double(b.lo[k]) + double(b.hi[k])), ext[k] = double(b.hi[k]) - double(b.lo[k]);
+  const double radius = length(ext);
+  std::vector<Ray<double>> primary, random;
+  for (int i = 0; i < nrays; ++i) {
+    const Vec3<double> eye = center + Vec3<double>{0.2 * radius, 0.3 * radius, 1.5 * radius};
+    primary.push_back({eye, in_box() - eye});
+    const Vec3<double> o = in_box();
+    random.push_back({o, in_box() - o});
+  }
+  std::printf("%-10s %-8s %-8s %-13s %22s %22s %22s %s\n", "method", "rays", "query", "reference", "greedy: ratio [range]",
+              "sah: ratio [range]", "sah/greedy speed", "answers");
+  for (const char* mname : {"robust", "certified", "float"}) {
+    if (!only.empty() && only != mname) continue;
+    const SceneMethod m = find_scene_method(mname, cli::all_methods());
+    const bool is_float = std::string(mname) == "float";
+    const compare::Competitor& ref = is_float ? embree : embree_r;
+    for (const char* set : {"primary", "random"}) {
+      const auto& rays = std::string(set) == "primary" ? primary : random;
+      // certified's exact stages are slow: a quarter of the rays.
+      const std::size_t n = std::string(mname) == "certified" ? std::max<std::size_t>(1, rays.size() / 4) : rays.size();
+      for (const char* query : {"closest", "any"}) {
+        const bool closest = std::string(query) == "closest";
+        constexpr std::size_t kBlock = 500;
+        std::vector<double> rg, rs, gain;
+        bool same = true;
+        std::vector<std::uint8_t> out(kBlock);
+        for (int r = 0; r < rounds; ++r) {
+          double t[3] = {0, 0, 0};
+          for (std::size_t b0 = 0, blk = 0; b0 < n; b0 += kBlock, ++blk) {
+            const std::size_t e = std::min(n, b0 + kBlock);
+            std::vector<std::uint64_t> ans[2];
+            for (int step = 0; step < 3; ++step) {
+              const int which = (step + int(blk) + r) % 3;
+              const double t0 = now();
+              if (which == 2) {
+                const std::span<const Ray<double>> span(rays.data() + b0, e - b0);
+                if (closest) ref.closest(span, std::span(out.data(), e - b0), 1);
+                else ref.any(span, std::span(out.data(), e - b0), 1);
+                sink_value = sink_value + out[0];
+              } else {
+                const Accel& a = which ? sah : greedy;
+                for (std::size_t i = b0; i < e; ++i) ans[which].push_back(closest ? a.closest(rays[i], m).prim : a.any(rays[i], m));
+              }
+              t[which] += now() - t0;
+            }
+            same = same && ans[0] == ans[1];
+          }
+          rg.push_back(t[2] / t[0]), rs.push_back(t[2] / t[1]), gain.push_back(t[0] / t[1]);
+        }
+        auto show = [](std::vector<double> v) {
+          std::sort(v.begin(), v.end());
+          char buf[64];
+          std::snprintf(buf, sizeof buf, "%.3f [%.3f-%.3f]", v[v.size() / 2], v.front(), v.back());
+          return std::string(buf);
+        };
+        std::printf("%-10s %-8s %-8s %-13s %22s %22s %22s %s\n", mname, set, query, ref.name.c_str(), show(rg).c_str(),
+                    show(rs).c_str(), show(gain).c_str(), same ? "same" : "DIFFER");
+      }
+    }
+  }
+  std::printf("ratio: the reference's time over ours (above 1: faster than it), median [range] over %d rounds; "
+              "sah/greedy speed: greedy's time over sah's\n",
+              rounds);
+  return 0;
+}
