@@ -15,6 +15,7 @@
 #include "cli/registry.h"
 #include "cli/user_kernels.h"
 #include "report/report.h"
+#include "report/html.h"
 #include "scene/accel.h"
 #include "verify/check.h"
 #include "verify/mesh_check.h"
@@ -283,11 +284,20 @@ int run_check(const CheckCliOptions& o) {
     rep.notes.push_back(fmt::format("cases: {} families x {} (half built in float precision, half in double), seed {}",
                                     res.families.size(), o.count, o.seed));
     for (const auto& line : check_sentences(res)) rep.notes.push_back(line);
+    // The reproducers are the check's own (its worst cases, minimized), not the comparison's first ones.
+    rep.reproducers = reproducer_lines(res);
+    rep.reproducers_intro = fmt::format("The worst cases of {} per family, minimized where marked, and its failures: "
+                                        "one case-file line each, the input as the kernel saw it.",
+                                        kernel->name);
     if (auto err = report::write_report(rep, o.out); !err.empty()) {
       fmt::print(stderr, "rayproof check: {}\n", err);
       return 2;
     }
-    fmt::print(stderr, "wrote {0}/report.md, {0}/report.csv, {0}/error_vs_time.svg\n", o.out);
+    if (auto err = report::write_html(o.out); !err.empty()) {
+      fmt::print(stderr, "rayproof check: {}\n", err);
+      return 2;
+    }
+    fmt::print(stderr, "wrote {0}/report.md, {0}/report.html, {0}/report.csv, {0}/error_vs_time.svg\n", o.out);
   }
 
   if (o.json) {
@@ -330,7 +340,7 @@ Run add_check(CLI::App& app) {
   sub->add_option("--reproducers", o->reproducers, "Worst cases shown per family")
       ->check(CLI::Range(std::size_t{0}, std::size_t{1000}))
       ->capture_default_str();
-  sub->add_option("--out", o->out, "Write report.md, report.csv and error_vs_time.svg here");
+  sub->add_option("--out", o->out, "Write report.md, report.html, report.csv and error_vs_time.svg here");
   sub->add_option("--compare", o->compare, "Built-in methods placed beside the kernel in the report (default: all)")
       ->delimiter(',')->allow_extra_args(false);
   sub->add_flag("--json", o->json, "Print the result as JSON instead of the table");
