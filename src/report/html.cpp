@@ -64,7 +64,7 @@ std::string inline_images(const std::string& html, const std::function<std::stri
     out += html.substr(at, a - at);
     if (svg.empty()) out += tag;
     else out += "<figure class=\"chart\" data-file=\"" + src + "\">" + svg + "<figcaption>" + attribute(tag, "alt") +
-                " (" + src + ")</figcaption></figure>";
+                " (" + src + ")</figcaption></figure>";  // src and alt come escaped from cmark
     at = b + 1;
   }
   return out + html.substr(at);
@@ -116,27 +116,34 @@ document.querySelectorAll('pre > code').forEach(function(c){
 document.querySelectorAll('li code, p code, td code').forEach(function(c){
   if(kinds.test(c.textContent)&&c.textContent.split(' ').length>4) c.after(' ',button(c.textContent));
 });
-// #show=METHOD: that method's first point scrolled into view with its numbers shown (for screenshots).
+// #show=METHOD: the chart first on the page, that method's first point's numbers shown (for screenshots).
 const show=location.hash.match(/^#show=(.+)$/);
 if(show){const g=document.querySelector('g.point[data-method="'+decodeURIComponent(show[1])+'"]');
-  if(g){g.scrollIntoView({block:'center'});const b=g.getBoundingClientRect();tip.textContent=g.dataset.tip;
+  if(g){document.body.prepend(g.closest('figure'));const b=g.getBoundingClientRect();tip.textContent=g.dataset.tip;
     tip.style.display='block';tip.style.left=(b.right+8)+'px';tip.style.top=(b.bottom+8)+'px';}}
 })();
 )";
 
-std::string escape(const std::string& s) {
+}  // namespace
+
+std::string escape_xml(const std::string& s) {
   std::string o;
-  for (char c : s) o += c == '<' ? std::string("&lt;") : c == '&' ? std::string("&amp;") : std::string(1, c);
+  for (char c : s) switch (c) {
+      case '<': o += "&lt;"; break;
+      case '>': o += "&gt;"; break;
+      case '&': o += "&amp;"; break;
+      case '\'': o += "&#39;"; break;
+      case '"': o += "&quot;"; break;
+      default: o += c;
+    }
   return o;
 }
-
-}  // namespace
 
 std::string markdown_to_html(const std::string& markdown, const std::function<std::string(const std::string&)>& image) {
   std::string title = "rayproof report";
   if (markdown.rfind("# ", 0) == 0) title = markdown.substr(2, markdown.find('\n') - 2);
   std::string s = "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">\n<meta name=\"viewport\" "
-                  "content=\"width=device-width\">\n<title>" + escape(title) + "</title>\n<style>" + kStyle +
+                  "content=\"width=device-width\">\n<title>" + escape_xml(title) + "</title>\n<style>" + kStyle +
                   "</style></head>\n<body>\n";
   s += inline_images(render_gfm(markdown), image);
   s += "<p class=\"source\">This page is report.md rendered, with its charts inlined: the same numbers. "

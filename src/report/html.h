@@ -7,6 +7,10 @@
 
 namespace rayproof::report {
 
+/// `s` as XML/HTML text or attribute value: &, <, > and both quotes escaped (every SVG and HTML
+/// string of the report goes through this one).
+[[nodiscard]] std::string escape_xml(const std::string& s);
+
 /// The page for `markdown`. `image` maps an image's file name (as the markdown names it) to the
 /// SVG text to inline in its place, or "" to leave a link (a file that is not there).
 [[nodiscard]] std::string markdown_to_html(const std::string& markdown,

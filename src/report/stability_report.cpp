@@ -8,6 +8,7 @@
 #include <limits>
 #include <map>
 
+#include "report/html.h"
 #include "report/method_style.h"
 #include "report/report.h"
 #include "report/stability_text.h"
@@ -15,12 +16,6 @@
 namespace rayproof::report {
 
 namespace {
-
-std::string esc(const std::string& s) {
-  std::string o;
-  for (char c : s) o += c == '<' ? std::string("&lt;") : c == '&' ? std::string("&amp;") : std::string(1, c);
-  return o;
-}
 
 constexpr std::uint64_t kNoT = std::numeric_limits<std::uint64_t>::max();
 
@@ -37,7 +32,7 @@ std::string panel(double x0, double y0, double w, double h, const gen::Knob& k, 
   auto rate_f = [](double r) { return (std::log10(r * 100) + 1) / 3; };  // 0.1% .. 100%
   auto ulp_f = [](std::uint64_t u) { return std::log2(double(u)) / 64; };
   std::string s;
-  s += fmt::format("<text x='{:.0f}' y='{:.0f}' font-size='13' font-weight='bold'>{}: {}</text>\n", ox, y0 + 14, esc(k.name),
+  s += fmt::format("<text x='{:.0f}' y='{:.0f}' font-size='13' font-weight='bold'>{}: {}</text>\n", ox, y0 + 14, escape_xml(k.name),
                    rate ? "class error rate" : "t error (median solid, max dashed)");
   s += fmt::format("<rect x='{:.0f}' y='{:.0f}' width='{:.0f}' height='{:.0f}' fill='none' stroke='#888'/>\n", ox, oy, pw, ph);
   // x ticks: about eight labels, none closer than 44 px to the previous one (the magnitude knobs'
@@ -68,7 +63,7 @@ std::string panel(double x0, double y0, double w, double h, const gen::Knob& k, 
   }
   s += fmt::format("<text x='{:.0f}' y='{:.1f}' font-size='10' text-anchor='end'>0</text>\n", ox - 4, oy + ph + band / 2 + 3);
   s += fmt::format("<text x='{:.0f}' y='{:.0f}' font-size='11' text-anchor='middle'>{} = 2^k</text>\n", ox + pw / 2,
-                   oy + ph + band + 26, esc(k.quantity));
+                   oy + ph + band + 26, escape_xml(k.quantity));
   auto point = [&](double f, bool zero) { return zero ? oy + ph + band / 2 : Y(std::clamp(f, 0.0, 1.02)); };
   for (const auto* c : curves) {
     const MethodStyle style = method_style(std::size_t(colour.at(c->method)));
@@ -136,7 +131,7 @@ std::string stability_svg(const verify::StabilityRun& run) {
     const MethodStyle style = method_style(std::size_t(colour.at(m)));
     s += fmt::format("<line x1='{:.0f}' y1='80' x2='{:.0f}' y2='80' stroke='{}' stroke-width='3'/>", lx, lx + 14, style.colour);
     s += marker_svg(style.marker, lx + 7, 80, 3.5, style.colour, false);
-    s += fmt::format("<text x='{:.0f}' y='84' font-size='11'>{}</text>", lx + 18, esc(m));
+    s += fmt::format("<text x='{:.0f}' y='84' font-size='11'>{}</text>", lx + 18, escape_xml(m));
     lx += 26 + 6.5 * double(m.size());
   }
   s += "\n";

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <map>
 
+#include "report/html.h"
 #include "report/method_style.h"
 #include "report/report.h"
 #include "report/report_text.h"
@@ -30,12 +31,6 @@ struct KindPoint {
   bool f32 = false;
   bool highlight = false;  ///< the kernel under test (rayproof check)
 };
-
-std::string escape(const std::string& s) {
-  std::string o;
-  for (char c : s) o += c == '<' ? std::string("&lt;") : c == '&' ? std::string("&amp;") : std::string(1, c);
-  return o;
-}
 
 /// One log-log panel. Values of 0 sit on a "0" line below the decades.
 std::string panel(double x0, double y0, double w, double h, const std::string& kind, const std::string& title,
@@ -63,7 +58,7 @@ std::string panel(double x0, double y0, double w, double h, const std::string& k
     if (v >= kNoT) return oy - top_band + 8;
     return v <= 0 ? oy + ph + zero_band - 6 : oy + ph - (std::log10(v) - ly0) / (ly1 - ly0) * ph;
   };
-  s += fmt::format("<text x='{:.0f}' y='{:.0f}' font-size='13' font-weight='bold'>{}</text>\n", ox, y0 + 14, escape(title));
+  s += fmt::format("<text x='{:.0f}' y='{:.0f}' font-size='13' font-weight='bold'>{}</text>\n", ox, y0 + 14, escape_xml(title));
   s += fmt::format("<rect x='{:.0f}' y='{:.0f}' width='{:.0f}' height='{:.0f}' fill='none' stroke='#888'/>\n", ox,
                    oy - top_band, pw, ph + zero_band + top_band);
   if (any_not)
@@ -88,7 +83,7 @@ std::string panel(double x0, double y0, double w, double h, const std::string& k
   s += fmt::format("<text x='{:.0f}' y='{:.0f}' font-size='11' text-anchor='middle'>ns per case (log)</text>\n",
                    ox + pw / 2, oy + ph + zero_band + 26);
   s += fmt::format("<text x='{:.0f}' y='{:.0f}' font-size='11' text-anchor='middle' transform='rotate(-90 {:.0f} {:.0f})'>{}</text>\n",
-                   x0 + 14, oy + ph / 2, x0 + 14, oy + ph / 2, escape(ylabel));
+                   x0 + 14, oy + ph / 2, x0 + 14, oy + ph / 2, escape_xml(ylabel));
   // Pareto front: sorted by time, a staircase through the non-dominated points.
   std::vector<double> t, e;
   for (const auto& p : pts) t.push_back(p.ns), e.push_back(yval(p));
@@ -123,9 +118,9 @@ std::string panel(double x0, double y0, double w, double h, const std::string& k
     const MethodStyle st = method_style(std::size_t(colour.at(p.method)));
     // One group per method and panel: its numbers in a <title> (shown on hover by any viewer, and by
     // report.html's tooltip), its marker, ring and label.
-    s += fmt::format("<g class='point' data-method='{}' data-kind='{}' data-pareto='{}'><title>{}</title>", escape(p.method),
-                     escape(kind), front[i] ? "yes" : "no",
-                     escape(fmt::format("{} on {} ({}): {:.1f} ns/case; class errors {} of {} ({:.4f}%); max t error {}{}",
+    s += fmt::format("<g class='point' data-method='{}' data-kind='{}' data-pareto='{}'><title>{}</title>", escape_xml(p.method),
+                     escape_xml(kind), front[i] ? "yes" : "no",
+                     escape_xml(fmt::format("{} on {} ({}): {:.1f} ns/case; class errors {} of {} ({:.4f}%); max t error {}{}",
                                         p.method, kind, p.f32 ? "float" : "double", p.ns, p.class_errors, p.cases,
                                         100 * p.rate, ulp_text(p.max_ulps, p.f32 ? Precision::float32 : Precision::float64),
                                         front[i] ? "; on the Pareto front" : "")));
@@ -136,7 +131,7 @@ std::string panel(double x0, double y0, double w, double h, const std::string& k
     if (p.highlight)
       s += fmt::format("<circle cx='{:.1f}' cy='{:.1f}' r='12' fill='none' stroke='{}' stroke-width='2'/>", x, y, st.colour);
     s += fmt::format("<text x='{:.1f}' y='{:.1f}' font-size='10' fill='{}'{}>{}</text></g>\n", x + 10, ly, st.colour,
-                     p.highlight ? " font-weight='bold'" : "", escape(p.highlight ? p.method + " (checked)" : p.method));
+                     p.highlight ? " font-weight='bold'" : "", escape_xml(p.highlight ? p.method + " (checked)" : p.method));
   }
   return s;
 }
@@ -159,7 +154,7 @@ std::string to_svg(const Report& r) {
     const double w = 22 + 6.5 * double(p.method.size());
     if (lx + w > W - 10) lx = 20, ly += 18;
     legend += marker_svg(st.marker, lx + 5, ly, 5, st.colour, p.precision == Precision::float32);
-    legend += fmt::format("<text x='{:.0f}' y='{:.0f}' font-size='11'>{}</text>", lx + 13, ly + 4, escape(p.method));
+    legend += fmt::format("<text x='{:.0f}' y='{:.0f}' font-size='11'>{}</text>", lx + 13, ly + 4, escape_xml(p.method));
     lx += w;
   }
   const double top = ly + 15;
@@ -168,7 +163,7 @@ std::string to_svg(const Report& r) {
       "<svg xmlns='http://www.w3.org/2000/svg' width='{:.0f}' height='{:.0f}' font-family='sans-serif' "
       "class='error-vs-time'>\n<rect width='100%' height='100%' fill='white'/>\n",
       W, H);
-  s += fmt::format("<text x='20' y='26' font-size='17' font-weight='bold'>{}</text>\n", escape(r.title));
+  s += fmt::format("<text x='20' y='26' font-size='17' font-weight='bold'>{}</text>\n", escape_xml(r.title));
   s += "<text x='20' y='46' font-size='12'>Each point is one method on every case of that kind (all families); "
        "down and left is better. Hollow markers: float methods (float inputs, float ulps); filled: double or exact.</text>\n";
   s += "<text x='20' y='62' font-size='12'>Ringed points, joined by the dashed line, form the Pareto front. "
