@@ -6,14 +6,20 @@ namespace rayproof::report {
 
 namespace {
 // Ten colours a reader tells apart on white, one hue each (blue, vermilion, bluish green, purple,
-// orange, sky blue, black, reddish pink, brown, olive); no two browns or two greys.
-constexpr const char* kColours[kColourCount] = {"#0072b2", "#d55e00", "#009e73", "#7b3294", "#e69f00",
-                                                "#56b4e9", "#000000", "#cc3f8e", "#8c564b", "#808000"};
+// gold, sky blue, black, magenta, brown, olive); no two browns or two greys, no orange beside
+// vermilion. Every two are at least 77 apart in RGB (the test asks for 70).
+constexpr const char* kColours[kColourCount] = {"#0072b2", "#d55e00", "#009e73", "#7b3294", "#e6b800",
+                                                "#56b4e9", "#000000", "#e7298a", "#8c564b", "#808000"};
 constexpr Marker kMarkers[kMarkerCount] = {Marker::circle,   Marker::square,        Marker::triangle, Marker::diamond,
                                            Marker::triangle_down, Marker::plus, Marker::cross};
 }  // namespace
 
-MethodStyle method_style(std::size_t index) { return {kColours[index % kColourCount], kMarkers[index % kMarkerCount]}; }
+// Colour i mod 10; marker (i + 3 (i div 10)) mod 7: methods 10 colours apart differ in marker by
+// 13k mod 7, never 0 for k = 1..6, so the first 70 never repeat a pair, and the eleventh and twelfth
+// methods (the default report has twelve) take markers their colour's first user does not have.
+MethodStyle method_style(std::size_t index) {
+  return {kColours[index % kColourCount], kMarkers[(index + 3 * (index / kColourCount)) % kMarkerCount]};
+}
 
 std::string marker_svg(Marker m, double x, double y, double r, const char* colour, bool hollow) {
   const std::string paint = hollow ? fmt::format("fill='white' stroke='{}' stroke-width='2'", colour)

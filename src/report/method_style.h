@@ -1,8 +1,8 @@
 #pragma once
 /// How a method is drawn in every chart of the report (error_vs_time.svg, stability.svg and the
 /// same charts in report.html): a colour and a marker from fixed lists. The i-th method takes
-/// colour i mod 10 and marker i mod 7, so no two of the first 70 methods share both, and the first
-/// ten all differ in colour.
+/// colour i mod 10 and marker (i + 3 (i div 10)) mod 7, so no two of the first 70 methods share
+/// both, the first ten all differ in colour, and two methods of one colour differ in marker.
 #include <cstddef>
 #include <string>
 
