@@ -1,6 +1,8 @@
 #pragma once
 /// MeshCaster<Method>: closest, any and all hits of rays against a user's triangle mesh, through a
-/// four-wide BVH (binned SAH), one ray at a time or in batches over TBB threads.
+/// wide BVH (binned SAH; scene::Accel: eight-wide nodes with the AVX2 box test where the CPU has
+/// AVX2, else four-wide SSE ones; compressed nodes for large meshes), one ray at a time or in
+/// batches over TBB threads.
 ///
 /// Contract:
 /// - Input: vertices as float or double triples (pointer, count, stride in bytes) and 32-bit

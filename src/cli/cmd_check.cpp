@@ -19,6 +19,7 @@
 #include "cli/user_kernels.h"
 #include "methods/plugin_kernel.h"
 #include "report/report.h"
+#include "report/html.h"
 #include "scene/accel.h"
 #include "verify/check.h"
 #include "verify/mesh_check.h"
@@ -377,11 +378,20 @@ int run_check(const CheckCliOptions& o) {
     if (builds)
       for (const auto& line : comparison_lines(*builds, device_note))
         if (line.rfind("# the first", 0) != 0 && line.find("  # ") == std::string::npos) rep.notes.push_back(line);
+    // The reproducers are the check's own (its worst cases, minimized), not the comparison's first ones.
+    rep.reproducers = reproducer_lines(res);
+    rep.reproducers_intro = fmt::format("The worst cases of {} per family, minimized where marked, and its failures: "
+                                        "one case-file line each, the input as the kernel saw it.",
+                                        kernel->name);
     if (auto err = report::write_report(rep, o.out); !err.empty()) {
       fmt::print(stderr, "rayproof check: {}\n", err);
       return 2;
     }
-    fmt::print(stderr, "wrote {0}/report.md, {0}/report.csv, {0}/error_vs_time.svg\n", o.out);
+    if (auto err = report::write_html(o.out); !err.empty()) {
+      fmt::print(stderr, "rayproof check: {}\n", err);
+      return 2;
+    }
+    fmt::print(stderr, "wrote {0}/report.md, {0}/report.html, {0}/report.csv, {0}/error_vs_time.svg\n", o.out);
   }
 
   if (o.json) {
@@ -460,11 +470,11 @@ Run add_check(CLI::App& app) {
   sub->add_option("--reproducers", o->reproducers, "Worst cases shown per family")
       ->check(CLI::Range(std::size_t{0}, std::size_t{1000}))
       ->capture_default_str();
-  sub->add_option("--out", o->out, "Write report.md, report.csv and error_vs_time.svg here");
+  sub->add_option("--out", o->out, "Write report.md, report.html, report.csv and error_vs_time.svg here");
   sub->add_option("--compare", o->compare, "Built-in methods placed beside the kernel in the report (default: all)")
       ->delimiter(',')->allow_extra_args(false);
   sub->add_option("--compare-plugin", o->compare_plugin,
-                  "With --glsl: the C build of the same formula (PATH.so, rayproof/plugin.h); say where the GPU "
+                  "With --glsl or --opencl: the C build of the same formula (PATH.so, rayproof/plugin.h); say where the GPU "
                   "build answers differently and why (FMA contraction, subnormals)");
   sub->add_flag("--json", o->json, "Print the result as JSON instead of the table");
   sub->add_option("--mesh", o->mesh,

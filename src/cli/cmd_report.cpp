@@ -15,6 +15,7 @@
 #include "gen/families.h"
 #include "report/report.h"
 #include "report/report_text.h"
+#include "report/html.h"
 #include "report/irradiance_sweep.h"
 #include "report/stability_report.h"
 #include "gen/knobs.h"
@@ -176,6 +177,12 @@ int run_report(const ReportOptions& opt) {
     fmt::print(stderr, "rayproof report: {}\n", err);
     return 2;
   }
+  // report.html last: it renders the finished report.md (stability and irradiance sections included).
+  if (auto err = report::write_html(opt.out); !err.empty()) {
+    fmt::print(stderr, "rayproof report: {}\n", err);
+    return 2;
+  }
+  progress(fmt::format("wrote {}/report.html", opt.out));
   fmt::print("{:<16} {:>10} {:>12} {:>12} {:>10}\n", "method", "ns/case", "class err %", "max ulps", "fallback %");
   for (const auto& p : rep.points)
     fmt::print("{:<16} {:>10.1f} {:>12.4f} {:>12} {:>10.3f}\n", p.method, p.ns_per_case, 100 * p.class_error_rate,

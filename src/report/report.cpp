@@ -27,7 +27,20 @@ Report build_report(const std::vector<io::Case>& given, const std::vector<const 
   progress(fmt::format("exact answers for {} cases (twice where float rounding changes the input)", cases.size()));
   const verify::ExactAnswers exact = verify::exact_answers(cases);
   progress("comparing every method with exact");
-  const verify::Comparison cmp = verify::compare(cases, exact, methods, 0);
+  const verify::Comparison cmp = verify::compare(cases, exact, methods, kReproducersPerMethod);
+  for (const auto& x : cmp.mismatches) {
+    Precision p = Precision::float64;
+    for (const Method* m : methods)
+      if (m->name == x.method) p = m->precision;
+    rep.reproducers.push_back(fmt::format("{}  # {}: {}, got {}, exact {}{}", io::format_case(x.input), x.method,
+                                          verify::to_string(x.verdict), io::format_answer(x.got), io::format_result(x.want),
+                                          x.verdict == verify::Verdict::agree ? fmt::format(" (t off by {} ulps)", ulp_text(x.ulps, p)) : ""));
+  }
+  rep.reproducers_intro = fmt::format(
+      "The first {} cases of each method on which it disagrees with exact (a class error, or t more than 1 ulp off), "
+      "in the order generated: one case-file line each, the input as the method saw it (`rayproof classify --method "
+      "NAME` answers it again).",
+      kReproducersPerMethod);
   for (const Method* m : methods)
     if (m->take_failures)
       for (auto& f : m->take_failures()) rep.kernel_failures.emplace_back(m->name, std::move(f));
@@ -190,6 +203,11 @@ std::string to_markdown(const Report& r) {
   if (const auto ts = t_error_sentences(r.rows); !ts.empty()) {
     s += "\n## t errors that need a word\n\n";
     for (const auto& x : ts) s += "- " + x + "\n";
+  }
+  if (!r.reproducers.empty()) {
+    s += "\n## Reproducers\n\n" + r.reproducers_intro + "\n\n```\n";
+    for (const auto& x : r.reproducers) s += x + "\n";
+    s += "```\n";
   }
   return s;
 }

@@ -47,7 +47,13 @@ struct Report {
   /// Error-free: no class error and every t within the method's promised tolerance, else this.
   std::uint64_t ulp_tolerance = 1;
   std::string highlight;  ///< a method drawn marked in the chart (the kernel `rayproof check` checks)
+  /// Case-file lines that reproduce a disagreement, each with a `# method: ...` comment: the first
+  /// kReproducersPerMethod of each method in `build_report`; `rayproof check` puts its worst cases here.
+  std::vector<std::string> reproducers;
+  std::string reproducers_intro;  ///< the sentence above them: which cases they are
 };
+
+inline constexpr std::size_t kReproducersPerMethod = 3;
 
 /// Compares and times `methods` on `cases` (grouped by family); `progress` gets one line now and then.
 [[nodiscard]] Report build_report(const std::vector<io::Case>& cases, const std::vector<const Method*>& methods,
@@ -60,7 +66,8 @@ struct Report {
 [[nodiscard]] std::string to_csv(const Report& r);
 [[nodiscard]] std::string to_svg(const Report& r);
 
-/// Writes the three files into `dir` (created if needed); returns an error message or "".
+/// Writes report.md, report.csv and error_vs_time.svg into `dir` (created if needed); returns an
+/// error message or "". report.html is rendered from the finished report.md (report/html.h).
 [[nodiscard]] std::string write_report(const Report& r, const std::string& dir);
 
 /// Writes each (name, text) into `dir` (created when missing); "" on success, else what failed.

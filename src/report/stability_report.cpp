@@ -8,21 +8,14 @@
 #include <limits>
 #include <map>
 
+#include "report/html.h"
+#include "report/method_style.h"
 #include "report/report.h"
 #include "report/stability_text.h"
 
 namespace rayproof::report {
 
 namespace {
-
-const char* kColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b",
-                          "#e377c2", "#7f7f7f", "#bcbd22", "#17becf", "#393b79", "#637939"};
-
-std::string esc(const std::string& s) {
-  std::string o;
-  for (char c : s) o += c == '<' ? std::string("&lt;") : c == '&' ? std::string("&amp;") : std::string(1, c);
-  return o;
-}
 
 constexpr std::uint64_t kNoT = std::numeric_limits<std::uint64_t>::max();
 
@@ -39,7 +32,7 @@ std::string panel(double x0, double y0, double w, double h, const gen::Knob& k, 
   auto rate_f = [](double r) { return (std::log10(r * 100) + 1) / 3; };  // 0.1% .. 100%
   auto ulp_f = [](std::uint64_t u) { return std::log2(double(u)) / 64; };
   std::string s;
-  s += fmt::format("<text x='{:.0f}' y='{:.0f}' font-size='13' font-weight='bold'>{}: {}</text>\n", ox, y0 + 14, esc(k.name),
+  s += fmt::format("<text x='{:.0f}' y='{:.0f}' font-size='13' font-weight='bold'>{}: {}</text>\n", ox, y0 + 14, escape_xml(k.name),
                    rate ? "class error rate" : "t error (median solid, max dashed)");
   s += fmt::format("<rect x='{:.0f}' y='{:.0f}' width='{:.0f}' height='{:.0f}' fill='none' stroke='#888'/>\n", ox, oy, pw, ph);
   // x ticks: about eight labels, none closer than 44 px to the previous one (the magnitude knobs'
@@ -70,11 +63,13 @@ std::string panel(double x0, double y0, double w, double h, const gen::Knob& k, 
   }
   s += fmt::format("<text x='{:.0f}' y='{:.1f}' font-size='10' text-anchor='end'>0</text>\n", ox - 4, oy + ph + band / 2 + 3);
   s += fmt::format("<text x='{:.0f}' y='{:.0f}' font-size='11' text-anchor='middle'>{} = 2^k</text>\n", ox + pw / 2,
-                   oy + ph + band + 26, esc(k.quantity));
+                   oy + ph + band + 26, escape_xml(k.quantity));
   auto point = [&](double f, bool zero) { return zero ? oy + ph + band / 2 : Y(std::clamp(f, 0.0, 1.02)); };
   for (const auto* c : curves) {
-    const char* col = kColours[colour.at(c->method) % 12];
-    auto polyline = [&](auto&& value, const char* dash) {
+    const MethodStyle style = method_style(std::size_t(colour.at(c->method)));
+    const char* col = style.colour;
+    // `marked`: the method's marker on each drawn vertex, so that two curves of near colours differ.
+    auto polyline = [&](auto&& value, const char* dash, bool marked) {
       std::vector<std::pair<double, double>> xy;
       for (const auto& st : c->steps) {
         if (st.stats.cases == 0) continue;
@@ -89,19 +84,23 @@ std::string panel(double x0, double y0, double w, double h, const gen::Knob& k, 
       if (!pts.empty())
         s += fmt::format("<polyline points='{}' fill='none' stroke='{}' stroke-width='1.6' stroke-opacity='0.85'{}/>\n",
                          pts, col, dash);
+      if (marked)
+        for (std::size_t i = 0; i < xy.size(); ++i)
+          if (i == 0 || i + 1 == xy.size() || xy[i - 1].second != xy[i].second || xy[i + 1].second != xy[i].second)
+            s += marker_svg(style.marker, xy[i].first, xy[i].second, 3, col, false);
     };
     if (rate) {
       polyline([&](const verify::Stats& st) {
         const double r = st.class_error_rate();
         return std::pair<double, bool>{r > 0 ? std::max(rate_f(r), 0.0) : 0.0, r == 0};
-      }, "");
+      }, "", true);
     } else {
       auto ulps = [&](std::uint64_t u) {
         if (u == kNoT) return std::pair<double, bool>{1.02, false};
         return std::pair<double, bool>{u ? ulp_f(u) : 0.0, u == 0};
       };
-      polyline([&](const verify::Stats& st) { return ulps(st.ulp_quantile(0.5)); }, "");
-      polyline([&](const verify::Stats& st) { return ulps(st.ulp_quantile(1.0)); }, " stroke-dasharray='5,3'");
+      polyline([&](const verify::Stats& st) { return ulps(st.ulp_quantile(0.5)); }, "", true);
+      polyline([&](const verify::Stats& st) { return ulps(st.ulp_quantile(1.0)); }, " stroke-dasharray='5,3'", false);
     }
   }
   return s;
@@ -115,7 +114,7 @@ std::string stability_svg(const verify::StabilityRun& run) {
   const double pw = 560, ph = 250, top = 92;
   const double W = 2 * pw + 20, H = top + ph * double(run.knobs.size()) + 10;
   std::string s = fmt::format(
-      "<svg xmlns='http://www.w3.org/2000/svg' width='{:.0f}' height='{:.0f}' font-family='sans-serif'>\n"
+      "<svg xmlns='http://www.w3.org/2000/svg' width='{:.0f}' height='{:.0f}' font-family='sans-serif' class='stability'>\n"
       "<rect width='100%' height='100%' fill='white'/>\n",
       W, H);
   s += "<text x='20' y='26' font-size='17' font-weight='bold'>rayproof: stability along each stiffness knob</text>\n";
@@ -129,10 +128,10 @@ std::string stability_svg(const verify::StabilityRun& run) {
   for (const auto& c : run.curves)
     if (std::find(order.begin(), order.end(), c.method) == order.end()) order.push_back(c.method);
   for (const auto& m : order) {
-    const char* col = kColours[colour.at(m) % 12];
-    s += fmt::format("<line x1='{:.0f}' y1='80' x2='{:.0f}' y2='80' stroke='{}' stroke-width='3'/><text x='{:.0f}' "
-                     "y='84' font-size='11'>{}</text>",
-                     lx, lx + 14, col, lx + 18, esc(m));
+    const MethodStyle style = method_style(std::size_t(colour.at(m)));
+    s += fmt::format("<line x1='{:.0f}' y1='80' x2='{:.0f}' y2='80' stroke='{}' stroke-width='3'/>", lx, lx + 14, style.colour);
+    s += marker_svg(style.marker, lx + 7, 80, 3.5, style.colour, false);
+    s += fmt::format("<text x='{:.0f}' y='84' font-size='11'>{}</text>", lx + 18, escape_xml(m));
     lx += 26 + 6.5 * double(m.size());
   }
   s += "\n";

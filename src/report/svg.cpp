@@ -6,7 +6,10 @@
 #include <cmath>
 #include <map>
 
+#include "report/html.h"
+#include "report/method_style.h"
 #include "report/report.h"
+#include "report/report_text.h"
 
 namespace rayproof::report {
 
@@ -23,21 +26,15 @@ namespace {
 struct KindPoint {
   std::string method;
   double ns = 0, rate = 0, ulps = 0;
+  std::uint64_t max_ulps = 0;
+  std::size_t cases = 0, class_errors = 0;
   bool f32 = false;
   bool highlight = false;  ///< the kernel under test (rayproof check)
 };
 
-const char* kPalette[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b",
-                          "#e377c2", "#17becf", "#7f7f7f", "#bcbd22", "#393b79", "#843c39"};
-
-std::string escape(const std::string& s) {
-  std::string o;
-  for (char c : s) o += c == '<' ? std::string("&lt;") : c == '&' ? std::string("&amp;") : std::string(1, c);
-  return o;
-}
-
 /// One log-log panel. Values of 0 sit on a "0" line below the decades.
-std::string panel(double x0, double y0, double w, double h, const std::string& title, const std::string& ylabel,
+std::string panel(double x0, double y0, double w, double h, const std::string& kind, const std::string& title,
+                  const std::string& ylabel,
                   const std::vector<KindPoint>& pts, bool rate, const std::map<std::string, int>& colour) {
   std::string s;
   auto yval = [&](const KindPoint& p) { return rate ? p.rate * 100 : p.ulps; };
@@ -61,7 +58,7 @@ std::string panel(double x0, double y0, double w, double h, const std::string& t
     if (v >= kNoT) return oy - top_band + 8;
     return v <= 0 ? oy + ph + zero_band - 6 : oy + ph - (std::log10(v) - ly0) / (ly1 - ly0) * ph;
   };
-  s += fmt::format("<text x='{:.0f}' y='{:.0f}' font-size='13' font-weight='bold'>{}</text>\n", ox, y0 + 14, escape(title));
+  s += fmt::format("<text x='{:.0f}' y='{:.0f}' font-size='13' font-weight='bold'>{}</text>\n", ox, y0 + 14, escape_xml(title));
   s += fmt::format("<rect x='{:.0f}' y='{:.0f}' width='{:.0f}' height='{:.0f}' fill='none' stroke='#888'/>\n", ox,
                    oy - top_band, pw, ph + zero_band + top_band);
   if (any_not)
@@ -86,7 +83,7 @@ std::string panel(double x0, double y0, double w, double h, const std::string& t
   s += fmt::format("<text x='{:.0f}' y='{:.0f}' font-size='11' text-anchor='middle'>ns per case (log)</text>\n",
                    ox + pw / 2, oy + ph + zero_band + 26);
   s += fmt::format("<text x='{:.0f}' y='{:.0f}' font-size='11' text-anchor='middle' transform='rotate(-90 {:.0f} {:.0f})'>{}</text>\n",
-                   x0 + 14, oy + ph / 2, x0 + 14, oy + ph / 2, escape(ylabel));
+                   x0 + 14, oy + ph / 2, x0 + 14, oy + ph / 2, escape_xml(ylabel));
   // Pareto front: sorted by time, a staircase through the non-dominated points.
   std::vector<double> t, e;
   for (const auto& p : pts) t.push_back(p.ns), e.push_back(yval(p));
@@ -118,16 +115,23 @@ std::string panel(double x0, double y0, double w, double h, const std::string& t
   for (std::size_t i = 0; i < pts.size(); ++i) {
     const auto& p = pts[i];
     const double x = X(p.ns), y = Y(yval(p));
-    const char* col = kPalette[colour.at(p.method) % 12];
-    if (front[i]) s += fmt::format("<circle cx='{:.1f}' cy='{:.1f}' r='8' fill='none' stroke='#000' stroke-width='1.5'/>", x, y);
-    if (p.f32) s += fmt::format("<rect x='{:.1f}' y='{:.1f}' width='9' height='9' fill='{}'/>", x - 4.5, y - 4.5, col);
-    else s += fmt::format("<circle cx='{:.1f}' cy='{:.1f}' r='5' fill='{}'/>", x, y, col);
-    const double ly = free_spot(x + 9, y);
-    placed.emplace_back(x + 9, ly);
+    const MethodStyle st = method_style(std::size_t(colour.at(p.method)));
+    // One group per method and panel: its numbers in a <title> (shown on hover by any viewer, and by
+    // report.html's tooltip), its marker, ring and label.
+    s += fmt::format("<g class='point' data-method='{}' data-kind='{}' data-pareto='{}'><title>{}</title>", escape_xml(p.method),
+                     escape_xml(kind), front[i] ? "yes" : "no",
+                     escape_xml(fmt::format("{} on {} ({}): {:.1f} ns/case; class errors {} of {} ({:.4f}%); max t error {}{}",
+                                        p.method, kind, p.f32 ? "float" : "double", p.ns, p.class_errors, p.cases,
+                                        100 * p.rate, ulp_text(p.max_ulps, p.f32 ? Precision::float32 : Precision::float64),
+                                        front[i] ? "; on the Pareto front" : "")));
+    if (front[i]) s += fmt::format("<circle cx='{:.1f}' cy='{:.1f}' r='9' fill='none' stroke='#000' stroke-width='1.5'/>", x, y);
+    s += marker_svg(st.marker, x, y, 5, st.colour, p.f32);
+    const double ly = free_spot(x + 10, y);
+    placed.emplace_back(x + 10, ly);
     if (p.highlight)
-      s += fmt::format("<circle cx='{:.1f}' cy='{:.1f}' r='11' fill='none' stroke='{}' stroke-width='2'/>", x, y, col);
-    s += fmt::format("<text x='{:.1f}' y='{:.1f}' font-size='10' fill='{}'{}>{}</text>\n", x + 9, ly, col,
-                     p.highlight ? " font-weight='bold'" : "", escape(p.highlight ? p.method + " (checked)" : p.method));
+      s += fmt::format("<circle cx='{:.1f}' cy='{:.1f}' r='12' fill='none' stroke='{}' stroke-width='2'/>", x, y, st.colour);
+    s += fmt::format("<text x='{:.1f}' y='{:.1f}' font-size='10' fill='{}'{}>{}</text></g>\n", x + 10, ly, st.colour,
+                     p.highlight ? " font-weight='bold'" : "", escape_xml(p.highlight ? p.method + " (checked)" : p.method));
   }
   return s;
 }
@@ -140,24 +144,31 @@ std::string to_svg(const Report& r) {
   std::vector<io::Kind> kinds;
   for (io::Kind k : io::kAllKinds)
     if (std::any_of(r.rows.begin(), r.rows.end(), [&](const Row& row) { return row.kind == k; })) kinds.push_back(k);
-  const double pw = 540, ph = 300, top = 95;
-  const double W = 2 * pw + 20, H = top + ph * double(kinds.size()) + 20;
+  const double pw = 540, ph = 300;
+  const double W = 2 * pw + 20;
+  // The legend first: it takes as many rows as the methods need, and the panels start below it.
+  std::string legend;
+  double lx = 20, ly = 80;
+  for (const auto& p : r.points) {
+    const MethodStyle st = method_style(std::size_t(colour.at(p.method)));
+    const double w = 22 + 6.5 * double(p.method.size());
+    if (lx + w > W - 10) lx = 20, ly += 18;
+    legend += marker_svg(st.marker, lx + 5, ly, 5, st.colour, p.precision == Precision::float32);
+    legend += fmt::format("<text x='{:.0f}' y='{:.0f}' font-size='11'>{}</text>", lx + 13, ly + 4, escape_xml(p.method));
+    lx += w;
+  }
+  const double top = ly + 15;
+  const double H = top + ph * double(kinds.size()) + 20;
   std::string s = fmt::format(
-      "<svg xmlns='http://www.w3.org/2000/svg' width='{:.0f}' height='{:.0f}' font-family='sans-serif'>\n"
-      "<rect width='100%' height='100%' fill='white'/>\n",
+      "<svg xmlns='http://www.w3.org/2000/svg' width='{:.0f}' height='{:.0f}' font-family='sans-serif' "
+      "class='error-vs-time'>\n<rect width='100%' height='100%' fill='white'/>\n",
       W, H);
-  s += fmt::format("<text x='20' y='26' font-size='17' font-weight='bold'>{}</text>\n", escape(r.title));
+  s += fmt::format("<text x='20' y='26' font-size='17' font-weight='bold'>{}</text>\n", escape_xml(r.title));
   s += "<text x='20' y='46' font-size='12'>Each point is one method on every case of that kind (all families); "
-       "down and left is better. Squares: float methods (float inputs, float ulps); circles: double or exact.</text>\n";
+       "down and left is better. Hollow markers: float methods (float inputs, float ulps); filled: double or exact.</text>\n";
   s += "<text x='20' y='62' font-size='12'>Ringed points, joined by the dashed line, form the Pareto front. "
        "Zero sits on the dashed line below the lowest decade; a NaN or missing t above the highest.</text>\n";
-  double lx = 20;
-  for (const auto& p : r.points) {
-    const char* col = kPalette[colour.at(p.method) % 12];
-    s += fmt::format("<circle cx='{:.0f}' cy='80' r='5' fill='{}'/><text x='{:.0f}' y='84' font-size='11'>{}</text>", lx + 5,
-                     col, lx + 13, escape(p.method));
-    lx += 22 + 6.5 * double(p.method.size());
-  }
+  s += legend;
   s += "\n";
   for (std::size_t i = 0; i < kinds.size(); ++i) {
     std::map<std::string, KindPoint> agg;
@@ -178,12 +189,15 @@ std::string to_svg(const Report& r) {
       p.rate = s2.class_error_rate();
       const auto mx = s2.ulp_quantile(1.0);
       p.ulps = mx == std::numeric_limits<std::uint64_t>::max() ? 1e19 : double(mx);
+      p.max_ulps = mx;
+      p.cases = s2.cases;
+      p.class_errors = s2.class_errors();
       pts.push_back(p);
     }
     const std::string k(io::to_string(kinds[i]));
     const double y = top + ph * double(i);
-    s += panel(0, y, pw, ph, k + ": class error rate", "class errors (% of cases)", pts, true, colour);
-    s += panel(pw + 20, y, pw, ph, k + ": max t error", "max t error (ulps)", pts, false, colour);
+    s += panel(0, y, pw, ph, k, k + ": class error rate", "class errors (% of cases)", pts, true, colour);
+    s += panel(pw + 20, y, pw, ph, k, k + ": max t error", "max t error (ulps)", pts, false, colour);
   }
   s += "</svg>\n";
   return s;

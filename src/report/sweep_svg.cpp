@@ -1,5 +1,6 @@
 /// irradiance_sweep.svg: see sweep_svg.h.
 #include "report/sweep_svg.h"
+#include "report/html.h"
 
 #include <fmt/core.h>
 
@@ -13,12 +14,6 @@ namespace {
 
 const char* kColours[] = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd", "#ff7f0e", "#8c564b"};
 const char* kDashes[] = {"", "6,3", "2,2", "8,3,2,3", "1,3", "10,4", "4,4,1,4", "12,2"};
-
-std::string esc(const std::string& s) {
-  std::string o;
-  for (char c : s) o += c == '<' ? std::string("&lt;") : c == '&' ? std::string("&amp;") : std::string(1, c);
-  return o;
-}
 
 struct Range {
   double lo = 1e300, hi = -1e300;
@@ -89,7 +84,7 @@ std::string panel(double x0, double y0, double w, double h, bool by_time, const 
     const char* col = kColours[colour.at(se.estimator) % 6];
     const char* da = kDashes[dash.at(se.method) % 8];
     s += fmt::format("<path d='{}' fill='none' stroke='{}' stroke-width='1.3' stroke-dasharray='{}'><title>{} / {}</title></path>\n",
-                     path, col, da, esc(se.estimator), esc(se.method));
+                     path, col, da, escape_xml(se.estimator), escape_xml(se.method));
   }
   s += "</g>\n";
   return s;
@@ -109,7 +104,7 @@ std::string sweep_svg(const std::vector<SweepSeries>& series, const std::string&
       "<svg xmlns='http://www.w3.org/2000/svg' width='{:.0f}' height='{:.0f}' font-family='sans-serif'>\n"
       "<rect width='100%' height='100%' fill='white'/>\n"
       "<text x='10' y='18' font-size='14' font-weight='bold'>{}</text>\n",
-      W, H, esc(title));
+      W, H, escape_xml(title));
   s += panel(0, 28, pw, ph, false, series, colour, dash);
   s += panel(pw + 20, 28, pw, ph, true, series, colour, dash);
   double y = ph + 48;
@@ -121,12 +116,12 @@ std::string sweep_svg(const std::vector<SweepSeries>& series, const std::string&
   double ye = y + 18, ym = y + 18;
   for (const auto& [name, c] : colour) {
     s += fmt::format("<line x1='20' y1='{:.0f}' x2='50' y2='{:.0f}' stroke='{}' stroke-width='2'/>"
-                     "<text x='56' y='{:.0f}' font-size='11'>{}</text>\n", ye, ye, kColours[c % 6], ye + 4, esc(name));
+                     "<text x='56' y='{:.0f}' font-size='11'>{}</text>\n", ye, ye, kColours[c % 6], ye + 4, escape_xml(name));
     ye += 18;
   }
   for (const auto& [name, d] : dash) {
     s += fmt::format("<line x1='300' y1='{:.0f}' x2='340' y2='{:.0f}' stroke='#333' stroke-width='1.5' stroke-dasharray='{}'/>"
-                     "<text x='346' y='{:.0f}' font-size='11'>{}</text>\n", ym, ym, kDashes[d % 8], ym + 4, esc(name));
+                     "<text x='346' y='{:.0f}' font-size='11'>{}</text>\n", ym, ym, kDashes[d % 8], ym + 4, escape_xml(name));
     ym += 18;
   }
   s += "</svg>\n";
