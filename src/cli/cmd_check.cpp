@@ -453,9 +453,6 @@ Run add_check(CLI::App& app) {
   add_user_kernel_options(*sub, o->user);
   sub->add_flag("--plugin-in-process", o->plugin_in_process,
                 "Load --plugin into rayproof itself instead of a forked child (faster; a crash ends the check)");
-  sub->add_option("--compare-plugin", o->compare_plugin,
-                  "PATH.so: the C build of the --opencl kernel's formula; says where the device answers differently "
-                  "and why where it can tell (FMA contraction, flushed subnormals)");
   sub->add_option("--method", o->method, "Check this built-in method instead of a kernel of yours");
   sub->add_option("--count", o->count, "Cases per family (half built in float precision, half in double)")
       ->check(CLI::Range(std::size_t{2}, std::size_t{10000000}))
@@ -474,8 +471,8 @@ Run add_check(CLI::App& app) {
   sub->add_option("--compare", o->compare, "Built-in methods placed beside the kernel in the report (default: all)")
       ->delimiter(',')->allow_extra_args(false);
   sub->add_option("--compare-plugin", o->compare_plugin,
-                  "With --glsl or --opencl: the C build of the same formula (PATH.so, rayproof/plugin.h); say where the GPU "
-                  "build answers differently and why (FMA contraction, subnormals)");
+                  "With --glsl or --opencl: the C build of the same formula (PATH.so, rayproof/plugin.h); says where "
+                  "the device build answers differently and why where it can tell (FMA contraction, subnormals)");
   sub->add_flag("--json", o->json, "Print the result as JSON instead of the table");
   sub->add_option("--mesh", o->mesh,
                   "Leak check on closed meshes instead of the families: mesh files (.off .obj .ply .stl .gltf .glb), or "
