@@ -137,12 +137,12 @@ TEST(FuzzShard, TableSaysWhichPercentilesAreBucketBounds) {
   st[{"m", "a"}] = tally_of({{0, 98}, {1000, 1}, {5000, 1}}, 100);  // p99: rank 99, the bucket [1000, 1003]
   st[{"m", "b"}] = tally_of({{3, 10}}, 10);
   const std::string t = cli::fuzz_table(methods, families, st, mm);
-  EXPECT_NE(t.find("m                a                              100          0    0.0000         0         0      <=1003        5000  none made\n"),
+  EXPECT_NE(t.find("m                a                              100          0    0.0000         0         0       <=1003         5000  none made\n"),
             std::string::npos) << t;
-  EXPECT_NE(t.find("m                b                               10          0    0.0000         0         3           3           3  none made\n"),
+  EXPECT_NE(t.find("m                b                               10          0    0.0000         0         3            3            3  none made\n"),
             std::string::npos) << t;
   // (all): 110 values, 98 zeros, 10 threes: p50 = 0, p99 (rank 109) in [1000, 1003], max 5000.
-  EXPECT_NE(t.find("m                (all)                          110          0    0.0000         0         0      <=1003        5000  none made\n"),
+  EXPECT_NE(t.find("m                (all)                          110          0    0.0000         0         0       <=1003         5000  none made\n"),
             std::string::npos) << t;
   EXPECT_NE(t.find("\"<=N\": the percentile lies in a histogram bucket whose upper bound is N"), std::string::npos) << t;
   EXPECT_NE(t.find("at most 0.78% below N; values below 256 are exact"), std::string::npos) << t;

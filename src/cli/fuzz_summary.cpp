@@ -221,7 +221,7 @@ std::string quantile_text(const verify::UlpHistogram::Range& r) {
 std::string fuzz_table(const std::vector<std::string>& methods, const std::vector<std::string>& families,
                        const verify::FuzzTallies& stats,
                        const std::map<std::pair<std::string, std::string>, std::size_t>& mismatches) {
-  constexpr const char* kRow = "{:<16} {:<24} {:>9} {:>10} {:>9} {:>9} {:>9} {:>11} {:>11}  {}\n";
+  constexpr const char* kRow = "{:<16} {:<24} {:>9} {:>10} {:>9} {:>9} {:>9} {:>12} {:>12}  {}\n";
   std::string s = fmt::format(kRow, "method", "family", "cases", "mismatches", "rate %", "fallbacks", "t p50",
                               "t p99", "t max", "promise");
   bool bucketed = false;
