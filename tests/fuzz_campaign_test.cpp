@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "cli_support.h"
@@ -91,4 +92,61 @@ TEST(FuzzCli, CampaignPrintsSummaryAndReproducer) {
   const auto again = rayproof::testing::run_rayproof(
       "fuzz --cases 3000 --seed 5 --methods float,certified --families tri_vertex,disk_rim --jobs 2 --out " + dir.string());
   EXPECT_EQ(again.out.substr(0, again.out.find("\n\n")), r.out.substr(0, r.out.find("\n\n")));
+}
+
+TEST(FuzzCampaign, TalliesAndFindingsDoNotGrowWithTheCaseCount) {
+  // Issue 21: a campaign once kept every t error and every round until the end (~137 bytes per case).
+  // What it holds now is fixed: tallies of fixed size, findings capped per method x family.
+  MethodRegistry reg;
+  register_fast_methods(reg);
+  verify::FuzzOptions opt;
+  opt.methods = {reg.find("float"), reg.find("double")};
+  opt.families = some_families();
+  opt.seed = 21;
+  opt.jobs = 2;
+  opt.keep_per_group = 5;
+  opt.minimize_per_group = 1;
+  auto held = [](const verify::FuzzResult& r) {
+    std::size_t n = 0;
+    for (const auto& [k, t] : r.stats) n += t.bytes();
+    return n;
+  };
+  opt.max_cases = 10000;
+  const auto small = verify::run_fuzz(opt);
+  opt.max_cases = 100000;
+  const auto large = verify::run_fuzz(opt);
+  ASSERT_GE(large.cases, 100000u);
+  const std::size_t groups = opt.methods.size() * opt.families.size();
+  EXPECT_EQ(large.stats.size(), groups);
+  EXPECT_EQ(small.stats.size(), groups);
+  // Each tally has its fixed size (the histogram's counters are allocated whole), so ten times the
+  // cases hold the same bytes, but for the family name of each tally's worst case (at most 64); keeping
+  // the t errors would add 8 bytes per case and method (over 1 MB here).
+  const std::size_t bound = groups * (sizeof(verify::FuzzTally) + 8 * verify::UlpHistogram::kBuckets + 64);
+  EXPECT_LE(held(large), bound);
+  EXPECT_LE(held(large), held(small) + groups * 64);
+  EXPECT_LE(held(small), held(large) + groups * 64);
+  std::size_t t_errors = 0, mismatches = 0;
+  for (const auto& [k, t] : large.stats) t_errors += t.ulps.count();
+  for (const auto& [k, n] : large.mismatches) mismatches += n;
+  EXPECT_GT(t_errors, 100000u) << "the histograms count every t error";
+  EXPECT_GT(mismatches, large.findings.size()) << "more mismatches than kept findings: the cap is exercised";
+  EXPECT_LE(large.findings.size(), groups * opt.keep_per_group);
+  EXPECT_LE(small.findings.size(), groups * opt.keep_per_group);
+}
+
+TEST(FuzzCli, ProgressInALogIsOneLineEachWithoutCarriageReturns) {
+  // stderr is a file here (not a terminal): one newline-terminated line per --progress-seconds.
+  const auto dir = rayproof::testing::scratch_dir() / "progress";
+  const auto r = rayproof::testing::run_rayproof("fuzz --seconds 1.5 --progress-seconds 0.1 --methods float --families "
+                                                 "tri_edge,box_graze --out " + dir.string());
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_EQ(r.err.find('\r'), std::string::npos) << "no carriage return in a log";
+  std::size_t lines = 0;
+  for (std::size_t p = 0; (p = r.err.find("cases/s; mismatches: float=", p)) != std::string::npos; ++p) ++lines;
+  EXPECT_GE(lines, 4u) << r.err;
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), static_cast<std::ptrdiff_t>(lines)) << r.err;
+  // The summary gives the speed per job and per CPU second.
+  EXPECT_NE(r.out.find("cases/s on 1 job, "), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find(" per CPU second ("), std::string::npos) << r.out;
 }

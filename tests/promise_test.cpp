@@ -94,15 +94,15 @@ TEST(Promise, TallyCountsPromisedCasesAndBreaks) {
   opt.batch = 250;
   opt.seed = 3;
   const auto res = verify::run_fuzz(opt);
-  const verify::Stats& rb = res.stats.at({"robust", "box_graze"});
+  const verify::Stats& rb = res.stats.at({"robust", "box_graze"}).counts;
   EXPECT_EQ(rb.promised, rb.cases);
-  EXPECT_EQ(res.stats.at({"robust", "disk_rim"}).promised, 0u);
-  EXPECT_EQ(verify::promise_status(res.stats.at({"robust", "disk_rim"})), "none made");
+  EXPECT_EQ(res.stats.at({"robust", "disk_rim"}).counts.promised, 0u);
+  EXPECT_EQ(verify::promise_status(res.stats.at({"robust", "disk_rim"}).counts), "none made");
   EXPECT_EQ(verify::promise_status(rb), "kept on " + std::to_string(rb.cases));
-  const verify::Stats& lb = res.stats.at({"liar", "box_graze"});
+  const verify::Stats& lb = res.stats.at({"liar", "box_graze"}).counts;
   EXPECT_GT(lb.false_miss, 0u);
   EXPECT_EQ(lb.promise_broken, lb.false_miss);
-  EXPECT_EQ(res.stats.at({"liar", "tri_edge"}).promised, 0u);
+  EXPECT_EQ(res.stats.at({"liar", "tri_edge"}).counts.promised, 0u);
   EXPECT_EQ(res.broken_promises(), std::vector<std::string>{"liar"});
 }
 

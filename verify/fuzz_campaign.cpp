@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <condition_variable>
+#include <ctime>
 #include <cmath>
 #include <mutex>
 #include <optional>
@@ -201,6 +203,7 @@ io::Case minimize_case(const Method& m, const io::Case& input, Verdict verdict) 
 FuzzResult run_fuzz(const FuzzOptions& opt) {
   using clock = std::chrono::steady_clock;
   const auto start = clock::now();
+  const std::clock_t cpu_start = std::clock();
   const std::size_t per_round = opt.batch * opt.families.size();
   const std::size_t all_rounds =
       opt.max_cases ? (opt.max_cases + per_round - 1) / std::max<std::size_t>(per_round, 1) : SIZE_MAX;
@@ -209,29 +212,62 @@ FuzzResult run_fuzz(const FuzzOptions& opt) {
   const std::size_t round_limit = all_rounds == SIZE_MAX ? SIZE_MAX
                                   : all_rounds > shard   ? (all_rounds - shard + shards - 1) / shards
                                                          : 0;
+  const int jobs = std::max(1, opt.jobs);
+  // A worker runs at most this many rounds ahead of the oldest one not yet folded in.
+  const std::size_t window = 4 * static_cast<std::size_t>(jobs);
   std::atomic<std::size_t> next{0};
   std::atomic<bool> stop{false};
   std::mutex mu;
-  std::vector<RoundOutput> done;
+  std::condition_variable folded;
+  std::map<std::size_t, RoundOutput> pending;  // finished rounds waiting for an older one
+  std::size_t next_fold = 0;                   // the local round to fold next
   std::size_t cases_done = 0;
   std::map<std::string, std::size_t> mismatch_count;
+  FuzzResult res;
+  std::map<std::pair<std::string, std::string>, std::size_t> kept;
 
+  // Folds a finished round into the result (under `mu`, in round order: the result does not depend
+  // on thread timing). Findings beyond keep_per_group are counted, not kept.
+  auto fold = [&](RoundOutput& out) {
+    ++res.rounds;
+    res.cases += out.cases;
+    for (auto& [k, s] : out.stats) res.stats[k].add(s);
+    for (auto& f : out.findings) {
+      const auto key = std::make_pair(f.method, f.family);
+      ++res.mismatches[key];
+      if (kept[key]++ < opt.keep_per_group) res.findings.push_back(std::move(f));
+    }
+  };
   auto worker = [&] {
     while (!stop.load()) {
       const std::size_t r = next.fetch_add(1);
       if (r >= round_limit) break;
+      {
+        std::unique_lock<std::mutex> lock(mu);
+        // Every round handed out is run, even after a stop, so the rounds done are 0..R-1; the
+        // worker running round next_fold never waits, so this wait ends.
+        folded.wait(lock, [&] { return r < next_fold + window; });
+      }
       RoundOutput out = run_round(opt, r * shards + shard);
       std::lock_guard<std::mutex> lock(mu);
       cases_done += out.cases;
       for (const auto& f : out.findings) ++mismatch_count[f.method];
-      done.push_back(std::move(out));
+      pending.emplace(r, std::move(out));
+      for (auto it = pending.begin(); it != pending.end() && it->first == next_fold; it = pending.begin()) {
+        fold(it->second);
+        pending.erase(it);
+        ++next_fold;
+      }
+      folded.notify_all();
       if (opt.seconds > 0 && std::chrono::duration<double>(clock::now() - start).count() >= opt.seconds) stop = true;
     }
+    folded.notify_all();
   };
   std::vector<std::thread> threads;
-  const int jobs = std::max(1, opt.jobs);
   for (int j = 0; j < jobs; ++j) threads.emplace_back(worker);
   // Progress from the calling thread while the workers run.
+  const auto tick = std::chrono::duration<double>(std::clamp(opt.progress_seconds, 0.01, 60.0));
+  const auto sleep_step = std::chrono::duration_cast<clock::duration>(tick / 10);
   while (opt.progress) {
     {
       std::lock_guard<std::mutex> lock(mu);
@@ -242,35 +278,26 @@ FuzzResult run_fuzz(const FuzzOptions& opt) {
       for (const Method* m : opt.methods) p.mismatches.emplace_back(m->name, mismatch_count[m->name]);
       opt.progress(p);
     }
-    for (int i = 0; i < 10 && !stop.load() && next.load() < round_limit; ++i)
-      std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    for (int i = 0; i < 10 && !stop.load() && next.load() < round_limit; ++i) std::this_thread::sleep_for(sleep_step);
   }
   for (auto& t : threads) t.join();
+  // Every round handed out was run and folded by the worker that completed 0..r: none is pending.
+  for (auto& [r, out] : pending) fold(out);
+  pending.clear();
 
-  // Every started round finished, and rounds are handed out in order: `done` holds rounds
-  // 0..R-1 exactly. Merge in round order so the result does not depend on thread timing.
-  std::sort(done.begin(), done.end(), [](const RoundOutput& a, const RoundOutput& b) { return a.round < b.round; });
-  FuzzResult res;
-  res.rounds = done.size();
-  std::map<std::pair<std::string, std::string>, std::size_t> kept, minimized;
-  for (auto& out : done) {
-    res.cases += out.cases;
-    for (auto& [k, s] : out.stats) res.stats[k].merge(s);
-    for (auto& f : out.findings) {
-      const auto key = std::make_pair(f.method, f.family);
-      ++res.mismatches[key];
-      if (kept[key]++ >= opt.keep_per_group) continue;
-      // A kernel failure is not minimized: the kernel is re-run for every try, and may hang each time.
-      const Method* m = nullptr;
-      for (const Method* x : opt.methods)
-        if (x->name == f.method) m = x;
-      if (f.verdict != Verdict::kernel_failure && minimized[key]++ < opt.minimize_per_group) {
-        f.input = minimize_case(*m, f.input, f.verdict);
-        const Judged j = judge(*m, f.input);
-        f.got = j.got, f.want = j.want, f.ulps = j.ulps;
-        f.minimized = true;
-      }
-      res.findings.push_back(std::move(f));
+  // Minimize the first minimize_per_group kept findings of each method x family (a kernel failure
+  // is not minimized: the kernel is re-run for every try, and may hang each time).
+  std::map<std::pair<std::string, std::string>, std::size_t> minimized;
+  for (auto& f : res.findings) {
+    const auto key = std::make_pair(f.method, f.family);
+    const Method* m = nullptr;
+    for (const Method* x : opt.methods)
+      if (x->name == f.method) m = x;
+    if (f.verdict != Verdict::kernel_failure && minimized[key]++ < opt.minimize_per_group) {
+      f.input = minimize_case(*m, f.input, f.verdict);
+      const Judged j = judge(*m, f.input);
+      f.got = j.got, f.want = j.want, f.ulps = j.ulps;
+      f.minimized = true;
     }
   }
   for (const Method* m : opt.methods)
@@ -282,6 +309,7 @@ FuzzResult run_fuzz(const FuzzOptions& opt) {
     if (m->take_failures)
       for (auto& kf : m->take_failures()) res.kernel_failures.emplace_back(m->name, std::move(kf));
   res.seconds = std::chrono::duration<double>(clock::now() - start).count();
+  res.cpu_seconds = double(std::clock() - cpu_start) / CLOCKS_PER_SEC;
   return res;
 }
 

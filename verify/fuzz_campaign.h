@@ -12,6 +12,7 @@
 #include "gen/families.h"
 #include "methods/method.h"
 #include "verify/differential.h"
+#include "verify/fuzz_tally.h"
 
 namespace rayproof::verify {
 
@@ -31,7 +32,8 @@ struct FuzzOptions {
   std::size_t batch = 64;              ///< cases per family per round
   std::size_t keep_per_group = 50;     ///< findings kept per method x family
   std::size_t minimize_per_group = 10; ///< of those, how many are minimized (kernel failures never are)
-  std::function<void(const FuzzProgress&)> progress;  ///< called about once a second
+  std::function<void(const FuzzProgress&)> progress;  ///< called about every progress_seconds
+  double progress_seconds = 1;
   /// Shard `shard_index` (0-based) of `shard_count` disjoint parts of the campaign: the rounds r with
   /// r % shard_count == shard_index (round r holds the same cases in every shard and in the whole
   /// run), so the shards of a --cases campaign add up to exactly the whole run.
@@ -48,12 +50,17 @@ struct FuzzFinding {
   bool minimized = false;
 };
 
+/// What a campaign holds does not grow with its length: the tallies are fixed in size, findings are
+/// kept only up to keep_per_group per method x family (the rest are counted in `mismatches`), and
+/// finished rounds are folded in round order as soon as the rounds before them are done (a worker
+/// waits rather than run more than a few rounds ahead of the oldest unfinished one).
 struct FuzzResult {
   std::size_t rounds = 0, cases = 0;  ///< rounds and cases this run (or shard) did
   double seconds = 0;
-  std::map<std::pair<std::string, std::string>, Stats> stats;  ///< (method, family)
+  double cpu_seconds = 0;  ///< CPU time of the process (all threads) during the run
+  FuzzTallies stats;       ///< (method, family)
   std::map<std::pair<std::string, std::string>, std::size_t> mismatches;
-  std::vector<FuzzFinding> findings;  ///< ordered by method, family, round
+  std::vector<FuzzFinding> findings;  ///< the first keep_per_group per method x family, by method, family, round
   /// What user kernels (methods with take_failures) reported: crash, hang, early exit, unreadable
   /// answer, each with its case; (method, failure), in method order.
   std::vector<std::pair<std::string, KernelFailure>> kernel_failures;

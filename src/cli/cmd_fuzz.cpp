@@ -6,11 +6,14 @@
 #include <fmt/core.h>
 #include <fmt/format.h>
 
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <memory>
 #include <sstream>
 #include <thread>
+
+#include <unistd.h>
 
 #include "cli/check_text.h"
 #include "cli/commands.h"
@@ -37,6 +40,7 @@ struct FuzzCliOptions {
   std::string summary;  ///< write the summary as JSON here
   UserKernelOptions user;
   std::vector<std::string> merge_files;  ///< fuzz merge SUMMARY...
+  double progress_seconds = 5;           ///< progress line interval when stderr is not a terminal
 };
 
 bool write_text(const std::string& path, const std::string& text) {
@@ -73,6 +77,9 @@ int run_fuzz_merge(const FuzzCliOptions& o) {
   fmt::print("{}", fuzz_table(m->campaign.methods, m->campaign.families, m->stats, m->mismatches));
   fmt::print("\n{} rounds, {} cases from {} shards (slowest {:.1f} s)\n", m->rounds, m->cases, m->campaign.shard_count,
              m->seconds);
+  if (m->cpu_seconds > 0)
+    fmt::print("{:.0f} cases per CPU second ({:.1f} CPU s over the shards)\n", double(m->cases) / m->cpu_seconds,
+               m->cpu_seconds);
   if (!o.summary.empty() && !write_text(o.summary, to_json(*m))) {
     fmt::print(stderr, "rayproof fuzz merge: cannot write {}\n", o.summary);
     return 2;
@@ -201,14 +208,21 @@ int run_fuzz_cli(const FuzzCliOptions& o) {
   if (opt.seconds <= 0 && opt.max_cases == 0) opt.seconds = 10;
   opt.seed = o.seed;
   opt.jobs = o.jobs;
-  opt.progress = [](const verify::FuzzProgress& p) {
+  // On a terminal one line redrawn every second; in a log (stderr not a terminal) a line of its
+  // own every --progress-seconds, never a carriage return.
+  const bool tty = isatty(fileno(stderr)) == 1;
+  opt.progress_seconds = tty ? 1.0 : o.progress_seconds;
+  opt.progress = [tty](const verify::FuzzProgress& p) {
     std::string mm;
     for (const auto& [m, n] : p.mismatches) mm += fmt::format(" {}={}", m, n);
-    fmt::print(stderr, "\r[{:6.1f}s] {} cases, {:.0f} cases/s; mismatches:{}   ", p.seconds, p.cases,
-               p.seconds > 0 ? double(p.cases) / p.seconds : 0.0, mm);
+    const std::string line = fmt::format("[{:6.1f}s] {} cases, {:.0f} cases/s; mismatches:{}", p.seconds, p.cases,
+                                         p.seconds > 0 ? double(p.cases) / p.seconds : 0.0, mm);
+    if (tty) fmt::print(stderr, "\r{}   ", line);
+    else fmt::print(stderr, "{}\n", line);
+    std::fflush(stderr);
   };
   const auto res = verify::run_fuzz(opt);
-  fmt::print(stderr, "\n");
+  if (tty) fmt::print(stderr, "\n");
 
   FuzzCampaign campaign;
   campaign.seed = o.seed;
@@ -248,8 +262,8 @@ int run_fuzz_cli(const FuzzCliOptions& o) {
     fmt::print("\n# kernel failures (counted as mismatches): one case-file line each, the input as the kernel saw it\n");
     for (const auto& [m, f] : res.kernel_failures) fmt::print("{}  # {}: {}\n", io::format_case(f.input), m, f.what);
   }
-  fmt::print("\n{} rounds, {} cases in {:.1f} s; {} findings written under {}/\n", res.rounds, res.cases, res.seconds,
-             written, o.out);
+  fmt::print("\n{} rounds, {}\n{} findings written under {}/ (at most {} per method and family)\n", res.rounds,
+             speed_text(res.cases, res.seconds, res.cpu_seconds, opt.jobs), written, o.out, opt.keep_per_group);
   if (opt.shard_count > 1)
     fmt::print("shard {}/{}: rounds {}, {}, ... of the campaign\n", opt.shard_index + 1, opt.shard_count,
                opt.shard_index, opt.shard_index + opt.shard_count);
@@ -281,6 +295,10 @@ Run add_fuzz(CLI::App& app) {
                   "K/N: run the K-th of N disjoint parts of the campaign (rounds r with r % N = K-1); merge the "
                   "--summary files with `rayproof fuzz merge`");
   sub->add_option("--summary", o->summary, "Write the summary (every method x family tally) as JSON to this file");
+  sub->add_option("--progress-seconds", o->progress_seconds,
+                  "When stderr is not a terminal (a log), print a progress line every this many seconds")
+      ->check(CLI::Range(0.05, 3600.0))
+      ->capture_default_str();
   add_user_kernel_options(*sub, o->user);
   auto* merge = sub->add_subcommand("merge", "Add up the --summary files of a sharded campaign (the whole run's counts)");
   merge->add_option("summaries", o->merge_files, "Summary files (fuzz --shard K/N --summary FILE)")->required();

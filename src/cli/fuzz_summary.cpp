@@ -4,27 +4,41 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cmath>
+#include <limits>
 #include <nlohmann/json.hpp>
 
 namespace rayproof::cli {
 
 namespace {
 
-nlohmann::json stats_json(const verify::Stats& s) {
-  std::map<std::uint64_t, std::size_t> hist;
-  for (auto u : s.ulps) ++hist[u];
+nlohmann::json stats_json(const verify::FuzzTally& t) {
+  const verify::Stats& s = t.counts;
   nlohmann::json h = nlohmann::json::array();
-  for (const auto& [u, n] : hist) h.push_back({u, n});
-  return {{"cases", s.cases},           {"false_hit", s.false_hit},
-          {"false_miss", s.false_miss}, {"wrong_hit_class", s.wrong_hit_class},
-          {"wrong_class", s.wrong_class}, {"fallbacks", s.fallbacks},
-          {"kernel_failures", s.kernel_failures}, {"coarse", s.coarse},
-          {"ulps", h},                  {"bary_errors", s.bary_errors},
-          {"promised", s.promised},     {"promise_broken", s.promise_broken}};
+  for (const auto& b : t.ulps.buckets()) h.push_back({b.lo, b.hi, b.count});
+  return {{"cases", s.cases},
+          {"false_hit", s.false_hit},
+          {"false_miss", s.false_miss},
+          {"wrong_hit_class", s.wrong_hit_class},
+          {"wrong_class", s.wrong_class},
+          {"fallbacks", s.fallbacks},
+          {"kernel_failures", s.kernel_failures},
+          {"coarse", s.coarse},
+          {"ulp_buckets", h},
+          {"ulp_min", t.ulps.min()},
+          {"ulp_max", t.ulps.max()},
+          {"bary_count", t.bary_count},
+          // JSON has no infinity: a NaN barycentric (counted as infinitely wrong) is written as null.
+          {"bary_error_max", std::isfinite(t.bary_max) ? nlohmann::json(t.bary_max) : nlohmann::json()},
+          {"promised", s.promised},
+          {"promise_broken", s.promise_broken}};
 }
 
-verify::Stats stats_from_json(const nlohmann::json& j) {
-  verify::Stats s;
+/// A row of a version 2 summary (t errors as histogram buckets), or of version 1 (t errors as exact
+/// [value, count] pairs, barycentric errors listed).
+verify::FuzzTally stats_from_json(const nlohmann::json& j, int version) {
+  verify::FuzzTally t;
+  verify::Stats& s = t.counts;
   s.cases = j.at("cases").get<std::size_t>();
   s.false_hit = j.at("false_hit").get<std::size_t>();
   s.false_miss = j.at("false_miss").get<std::size_t>();
@@ -33,17 +47,32 @@ verify::Stats stats_from_json(const nlohmann::json& j) {
   s.fallbacks = j.at("fallbacks").get<std::uint64_t>();
   s.kernel_failures = j.at("kernel_failures").get<std::size_t>();
   s.coarse = j.at("coarse").get<std::size_t>();
-  for (const auto& e : j.at("ulps")) {
-    const auto u = e.at(0).get<std::uint64_t>();
-    const auto n = e.at(1).get<std::size_t>();
-    if (n > s.cases) throw std::runtime_error("a t error count exceeds the cases");
-    s.ulps.insert(s.ulps.end(), n, u);
+  if (version == 1) {
+    for (const auto& e : j.at("ulps")) {
+      const auto n = e.at(1).get<std::size_t>();
+      if (n > s.cases) throw std::runtime_error("a t error count exceeds the cases");
+      t.ulps.add(e.at(0).get<std::uint64_t>(), n);
+    }
+    for (const double e : j.at("bary_errors").get<std::vector<double>>()) ++t.bary_count, t.bary_max = std::max(t.bary_max, e);
+  } else {
+    std::vector<verify::UlpHistogram::Bucket> bs;
+    for (const auto& e : j.at("ulp_buckets"))
+      bs.push_back({e.at(0).get<std::uint64_t>(), e.at(1).get<std::uint64_t>(), e.at(2).get<std::uint64_t>()});
+    const char* why = "";
+    auto h = verify::UlpHistogram::from_buckets(bs, j.at("ulp_min").get<std::uint64_t>(),
+                                                j.at("ulp_max").get<std::uint64_t>(), why);
+    if (!h) throw std::runtime_error(why);
+    t.ulps = std::move(*h);
+    t.bary_count = j.at("bary_count").get<std::size_t>();
+    const auto& bm = j.at("bary_error_max");
+    t.bary_max = bm.is_null() ? INFINITY : bm.get<double>();
+    if (t.bary_count > s.cases || !(t.bary_max >= 0)) throw std::runtime_error("bad barycentric error counts");
   }
-  s.bary_errors = j.at("bary_errors").get<std::vector<double>>();
+  if (t.ulps.count() > s.cases) throw std::runtime_error("the t error counts exceed the cases");
   s.promised = j.value("promised", std::size_t{0});
   s.promise_broken = j.value("promise_broken", std::size_t{0});
   if (s.promise_broken > s.promised || s.promised > s.cases) throw std::runtime_error("promise counts exceed the cases");
-  return s;
+  return t;
 }
 
 std::string shards_text(const std::vector<std::size_t>& v) {
@@ -58,7 +87,7 @@ FuzzSummary summarize(const FuzzCampaign& c, std::size_t shard_index, const veri
   FuzzSummary s;
   s.campaign = c;
   s.shards = {shard_index};
-  s.rounds = r.rounds, s.cases = r.cases, s.seconds = r.seconds;
+  s.rounds = r.rounds, s.cases = r.cases, s.seconds = r.seconds, s.cpu_seconds = r.cpu_seconds;
   s.stats = r.stats;
   s.mismatches = r.mismatches;
   return s;
@@ -75,7 +104,7 @@ std::string to_json(const FuzzSummary& s) {
     rows.push_back(j);
   }
   const auto& c = s.campaign;
-  nlohmann::json j{{"rayproof_fuzz_summary", 1},
+  nlohmann::json j{{"rayproof_fuzz_summary", 2},
                    {"campaign",
                     {{"seed", c.seed},
                      {"methods", c.methods},
@@ -87,6 +116,7 @@ std::string to_json(const FuzzSummary& s) {
                    {"rounds", s.rounds},
                    {"cases", s.cases},
                    {"seconds", s.seconds},
+                   {"cpu_seconds", s.cpu_seconds},
                    {"stats", rows}};
   return j.dump(1) + "\n";
 }
@@ -98,8 +128,9 @@ std::optional<FuzzSummary> summary_from_json(const std::string& text, const std:
       error = file + ": not a rayproof fuzz summary (written by `rayproof fuzz --summary`)";
       return std::nullopt;
     }
-    if (j.at("rayproof_fuzz_summary").get<int>() != 1) {
-      error = file + ": summary version " + j.at("rayproof_fuzz_summary").dump() + " is not 1";
+    const int version = j.at("rayproof_fuzz_summary").is_number_integer() ? j.at("rayproof_fuzz_summary").get<int>() : 0;
+    if (version != 1 && version != 2) {
+      error = file + ": summary version " + j.at("rayproof_fuzz_summary").dump() + " is not 1 or 2";
       return std::nullopt;
     }
     FuzzSummary s;
@@ -119,9 +150,10 @@ std::optional<FuzzSummary> summary_from_json(const std::string& text, const std:
     s.rounds = j.at("rounds").get<std::size_t>();
     s.cases = j.at("cases").get<std::size_t>();
     s.seconds = j.at("seconds").get<double>();
+    s.cpu_seconds = j.value("cpu_seconds", 0.0);
     for (const auto& row : j.at("stats")) {
       const auto key = std::make_pair(row.at("method").get<std::string>(), row.at("family").get<std::string>());
-      s.stats[key] = stats_from_json(row);
+      s.stats[key] = stats_from_json(row, version);
       s.mismatches[key] = row.at("mismatches").get<std::size_t>();
     }
     return s;
@@ -164,6 +196,7 @@ std::optional<FuzzSummary> merge_summaries(const std::vector<FuzzSummary>& parts
       m.shards.push_back(k);
     }
     m.rounds += p.rounds, m.cases += p.cases, m.seconds = std::max(m.seconds, p.seconds);
+    m.cpu_seconds += p.cpu_seconds;
     for (const auto& [k, st] : p.stats) m.stats[k].merge(st);
     for (const auto& [k, n] : p.mismatches) m.mismatches[k] += n;
   }
@@ -180,29 +213,54 @@ std::optional<FuzzSummary> merge_summaries(const std::vector<FuzzSummary>& parts
   return m;
 }
 
+std::string quantile_text(const verify::UlpHistogram::Range& r) {
+  if (!r.exact()) return "<=" + std::to_string(r.hi);
+  return r.lo == std::numeric_limits<std::uint64_t>::max() ? std::string("NaN t") : std::to_string(r.lo);
+}
+
 std::string fuzz_table(const std::vector<std::string>& methods, const std::vector<std::string>& families,
-                       const std::map<std::pair<std::string, std::string>, verify::Stats>& stats,
+                       const verify::FuzzTallies& stats,
                        const std::map<std::pair<std::string, std::string>, std::size_t>& mismatches) {
-  std::string s = fmt::format("{:<16} {:<24} {:>9} {:>10} {:>9} {:>9}  {}\n", "method", "family", "cases", "mismatches",
-                              "rate %", "fallbacks", "promise");
+  constexpr const char* kRow = "{:<16} {:<24} {:>9} {:>10} {:>9} {:>9} {:>9} {:>12} {:>12}  {}\n";
+  std::string s = fmt::format(kRow, "method", "family", "cases", "mismatches", "rate %", "fallbacks", "t p50",
+                              "t p99", "t max", "promise");
+  bool bucketed = false;
+  auto row = [&](const std::string& m, const std::string& f, const verify::FuzzTally& t, std::size_t bad) {
+    const auto p50 = t.ulps.quantile(0.5), p99 = t.ulps.quantile(0.99), mx = t.ulps.quantile(1.0);
+    bucketed = bucketed || !p50.exact() || !p99.exact();
+    const std::size_t n = t.counts.cases;
+    s += fmt::format(kRow, m, f, n, bad, fmt::format("{:.4f}", n ? 100.0 * double(bad) / double(n) : 0.0),
+                     t.counts.fallbacks, quantile_text(p50), quantile_text(p99), quantile_text(mx),
+                     verify::promise_status(t.counts));
+  };
   for (const auto& m : methods) {
-    std::size_t total = 0, bad = 0;
-    std::uint64_t fb = 0;
-    verify::Stats all;
+    std::size_t bad = 0;
+    verify::FuzzTally all;
     for (const auto& f : families) {
       auto it = stats.find({m, f});
-      if (it == stats.end() || it->second.cases == 0) continue;
+      if (it == stats.end() || it->second.counts.cases == 0) continue;
       const auto mm = mismatches.find({m, f});
       const std::size_t n = mm == mismatches.end() ? 0 : mm->second;
-      s += fmt::format("{:<16} {:<24} {:>9} {:>10} {:>9.4f} {:>9}  {}\n", m, f, it->second.cases, n,
-                       100.0 * double(n) / double(it->second.cases), it->second.fallbacks,
-                       verify::promise_status(it->second));
-      all.promised += it->second.promised, all.promise_broken += it->second.promise_broken;
-      total += it->second.cases, bad += n, fb += it->second.fallbacks;
+      row(m, f, it->second, n);
+      all.merge(it->second);
+      bad += n;
     }
-    s += fmt::format("{:<16} {:<24} {:>9} {:>10} {:>9.4f} {:>9}  {}\n", m, "(all)", total, bad,
-                     total ? 100.0 * double(bad) / double(total) : 0.0, fb, verify::promise_status(all));
+    row(m, "(all)", all, bad);
   }
+  s += "t p50, p99, max: the t error in ulps of the class-correct answers (float ulps for float methods); "
+       "the max is exact";
+  if (bucketed)
+    s += fmt::format(";\n  \"<=N\": the percentile lies in a histogram bucket whose upper bound is N (exact counts; "
+                     "the value is at most {:.2f}% below N; values below {} are exact)",
+                     100.0 * verify::UlpHistogram::kRelativeWidth, verify::UlpHistogram::kExactBelow);
+  return s + "\n";
+}
+
+std::string speed_text(std::size_t cases, double seconds, double cpu_seconds, int jobs) {
+  const double rate = seconds > 0 ? double(cases) / seconds : 0.0;
+  std::string s = fmt::format("{} cases in {:.1f} s: {:.0f} cases/s on {} {}, {:.0f} per job", cases, seconds, rate, jobs,
+                              jobs == 1 ? "job" : "jobs", rate / std::max(jobs, 1));
+  if (cpu_seconds > 0) s += fmt::format("; {:.0f} per CPU second ({:.1f} CPU s)", double(cases) / cpu_seconds, cpu_seconds);
   return s;
 }
 

@@ -3,7 +3,8 @@
 /// (`fuzz merge SUMMARY...`): the shards of one seeded campaign add up to exactly the counts of the
 /// unsharded run. A summary names its campaign (seed, methods, families, cases per round, the
 /// requested case count) and its shard, and holds every method x family tally with the t errors as
-/// a histogram, so that quantiles of the merge are those of the whole run.
+/// an UlpHistogram (exact counts in log-spaced buckets), so that the merge's histograms, and the
+/// quantiles printed from them, are the whole run's bit for bit.
 #include <cstdint>
 #include <map>
 #include <optional>
@@ -27,8 +28,9 @@ struct FuzzSummary {
   FuzzCampaign campaign;
   std::vector<std::size_t> shards;  ///< 0-based shard indices this summary covers
   std::size_t rounds = 0, cases = 0;
-  double seconds = 0;
-  std::map<std::pair<std::string, std::string>, verify::Stats> stats;  ///< (method, family)
+  double seconds = 0;      ///< wall time (of a merge: the slowest shard's)
+  double cpu_seconds = 0;  ///< CPU time (of a merge: the shards' sum)
+  verify::FuzzTallies stats;  ///< (method, family)
   std::map<std::pair<std::string, std::string>, std::size_t> mismatches;
 };
 
@@ -44,10 +46,21 @@ struct FuzzSummary {
 [[nodiscard]] std::optional<FuzzSummary> merge_summaries(const std::vector<FuzzSummary>& parts,
                                                          const std::vector<std::string>& files, std::string& error);
 
-/// The table fuzz prints: per method x family cases, mismatches, rate and fallbacks, then (all).
+/// The table fuzz prints: per method x family cases, mismatches, rate, fallbacks, the t error's
+/// median, 99th percentile and maximum in ulps, and the promise, then (all). A percentile known only
+/// to its histogram bucket is printed as "<=" the bucket's upper bound, and a note under the table
+/// says what that bound means.
 [[nodiscard]] std::string fuzz_table(const std::vector<std::string>& methods, const std::vector<std::string>& families,
-                                     const std::map<std::pair<std::string, std::string>, verify::Stats>& stats,
+                                     const verify::FuzzTallies& stats,
                                      const std::map<std::pair<std::string, std::string>, std::size_t>& mismatches);
+
+/// A t error quantile as the table prints it: the number when exact ("NaN t" for a t on one side
+/// only), "<=HI" when only its bucket [lo, hi] is known.
+[[nodiscard]] std::string quantile_text(const verify::UlpHistogram::Range& r);
+
+/// "N cases in S s: R cases/s on J jobs, R/J per job; C per CPU second": the speed line of fuzz and
+/// fuzz merge (per CPU second left out when no CPU time was measured).
+[[nodiscard]] std::string speed_text(std::size_t cases, double seconds, double cpu_seconds, int jobs);
 
 /// Parses "K/N" (1 <= K <= N <= 1000000) into a 0-based index and a count; nothing on bad text.
 [[nodiscard]] std::optional<std::pair<std::size_t, std::size_t>> parse_shard(const std::string& text);
