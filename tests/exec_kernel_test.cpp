@@ -310,7 +310,8 @@ TEST(ExecKernel, MethodsNamesYourKernelInVerifyReportAndFuzz) {
   const auto f = run_rayproof("fuzz --cases 20 --families tri_edge --methods mine" + mine + "--out " + fdir.string());
   EXPECT_NE(f.status, 2) << f.err;
   EXPECT_NE(f.out.find("mine"), std::string::npos) << f.out;
-  EXPECT_EQ(f.out.find("float"), std::string::npos) << f.out;  // no registered method ran
+  EXPECT_EQ(f.out.find("\nfloat "), std::string::npos) << f.out;  // no registered method's row: none ran
+  EXPECT_EQ(f.out.find("\nrobust "), std::string::npos) << f.out;
 
   const auto m = run_rayproof("fuzz --mesh --cases 1 --seed 3 --methods mine" + mine);
   EXPECT_NE(m.status, 2) << m.err;

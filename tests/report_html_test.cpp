@@ -73,8 +73,9 @@ TEST(MethodStyle, NoTwoMethodsOfTheDefaultReportShareColourAndMarker) {
   for (std::size_t i = 0; i < methods->size(); ++i)
     for (std::size_t j = i + 1; j < methods->size(); ++j) {
       const auto a = rayproof::report::method_style(i), b = rayproof::report::method_style(j);
-      if (a.marker == b.marker)
+      if (a.marker == b.marker) {
         EXPECT_GT(rgb_distance(a.colour, b.colour), 70) << (*methods)[i]->name << " and " << (*methods)[j]->name;
+      }
     }
   std::set<std::pair<std::string, int>> all;
   for (std::size_t i = 0; i < 70; ++i) {
