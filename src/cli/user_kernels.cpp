@@ -22,6 +22,21 @@ std::string self_executable() {
   const auto p = std::filesystem::read_symlink("/proc/self/exe", ec);
   return ec ? std::string() : p.string();
 }
+
+/// Appends m unless its name is a registered method's or an earlier kernel's (then says so and
+/// returns false); `option` and `hint` (how NAME is written) go into the message.
+bool add_unique(std::string_view command, std::string_view option, const std::string& spec, std::string_view hint,
+                std::unique_ptr<Method> m, std::vector<std::unique_ptr<Method>>& out) {
+  bool taken = all_methods().find(m->name) != nullptr;
+  for (const auto& other : out) taken = taken || other->name == m->name;
+  if (taken) {
+    fmt::print(stderr, "rayproof {}: {} {}: the name '{}' is taken; choose another {}\n", command, option, spec, m->name,
+               hint);
+    return false;
+  }
+  out.push_back(std::move(m));
+  return true;
+}
 }  // namespace
 
 void add_user_kernel_options(CLI::App& sub, UserKernelOptions& opt) {
@@ -99,29 +114,15 @@ std::optional<std::vector<std::unique_ptr<Method>>> make_user_kernels(std::strin
         fmt::print(stderr, "rayproof {}: {}\n", command, *err);
         return std::nullopt;
       }
-      Method& m = std::get<Method>(made);
-      bool taken = all_methods().find(m.name) != nullptr;
-      for (const auto& other : out) taken = taken || other->name == m.name;
-      if (taken) {
-        fmt::print(stderr, "rayproof {}: --exec {}: the name '{}' is taken; choose another NAME\n", command, spec, m.name);
+      if (!add_unique(command, "--exec", spec, "NAME", std::make_unique<Method>(std::move(std::get<Method>(made))), out))
         return std::nullopt;
-      }
-      out.push_back(std::make_unique<Method>(std::move(m)));
     }
   }
 
   // --plugin: in process, or forked through `rayproof plugin-host` (src/cli/plugin_host.h).
   for (const std::string& spec : opt.plugin) {
     auto m = make_plugin_kernel(command, spec, opt.plugin_in_process, opt.exec_timeout);
-    if (!m) return std::nullopt;
-    bool taken = all_methods().find(m->name) != nullptr;
-    for (const auto& other : out) taken = taken || other->name == m->name;
-    if (taken) {
-      fmt::print(stderr, "rayproof {}: --plugin {}: the name '{}' is taken; choose another (NAME=PATH.so)\n", command,
-                 spec, m->name);
-      return std::nullopt;
-    }
-    out.push_back(std::move(m));
+    if (!m || !add_unique(command, "--plugin", spec, "(NAME=PATH.so)", std::move(m), out)) return std::nullopt;
   }
   // --glsl: compiled and run on a Vulkan device in a child process (src/methods/glsl_kernel.h).
   for (const std::string& spec : opt.glsl) {
@@ -136,29 +137,14 @@ std::optional<std::vector<std::unique_ptr<Method>>> make_user_kernels(std::strin
       return std::nullopt;
     }
     Method& m = std::get<Method>(made);
-    bool taken = all_methods().find(m.name) != nullptr;
-    for (const auto& other : out) taken = taken || other->name == m.name;
-    if (taken) {
-      fmt::print(stderr, "rayproof {}: --glsl {}: the name '{}' is taken; choose another (NAME=FILE)\n", command, spec,
-                 m.name);
-      return std::nullopt;
-    }
     fmt::print(stderr, "rayproof {}: --glsl {}: {}\n", command, m.name, m.summary);
-    out.push_back(std::make_unique<Method>(std::move(m)));
+    if (!add_unique(command, "--glsl", spec, "(NAME=FILE)", std::make_unique<Method>(std::move(m)), out)) return std::nullopt;
   }
 
   // --opencl: OpenCL C on a device, in a device process (src/methods/opencl_kernel.h).
   for (const std::string& spec : opt.opencl) {
     auto m = make_opencl_kernel(command, spec, opt, false);
-    if (!m) return std::nullopt;
-    bool taken = all_methods().find(m->name) != nullptr;
-    for (const auto& other : out) taken = taken || other->name == m->name;
-    if (taken) {
-      fmt::print(stderr, "rayproof {}: --opencl {}: the name '{}' is taken; choose another (NAME=FILE)\n", command, spec,
-                 m->name);
-      return std::nullopt;
-    }
-    out.push_back(std::move(m));
+    if (!m || !add_unique(command, "--opencl", spec, "(NAME=FILE)", std::move(m), out)) return std::nullopt;
   }
   return out;
 }
