@@ -164,14 +164,15 @@ TEST(Glsl, UnknownDeviceListsTheDevices) {
 TEST(Glsl, InfiniteLoopTimesOutAndTheRunGoesOn) {
   NEED_VULKAN_DEVICE();
   // llvmpipe ends a shader's loops after 65535 iterations in all, so a plain `while (true)` finishes
-  // there with a wrong answer; this one runs 65535 x 2048 xorshift steps (~1.7 s on lavapipe here, its compile not counted) for o.x > 100.
+  // there with a wrong answer; this one runs 65535 x 8192 xorshift steps for o.x > 100: 1.9 s on lavapipe
+  // here at load 4 (2048 steps took under 0.5 s on a quiet machine and missed the 0.5 s timeout).
   const auto f = write_file("loop.glsl",
                             "#define S n ^= n << 13u; n ^= n >> 17u; n ^= n << 5u;\n"
                             "#define S8 S S S S S S S S\n#define S64 S8 S8 S8 S8 S8 S8 S8 S8\n"
-                            "#define S512 S64 S64 S64 S64 S64 S64 S64 S64\n"
+                            "#define S512 S64 S64 S64 S64 S64 S64 S64 S64\n#define S4K S512 S512 S512 S512 S512 S512 S512 S512\n"
                             "int rp_triangle(vec3 o, vec3 d, vec3 p0, vec3 p1, vec3 p2, out float t, out vec2 b) {\n"
                             "  uint n = 1u;\n"
-                            "  while (o.x > 100.0) { S512 S512 S512 S512 if (n == 0u) break; }\n"
+                            "  while (o.x > 100.0) { S4K S4K if (n == 0u) break; }\n"
                             "  t = 1.0;\n  b = vec2(float(n));\n  return RP_HIT_T;\n}\n");
   GlslOptions opt;
   opt.host = RAYPROOF_BIN;
