@@ -1,17 +1,15 @@
 #include "methods/glsl_source.h"
 
+#include "methods/source_scan.h"
+
 #include <fmt/core.h>
 
-#include <array>
 #include <cctype>
 #include <utility>
 
 namespace rayproof::glsl {
 
 namespace {
-
-constexpr std::array<io::Kind, 6> kKinds{io::Kind::plane, io::Kind::sphere,   io::Kind::ellipsoid,
-                                         io::Kind::triangle, io::Kind::box, io::Kind::disk};
 
 /// The named inputs of a kind after o and d, each a vec3 (3) or a real (1), in CASES.md order.
 std::vector<std::pair<const char*, int>> fields(io::Kind k) {
@@ -25,29 +23,6 @@ std::vector<std::pair<const char*, int>> fields(io::Kind k) {
   }
   return {};
 }
-
-/// The text with comments replaced by spaces (newlines kept).
-std::string strip_comments(std::string_view s) {
-  std::string out(s);
-  for (std::size_t i = 0; i + 1 < out.size(); ++i) {
-    if (out[i] == '/' && out[i + 1] == '/') {
-      while (i < out.size() && out[i] != '\n') out[i++] = ' ';
-    } else if (out[i] == '/' && out[i + 1] == '*') {
-      out[i] = out[i + 1] = ' ';
-      for (i += 2; i < out.size(); ++i) {
-        if (i + 1 < out.size() && out[i] == '*' && out[i + 1] == '/') {
-          out[i] = out[i + 1] = ' ';
-          ++i;
-          break;
-        }
-        if (out[i] != '\n') out[i] = ' ';
-      }
-    }
-  }
-  return out;
-}
-
-bool ident_char(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
 
 }  // namespace
 
@@ -63,24 +38,7 @@ std::string signature(io::Kind k, Precision p) {
   return s + ")";
 }
 
-std::vector<io::Kind> defined_kinds(std::string_view user_text) {
-  const std::string s = strip_comments(user_text);
-  std::vector<io::Kind> out;
-  for (io::Kind k : kKinds) {
-    const std::string name = function_name(k);
-    for (std::size_t at = s.find(name); at != std::string::npos; at = s.find(name, at + 1)) {
-      if (at > 0 && ident_char(s[at - 1])) continue;
-      std::size_t j = at + name.size();
-      if (j < s.size() && ident_char(s[j])) continue;
-      while (j < s.size() && std::isspace(static_cast<unsigned char>(s[j]))) ++j;
-      if (j < s.size() && s[j] == '(') {
-        out.push_back(k);
-        break;
-      }
-    }
-  }
-  return out;
-}
+std::vector<io::Kind> defined_kinds(std::string_view user_text) { return kinds_defined(user_text, function_name); }
 
 std::string prepare_user_text(std::string_view user_text) {
   std::string out;

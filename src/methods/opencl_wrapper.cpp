@@ -1,5 +1,7 @@
 #include "methods/opencl_wrapper.h"
 
+#include "methods/source_scan.h"
+
 #include <fmt/core.h>
 
 #include <algorithm>
@@ -23,30 +25,6 @@ std::vector<int> groups(io::Kind k) {
   return {};
 }
 
-/// The text with comments replaced by spaces (string literals kept as they are).
-std::string without_comments(const std::string& s) {
-  std::string out = s;
-  for (std::size_t i = 0; i < out.size();) {
-    if (out[i] == '"') {  // a string literal: skip to its end
-      for (++i; i < out.size() && out[i] != '"' && out[i] != '\n'; ++i)
-        if (out[i] == '\\') ++i;
-      ++i;
-    } else if (out.compare(i, 2, "//") == 0) {
-      while (i < out.size() && out[i] != '\n') out[i++] = ' ';
-    } else if (out.compare(i, 2, "/*") == 0) {
-      const std::size_t end = out.find("*/", i + 2);
-      const std::size_t stop = end == std::string::npos ? out.size() : end + 2;
-      for (; i < stop; ++i)
-        if (out[i] != '\n') out[i] = ' ';
-    } else {
-      ++i;
-    }
-  }
-  return out;
-}
-
-bool ident_char(char c) { return std::isalnum(static_cast<unsigned char>(c)) || c == '_'; }
-
 /// A C string literal of `s` for #line.
 std::string quoted(const std::string& s) {
   std::string out = "\"";
@@ -63,24 +41,7 @@ int fields(io::Kind k) { return io::field_count(k); }
 
 std::string function_name(io::Kind k) { return "rayproof_" + std::string(io::to_string(k)); }
 
-std::vector<io::Kind> kinds_defined(const std::string& source) {
-  const std::string s = without_comments(source);
-  std::vector<io::Kind> out;
-  for (io::Kind k : io::kAllKinds) {
-    const std::string name = function_name(k);
-    for (std::size_t at = s.find(name); at != std::string::npos; at = s.find(name, at + 1)) {
-      if (at > 0 && ident_char(s[at - 1])) continue;
-      std::size_t j = at + name.size();
-      if (j < s.size() && ident_char(s[j])) continue;
-      while (j < s.size() && std::isspace(static_cast<unsigned char>(s[j]))) ++j;
-      if (j < s.size() && s[j] == '(') {
-        out.push_back(k);
-        break;
-      }
-    }
-  }
-  return out;
-}
+std::vector<io::Kind> kinds_defined(const std::string& source) { return rayproof::kinds_defined(source, function_name); }
 
 std::string wrapper_source(const std::string& user_text, const std::string& file_name,
                            const std::vector<io::Kind>& kinds, const WrapperOptions& opt) {
