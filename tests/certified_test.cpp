@@ -332,6 +332,56 @@ TEST(Certified, AgreesWithExactOnSubnormalsBesideHugeCoordinates) {
   std::printf("subnormal/huge mixes: %zu cases\n", cases);
 }
 
+/// Every case fuzz_kernels has found against certified (data/regressions/certified.txt) agrees with exact.
+TEST(Certified, AgreesWithExactOnEveryFuzzRegression) {
+  std::ifstream in(std::string(RAYPROOF_DATA_DIR) + "/regressions/certified.txt");
+  ASSERT_TRUE(in);
+  std::size_t n = 0;
+  for (const auto& e : io::read_cases(in)) {
+    const auto* c = std::get_if<io::Case>(&e);
+    ASSERT_NE(c, nullptr);
+    EXPECT_EQ(disagreement(*c), "");
+    ++n;
+  }
+  EXPECT_GE(n, 2u);
+}
+
+/// Regression (fuzz_kernels, second case of data/regressions/certified.txt): a direction whose
+/// |d|_1 is below 2^-1025 made stage 1's k = 2^-49 |d|_1 underflow to 0, so its error bounds kept
+/// only their 2^-1000 underflow term while the products d x (p - o) were of order 1e-9 x 5e303:
+/// a miss came out interior. That direction scaled by powers of two, beside coordinates up to
+/// 1.7e308, with the origin outside or inside the triangle's range, along each axis.
+TEST(Certified, AgreesWithExactOnShortDirectionsBesideHugeCoordinates) {
+  // Powers of two times the fuzz case's direction: |d|_1 from about 2^-1056 to 2^-956.
+  const double dir_scales[] = {0x1p-20, 0x1p-8, 0x1p-2, 1.0, 0x1p+2, 0x1p+8, 0x1p+40, 0x1p+77, 0x1p+80};
+  const double huge_values[] = {-5.48878615954232e+303, -1.7e308, -1e250, -0x1p+200, 5.48878615954232e+303};
+  std::size_t cases = 0, bad = 0;
+  for (const double ds : dir_scales)
+    for (const double hv : huge_values)
+      for (int axis = 0; axis < 3; ++axis)
+        for (int flip = 0; flip < 2; ++flip) {  // flip: the origin inside the triangle's y range (a hit)
+          // The fuzz case, its direction rescaled, the huge origin coordinate replaced, rotated.
+          const double o[3] = {-2.8777739825090034e+76, flip ? -1e200 : hv, 2.566584306689592e-306};
+          const double d[3] = {1.35807730622e-312 * ds, 0.0, 2.074791e-317 * ds};
+          const double p[3][3] = {{2.0, 0.0, 5.311465295e-315},
+                                  {0.0, -3.105036184601462e+231, 7.264113603438767e-308},
+                                  {1.2160346153844507e+58, 0.0, 0.0}};
+          io::Case c = parse("triangle 0 0 0 1 0 0 0 0 0 1 0 0 0 1 0");
+          auto put = [&](int slot, const double (&v)[3]) {
+            for (int k = 0; k < 3; ++k) c.v[static_cast<std::size_t>(3 * slot + (k + axis) % 3)] = v[k];
+          };
+          put(0, o), put(1, d), put(2, p[0]), put(3, p[1]), put(4, p[2]);
+          ++cases;
+          const std::string why = disagreement(c);
+          if (!why.empty()) {
+            ++bad;
+            ADD_FAILURE() << why;
+          }
+        }
+  EXPECT_EQ(bad, 0u);
+  std::printf("short directions beside huge coordinates: %zu cases\n", cases);
+}
+
 /// Spheres seen from far away (the origin 2^0 .. 2^40 radii from the centre), rays through random
 /// points of the sphere and just past its rim: the double-double stage's b^2 - a c loses (|e| / r)^2 of
 /// precision there and hands over to the cancellation-free a r^2 - |d x e|^2 (without that hand-over

@@ -183,6 +183,11 @@ template <bool kFma, class Next>
     return m > z ? m : z;
   };
   const double d1 = std::fabs(d.x) + std::fabs(d.y) + std::fabs(d.z);
+  // k = 2^-49 |d|_1 must not underflow: at |d|_1 < 2^-1025 it became 0 and the bounds lost their
+  // main term (a false interior found by fuzz_kernels, d ~ 1e-312). From 2^-960 on, k >= 2^-1009 is
+  // normal and k f g loses at most 2^-1075 g to underflow, inside 2^-1000 (g + 1). Rays that short
+  // go to the later stages.
+  if (!(d1 >= 0x1p-960)) return next();
   const double ma = norm_inf(a), mb = norm_inf(b), mc = norm_inf(c), k = 0x1p-49 * d1;
   const double e0 = k * mb * mc + 0x1p-1000 * (mc + 1), e1 = k * mc * ma + 0x1p-1000 * (ma + 1),
                e2 = k * ma * mb + 0x1p-1000 * (mb + 1);

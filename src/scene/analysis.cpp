@@ -97,9 +97,16 @@ SceneAnalysis analyse_scene(const Scene& s, double sliver_aspect) {
   for (const auto& v : V) a.non_float_vertices += !c.add(v);
   auto analytic = [&](bool is_f) { a.non_float_analytic += !is_f; };
   for (const auto& x : s.spheres) c.add(x.radius), analytic(c.add(x.center) && is_float(x.radius));
-  for (const auto& x : s.ellipsoids) analytic(c.add(x.center) & c.add(x.semi_axes));
+  // Both points are added (no short circuit), so the counts and spread see every coordinate.
+  for (const auto& x : s.ellipsoids) {
+    const bool center = c.add(x.center), axes = c.add(x.semi_axes);
+    analytic(center && axes);
+  }
   for (const auto& x : s.disks) c.add(x.radius), analytic(c.add(x.center) && is_float(x.radius));
-  for (const auto& x : s.boxes) analytic(c.add(x.lo) & c.add(x.hi));
+  for (const auto& x : s.boxes) {
+    const bool lo = c.add(x.lo), hi = c.add(x.hi);
+    analytic(lo && hi);
+  }
   if (a.min_abs > 0) a.spread_binades = std::ilogb(a.max_abs) - std::ilogb(a.min_abs);
 
   // Degenerate and sliver triangles.

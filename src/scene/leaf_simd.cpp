@@ -157,6 +157,7 @@ __attribute__((target("avx2"))) unsigned certified_group_misses_avx2(const Ray<d
     mx[v] = _mm256_blendv_pd(z, m, _mm256_cmp_pd(m, z, _CMP_GT_OQ));
   }
   const double d1 = std::fabs(ray.d.x) + std::fabs(ray.d.y) + std::fabs(ray.d.z);
+  if (!(d1 >= 0x1p-960)) return 0u;  // 2^-49 d1 would underflow (certified_triangle.h): decide nothing
   const __m256d k = _mm256_set1_pd(0x1p-49 * d1), tiny = _mm256_set1_pd(0x1p-1000), one = _mm256_set1_pd(1.0);
   // e0 = k mb mc + 2^-1000 (mc + 1), e1 = k mc ma + 2^-1000 (ma + 1), e2 = k ma mb + 2^-1000 (mb + 1)
   __m256d e[3];
