@@ -343,7 +343,7 @@ TEST(Certified, AgreesWithExactOnEveryFuzzRegression) {
     EXPECT_EQ(disagreement(*c), "");
     ++n;
   }
-  EXPECT_GE(n, 2u);
+  EXPECT_GE(n, 3u);
 }
 
 /// Regression (fuzz_kernels, second case of data/regressions/certified.txt): a direction whose
@@ -380,6 +380,34 @@ TEST(Certified, AgreesWithExactOnShortDirectionsBesideHugeCoordinates) {
         }
   EXPECT_EQ(bad, 0u);
   std::printf("short directions beside huge coordinates: %zu cases\n", cases);
+}
+
+/// Regression (fuzz_kernels, third case of data/regressions/certified.txt): the double-double t
+/// compared its error bound against dmin |D.hi|, which overflowed for |d . n| above ~1e154, so any
+/// t passed. That case with its huge coordinate and the whole case scaled by powers of two (t is
+/// unchanged by a common scale, |d . n| moves by 2^(3s)): t must be within one ulp of exact.
+TEST(Certified, AgreesWithExactWhenTheDenominatorSquaredOverflows) {
+  const io::Case base = parse(
+      "triangle -131072.0000000027 -595821443.5137254 -595821443.5137254 -595821443.5137254 -595821443.5136949 "
+      "-595821443.5137254 -595852797.5115587 -595821443.5137254 -595821443.5137254 2.0628714955843752e+283 "
+      "-595821443.9921495 -595821443.5137254 0.0 0.0 0.0");
+  std::size_t cases = 0, bad = 0;
+  for (const int huge_shift : {-800, -500, -300, -150, -60, 0, 20, 60})
+    for (const int s : {-200, -100, -20, 0, 10, 30}) {
+      io::Case c = base;
+      c.v[9] = std::ldexp(c.v[9], huge_shift);
+      for (int i = 0; i < 15; ++i) c.v[static_cast<std::size_t>(i)] = std::ldexp(c.v[static_cast<std::size_t>(i)], s);
+      if (!std::isfinite(c.v[9]) || c.v[9] == 0) continue;
+      ++cases;
+      const std::string why = disagreement(c);
+      if (!why.empty()) {
+        ++bad;
+        ADD_FAILURE() << why;
+      }
+    }
+  EXPECT_EQ(bad, 0u);
+  EXPECT_GE(cases, 40u);
+  std::printf("huge denominators: %zu cases\n", cases);
 }
 
 /// Spheres seen from far away (the origin 2^0 .. 2^40 radii from the centre), rays through random

@@ -196,16 +196,37 @@ double Accel::bytes_per_primitive() const {
 }
 
 PrimHit Accel::closest(const Ray<double>& r, const SceneMethod& m, QueryRange q) const {
-  return with_tree([&](const auto& tree) {
-    return with_kernel(scene_, verts_, ntri_, m,
-                       [&](auto& k) { return closest_with(leaves_of(tree, leaf_prims_, groups_), k, r, m.traversal, q); });
-  });
+  PrimHit h;
+  closest_range(&r, 0, 1, std::span<const QueryRange>(&q, 1),
+                [](void* c, std::size_t, const PrimHit& x) { *static_cast<PrimHit*>(c) = x; }, &h, m);
+  return h;
 }
 
 bool Accel::any(const Ray<double>& r, const SceneMethod& m, QueryRange q) const {
-  return with_tree([&](const auto& tree) {
-    return with_kernel(scene_, verts_, ntri_, m,
-                       [&](auto& k) { return any_with(leaves_of(tree, leaf_prims_, groups_), k, r, m.traversal, q); });
+  std::uint8_t hit = 0;
+  any_range(&r, 0, 1, std::span<const QueryRange>(&q, 1), &hit, m);
+  return hit != 0;
+}
+
+void Accel::closest_range(const Ray<double>* rays, std::size_t b, std::size_t e, std::span<const QueryRange> ranges,
+                          HitSink sink, void* context, const SceneMethod& m) const {
+  with_tree([&](const auto& tree) {
+    return with_kernel(scene_, verts_, ntri_, m, [&](auto& k) {
+      for (std::size_t i = b; i < e; ++i)
+        sink(context, i, closest_with(leaves_of(tree, leaf_prims_, groups_), k, rays[i], m.traversal, range_of(ranges, i)));
+      return 0;
+    });
+  });
+}
+
+void Accel::any_range(const Ray<double>* rays, std::size_t b, std::size_t e, std::span<const QueryRange> ranges,
+                      std::uint8_t* out, const SceneMethod& m) const {
+  with_tree([&](const auto& tree) {
+    return with_kernel(scene_, verts_, ntri_, m, [&](auto& k) {
+      for (std::size_t i = b; i < e; ++i)
+        out[i] = any_with(leaves_of(tree, leaf_prims_, groups_), k, rays[i], m.traversal, range_of(ranges, i));
+      return 0;
+    });
   });
 }
 
@@ -231,14 +252,8 @@ std::vector<PrimHit> Accel::all(const Ray<double>& r, const SceneMethod& m, Quer
 
 void Accel::closest_batch(std::span<const Ray<double>> rays, std::span<PrimHit> out, const SceneMethod& m, int threads,
                           QueryRange q) const {
-  parallel_rays(rays.size(), threads, [&](std::size_t b, std::size_t e) {
-    with_tree([&](const auto& tree) {
-      return with_kernel(scene_, verts_, ntri_, m, [&](auto& k) {
-        for (std::size_t i = b; i < e; ++i) out[i] = closest_with(leaves_of(tree, leaf_prims_, groups_), k, rays[i], m.traversal, q);
-        return 0;
-      });
-    });
-  });
+  closest_batch(rays, std::span<const QueryRange>(&q, 1),
+                [](void* c, std::size_t i, const PrimHit& h) { static_cast<PrimHit*>(c)[i] = h; }, out.data(), m, threads);
 }
 
 void Accel::any_batch(std::span<const Ray<double>> rays, std::span<std::uint8_t> out, const SceneMethod& m,
@@ -246,31 +261,15 @@ void Accel::any_batch(std::span<const Ray<double>> rays, std::span<std::uint8_t>
   any_batch(rays, std::span<const QueryRange>(&q, 1), out, m, threads);
 }
 
-
 void Accel::closest_batch(std::span<const Ray<double>> rays, std::span<const QueryRange> ranges, HitSink sink,
                           void* context, const SceneMethod& m, int threads) const {
-  parallel_rays(rays.size(), threads, [&](std::size_t b, std::size_t e) {
-    with_tree([&](const auto& tree) {
-      return with_kernel(scene_, verts_, ntri_, m, [&](auto& k) {
-        for (std::size_t i = b; i < e; ++i)
-          sink(context, i, closest_with(leaves_of(tree, leaf_prims_, groups_), k, rays[i], m.traversal, range_of(ranges, i)));
-        return 0;
-      });
-    });
-  });
+  parallel_rays(rays.size(), threads,
+                [&](std::size_t b, std::size_t e) { closest_range(rays.data(), b, e, ranges, sink, context, m); });
 }
 
 void Accel::any_batch(std::span<const Ray<double>> rays, std::span<const QueryRange> ranges,
                       std::span<std::uint8_t> out, const SceneMethod& m, int threads) const {
-  parallel_rays(rays.size(), threads, [&](std::size_t b, std::size_t e) {
-    with_tree([&](const auto& tree) {
-      return with_kernel(scene_, verts_, ntri_, m, [&](auto& k) {
-        for (std::size_t i = b; i < e; ++i)
-          out[i] = any_with(leaves_of(tree, leaf_prims_, groups_), k, rays[i], m.traversal, range_of(ranges, i));
-        return 0;
-      });
-    });
-  });
+  parallel_rays(rays.size(), threads, [&](std::size_t b, std::size_t e) { any_range(rays.data(), b, e, ranges, out.data(), m); });
 }
 
 }  // namespace rayproof::scene

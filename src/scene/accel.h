@@ -208,6 +208,13 @@ class Accel {
     if (simd_ == BvhSimd::avx2) return nodes_ == BvhNodes::compressed ? f(bvh8q_) : f(bvh8_);
     return nodes_ == BvhNodes::compressed ? f(bvh4q_) : f(bvh_);
   }
+  /// closest() / any() for rays [b, e): the one place the tree and kernel dispatch is expanded for
+  /// each query (closest() and the batches share it; each expansion is 4 trees x 9 kernels of
+  /// traversal code, most of this library's compile time).
+  void closest_range(const Ray<double>* rays, std::size_t b, std::size_t e, std::span<const QueryRange> ranges,
+                     HitSink sink, void* context, const SceneMethod& m) const;
+  void any_range(const Ray<double>* rays, std::size_t b, std::size_t e, std::span<const QueryRange> ranges,
+                 std::uint8_t* out, const SceneMethod& m) const;
   /// The body of closest_packets / any_packets over threads: `packet(leaves, kernels, first, n)`
   /// for each packet of eight rays [first, first + n) on the eight-wide trees, `single(leaves,
   /// kernel, i)` for each ray on the SSE path (defined and used in accel.cpp only).
