@@ -57,6 +57,14 @@ void register_robust_methods(MethodRegistry& reg) {
            Precision::float32, tri,
            [](const io::Case& c) { return result_of(c, intersect_watertight<float, float>(ray_of<float>(c), triangle_of<float>(c))); },
            {}});
+  // The kernel robust ran before its bounded zeros (triangle_watertight.h), kept for comparison:
+  // verify, fuzz and report place it beside robust in one run.
+  reg.add({"watertight-double", "Woop, Benthin & Wald 2013 in double on float inputs, exact zeros (robust before bounded zeros)",
+           Precision::float32, tri,
+           [](const io::Case& c) {
+             return result_of(c, intersect_watertight<float, double, EdgeZeros::exact>(ray_of<float>(c), triangle_of<float>(c)));
+           },
+           {}});
   reg.add({"mt-double", "Möller–Trumbore computed in double on float inputs", Precision::float32, tri,
            [](const io::Case& c) { return result_of(c, intersect_moller_trumbore(ray_of<double>(c), triangle_of<double>(c))); },
            {}});
