@@ -143,9 +143,11 @@ TEST(LeafSimd, RobustLanesMatchTheScalarKernelBitForBit) {
       Crossing c[2];
       const int m = k.triangle_crossings(t[i], c);
       if (out.special >> i & 1) {
-        ++special;  // the scalar front door decides these lanes
+        ++special;  // the scalar front door decides these lanes: d . n = 0, or bounded zeros undecided
         const Vec3<double> p0 = t[i].p0.cast<double>(), nrm = cross(t[i].p1.cast<double>() - p0, t[i].p2.cast<double>() - p0);
-        EXPECT_EQ(dot(ray.d.cast<float>().cast<double>(), nrm), 0.0);
+        EXPECT_TRUE(dot(ray.d.cast<float>().cast<double>(), nrm) == 0.0 ||
+                    intersect_watertight(*k.wr_robust, t[i]).contact == Contact::parallel)
+            << "ray " << r << " lane " << i;
       } else if (out.hit >> i & 1) {
         ++hits;
         ASSERT_EQ(m, 1) << "ray " << r << " lane " << i;

@@ -89,7 +89,7 @@ inline constexpr EdgeZeros kDefaultZeros = std::is_same_v<A, double> ? EdgeZeros
 /// coordinates by at most e_c n_b + e_b n_c + 2 e_b e_c, n_v = |sx_v| + |sy_v|, and the computed U =
 /// fl(fl(sx_c sy_b) - fl(sy_c sx_b)) differs from P by at most gamma_2 (|sx_c sy_b| + |sy_c sx_b|) <=
 /// gamma_2 n_b n_c. So
-///   |U - U*| <= E_U = e_c n_b + e_b (n_c + 2 e_c) + 2^-51 n_b n_c
+///   |U - U*| <= E_U = e_c (n_b + e_b) + e_b (n_c + e_c) + 2^-51 n_b n_c
 /// (2^-51 >= 2 gamma_2; the 4/3 and 2 of slack in e_v and in 2^-51 cover the at most 7 roundings of
 /// computing E_U). The bound scales with the sheared coordinates, not with the distance: a far,
 /// small triangle (|sx| small, A large) gets E_U ~ u A D |sx|, not u A^2 D^2. Float inputs never
@@ -134,9 +134,10 @@ template <class T, class A, EdgeZeros Z = detail::kDefaultZeros<A>>
     const A eb = wr.edge_k * std::max(std::max(std::fabs(b[0]), std::fabs(b[1])), std::fabs(b[2])) + kUnder;
     const A ec = wr.edge_k * std::max(std::max(std::fabs(c[0]), std::fabs(c[1])), std::fabs(c[2])) + kUnder;
     const A na = std::fabs(ax) + std::fabs(ay), nb = std::fabs(bx) + std::fabs(by), nc = std::fabs(cx) + std::fabs(cy);
-    eu = ec * nb + eb * (nc + 2.0 * ec) + 0x1p-51 * (nb * nc) + 2 * kUnder;
-    ev = ea * nc + ec * (na + 2.0 * ea) + 0x1p-51 * (nc * na) + 2 * kUnder;
-    ew = eb * na + ea * (nb + 2.0 * eb) + 0x1p-51 * (na * nb) + 2 * kUnder;
+    const A ma = na + ea, mb = nb + eb, mc = nc + ec;  // e_c n_b + e_b n_c + 2 e_b e_c = e_c m_b + e_b m_c
+    eu = ec * mb + eb * mc + 0x1p-51 * (nb * nc) + 2 * kUnder;
+    ev = ea * mc + ec * ma + 0x1p-51 * (nc * na) + 2 * kUnder;
+    ew = eb * ma + ea * mb + 0x1p-51 * (na * nb) + 2 * kUnder;
     if (std::fabs(u) <= eu) u = A(0);
     if (std::fabs(v) <= ev) v = A(0);
     if (std::fabs(w) <= ew) w = A(0);

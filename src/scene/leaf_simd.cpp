@@ -100,19 +100,21 @@ __attribute__((target("avx2"))) void robust_group_avx2(const RobustLaneRay& r, c
   __m256d u = _mm256_sub_pd(_mm256_mul_pd(sx[2], sy[1]), _mm256_mul_pd(sy[2], sx[1]));
   __m256d v = _mm256_sub_pd(_mm256_mul_pd(sx[0], sy[2]), _mm256_mul_pd(sy[0], sx[2]));
   __m256d w = _mm256_sub_pd(_mm256_mul_pd(sx[1], sy[0]), _mm256_mul_pd(sy[1], sx[0]));
-  // Bounded zeros (triangle_watertight.h): |U| <= E_U = e_c n_b + e_b (n_c + 2 e_c) + 2^-51 n_b n_c
-  // counts as 0, with e_v = edge_k A_v and n_v = |sx_v| + |sy_v|.
-  const __m256d k = _mm256_set1_pd(r.edge_k_double), two = _mm256_set1_pd(2.0), g51 = _mm256_set1_pd(0x1p-51);
-  __m256d e[3], n[3];
-  for (int i = 0; i < 3; ++i)
+  // Bounded zeros (triangle_watertight.h): |U| <= E_U = e_c m_b + e_b m_c + 2^-51 n_b n_c counts
+  // as 0, with e_v = edge_k A_v, n_v = |sx_v| + |sy_v| and m_v = n_v + e_v.
+  const __m256d k = _mm256_set1_pd(r.edge_k_double), g51 = _mm256_set1_pd(0x1p-51);
+  __m256d e[3], n[3], mm[3];
+  for (int i = 0; i < 3; ++i) {
     e[i] = _mm256_mul_pd(k, m[i]), n[i] = _mm256_add_pd(_mm256_andnot_pd(sign, sx[i]), _mm256_andnot_pd(sign, sy[i]));
-  // E for the edge function e(q, p) of u (q, p) = (c, b), v (a, c), w (b, a): e_q n_p + e_p (n_q + 2 e_q) + g n_p n_q
+    mm[i] = _mm256_add_pd(n[i], e[i]);
+  }
+  // E of the edge function e(q, p): u (q, p) = (c, b), v (a, c), w (b, a): e_q m_p + e_p m_q + g n_p n_q
   // (written out: a lambda would not inherit this function's target attribute).
   __m256d eb3[3];
   const int q_of[3] = {2, 0, 1}, p_of[3] = {1, 2, 0};
   for (int i = 0; i < 3; ++i) {
     const int q = q_of[i], pp = p_of[i];
-    eb3[i] = _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(e[q], n[pp]), _mm256_mul_pd(e[pp], _mm256_add_pd(n[q], _mm256_mul_pd(two, e[q])))),
+    eb3[i] = _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(e[q], mm[pp]), _mm256_mul_pd(e[pp], mm[q])),
                            _mm256_mul_pd(g51, _mm256_mul_pd(n[pp], n[q])));
   }
   const __m256d eu = eb3[0], ev = eb3[1], ew = eb3[2];
@@ -130,32 +132,30 @@ __attribute__((target("avx2"))) void robust_group_avx2(const RobustLaneRay& r, c
   out.special |= rest & ~miss & parallel;
   const __m256d ts = _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(u, sz[0]), _mm256_mul_pd(v, sz[1])), _mm256_mul_pd(w, sz[2]));
   const __m256d den = _mm256_mul_pd(det, dz);
-  // E_t = 2.001 (E_U |a_z| + E_V |b_z| + E_W |c_z|) + 2^-50 (|u a_z| + |v b_z| + |w c_z|)
-  const __m256d az = _mm256_andnot_pd(sign, sz[0]), bz = _mm256_andnot_pd(sign, sz[1]), cz = _mm256_andnot_pd(sign, sz[2]);
-  const __m256d tb = _mm256_add_pd(
-      _mm256_mul_pd(_mm256_set1_pd(2.001),
-                    _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(eu, az), _mm256_mul_pd(ev, bz)), _mm256_mul_pd(ew, cz))),
-      _mm256_mul_pd(_mm256_set1_pd(0x1p-50),
-                    _mm256_add_pd(_mm256_add_pd(_mm256_andnot_pd(sign, _mm256_mul_pd(u, sz[0])), _mm256_andnot_pd(sign, _mm256_mul_pd(v, sz[1]))),
-                                  _mm256_andnot_pd(sign, _mm256_mul_pd(w, sz[2])))));
-  // behind = den < 0 ? ts > E_t : ts < -E_t
-  const __m256d den_neg = _mm256_cmp_pd(den, zero, _CMP_LT_OQ);
-  const __m256d behind = _mm256_or_pd(_mm256_and_pd(den_neg, _mm256_cmp_pd(ts, tb, _CMP_GT_OQ)),
-                                      _mm256_andnot_pd(den_neg, _mm256_cmp_pd(ts, _mm256_xor_pd(sign, tb), _CMP_LT_OQ)));
-  const unsigned hit = rest & ~miss & ~parallel & ~unsigned(_mm256_movemask_pd(behind));
-  out.hit = hit;
-  if (!hit) return;
-  alignas(32) double U[4], V[4], W[4], D[4], TS[4], DEN[4];
+  // Behind needs t's error bound E_t: computed lane by lane below, only for the lanes not missed
+  // (the same IEEE double operations in the same order as the scalar kernel's).
+  const unsigned cand = rest & ~miss & ~parallel;
+  if (!cand) return;
+  alignas(32) double U[4], V[4], W[4], D[4], TS[4], DEN[4], EU[4], EV[4], EW[4], Z[3][4];
   _mm256_store_pd(U, u), _mm256_store_pd(V, v), _mm256_store_pd(W, w);
   _mm256_store_pd(D, det), _mm256_store_pd(TS, ts), _mm256_store_pd(DEN, den);
-  for (unsigned mm = hit; mm; mm &= mm - 1) {
-    const int i = __builtin_ctz(mm);
+  _mm256_store_pd(EU, eu), _mm256_store_pd(EV, ev), _mm256_store_pd(EW, ew);
+  for (int i = 0; i < 3; ++i) _mm256_store_pd(Z[i], sz[i]);
+  unsigned hit = 0;
+  for (unsigned c = cand; c; c &= c - 1) {
+    const int i = __builtin_ctz(c);
+    const double tb = 2.001 * (EU[i] * std::fabs(Z[0][i]) + EV[i] * std::fabs(Z[1][i]) + EW[i] * std::fabs(Z[2][i])) +
+                      0x1p-50 * (std::fabs(U[i] * Z[0][i]) + std::fabs(V[i] * Z[1][i]) + std::fabs(W[i] * Z[2][i]));
+    const bool behind = DEN[i] < 0.0 ? TS[i] > tb : TS[i] < -tb;
+    if (behind) continue;
+    hit |= 1u << i;
     const float t = static_cast<float>(TS[i] / DEN[i]);
     out.t[i] = t >= 0.0f ? t : 0.0f;  // an undecided sign of t: 0, as the scalar kernel
     out.b1[i] = static_cast<float>(V[i] / D[i]), out.b2[i] = static_cast<float>(W[i] / D[i]);
     const int zeros = (U[i] == 0.0) + (V[i] == 0.0) + (W[i] == 0.0);
     out.contact[i] = static_cast<std::uint8_t>(zeros == 0 ? Contact::interior : zeros == 1 ? Contact::edge : Contact::vertex);
   }
+  out.hit = hit;
 }
 
 // triangle_stage1 (certified_triangle.h) up to `return H{Contact::miss}`, line by line in lanes:
