@@ -239,6 +239,10 @@ __attribute__((target("avx2"))) unsigned certified_group_misses_avx2(const Ray<d
 // by at most the three bounds plus gamma_2 (|U| + |V| + |W|). So |det| > B_u + B_v + B_w +
 // 2^-22 (|U| + |V| + |W|) + 2^-45 d_z^2 A^2 proves the double dn nonzero: the scalar kernel then
 // runs the watertight test (not the coplanar front door), which reports the mixed signs' miss.
+// Bounded zeros (triangle_watertight.h): the double kernel now reports a miss only when a double
+// edge function exceeds its own bound E_U <= 2^-48 D^2 A_b A_c (1 + 2^-40) (e_v <= 2^-51 D A_v,
+// n_v <= 2 D A_v (1 + 2^-50)). |U_float| > B_u leaves |U_double| >= B_u - (both errors) > 2^-21 D^2
+// A_b A_c, far above that, with U_float's sign: the screen's decisions stand.
 // Ranges. The absolute terms need M <= 2^40: a lane is decided only when every A_v <= 2^39 / D
 // (false for inf and NaN); a ray is screened only when 2^-20 <= D <= 2^20, which keeps the bound
 // products from overflowing and their underflow error (<= 2^-150 times a factor <= 2^21) under
