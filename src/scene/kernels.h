@@ -138,6 +138,7 @@ struct CompiledKernel {
         wr_robust.emplace(ray);
         for (int k = 0; k < 3; ++k) lane_ray.o[k] = wr_robust->o[k], lane_ray.d[k] = wr_robust->d[k];
         lane_ray.kx = wr_robust->kx, lane_ray.ky = wr_robust->ky, lane_ray.kz = wr_robust->kz;
+        lane_ray.edge_k_double = wr_robust->edge_k;
         finish_lane_ray(lane_ray);
       }
     }
@@ -228,11 +229,13 @@ int CompiledKernel<T, A>::triangle_crossings(const Triangle<T>& t, Crossing out[
                            p2 = t.p2.template cast<double>();
         const Vec3<double> n = cross(p1 - p0, p2 - p0);
         if (is_zero(n)) return 0;  // degenerate
-        if (dot(ray.d.template cast<double>(), n) == 0.0) {
+        const double dn = dot(ray.d.template cast<double>(), n);
+        if (dn == 0.0) {
           h = intersect_watertight<float, double>(ray, t);  // parallel or coplanar: the front door decides
         } else {
           h = intersect_watertight(*wr_robust, t);
-          if (h.contact == Contact::parallel) return 0;  // the front door's miss
+          // Bounded zeros' undecided case: the front door's contact at the plane's t.
+          if (h.contact == Contact::parallel) h = rayproof::detail::undecided_contact<float>(wr_robust->o, p0, n, dn);
         }
       } else if constexpr (A == TriAlgo::watertight) {
         h = intersect_watertight(*wr, t);

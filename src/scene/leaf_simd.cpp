@@ -86,43 +86,76 @@ __attribute__((target("avx2"))) void robust_group_avx2(const RobustLaneRay& r, c
   const int kx = r.kx, ky = r.ky, kz = r.kz;
   const __m256d dx = _mm256_set1_pd(r.d[kx]), dy = _mm256_set1_pd(r.d[ky]), dz = _mm256_set1_pd(r.d[kz]);
   const __m256d ox = _mm256_set1_pd(r.o[kx]), oy = _mm256_set1_pd(r.o[ky]), oz = _mm256_set1_pd(r.o[kz]);
-  __m256d sx[3], sy[3], sz[3];  // per vertex: sheared x, y, and the relative z
+  const __m256d sign = _mm256_set1_pd(-0.0);
+  __m256d sx[3], sy[3], sz[3], m[3];  // per vertex: sheared x, y, the relative z, and max_k |relative_k|
   for (int v = 0; v < 3; ++v) {
     const __m256d ax = _mm256_sub_pd(p[v][kx], ox), ay = _mm256_sub_pd(p[v][ky], oy), az = _mm256_sub_pd(p[v][kz], oz);
     sx[v] = _mm256_sub_pd(_mm256_mul_pd(dz, ax), _mm256_mul_pd(dx, az));
     sy[v] = _mm256_sub_pd(_mm256_mul_pd(dz, ay), _mm256_mul_pd(dy, az));
     sz[v] = az;
+    // The max of three finite non-negative values: the same whatever the order of the operands.
+    m[v] = _mm256_max_pd(_mm256_max_pd(_mm256_andnot_pd(sign, ax), _mm256_andnot_pd(sign, ay)), _mm256_andnot_pd(sign, az));
   }
   // u = edge(c, b), v = edge(a, c), w = edge(b, a): e(p, q) = p_x q_y - p_y q_x.
-  const __m256d u = _mm256_sub_pd(_mm256_mul_pd(sx[2], sy[1]), _mm256_mul_pd(sy[2], sx[1]));
-  const __m256d v = _mm256_sub_pd(_mm256_mul_pd(sx[0], sy[2]), _mm256_mul_pd(sy[0], sx[2]));
-  const __m256d w = _mm256_sub_pd(_mm256_mul_pd(sx[1], sy[0]), _mm256_mul_pd(sy[1], sx[0]));
+  __m256d u = _mm256_sub_pd(_mm256_mul_pd(sx[2], sy[1]), _mm256_mul_pd(sy[2], sx[1]));
+  __m256d v = _mm256_sub_pd(_mm256_mul_pd(sx[0], sy[2]), _mm256_mul_pd(sy[0], sx[2]));
+  __m256d w = _mm256_sub_pd(_mm256_mul_pd(sx[1], sy[0]), _mm256_mul_pd(sy[1], sx[0]));
+  // Bounded zeros (triangle_watertight.h): |U| <= E_U = e_c m_b + e_b m_c + 2^-51 n_b n_c counts
+  // as 0, with e_v = edge_k A_v, n_v = |sx_v| + |sy_v| and m_v = n_v + e_v.
+  const __m256d k = _mm256_set1_pd(r.edge_k_double), g51 = _mm256_set1_pd(0x1p-51);
+  __m256d e[3], n[3], mm[3];
+  for (int i = 0; i < 3; ++i) {
+    e[i] = _mm256_mul_pd(k, m[i]), n[i] = _mm256_add_pd(_mm256_andnot_pd(sign, sx[i]), _mm256_andnot_pd(sign, sy[i]));
+    mm[i] = _mm256_add_pd(n[i], e[i]);
+  }
+  // E of the edge function e(q, p): u (q, p) = (c, b), v (a, c), w (b, a): e_q m_p + e_p m_q + g n_p n_q
+  // (written out: a lambda would not inherit this function's target attribute).
+  __m256d eb3[3];
+  const int q_of[3] = {2, 0, 1}, p_of[3] = {1, 2, 0};
+  for (int i = 0; i < 3; ++i) {
+    const int q = q_of[i], pp = p_of[i];
+    eb3[i] = _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(e[q], mm[pp]), _mm256_mul_pd(e[pp], mm[q])),
+                           _mm256_mul_pd(g51, _mm256_mul_pd(n[pp], n[q])));
+  }
+  const __m256d eu = eb3[0], ev = eb3[1], ew = eb3[2];
+  u = _mm256_blendv_pd(u, zero, _mm256_cmp_pd(_mm256_andnot_pd(sign, u), eu, _CMP_LE_OQ));
+  v = _mm256_blendv_pd(v, zero, _mm256_cmp_pd(_mm256_andnot_pd(sign, v), ev, _CMP_LE_OQ));
+  w = _mm256_blendv_pd(w, zero, _mm256_cmp_pd(_mm256_andnot_pd(sign, w), ew, _CMP_LE_OQ));
   const __m256d any_neg = _mm256_or_pd(_mm256_or_pd(_mm256_cmp_pd(u, zero, _CMP_LT_OQ), _mm256_cmp_pd(v, zero, _CMP_LT_OQ)),
                                        _mm256_cmp_pd(w, zero, _CMP_LT_OQ));
   const __m256d any_pos = _mm256_or_pd(_mm256_or_pd(_mm256_cmp_pd(u, zero, _CMP_GT_OQ), _mm256_cmp_pd(v, zero, _CMP_GT_OQ)),
                                        _mm256_cmp_pd(w, zero, _CMP_GT_OQ));
   const unsigned miss = unsigned(_mm256_movemask_pd(_mm256_and_pd(any_neg, any_pos)));
   const __m256d det = _mm256_add_pd(_mm256_add_pd(u, v), w);
+  // det = 0: every edge function within its bound, undecided: the scalar front door's contact.
   const unsigned parallel = unsigned(_mm256_movemask_pd(_mm256_cmp_pd(det, zero, _CMP_EQ_OQ)));
+  out.special |= rest & ~miss & parallel;
   const __m256d ts = _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(u, sz[0]), _mm256_mul_pd(v, sz[1])), _mm256_mul_pd(w, sz[2]));
   const __m256d den = _mm256_mul_pd(det, dz);
-  // behind = den < 0 ? ts > 0 : ts < 0
-  const __m256d den_neg = _mm256_cmp_pd(den, zero, _CMP_LT_OQ);
-  const __m256d behind = _mm256_or_pd(_mm256_and_pd(den_neg, _mm256_cmp_pd(ts, zero, _CMP_GT_OQ)),
-                                      _mm256_andnot_pd(den_neg, _mm256_cmp_pd(ts, zero, _CMP_LT_OQ)));
-  const unsigned hit = rest & ~miss & ~parallel & ~unsigned(_mm256_movemask_pd(behind));
-  out.hit = hit;
-  if (!hit) return;
-  alignas(32) double U[4], V[4], W[4], D[4], TS[4], DEN[4];
+  // Behind needs t's error bound E_t: computed lane by lane below, only for the lanes not missed
+  // (the same IEEE double operations in the same order as the scalar kernel's).
+  const unsigned cand = rest & ~miss & ~parallel;
+  if (!cand) return;
+  alignas(32) double U[4], V[4], W[4], D[4], TS[4], DEN[4], EU[4], EV[4], EW[4], Z[3][4];
   _mm256_store_pd(U, u), _mm256_store_pd(V, v), _mm256_store_pd(W, w);
   _mm256_store_pd(D, det), _mm256_store_pd(TS, ts), _mm256_store_pd(DEN, den);
-  for (unsigned m = hit; m; m &= m - 1) {
-    const int i = __builtin_ctz(m);
-    out.t[i] = static_cast<float>(TS[i] / DEN[i]);
+  _mm256_store_pd(EU, eu), _mm256_store_pd(EV, ev), _mm256_store_pd(EW, ew);
+  for (int i = 0; i < 3; ++i) _mm256_store_pd(Z[i], sz[i]);
+  unsigned hit = 0;
+  for (unsigned c = cand; c; c &= c - 1) {
+    const int i = __builtin_ctz(c);
+    const double tb = 2.001 * (EU[i] * std::fabs(Z[0][i]) + EV[i] * std::fabs(Z[1][i]) + EW[i] * std::fabs(Z[2][i])) +
+                      0x1p-50 * (std::fabs(U[i] * Z[0][i]) + std::fabs(V[i] * Z[1][i]) + std::fabs(W[i] * Z[2][i]));
+    const bool behind = DEN[i] < 0.0 ? TS[i] > tb : TS[i] < -tb;
+    if (behind) continue;
+    hit |= 1u << i;
+    const float t = static_cast<float>(TS[i] / DEN[i]);
+    out.t[i] = t >= 0.0f ? t : 0.0f;  // an undecided sign of t: 0, as the scalar kernel
     out.b1[i] = static_cast<float>(V[i] / D[i]), out.b2[i] = static_cast<float>(W[i] / D[i]);
     const int zeros = (U[i] == 0.0) + (V[i] == 0.0) + (W[i] == 0.0);
     out.contact[i] = static_cast<std::uint8_t>(zeros == 0 ? Contact::interior : zeros == 1 ? Contact::edge : Contact::vertex);
   }
+  out.hit = hit;
 }
 
 // triangle_stage1 (certified_triangle.h) up to `return H{Contact::miss}`, line by line in lanes:
@@ -207,6 +240,10 @@ __attribute__((target("avx2"))) unsigned certified_group_misses_avx2(const Ray<d
 // by at most the three bounds plus gamma_2 (|U| + |V| + |W|). So |det| > B_u + B_v + B_w +
 // 2^-22 (|U| + |V| + |W|) + 2^-45 d_z^2 A^2 proves the double dn nonzero: the scalar kernel then
 // runs the watertight test (not the coplanar front door), which reports the mixed signs' miss.
+// Bounded zeros (triangle_watertight.h): the double kernel now reports a miss only when a double
+// edge function exceeds its own bound E_U <= 2^-48 D^2 A_b A_c (1 + 2^-40) (e_v <= 2^-51 D A_v,
+// n_v <= 2 D A_v (1 + 2^-50)). |U_float| > B_u leaves |U_double| >= B_u - (both errors) > 2^-21 D^2
+// A_b A_c, far above that, with U_float's sign: the screen's decisions stand.
 // Ranges. The absolute terms need M <= 2^40: a lane is decided only when every A_v <= 2^39 / D
 // (false for inf and NaN); a ray is screened only when 2^-20 <= D <= 2^20, which keeps the bound
 // products from overflowing and their underflow error (<= 2^-150 times a factor <= 2^21) under

@@ -119,6 +119,7 @@ struct RobustLaneRay {
   float edge_k = 0;    ///< >= 2^-19 D^2, D = |d_z| + max(|d_x|, |d_y|): the edge functions' bound per |a| |b|
   float a_limit = 0;   ///< 2^39 / D: larger vertex offsets are left to double
   float dn_k = 0;      ///< >= 2^-45 d_z^2: the double d . n's error bound per A^2
+  double edge_k_double = 0;  ///< WatertightRay<float, double>::edge_k: the double kernel's bounded zeros
 };
 
 /// Fills the screen's part of `r` from o, d, kx, ky, kz (once per ray).
