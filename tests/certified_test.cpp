@@ -307,7 +307,7 @@ TEST(Certified, AgreesWithExactOnSubnormalsBesideHugeCoordinates) {
   const int perms[6][3] = {{0, 1, 2}, {0, 2, 1}, {1, 0, 2}, {1, 2, 0}, {2, 0, 1}, {2, 1, 0}};
   const double tiny_scales[] = {0x1p-60, 0x1p-20, 0x1p-3, 1.0, 0x1p+3, 0x1p+20, 0x1p+60, 0x1p+300};
   const double huge_values[] = {-5.486124068813628e+303, 5.486124068813628e+303, -1e300, -1.7e308, -0x1p+200, -1.0};
-  std::size_t cases = 0, bad = 0;
+  Tally tally;
   for (const auto& pm : perms)
     for (const double ts : tiny_scales)
       for (const double hv : huge_values)
@@ -321,15 +321,10 @@ TEST(Certified, AgreesWithExactOnSubnormalsBesideHugeCoordinates) {
               if (flip && p == 0 && k == 1) v = -v;
               c.v[static_cast<std::size_t>(3 * p + pm[k])] = v;
             }
-          ++cases;
-          const std::string why = disagreement(c);
-          if (!why.empty()) {
-            ++bad;
-            ADD_FAILURE() << why;
-          }
+          tally.run(c);
         }
-  EXPECT_EQ(bad, 0u);
-  std::printf("subnormal/huge mixes: %zu cases\n", cases);
+  EXPECT_EQ(tally.bad, 0u);
+  std::printf("subnormal/huge mixes: %zu cases\n", tally.cases);
 }
 
 /// Every case fuzz_kernels has found against certified (data/regressions/certified.txt) agrees with exact.
@@ -355,7 +350,7 @@ TEST(Certified, AgreesWithExactOnShortDirectionsBesideHugeCoordinates) {
   // Powers of two times the fuzz case's direction: |d|_1 from about 2^-1056 to 2^-956.
   const double dir_scales[] = {0x1p-20, 0x1p-8, 0x1p-2, 1.0, 0x1p+2, 0x1p+8, 0x1p+40, 0x1p+77, 0x1p+80};
   const double huge_values[] = {-5.48878615954232e+303, -1.7e308, -1e250, -0x1p+200, 5.48878615954232e+303};
-  std::size_t cases = 0, bad = 0;
+  Tally tally;
   for (const double ds : dir_scales)
     for (const double hv : huge_values)
       for (int axis = 0; axis < 3; ++axis)
@@ -371,15 +366,10 @@ TEST(Certified, AgreesWithExactOnShortDirectionsBesideHugeCoordinates) {
             for (int k = 0; k < 3; ++k) c.v[static_cast<std::size_t>(3 * slot + (k + axis) % 3)] = v[k];
           };
           put(0, o), put(1, d), put(2, p[0]), put(3, p[1]), put(4, p[2]);
-          ++cases;
-          const std::string why = disagreement(c);
-          if (!why.empty()) {
-            ++bad;
-            ADD_FAILURE() << why;
-          }
+          tally.run(c);
         }
-  EXPECT_EQ(bad, 0u);
-  std::printf("short directions beside huge coordinates: %zu cases\n", cases);
+  EXPECT_EQ(tally.bad, 0u);
+  std::printf("short directions beside huge coordinates: %zu cases\n", tally.cases);
 }
 
 /// Regression (fuzz_kernels, third case of data/regressions/certified.txt): the double-double t
@@ -391,23 +381,18 @@ TEST(Certified, AgreesWithExactWhenTheDenominatorSquaredOverflows) {
       "triangle -131072.0000000027 -595821443.5137254 -595821443.5137254 -595821443.5137254 -595821443.5136949 "
       "-595821443.5137254 -595852797.5115587 -595821443.5137254 -595821443.5137254 2.0628714955843752e+283 "
       "-595821443.9921495 -595821443.5137254 0.0 0.0 0.0");
-  std::size_t cases = 0, bad = 0;
+  Tally tally;
   for (const int huge_shift : {-800, -500, -300, -150, -60, 0, 20, 60})
     for (const int s : {-200, -100, -20, 0, 10, 30}) {
       io::Case c = base;
       c.v[9] = std::ldexp(c.v[9], huge_shift);
       for (int i = 0; i < 15; ++i) c.v[static_cast<std::size_t>(i)] = std::ldexp(c.v[static_cast<std::size_t>(i)], s);
       if (!std::isfinite(c.v[9]) || c.v[9] == 0) continue;
-      ++cases;
-      const std::string why = disagreement(c);
-      if (!why.empty()) {
-        ++bad;
-        ADD_FAILURE() << why;
-      }
+      tally.run(c);
     }
-  EXPECT_EQ(bad, 0u);
-  EXPECT_GE(cases, 40u);
-  std::printf("huge denominators: %zu cases\n", cases);
+  EXPECT_EQ(tally.bad, 0u);
+  EXPECT_GE(tally.cases, 40u);
+  std::printf("huge denominators: %zu cases\n", tally.cases);
 }
 
 /// Spheres seen from far away (the origin 2^0 .. 2^40 radii from the centre), rays through random
