@@ -34,20 +34,25 @@ inline std::filesystem::path write_file(const std::string& name, const std::stri
   return p;
 }
 
-/// Runs `PREFIX rayproof ARGS` (shell text; PREFIX e.g. limits or `timeout`) and captures everything.
-inline RunResult run_rayproof(const std::string& args, const std::string& stdin_text = "",
-                              const std::string& prefix = "") {
+/// Runs `PREFIX BIN ARGS` (shell text; PREFIX e.g. limits or `timeout`) and captures everything.
+inline RunResult run_program(const std::string& bin, const std::string& args, const std::string& stdin_text = "",
+                             const std::string& prefix = "") {
   const auto dir = scratch_dir();
   const auto in = dir / "stdin.txt", out = dir / "stdout.txt", err = dir / "stderr.txt";
   std::ofstream(in, std::ios::binary) << stdin_text;
-  const std::string cmd = prefix + std::string(RAYPROOF_BIN) + " " + args + " <" + in.string() + " >" + out.string() +
-                          " 2>" + err.string();
+  const std::string cmd = prefix + bin + " " + args + " <" + in.string() + " >" + out.string() + " 2>" + err.string();
   const int raw = std::system(cmd.c_str());
   RunResult r;
   r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : 128 + WTERMSIG(raw);
   r.out = slurp(out);
   r.err = slurp(err);
   return r;
+}
+
+/// Runs `PREFIX rayproof ARGS` and captures everything.
+inline RunResult run_rayproof(const std::string& args, const std::string& stdin_text = "",
+                              const std::string& prefix = "") {
+  return run_program(RAYPROOF_BIN, args, stdin_text, prefix);
 }
 
 }  // namespace rayproof::testing

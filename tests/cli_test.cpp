@@ -1,6 +1,8 @@
 // The command-line tool as a user runs it: outputs, messages and exit statuses.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include "cli_support.h"
 
 using rayproof::testing::run_rayproof;
@@ -67,4 +69,54 @@ TEST(Cli, UnknownMethodIsRefused) {
   const auto r = run_rayproof("classify --method nope " + kData + "/worked_examples.txt");
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("unknown method 'nope'"), std::string::npos);
+}
+
+// rayproof runs the scene commands in rayproof-scene beside it (src/cli/scene_commands.h): the
+// same help, the same output, status and standard input as running rayproof-scene itself.
+TEST(Cli, SceneCommandsRunInRayproofSceneWithTheSameArguments) {
+  namespace fs = std::filesystem;
+  using rayproof::testing::run_program;
+  const fs::path bin = RAYPROOF_BIN, scene = bin.parent_path() / "rayproof-scene";
+  ASSERT_TRUE(fs::exists(scene)) << scene;
+  const auto top = run_rayproof("--help");
+  ASSERT_EQ(top.status, 0);
+  for (const char* name : {"fuzz", "cast", "render", "bench", "check", "spawn", "advise", "contains"}) {
+    EXPECT_NE(top.out.find(std::string("\n  ") + name + " "), std::string::npos) << name << " not in --help:\n" << top.out;
+    const auto via = run_rayproof(std::string(name) + " --help");
+    EXPECT_EQ(via.status, 0) << name << ": " << via.err;
+    EXPECT_NE(via.out.find(bin.string() + " " + name + " [OPTIONS]"), std::string::npos) << name << ":\n" << via.out;
+    // Its help is rayproof-scene's own, word for word but the program's name.
+    auto direct = run_program(scene.string(), std::string(name) + " --help").out;
+    for (std::size_t at; (at = direct.find(scene.string())) != std::string::npos;) direct.replace(at, scene.string().size(), bin.string());
+    EXPECT_EQ(via.out, direct) << name;
+  }
+  // Rays on standard input: the answers come back through, and they are rayproof-scene's.
+  const std::string rays = "0 0 -5 0 0 1\n0 0 -5 1 0 0\n";
+  const auto cast = run_rayproof("cast --method double default -", rays);
+  ASSERT_EQ(cast.status, 0) << cast.err;
+  EXPECT_EQ(std::count(cast.out.begin(), cast.out.end(), '\n'), 2) << cast.out;
+  EXPECT_EQ(cast.out, run_program(scene.string(), "cast --method double default -", rays).out);
+  // An error in a forwarded command keeps its message and status.
+  const auto bad = run_rayproof("cast --method nope default -", rays);
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.err.find("unknown method 'nope'"), std::string::npos) << bad.err;
+}
+
+// Without rayproof-scene (the README's first command builds only rayproof): a scene command says
+// what is missing and how to build it, status 2; the case-level commands still run.
+TEST(Cli, SceneCommandWithoutRayproofSceneSaysHowToBuildIt) {
+  namespace fs = std::filesystem;
+  const fs::path dir = rayproof::testing::scratch_dir() / "alone";
+  fs::create_directories(dir);
+  fs::copy_file(RAYPROOF_BIN, dir / "rayproof", fs::copy_options::overwrite_existing);
+  const std::string alone = (dir / "rayproof").string();
+  const auto r = rayproof::testing::run_program(alone, "cast --method double default -", "0 0 -5 0 0 1\n");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_TRUE(r.out.empty()) << r.out;
+  EXPECT_NE(r.err.find("'cast' is one of the scene commands"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find((dir / "rayproof-scene").string()), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("--target rayproof-scene"), std::string::npos) << r.err;
+  const auto c = rayproof::testing::run_program(alone, "classify --method double " + kData + "/worked_examples.txt");
+  EXPECT_EQ(c.status, 0) << c.err;
+  EXPECT_FALSE(c.out.empty());
 }

@@ -8,10 +8,11 @@
 
 namespace rayproof::verify {
 
-namespace {
 std::string plural(std::size_t n, const char* one, const char* many) {
   return fmt::format("{} {}", n, n == 1 ? one : many);
 }
+
+namespace {
 std::string percent(std::size_t n, std::size_t of) { return fmt::format("{:.3g}%", of ? 100.0 * double(n) / double(of) : 0.0); }
 }  // namespace
 

@@ -10,6 +10,9 @@
 
 namespace rayproof::verify {
 
+/// n and the noun in its number: "1 case", "2 cases" (every sentence that counts something).
+std::string plural(std::size_t n, const char* one, const char* many);
+
 /// One row per family and an "(all)" row: cases, false hits, false misses, wrong class, t error
 /// median/p99/max (ulp_text), over tolerance, failures. Columns widen to their widest cell.
 [[nodiscard]] std::string check_table(const CheckResult& r);

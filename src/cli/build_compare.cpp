@@ -2,11 +2,15 @@
 
 #include <fmt/core.h>
 
+#include "verify/check_text.h"
+
 #include <cfloat>
 #include <chrono>
 #include <cmath>
 
 namespace rayproof::cli {
+
+using verify::plural;
 
 namespace {
 
@@ -26,9 +30,6 @@ bool involves_subnormal(const BuildDifference& d, Precision p) {
   return false;
 }
 
-std::string plural(std::size_t n, const char* one, const char* many) {
-  return fmt::format("{} {}", n, n == 1 ? one : many);
-}
 
 }  // namespace
 

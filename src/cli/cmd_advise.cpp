@@ -11,6 +11,7 @@
 
 #include "cli/advise_text.h"
 #include "cli/commands.h"
+#include "cli/scene_commands.h"
 #include "cli/registry.h"
 #include "cli/scene_input.h"
 #include "scene/advise.h"
@@ -69,8 +70,7 @@ int run_advise(AdviseCliOptions& o) {
 
 Run add_advise(CLI::App& app) {
   auto o = std::make_shared<AdviseCliOptions>();
-  auto* sub = app.add_subcommand("advise", "What a scene needs: its geometry, its rays with every method, the cheapest "
-                                           "error-free method");
+  auto* sub = app.add_subcommand("advise", scene_command_summary("advise"));
   sub->add_option("scene", o->scene, "Mesh file (.off .obj .ply .stl .gltf .glb), scene JSON, or 'default'")->required();
   sub->add_option("--rays", o->opt.rays, "Rays per set (primary, leak, random, shadow)")->capture_default_str();
   sub->add_option("--seed", o->opt.seed, "Seed of the random and shadow rays")->capture_default_str();

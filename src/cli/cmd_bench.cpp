@@ -26,6 +26,7 @@
 #include "cli/bench_text.h"
 #include "rayproof/bvh_packet.h"
 #include "cli/commands.h"
+#include "cli/scene_commands.h"
 #include "cli/scene_caster.h"
 #include "cli/scene_input.h"
 #include "scene/compare/competitors.h"
@@ -349,7 +350,7 @@ int run_bench(const BenchOptions& opt) {
 
 Run add_bench(CLI::App& app) {
   auto opt = std::make_shared<BenchOptions>();
-  auto* sub = app.add_subcommand("bench", "Throughput and leaks of every method next to Embree and CGAL");
+  auto* sub = app.add_subcommand("bench", scene_command_summary("bench"));
   sub->add_option("scene", opt->scene,
                   "Mesh file, scene JSON, 'default' or 'generated' (the generated closed mesh alone; none: bunny00, "
                   "refined_elephant and the generated mesh)");

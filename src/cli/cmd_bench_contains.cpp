@@ -211,16 +211,16 @@ std::vector<Method> methods_for(const mesh::Mesh& m, const ClosedMesh& cm, bool 
   std::vector<Method> ms;
   ms.push_back({"contains", [&cm](std::span<const Vec3<double>> p, std::span<std::uint8_t> o) {
                   cm.contains(std::span<const Vec3<double>>(p), std::span<Side>(reinterpret_cast<Side*>(o.data()), o.size()), 1);
-                }});
+                }, false, false, {}});
   for (auto& c : scene::compare::make_contains_competitors(m.vertices, m.triangles,
                                                            epeck ? "cgal-epick,cgal-epeck,embree-parity" : "cgal-epick,embree-parity")) {
     if (!c.run) fmt::print("  {}: {}\n", c.name, c.note);
-    ms.push_back({c.name, c.run, c.name == "cgal-epeck", c.name == "embree-parity"});
+    ms.push_back({c.name, c.run, c.name == "cgal-epeck", c.name == "embree-parity", {}});
   }
   const VertexArray va(&m.vertices[0].x, m.vertices.size());
   const IndexArray ia{m.triangles.front().data(), m.triangles.size()};
-  ms.push_back({"rayproof-float", parity_runner(std::make_shared<MeshCaster<cast::Float>>(va, ia)), false, true});
-  ms.push_back({"rayproof-robust", parity_runner(std::make_shared<MeshCaster<cast::Robust>>(va, ia)), false, true});
+  ms.push_back({"rayproof-float", parity_runner(std::make_shared<MeshCaster<cast::Float>>(va, ia)), false, true, {}});
+  ms.push_back({"rayproof-robust", parity_runner(std::make_shared<MeshCaster<cast::Robust>>(va, ia)), false, true, {}});
   return ms;
 }
 

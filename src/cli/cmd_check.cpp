@@ -14,6 +14,7 @@
 #include "cli/check_text.h"
 #include "cli/device_compare.h"
 #include "cli/commands.h"
+#include "cli/scene_commands.h"
 #include "cli/registry.h"
 #include "cli/scene_input.h"
 #include "cli/user_kernels.h"
@@ -449,7 +450,7 @@ int run_check(const CheckCliOptions& o) {
 
 Run add_check(CLI::App& app) {
   auto o = std::make_shared<CheckCliOptions>();
-  auto* sub = app.add_subcommand("check", "Check one kernel (yours, or a built-in one) against exact on every family");
+  auto* sub = app.add_subcommand("check", scene_command_summary("check"));
   add_user_kernel_options(*sub, o->user);
   sub->add_flag("--plugin-in-process", o->plugin_in_process,
                 "Load --plugin into rayproof itself instead of a forked child (faster; a crash ends the check)");

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "cli/commands.h"
+#include "cli/scene_commands.h"
 #include "cli/input.h"
 #include "io/case_file.h"
 #include "mesh/mesh.h"
@@ -171,7 +172,7 @@ int run_contains(const ContainsOptions& opt) {
 
 Run add_contains(CLI::App& app) {
   auto opt = std::make_shared<ContainsOptions>();
-  auto* sub = app.add_subcommand("contains", "Exact inside / outside / surface of points (or segments) against a closed mesh");
+  auto* sub = app.add_subcommand("contains", scene_command_summary("contains"));
   sub->add_option("mesh", opt->mesh, "Closed mesh file (.off .obj .ply .stl)")->required();
   sub->add_option("points", opt->points, "Point file (x y z per line), or - for standard input")->required();
   sub->add_flag("--json", opt->json, "Print one JSON object (the sides and their tallies)");

@@ -17,6 +17,7 @@
 
 #include "cli/check_text.h"
 #include "cli/commands.h"
+#include "cli/scene_commands.h"
 #include "cli/fuzz_summary.h"
 #include "cli/registry.h"
 #include "cli/user_kernels.h"
@@ -279,7 +280,7 @@ int run_fuzz_cli(const FuzzCliOptions& o) {
 
 Run add_fuzz(CLI::App& app) {
   auto o = std::make_shared<FuzzCliOptions>();
-  auto* sub = app.add_subcommand("fuzz", "Differential fuzz campaign of methods against exact over the case families");
+  auto* sub = app.add_subcommand("fuzz", scene_command_summary("fuzz"));
   sub->add_option("--methods", o->methods, "Methods, registered or your --exec/--plugin kernels (default: all but exact; your kernels run "
                   "whether named or not)")->delimiter(',')->allow_extra_args(false);
   sub->add_option("--families", o->families, "Families (default: all)")->delimiter(',')->allow_extra_args(false);

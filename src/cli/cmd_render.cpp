@@ -17,6 +17,7 @@
 #include <memory>
 
 #include "cli/commands.h"
+#include "cli/scene_commands.h"
 #include "cli/render_light.h"
 #include "cli/scene_input.h"
 
@@ -198,7 +199,7 @@ int run_render(const RenderOptions& opt) {
 
 Run add_render(CLI::App& app) {
   auto opt = std::make_shared<RenderOptions>();
-  auto* sub = app.add_subcommand("render", "Render a scene or mesh to PNG, shaded by normal and depth");
+  auto* sub = app.add_subcommand("render", scene_command_summary("render"));
   sub->add_option("scene", opt->scene, "Mesh file, scene JSON, or 'default'")->required();
   sub->add_option("--out,-o", opt->out, "Output PNG")->required();
   sub->add_option("--method,-m", opt->method, "Method")->capture_default_str();

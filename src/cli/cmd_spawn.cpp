@@ -7,6 +7,7 @@
 #include <memory>
 
 #include "cli/commands.h"
+#include "cli/scene_commands.h"
 #include "cli/registry.h"
 #include "cli/scene_input.h"
 #include "light/spawn_count.h"
@@ -150,8 +151,7 @@ int run_spawn(const SpawnOptions& opt) {
 
 Run add_spawn(CLI::App& app) {
   auto opt = std::make_shared<SpawnOptions>();
-  auto* sub = app.add_subcommand(
-      "spawn", "Self-intersections of spawned shadow and reflection rays per origin strategy and method (planes, spheres, disks)");
+  auto* sub = app.add_subcommand("spawn", scene_command_summary("spawn"));
   sub->add_option("--kinds", opt->kinds, "Primitive kinds: plane, sphere, disk")->delimiter(',')->capture_default_str();
   sub->add_option("--methods", opt->methods, "Methods (default: all but exact answering the kind)")->delimiter(',');
   sub->add_option("--magnitudes", opt->magnitudes, "log2 of the positions' magnitude, one run each")->delimiter(',')

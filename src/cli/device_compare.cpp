@@ -4,10 +4,14 @@
 
 #include <fmt/core.h>
 
+#include "verify/check_text.h"
+
 #include <cmath>
 #include <cstring>
 
 namespace rayproof::cli {
+
+using verify::plural;
 
 namespace {
 
@@ -18,7 +22,6 @@ bool has_subnormal_float_input(const io::Case& c) {
   return false;
 }
 
-std::string plural(std::size_t n, const char* one, const char* many) { return fmt::format("{} {}", n, n == 1 ? one : many); }
 
 }  // namespace
 
