@@ -22,4 +22,13 @@ void add_scene_commands(CLI::App& app, Commands& out) {
   add(add_contains(app));
 }
 
+int rayproof_scene_main(int argc, char** argv) {
+  CLI::App app;
+  setup_app(app);
+  Commands commands;
+  add_core_commands(app, commands);
+  add_scene_commands(app, commands);
+  return run_tool(app, commands, argc, argv);
+}
+
 }  // namespace rayproof::cli

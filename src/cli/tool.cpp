@@ -84,6 +84,16 @@ void add_scene_forwarders(CLI::App& app, Commands& out, int argc, char** argv) {
   }
 }
 
+int rayproof_main(int argc, char** argv) {
+  if (argc > 1 && find_scene_command(argv[1])) return forward_to_scene(argc, argv);
+  CLI::App app;
+  setup_app(app);
+  Commands commands;
+  add_core_commands(app, commands);
+  add_scene_forwarders(app, commands, argc, argv);
+  return run_tool(app, commands, argc, argv);
+}
+
 int run_tool(CLI::App& app, Commands& commands, int argc, char** argv) {
   try {
     app.parse(argc, argv);

@@ -28,6 +28,13 @@ void add_scene_forwarders(CLI::App& app, Commands& out, int argc, char** argv);
 /// failure, with status 2 after saying what is missing and how to build it.
 int forward_to_scene(int argc, char** argv);
 
+/// `rayproof`'s main: the case-level commands, the scene commands forwarded. (Here rather than in
+/// main.cpp so that CLI11's code is generated once, in this library's unity batch.)
+int rayproof_main(int argc, char** argv);
+
+/// `rayproof-scene`'s main: every command compiled in (scene_commands.cpp).
+int rayproof_scene_main(int argc, char** argv);
+
 /// Parses argv and runs the chosen command: its exit status; 2 with "rayproof: ..." on an error.
 int run_tool(CLI::App& app, Commands& commands, int argc, char** argv);
 
