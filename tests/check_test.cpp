@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/check_text.h"
+#include "cli/mesh_check_text.h"
 #include "cli/registry.h"
 #include "cli_support.h"
 #include "report/report_text.h"

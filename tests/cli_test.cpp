@@ -80,7 +80,7 @@ TEST(Cli, SceneCommandsRunInRayproofSceneWithTheSameArguments) {
   ASSERT_TRUE(fs::exists(scene)) << scene;
   const auto top = run_rayproof("--help");
   ASSERT_EQ(top.status, 0);
-  for (const char* name : {"fuzz", "cast", "render", "bench", "check", "spawn", "advise", "contains"}) {
+  for (const char* name : {"cast", "render", "bench", "spawn", "advise", "contains"}) {
     EXPECT_NE(top.out.find(std::string("\n  ") + name + " "), std::string::npos) << name << " not in --help:\n" << top.out;
     const auto via = run_rayproof(std::string(name) + " --help");
     EXPECT_EQ(via.status, 0) << name << ": " << via.err;
@@ -100,6 +100,15 @@ TEST(Cli, SceneCommandsRunInRayproofSceneWithTheSameArguments) {
   const auto bad = run_rayproof("cast --method nope default -", rays);
   EXPECT_EQ(bad.status, 2);
   EXPECT_NE(bad.err.find("unknown method 'nope'"), std::string::npos) << bad.err;
+  // check and fuzz are rayproof's own; their --mesh modes run in rayproof-scene, same output.
+  const std::string mesh_check = "check --method certified --mesh generated --meshes 1 --mesh-targets 40";
+  const auto mc = run_rayproof(mesh_check);
+  EXPECT_EQ(mc.status, 0) << mc.err;
+  EXPECT_NE(mc.out.find("rayproof check --mesh: kernel 'certified'"), std::string::npos) << mc.out;
+  EXPECT_EQ(mc.out, run_program(scene.string(), mesh_check).out);
+  const auto mf = run_rayproof("fuzz --mesh --cases 1 --methods robust --seed 3");
+  EXPECT_EQ(mf.status, 0) << mf.err;
+  EXPECT_NE(mf.out.find("reproduce: rayproof fuzz --mesh --seed 3 --cases 1"), std::string::npos) << mf.out;
 }
 
 // Without rayproof-scene (the README's first command builds only rayproof): a scene command says
@@ -113,10 +122,23 @@ TEST(Cli, SceneCommandWithoutRayproofSceneSaysHowToBuildIt) {
   const auto r = rayproof::testing::run_program(alone, "cast --method double default -", "0 0 -5 0 0 1\n");
   EXPECT_EQ(r.status, 2);
   EXPECT_TRUE(r.out.empty()) << r.out;
-  EXPECT_NE(r.err.find("'cast' is one of the scene commands"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("'cast' is in " + (dir / "rayproof-scene").string() + ", which this build has not built yet"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find((dir / "rayproof-scene").string()), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("--target rayproof-scene"), std::string::npos) << r.err;
   const auto c = rayproof::testing::run_program(alone, "classify --method double " + kData + "/worked_examples.txt");
   EXPECT_EQ(c.status, 0) << c.err;
   EXPECT_FALSE(c.out.empty());
+  // check and fuzz on the case families run without it; their --mesh modes say what is missing.
+  const auto chk = rayproof::testing::run_program(alone, "check --method certified --families tri_edge --count 200");
+  EXPECT_EQ(chk.status, 0) << chk.err;
+  EXPECT_NE(chk.out.find("tri_edge"), std::string::npos) << chk.out;
+  const auto fz = rayproof::testing::run_program(alone, "fuzz --cases 500 --methods double --families tri_edge --out " +
+                                                            (dir / "findings").string());
+  EXPECT_EQ(fz.status, 0) << fz.err;
+  for (const std::string mode : {"check --method certified --mesh generated", "fuzz --mesh --cases 1"}) {
+    const auto m = rayproof::testing::run_program(alone, mode);
+    EXPECT_EQ(m.status, 2) << mode;
+    const std::string head = mode.substr(0, mode.find(' '));
+    EXPECT_NE(m.err.find("'" + head + " --mesh' is in "), std::string::npos) << m.err;
+  }
 }

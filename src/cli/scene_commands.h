@@ -2,9 +2,9 @@
 /// The scene commands: the subcommands that traverse a BVH over meshes and scenes (they link
 /// rayproof_scene, whose traversal code is most of the tool's build). They are compiled into
 /// `rayproof-scene`, the whole tool; `rayproof` holds the case-level commands (report, verify,
-/// classify, gen, ...) and runs these by executing `rayproof-scene` beside itself with the same
-/// arguments, so that the first build of `rayproof` (the README's first command) is the main
-/// job's code only. One list: `rayproof --help` names them from here and each command's own
+/// check, fuzz, classify, gen, ...) and runs these, and `check --mesh` and `fuzz --mesh`
+/// (mesh_modes.h), by executing `rayproof-scene` beside itself with the same arguments, so that
+/// the first build of `rayproof` (the README's first command) is the case-level code only. One list: `rayproof --help` names them from here and each command's own
 /// registration takes its summary from here.
 #include <array>
 #include <string_view>
@@ -16,12 +16,10 @@ struct SceneCommand {
   std::string_view summary;
 };
 
-inline constexpr std::array<SceneCommand, 8> kSceneCommands{{
-    {"fuzz", "Differential fuzz campaign of methods against exact over the case families"},
+inline constexpr std::array<SceneCommand, 6> kSceneCommands{{
     {"cast", "Cast rays into a scene or mesh: one result line per ray"},
     {"render", "Render a scene or mesh to PNG, shaded by normal and depth"},
     {"bench", "Throughput and leaks of every method next to Embree and CGAL"},
-    {"check", "Check one kernel (yours, or a built-in one) against exact on every family"},
     {"spawn", "Self-intersections of spawned shadow and reflection rays per origin strategy and method (planes, "
               "spheres, disks)"},
     {"advise", "What a scene needs: its geometry, its rays with every method, the cheapest error-free method"},

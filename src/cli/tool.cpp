@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <string>
 
+#include "cli/mesh_modes.h"
 #include "cli/registry.h"
 #include "cli/scene_commands.h"
 
@@ -27,12 +28,14 @@ void setup_app(CLI::App& app) {
   app.require_subcommand(1);
 }
 
-void add_core_commands(CLI::App& app, Commands& out) {
+void add_core_commands(CLI::App& app, Commands& out, const MeshModes& modes) {
   auto add = [&](Run run) { out.emplace_back(app.get_subcommands({}).back(), std::move(run)); };
   add(add_classify(app));
   add(add_gen(app));
   add(add_verify(app));
   add(add_report(app));
+  add(add_fuzz(app, modes));
+  add(add_check(app, modes));
   add(add_serve(app));
   add(add_plugin_host(app));
   add(add_opencl_host(app));
@@ -47,7 +50,18 @@ void add_core_commands(CLI::App& app, Commands& out) {
   });
 }
 
-int forward_to_scene(int argc, char** argv) {
+namespace {
+int g_argc = 0;  // rayproof_main's arguments, for forward_to_scene
+char** g_argv = nullptr;
+}  // namespace
+
+int forward_to_scene(std::string_view what) {
+  const int argc = g_argc;
+  char** argv = g_argv;
+  if (!argv) {
+    fmt::print(stderr, "rayproof: {} is in rayproof-scene, which this program does not run\n", what);
+    return 2;
+  }
   namespace fs = std::filesystem;
   std::error_code ec;
   fs::path self = fs::read_symlink("/proc/self/exe", ec);
@@ -57,40 +71,39 @@ int forward_to_scene(int argc, char** argv) {
   args.push_back(nullptr);
   ::execv(scene.c_str(), args.data());
   const int err = errno;
-  const std::string what = argc > 1 ? argv[1] : "this command";
   if (err == ENOENT)
     fmt::print(stderr,
-               "rayproof: '{}' is one of the scene commands ({}), which are in {}; this build has not built it yet "
-               "(the README's first command builds only `rayproof`). Build it with: cmake --build <build dir> "
-               "--target rayproof-scene\n",
-               what, [] {
+               "rayproof: '{}' is in {}, which this build has not built yet: the commands that traverse BVHs over "
+               "meshes ({}, check --mesh, fuzz --mesh) are compiled there, and the README's first command builds only "
+               "`rayproof`. Build it with: cmake --build <build dir> --target rayproof-scene\n",
+               what, scene.string(), [] {
                  std::string names;
                  for (const auto& c : kSceneCommands) names += (names.empty() ? "" : ", ") + std::string(c.name);
                  return names;
-               }(),
-               scene.string());
+               }());
   else
     fmt::print(stderr, "rayproof: cannot run {} for '{}': {}\n", scene.string(), what, std::strerror(err));
   return 2;
 }
 
-void add_scene_forwarders(CLI::App& app, Commands& out, int argc, char** argv) {
+void add_scene_forwarders(CLI::App& app, Commands& out) {
   for (const auto& c : kSceneCommands) {
     auto* sub = app.add_subcommand(std::string(c.name), std::string(c.summary));
     sub->set_help_flag();  // its --help goes to rayproof-scene with the rest
     sub->allow_extras();
     sub->prefix_command();
-    out.emplace_back(sub, [argc, argv] { return forward_to_scene(argc, argv); });
+    out.emplace_back(sub, [name = std::string(c.name)] { return forward_to_scene(name); });
   }
 }
 
 int rayproof_main(int argc, char** argv) {
-  if (argc > 1 && find_scene_command(argv[1])) return forward_to_scene(argc, argv);
+  g_argc = argc, g_argv = argv;
+  if (argc > 1 && find_scene_command(argv[1])) return forward_to_scene(argv[1]);
   CLI::App app;
   setup_app(app);
   Commands commands;
-  add_core_commands(app, commands);
-  add_scene_forwarders(app, commands, argc, argv);
+  add_core_commands(app, commands, MeshModes{});
+  add_scene_forwarders(app, commands);
   return run_tool(app, commands, argc, argv);
 }
 

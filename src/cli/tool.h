@@ -1,6 +1,7 @@
 #pragma once
 /// What both executables share: the case-level commands, the scene commands' forwarding and the
 /// parse-and-run loop (main.cpp: `rayproof`; main_scene.cpp: `rayproof-scene`).
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -14,19 +15,21 @@ using Commands = std::vector<std::pair<CLI::App*, Run>>;
 /// The top-level app's description and rules (its name comes from argv[0] at parse time).
 void setup_app(CLI::App& app);
 
-/// classify, gen, verify, report, serve, the three hosts, irradiance and methods.
-void add_core_commands(CLI::App& app, Commands& out);
+/// classify, gen, verify, report, check, fuzz, serve, the three hosts, irradiance and methods;
+/// check --mesh and fuzz --mesh through `modes` (empty: handed to rayproof-scene).
+void add_core_commands(CLI::App& app, Commands& out, const MeshModes& modes);
 
 /// The scene commands (scene_commands.h), compiled in: only in rayproof-scene (rayproof_cli_lib).
 void add_scene_commands(CLI::App& app, Commands& out);
 
 /// The scene commands as entries that `rayproof --help` lists; running one forwards.
-void add_scene_forwarders(CLI::App& app, Commands& out, int argc, char** argv);
+void add_scene_forwarders(CLI::App& app, Commands& out);
 
 /// Replaces this process with `rayproof-scene` beside the running executable, with the same
-/// arguments (argv[0] included, so its messages and help read as this tool's). Returns only on
-/// failure, with status 2 after saying what is missing and how to build it.
-int forward_to_scene(int argc, char** argv);
+/// arguments (argv[0] included, so its messages and help read as this tool's): those of
+/// rayproof_main's call. Returns only on failure, with status 2 after saying that `what` (a
+/// command, or a command's mode) is in rayproof-scene and how to build it.
+int forward_to_scene(std::string_view what);
 
 /// `rayproof`'s main: the case-level commands, the scene commands forwarded. (Here rather than in
 /// main.cpp so that CLI11's code is generated once, in this library's unity batch.)

@@ -1,6 +1,8 @@
-#include "cli/check_text.h"
+#include "cli/mesh_check_text.h"
 
 #include <fmt/core.h>
+
+#include "verify/check_text.h"
 
 namespace rayproof::cli {
 

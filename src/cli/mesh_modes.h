@@ -1,0 +1,65 @@
+#pragma once
+/// check --mesh and fuzz --mesh: the two modes of case-level commands that traverse BVHs over
+/// meshes. `check` and `fuzz` are compiled into both executables (tool.h); their mesh modes only
+/// into rayproof-scene (check_mesh.cpp, fuzz_mesh.cpp), so `rayproof` hands a --mesh run to
+/// rayproof-scene with the same arguments (MeshModes empty). The options of both commands are here
+/// so that both halves read the same ones.
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "cli/user_kernels.h"
+#include "methods/method.h"
+
+namespace rayproof::cli {
+
+struct CheckCliOptions {
+  UserKernelOptions user;
+  std::string method;
+  std::size_t count = 2000;
+  std::uint64_t seed = 1;
+  std::vector<std::string> families, expect, compare;
+  std::optional<std::uint64_t> max_ulps;
+  std::size_t reproducers = 3;
+  std::string out;
+  bool json = false;
+  std::vector<std::string> mesh;  ///< mesh files, or `generated`
+  std::size_t meshes = 8;         ///< how many generated meshes `generated` stands for
+  std::size_t mesh_targets = 0;
+  int interior = 2;
+  bool plugin_in_process = false;
+  std::string compare_plugin;  ///< --compare-plugin: the C build of an --opencl or --glsl kernel's formula
+};
+
+
+struct FuzzCliOptions {
+  std::vector<std::string> methods, families;
+  double seconds = 0;
+  std::size_t cases = 0;
+  std::uint64_t seed = 1;
+  int jobs = 1;
+  std::string out = "fuzz-findings";
+  bool mesh = false;
+  std::string shard;    ///< K/N
+  std::string summary;  ///< write the summary as JSON here
+  UserKernelOptions user;
+  std::vector<std::string> merge_files;  ///< fuzz merge SUMMARY...
+  double progress_seconds = 5;           ///< progress line interval when stderr is not a terminal
+};
+
+
+/// The mesh modes compiled in; empty members: hand the run to rayproof-scene.
+struct MeshModes {
+  std::function<int(const CheckCliOptions&, const Method&)> check;
+  std::function<int(const FuzzCliOptions&)> fuzz;
+};
+
+/// rayproof-scene's mesh modes (check_mesh.cpp, fuzz_mesh.cpp; in rayproof_cli_lib).
+int run_mesh_check(const CheckCliOptions& o, const Method& kernel);
+int run_mesh_fuzz_cli(const FuzzCliOptions& o);
+MeshModes scene_mesh_modes();
+
+}  // namespace rayproof::cli
