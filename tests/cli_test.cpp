@@ -80,7 +80,7 @@ TEST(Cli, SceneCommandsRunInRayproofSceneWithTheSameArguments) {
   ASSERT_TRUE(fs::exists(scene)) << scene;
   const auto top = run_rayproof("--help");
   ASSERT_EQ(top.status, 0);
-  for (const char* name : {"cast", "render", "bench", "spawn", "advise", "contains"}) {
+  for (const char* name : {"cast", "render", "bench", "advise", "contains"}) {
     EXPECT_NE(top.out.find(std::string("\n  ") + name + " "), std::string::npos) << name << " not in --help:\n" << top.out;
     const auto via = run_rayproof(std::string(name) + " --help");
     EXPECT_EQ(via.status, 0) << name << ": " << via.err;
@@ -109,6 +109,11 @@ TEST(Cli, SceneCommandsRunInRayproofSceneWithTheSameArguments) {
   const auto mf = run_rayproof("fuzz --mesh --cases 1 --methods robust --seed 3");
   EXPECT_EQ(mf.status, 0) << mf.err;
   EXPECT_NE(mf.out.find("reproduce: rayproof fuzz --mesh --seed 3 --cases 1"), std::string::npos) << mf.out;
+  const std::string mesh_spawn = "spawn --mesh generated --trials 200 --magnitudes 0";
+  const auto ms = run_rayproof(mesh_spawn);
+  EXPECT_EQ(ms.status, 0) << ms.err;
+  EXPECT_NE(ms.out.find("generated 2^0"), std::string::npos) << ms.out;
+  EXPECT_EQ(ms.out, run_program(scene.string(), mesh_spawn).out);
 }
 
 // Without rayproof-scene (the README's first command builds only rayproof): a scene command says
@@ -135,7 +140,10 @@ TEST(Cli, SceneCommandWithoutRayproofSceneSaysHowToBuildIt) {
   const auto fz = rayproof::testing::run_program(alone, "fuzz --cases 500 --methods double --families tri_edge --out " +
                                                             (dir / "findings").string());
   EXPECT_EQ(fz.status, 0) << fz.err;
-  for (const std::string mode : {"check --method certified --mesh generated", "fuzz --mesh --cases 1"}) {
+  const auto sp = rayproof::testing::run_program(alone, "spawn --kinds plane --trials 200 --magnitudes 0");
+  EXPECT_EQ(sp.status, 0) << sp.err;
+  EXPECT_FALSE(sp.out.empty());
+  for (const std::string mode : {"check --method certified --mesh generated", "fuzz --mesh --cases 1", "spawn --mesh generated"}) {
     const auto m = rayproof::testing::run_program(alone, mode);
     EXPECT_EQ(m.status, 2) << mode;
     const std::string head = mode.substr(0, mode.find(' '));

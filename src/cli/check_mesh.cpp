@@ -108,6 +108,6 @@ int run_mesh_check(const CheckCliOptions& o, const Method& kernel) {
   return leaked ? 1 : 0;
 }
 
-MeshModes scene_mesh_modes() { return {run_mesh_check, run_mesh_fuzz_cli}; }
+MeshModes scene_mesh_modes() { return {run_mesh_check, run_mesh_fuzz_cli, run_spawn_mesh}; }
 
 }  // namespace rayproof::cli

@@ -7,74 +7,20 @@
 #include <memory>
 
 #include "cli/commands.h"
-#include "cli/scene_commands.h"
+#include "cli/mesh_modes.h"
+#include "cli/tool.h"
 #include "cli/registry.h"
-#include "cli/scene_input.h"
 #include "light/spawn_count.h"
-#include "light/spawn_mesh.h"
-#include "mesh/mesh.h"
 
 namespace rayproof::cli {
 
 namespace {
 
-struct SpawnOptions {
-  std::vector<std::string> kinds{"plane", "sphere", "disk"};
-  std::vector<std::string> methods;
-  std::vector<int> magnitudes{0, 20, 40};
-  std::uint64_t trials = 20000;
-  std::uint64_t seed = 1;
-  double epsilon = 1e-4;
-  double slab_gap = 0;  ///< > 0: count leaks through a slab of this relative thickness instead
-  std::string mesh;     ///< a mesh file or "generated": count on triangle meshes instead
-};
 
-/// Spawned rays on a triangle mesh (light/spawn_mesh.h): the generated closed meshes (a subdivided
-/// octahedron on the unit sphere and a slab 2^-16 thick beside it, moved to (2^k, 2^k, 2^k) and
-/// scaled by 2^max(0, k - 10) so that float vertices still resolve it) or a file.
-int run_spawn_mesh(const SpawnOptions& opt) {
-  constexpr const char* kCmd = "rayproof spawn";
-  std::vector<std::pair<std::string, mesh::Mesh>> meshes;
-  try {
-    if (opt.mesh == "generated") {
-      for (int mag : opt.magnitudes)
-        meshes.emplace_back(fmt::format("generated 2^{}", mag),
-                            light::generated_spawn_mesh(4, std::ldexp(1.0, -16), std::ldexp(1.0, std::max(0, mag - 10)),
-                                                            mag == 0 ? 0.0 : std::ldexp(1.0, mag)));
-    } else {
-      meshes.emplace_back(opt.mesh, mesh::read_mesh(opt.mesh));
-      fmt::print(stderr, "{}: {}: {} triangles{}\n", kCmd, opt.mesh, meshes.back().second.triangles.size(),
-                 reader_note(opt.mesh));
-    }
-  } catch (const std::exception& e) {
-    fmt::print(stderr, "{}: {}\n", kCmd, e.what());
-    return 2;
-  }
-  fmt::print("{:<20} {:<14} {:<10} {:>8} {:>7} {:>10} {:>10} {:>7} {:>9} {:>6} {:>8} {:>9} {:>11}\n", "mesh", "strategy",
-             "method", "spawned", "misses", "self(own)", "self(exact)", "shadow", "false-occ", "leaks", "occ(ray)", "leaks(ray)",
-             "misses(ray)");
-  for (const auto& [name, m] : meshes) {
-    if (m.triangles.empty()) {
-      fmt::print(stderr, "{}: {} has no triangles\n", kCmd, name);
-      return 2;
-    }
-    std::vector<light::MeshSpawnCount> rows;
-    try {
-      rows = light::count_mesh_spawn(m, opt.trials, opt.seed, opt.epsilon);
-    } catch (const std::exception& e) {
-      fmt::print(stderr, "{}: {}: {}\n", kCmd, name, e.what());
-      return 2;
-    }
-    for (const auto& r : rows)
-      fmt::print("{:<20} {:<14} {:<10} {:>8} {:>7} {:>10} {:>10} {:>7} {:>9} {:>6} {:>8} {:>9} {:>11}\n", name,
-                 light::to_string(r.strategy), r.method, r.spawned, r.primary_misses, r.self_hits, r.exact_self_hits, r.shadow,
-                 r.false_occlusions, r.leaks, r.false_occlusions_ray, r.leaks_ray, r.primary_misses_ray);
-  }
-  return 0;
-}
 
-int run_spawn(const SpawnOptions& opt) {
+int run_spawn(const SpawnOptions& opt, const MeshModes& modes) {
   constexpr const char* kCmd = "rayproof spawn";
+  if (!opt.mesh.empty() && !modes.spawn) return forward_to_scene("spawn --mesh");
   if (opt.trials == 0 || opt.trials > 100000000) {
     fmt::print(stderr, "{}: --trials must be in 1..1e8\n", kCmd);
     return 2;
@@ -88,7 +34,7 @@ int run_spawn(const SpawnOptions& opt) {
       fmt::print(stderr, "{}: --magnitudes must be within -60..60 (log2 of the positions' size)\n", kCmd);
       return 2;
     }
-  if (!opt.mesh.empty()) return run_spawn_mesh(opt);
+  if (!opt.mesh.empty()) return modes.spawn(opt);
   const Method* exact = all_methods().find("certified");
   if (!exact) {
     fmt::print(stderr, "{}: the certified method is not registered\n", kCmd);
@@ -149,9 +95,10 @@ int run_spawn(const SpawnOptions& opt) {
 
 }  // namespace
 
-Run add_spawn(CLI::App& app) {
+Run add_spawn(CLI::App& app, const MeshModes& modes) {
   auto opt = std::make_shared<SpawnOptions>();
-  auto* sub = app.add_subcommand("spawn", scene_command_summary("spawn"));
+  auto* sub = app.add_subcommand(
+      "spawn", "Self-intersections of spawned shadow and reflection rays per origin strategy and method (planes, spheres, disks)");
   sub->add_option("--kinds", opt->kinds, "Primitive kinds: plane, sphere, disk")->delimiter(',')->capture_default_str();
   sub->add_option("--methods", opt->methods, "Methods (default: all but exact answering the kind)")->delimiter(',');
   sub->add_option("--magnitudes", opt->magnitudes, "log2 of the positions' magnitude, one run each")->delimiter(',')
@@ -164,7 +111,7 @@ Run add_spawn(CLI::App& app) {
   sub->add_option("--mesh", opt->mesh,
                   "Count on a triangle mesh (a mesh file, or 'generated': a sphere and a thin slab at each magnitude) "
                   "with the float, robust and certified mesh casters");
-  return [opt] { return run_spawn(*opt); };
+  return [opt, modes] { return run_spawn(*opt, modes); };
 }
 
 }  // namespace rayproof::cli

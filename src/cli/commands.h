@@ -24,7 +24,7 @@ Run add_plugin_host(CLI::App& app);
 Run add_opencl_host(CLI::App& app);
 Run add_glsl_host(CLI::App& app);
 Run add_irradiance(CLI::App& app);
-Run add_spawn(CLI::App& app);
+Run add_spawn(CLI::App& app, const MeshModes& modes);  ///< --mesh: modes.spawn, or rayproof-scene
 Run add_advise(CLI::App& app);
 Run add_contains(CLI::App& app);
 /// `rayproof bench contains`: registered on the bench subcommand; main runs it before bench.

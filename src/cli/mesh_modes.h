@@ -1,7 +1,7 @@
 #pragma once
-/// check --mesh and fuzz --mesh: the two modes of case-level commands that traverse BVHs over
-/// meshes. `check` and `fuzz` are compiled into both executables (tool.h); their mesh modes only
-/// into rayproof-scene (check_mesh.cpp, fuzz_mesh.cpp), so `rayproof` hands a --mesh run to
+/// check --mesh, fuzz --mesh and spawn --mesh: the modes of case-level commands that traverse BVHs over
+/// meshes. `check`, `fuzz` and `spawn` are compiled into both executables (tool.h); their mesh modes only
+/// into rayproof-scene (check_mesh.cpp, fuzz_mesh.cpp, spawn_mesh_cli.cpp), so `rayproof` hands a --mesh run to
 /// rayproof-scene with the same arguments (MeshModes empty). The options of both commands are here
 /// so that both halves read the same ones.
 #include <cstddef>
@@ -51,15 +51,28 @@ struct FuzzCliOptions {
 };
 
 
+struct SpawnOptions {
+  std::vector<std::string> kinds{"plane", "sphere", "disk"};
+  std::vector<std::string> methods;
+  std::vector<int> magnitudes{0, 20, 40};
+  std::uint64_t trials = 20000;
+  std::uint64_t seed = 1;
+  double epsilon = 1e-4;
+  double slab_gap = 0;  ///< > 0: count leaks through a slab of this relative thickness instead
+  std::string mesh;     ///< a mesh file or "generated": count on triangle meshes instead
+};
+
 /// The mesh modes compiled in; empty members: hand the run to rayproof-scene.
 struct MeshModes {
   std::function<int(const CheckCliOptions&, const Method&)> check;
   std::function<int(const FuzzCliOptions&)> fuzz;
+  std::function<int(const SpawnOptions&)> spawn;
 };
 
-/// rayproof-scene's mesh modes (check_mesh.cpp, fuzz_mesh.cpp; in rayproof_cli_lib).
+/// rayproof-scene's mesh modes (in rayproof_cli_lib).
 int run_mesh_check(const CheckCliOptions& o, const Method& kernel);
 int run_mesh_fuzz_cli(const FuzzCliOptions& o);
+int run_spawn_mesh(const SpawnOptions& opt);  // spawn_mesh_cli.cpp
 MeshModes scene_mesh_modes();
 
 }  // namespace rayproof::cli

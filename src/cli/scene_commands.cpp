@@ -16,7 +16,6 @@ void add_scene_commands(CLI::App& app, Commands& out) {
     Run run = add_bench_contains(*bench);
     out.insert(out.begin(), {bench->get_subcommand("contains"), std::move(run)});
   }
-  add(add_spawn(app));
   add(add_advise(app));
   add(add_contains(app));
 }

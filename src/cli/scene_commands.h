@@ -2,7 +2,7 @@
 /// The scene commands: the subcommands that traverse a BVH over meshes and scenes (they link
 /// rayproof_scene, whose traversal code is most of the tool's build). They are compiled into
 /// `rayproof-scene`, the whole tool; `rayproof` holds the case-level commands (report, verify,
-/// check, fuzz, classify, gen, ...) and runs these, and `check --mesh` and `fuzz --mesh`
+/// check, fuzz, spawn, classify, gen, ...) and runs these, and the --mesh modes of check, fuzz and spawn
 /// (mesh_modes.h), by executing `rayproof-scene` beside itself with the same arguments, so that
 /// the first build of `rayproof` (the README's first command) is the case-level code only. One list: `rayproof --help` names them from here and each command's own
 /// registration takes its summary from here.
@@ -16,12 +16,10 @@ struct SceneCommand {
   std::string_view summary;
 };
 
-inline constexpr std::array<SceneCommand, 6> kSceneCommands{{
+inline constexpr std::array<SceneCommand, 5> kSceneCommands{{
     {"cast", "Cast rays into a scene or mesh: one result line per ray"},
     {"render", "Render a scene or mesh to PNG, shaded by normal and depth"},
     {"bench", "Throughput and leaks of every method next to Embree and CGAL"},
-    {"spawn", "Self-intersections of spawned shadow and reflection rays per origin strategy and method (planes, "
-              "spheres, disks)"},
     {"advise", "What a scene needs: its geometry, its rays with every method, the cheapest error-free method"},
     {"contains", "Exact inside / outside / surface of points (or segments) against a closed mesh"},
 }};

@@ -36,6 +36,7 @@ void add_core_commands(CLI::App& app, Commands& out, const MeshModes& modes) {
   add(add_report(app));
   add(add_fuzz(app, modes));
   add(add_check(app, modes));
+  add(add_spawn(app, modes));
   add(add_serve(app));
   add(add_plugin_host(app));
   add(add_opencl_host(app));
@@ -74,7 +75,7 @@ int forward_to_scene(std::string_view what) {
   if (err == ENOENT)
     fmt::print(stderr,
                "rayproof: '{}' is in {}, which this build has not built yet: the commands that traverse BVHs over "
-               "meshes ({}, check --mesh, fuzz --mesh) are compiled there, and the README's first command builds only "
+               "meshes ({}, and the --mesh modes of check, fuzz and spawn) are compiled there, and the README's first command builds only "
                "`rayproof`. Build it with: cmake --build <build dir> --target rayproof-scene\n",
                what, scene.string(), [] {
                  std::string names;

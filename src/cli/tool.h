@@ -15,8 +15,8 @@ using Commands = std::vector<std::pair<CLI::App*, Run>>;
 /// The top-level app's description and rules (its name comes from argv[0] at parse time).
 void setup_app(CLI::App& app);
 
-/// classify, gen, verify, report, check, fuzz, serve, the three hosts, irradiance and methods;
-/// check --mesh and fuzz --mesh through `modes` (empty: handed to rayproof-scene).
+/// classify, gen, verify, report, check, fuzz, spawn, serve, the three hosts, irradiance and methods;
+/// the --mesh modes of check, fuzz and spawn through `modes` (empty: handed to rayproof-scene).
 void add_core_commands(CLI::App& app, Commands& out, const MeshModes& modes);
 
 /// The scene commands (scene_commands.h), compiled in: only in rayproof-scene (rayproof_cli_lib).
