@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "cli/registry.h"
+#include "registry/registry.h"
 #include "scene/accel.h"
 #include "scene/compare/competitors.h"
 #include "scene/watertight.h"
@@ -77,7 +77,7 @@ int main(int argc, char** argv) {
               "sah: ratio [range]", "sah/greedy speed", "answers");
   for (const char* mname : {"robust", "certified", "float"}) {
     if (!only.empty() && only != mname) continue;
-    const SceneMethod m = find_scene_method(mname, cli::all_methods());
+    const SceneMethod m = find_scene_method(mname, registry::all_methods());
     const bool is_float = std::string(mname) == "float";
     const compare::Competitor& ref = is_float ? embree : embree_r;
     for (const char* set : {"primary", "random"}) {

@@ -22,18 +22,18 @@
 #include <vector>
 
 #include "rayproof/box_conservative.h"
-#include "rayproof/certified.h"
+#include "rayproof/certified/intersect.h"
 #include "rayproof/certified_box.h"
 #include "rayproof/certified_fma.h"
 #include "rayproof/certified_quadric.h"
 #include "rayproof/certified_triangle.h"
-#include "rayproof/exact.h"
+#include "rayproof/verify/exact.h"
 #include "rayproof/quadric_stable.h"
 #include "rayproof/triangle.h"
 #include "rayproof/triangle_baldwin_weber.h"
 #include "rayproof/triangle_plucker.h"
 #include "rayproof/triangle_watertight.h"
-#include "verify/exact.h"
+#include "verify/exact_method.h"
 #include "verify/fallback.h"
 
 using namespace rayproof;
@@ -218,7 +218,7 @@ void register_all() {
     add("triangle", in, "baldwin-weber", bw, [](const auto& c) { return int(is_hit(intersect_baldwin_weber(c.first, c.second).contact)); });
     add("triangle", in, "plucker", tri, [](const TriCase& c) { return int(is_hit(intersect_plucker(c.ray, c.tri).contact)); });
     add("triangle", in, "certified", tri, [](const TriCase& c) { return certified_tri(c, nullptr); });
-    // The typed library API (rayproof/certified.h: with barycentrics), the ground truth (rayproof/exact.h, CGAL)
+    // The typed library API (rayproof/certified/intersect.h: with barycentrics), the ground truth (rayproof/verify/exact.h, CGAL)
     // and the certified tier's exact fallback alone (verify/fallback.h, GMP): the cost of one fallback.
     add("triangle", in, "certified-api", tri, [](const TriCase& c) {
       return int(is_hit(certified::intersect(rc<double>(c.ray), tc<double>(c.tri)).contact));

@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "cli/registry.h"
+#include "registry/registry.h"
 #include "rayproof/certified_triangle.h"
 #include "scene/accel.h"
 #include "scene/kernels.h"
@@ -248,7 +248,7 @@ int main(int argc, char** argv) {
   }
   for (const char* mname : {"robust", "certified", "float"}) {
     if (!only_method.empty() && only_method != mname) continue;
-    const SceneMethod m = find_scene_method(mname, cli::all_methods());
+    const SceneMethod m = find_scene_method(mname, registry::all_methods());
     for (const char* set : {"primary", "random"}) {
       const auto& rays = std::string(set) == "primary" ? primary : random;
       for (const char* query : {"closest", "any"}) {

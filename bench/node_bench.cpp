@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "cli/registry.h"
+#include "registry/registry.h"
 #include "scene/accel.h"
 #include "scene/watertight.h"
 
@@ -95,7 +95,7 @@ int main(int argc, char** argv) {
               "comp/full [range]", "B/tri full", "B/tri comp");
   for (const char* mname : {"robust", "certified", "float"}) {
     if (!only_method.empty() && only_method != mname) continue;
-    const SceneMethod m = find_scene_method(mname, cli::all_methods());
+    const SceneMethod m = find_scene_method(mname, registry::all_methods());
     for (const char* set : {"primary", "random"}) {
       const auto& rays = std::string(set) == "primary" ? primary : random;
       // certified's exact stages are slow: a tenth of the rays.

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "cli/registry.h"
+#include "registry/registry.h"
 #include "rayproof/bvh_packet.h"
 #include "scene/accel.h"
 #include "scene/watertight.h"
@@ -49,7 +49,7 @@ int main(int argc, char** argv) {
     const std::string name = methods.substr(p, q - p);
     p = q + 1;
     if (name.empty()) continue;
-    const SceneMethod m = find_scene_method(name, cli::all_methods());
+    const SceneMethod m = find_scene_method(name, registry::all_methods());
     for (const bool closest : {true, false}) {
       std::vector<PrimHit> c1(rays.size()), c2(rays.size());
       std::vector<std::uint8_t> y1(rays.size()), y2(rays.size());

@@ -382,8 +382,8 @@ install(FILES ${PROJECT_BINARY_DIR}/rayproofConfig.cmake ${PROJECT_BINARY_DIR}/r
 
 include(${CMAKE_CURRENT_LIST_DIR}/InstallPkgConfig.cmake)
 
-if(TARGET rayproof)  # the tool: rayproof runs rayproof-scene beside it for the scene commands
-  install(TARGETS rayproof rayproof-scene RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT ${RAYPROOF_INSTALL_COMPONENT})
+if(TARGET rayproof)  # the tool
+  install(TARGETS rayproof RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT ${RAYPROOF_INSTALL_COMPONENT})
 endif()
 
 # For cmake/Package.cmake: the Debian packages the components need to be found and linked.

@@ -1,11 +1,11 @@
-// Casting rays on your own mesh arrays with rayproof::MeshCaster (include/rayproof/mesh_caster.h).
+// Casting rays on your own mesh arrays with rayproof::MeshCaster (include/rayproof/scene/mesh_caster.h).
 // Links rayproof::scene only; MeshCaster<rayproof::cast::Certified> also needs rayproof::scene_certified.
 #include <cstdint>
 #include <cstdio>
 #include <string>
 #include <vector>
 
-#include "rayproof/mesh_caster.h"
+#include "rayproof/scene/mesh_caster.h"
 
 int main() {
   // A unit square in the z = 0 plane: four float vertices, two triangles (your arrays, any stride).

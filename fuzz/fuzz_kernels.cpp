@@ -7,9 +7,9 @@
 #include <cstring>
 #include <cstdio>
 
-#include "cli/registry.h"
+#include "registry/registry.h"
 #include "io/case_file.h"
-#include "verify/exact.h"
+#include "verify/exact_method.h"
 #include "verify/fuzz_campaign.h"
 
 using namespace rayproof;
@@ -40,7 +40,7 @@ io::Case decode(const std::uint8_t* data, std::size_t size) {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const io::Case c = decode(data, size);
-  const auto& methods = cli::all_methods().all();
+  const auto& methods = registry::all_methods().all();
   for (const auto& m : methods) {
     if (!m.supports(c.kind)) continue;
     const io::CaseResult got = m.run(c);

@@ -11,7 +11,7 @@
 #include <limits>
 
 #include "cli/advise_text.h"
-#include "cli/registry.h"
+#include "registry/registry.h"
 #include "scene/advise.h"
 #include "scene/analysis.h"
 #include "tests/cli_support.h"
@@ -186,7 +186,7 @@ void expect_consistent(const scene::AdviseResult& r) {
 
 TEST(Advise, DefaultScene) {
   const Scene s = scene::default_scene();
-  const auto r = scene::advise(s, cli::all_methods(), small_options());
+  const auto r = scene::advise(s, registry::all_methods(), small_options());
   std::vector<std::string> names;
   for (const auto& set : r.sets) names.push_back(set.name);
   EXPECT_EQ(names, (std::vector<std::string>{"primary", "leak", "random", "shadow"}));
@@ -206,7 +206,7 @@ TEST(Advise, CgalBunny) {
   auto o = small_options();
   o.compare_kinds = false;
   o.methods = {"float", "robust", "certified"};
-  const auto r = scene::advise(s, cli::all_methods(), o);
+  const auto r = scene::advise(s, registry::all_methods(), o);
   EXPECT_EQ(r.analysis.closed_components, 1u);
   EXPECT_EQ(r.sets.size(), 3u);
   expect_consistent(r);
@@ -218,7 +218,7 @@ TEST(Advise, TriangleOnlyKindCost) {
   auto o = small_options();
   o.methods = {"float", "certified"};
   o.kind_cost_rays = 3000;
-  const auto r = scene::advise(scene_of(cube()), cli::all_methods(), o);
+  const auto r = scene::advise(scene_of(cube()), registry::all_methods(), o);
   ASSERT_EQ(r.kind_cost.size(), 3u);
   for (const auto& k : r.kind_cost) EXPECT_TRUE(k.triangles_only > 0 && k.with_sphere > 0) << k.method;
   EXPECT_EQ(r.random_rays_for_kind_cost, 3000u);
@@ -230,13 +230,13 @@ TEST(Advise, ExtremeMagnitudes) {
   // one at 1e-300 (below float: robust sees degenerate triangles, certified falls back to GMP).
   auto o = small_options();
   o.rays = 200, o.methods = {"robust", "certified"}, o.compare_kinds = false;
-  const auto big = scene::advise(scene_of(cube(1e300)), cli::all_methods(), o);
+  const auto big = scene::advise(scene_of(cube(1e300)), registry::all_methods(), o);
   ASSERT_EQ(big.sets.size(), 3u);
   EXPECT_EQ(big.sets[1].name, "leak");
   EXPECT_EQ(big.sets[1].invalid, 0u);
   EXPECT_EQ(big.sets[1].reference_hits, big.sets[1].rays);
   EXPECT_EQ(big.exact_checked, big.exact_agree);
-  const auto tiny = scene::advise(scene_of(cube(1e-300)), cli::all_methods(), o);
+  const auto tiny = scene::advise(scene_of(cube(1e-300)), registry::all_methods(), o);
   EXPECT_EQ(tiny.sets[1].reference_hits, tiny.sets[1].rays);
   EXPECT_EQ(tiny.paths.robust_degenerate, tiny.paths.robust_tests);
   EXPECT_GT(tiny.paths.certified_fallbacks[0], 0u);
@@ -249,10 +249,10 @@ TEST(Advise, ExtremeMagnitudes) {
 }
 
 TEST(Advise, EmptySceneAndUnknownMethod) {
-  EXPECT_THROW((void)scene::advise(Scene{}, cli::all_methods(), small_options()), scene::SceneError);
+  EXPECT_THROW((void)scene::advise(Scene{}, registry::all_methods(), small_options()), scene::SceneError);
   auto o = small_options();
   o.methods = {"no-such-method"};
-  EXPECT_THROW((void)scene::advise(scene_of(cube()), cli::all_methods(), o), scene::SceneError);
+  EXPECT_THROW((void)scene::advise(scene_of(cube()), registry::all_methods(), o), scene::SceneError);
 }
 
 /// A result built by hand: known tallies.

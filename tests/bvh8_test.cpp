@@ -11,7 +11,7 @@
 #include <filesystem>
 #include <random>
 
-#include "cli/registry.h"
+#include "registry/registry.h"
 #include "rayproof/bvh_build.h"
 #include "rayproof/bvh_traverse.h"
 #include "rayproof/bvh_wide.h"
@@ -240,7 +240,7 @@ TEST(BvhSimd, PathChoiceAndEnvironment) {
 namespace {
 using namespace rayproof::scene;
 
-SceneMethod method(const std::string& name) { return find_scene_method(name, cli::all_methods()); }
+SceneMethod method(const std::string& name) { return find_scene_method(name, registry::all_methods()); }
 
 /// closest, any and all for every ray (and a [tmin, tmax] range on a third of them) agree between
 /// the AVX2 eight-wide accel, the SSE four-wide one and, for conservative traversal, `flat` (one

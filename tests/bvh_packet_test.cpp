@@ -14,7 +14,7 @@
 #include <set>
 
 #include "bvh_support.h"
-#include "cli/registry.h"
+#include "registry/registry.h"
 #include "rayproof/bvh_build.h"
 #include "rayproof/bvh_packet.h"
 #include "scene/accel.h"
@@ -171,7 +171,7 @@ TEST(BvhPacket, TileOrderIsAPermutationInTiles) {
 
 // ---- Through scene::Accel: every compiled method ----
 
-SceneMethod method(const std::string& name) { return find_scene_method(name, cli::all_methods()); }
+SceneMethod method(const std::string& name) { return find_scene_method(name, registry::all_methods()); }
 
 /// Packets against single rays on the same accel, for every method of `names`: any hit equal;
 /// closest hit equal under conservative traversal, and under standard traversal equal or another

@@ -15,7 +15,7 @@
 #include <string>
 
 #include "bvh_support.h"
-#include "cli/registry.h"
+#include "registry/registry.h"
 #include "hostile_rays.h"
 #include "rayproof/bvh_build.h"
 #include "rayproof/bvh_wide.h"
@@ -354,7 +354,7 @@ TEST(BvhQuantized, EnvironmentChoice) {
 namespace {
 using namespace rayproof::scene;
 
-SceneMethod method(const std::string& name) { return find_scene_method(name, cli::all_methods()); }
+SceneMethod method(const std::string& name) { return find_scene_method(name, registry::all_methods()); }
 
 /// closest, any and all of every ray (a [tmin, tmax] range on a third) on `simd`'s path: the same
 /// with full and compressed nodes under conservative traversal (robust, certified: every box the

@@ -1,10 +1,10 @@
-/// rayproof/certified.h, the typed certified API: over the shared sample, certified::intersect has
+/// rayproof/certified/intersect.h, the typed certified API: over the shared sample, certified::intersect has
 /// exactly the expected class and t, t2 within one ulp of the expected (exact) values, and the
 /// header-only try_intersect is either undecided or the same answer; the fallback count is the
 /// number of undecided calls; on the generator's triangle families the barycentrics are within
 /// kBarycentricError of the exact ones (an oracle computed here with GMP rationals), with exact
 /// zeros and ones on edges and vertices.
-#include "rayproof/certified.h"
+#include "rayproof/certified/intersect.h"
 
 #include <gtest/gtest.h>
 
@@ -15,7 +15,7 @@
 
 #include "api_cases.h"
 #include "methods/method.h"
-#include "rayproof/exact.h"
+#include "rayproof/verify/exact.h"
 
 namespace rayproof {
 namespace {

@@ -1,6 +1,6 @@
 /// The certified method against the exact one: same class on every case, T and T2 within one
 /// double ulp, on data/sample.txt and on every generator family; plus worked examples per kind.
-#include "verify/certified.h"
+#include "verify/certified_method.h"
 
 #include <gtest/gtest.h>
 
@@ -18,7 +18,7 @@
 #include "rayproof/certified_stage.h"
 #include "rayproof/certified_triangle.h"
 #include "verify/differential.h"
-#include "verify/exact.h"
+#include "verify/exact_method.h"
 
 using namespace rayproof;
 

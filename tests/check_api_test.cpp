@@ -1,11 +1,11 @@
-// rayproof/check.h: a user's typed C++ kernel through the checker of `rayproof check`.
-#include "rayproof/check.h"
+// rayproof/verify/check.h: a user's typed C++ kernel through the checker of `rayproof check`.
+#include "rayproof/verify/check.h"
 
 #include <gtest/gtest.h>
 
 #include <stdexcept>
 
-#include "rayproof/certified.h"
+#include "rayproof/certified/intersect.h"
 #include "rayproof/sphere.h"
 #include "rayproof/triangle_moller_trumbore.h"
 

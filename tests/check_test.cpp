@@ -5,13 +5,13 @@
 
 #include <nlohmann/json.hpp>
 
-#include "cli/check_text.h"
+#include "verify/check_text.h"
 #include "cli/mesh_check_text.h"
-#include "cli/registry.h"
+#include "registry/registry.h"
 #include "cli_support.h"
 #include "report/report_text.h"
 #include "verify/check.h"
-#include "verify/exact.h"
+#include "verify/exact_method.h"
 #include "verify/mesh_check.h"
 #include "verify/mesh_fuzz.h"
 #include "verify/ulp_text.h"
@@ -24,7 +24,7 @@ using rayproof::testing::slurp;
 namespace {
 
 const Method& method(const std::string& name) {
-  const Method* m = cli::all_methods().find(name);
+  const Method* m = registry::all_methods().find(name);
   EXPECT_NE(m, nullptr) << name;
   return *m;
 }
@@ -157,7 +157,7 @@ TEST(CheckText, TErrorsAreWordedAsReportWordsThem) {
   a.stats.ulps.insert(a.stats.ulps.end(), {4527287023342080819ULL, 4527287023342080819ULL, 4527287023342080819ULL,
                                            verify::kNaNUlps});
   r.families = {a};
-  const std::string table = cli::check_table(r);
+  const std::string table = verify::check_table(r);
   EXPECT_NE(table.find(" 4.5e+18 (leading bits wrong) "), std::string::npos) << table;  // p99
   EXPECT_NE(table.find(" NaN t "), std::string::npos) << table;
   EXPECT_EQ(table.find("4527287023342080819"), std::string::npos) << table;
@@ -180,7 +180,7 @@ TEST(CheckText, TErrorsAreWordedAsReportWordsThem) {
   r.families[0].worst.push_back({"tri_generic", {}, false});
   r.families[0].worst[0].judged.verdict = verify::Verdict::agree;
   r.families[0].worst[0].judged.ulps = 4527287023342080819ULL;
-  const auto lines = cli::reproducer_lines(r);
+  const auto lines = verify::reproducer_lines(r);
   ASSERT_EQ(lines.size(), 1u);
   EXPECT_NE(lines[0].find("(4.5e+18 (leading bits wrong) ulps)"), std::string::npos) << lines[0];
 }
@@ -201,7 +201,7 @@ TEST(CheckText, SentencesStateTheTalliesBesideThem) {
   b.failures.push_back({"timed out after 5 s", {}});
   r.families = {a, b};
   r.promises = {{"watertight", false, 8}, {"max-ulps 2", false, 2}};
-  const auto s = cli::check_sentences(r);
+  const auto s = verify::check_sentences(r);
   ASSERT_EQ(s.size(), 6u);
   EXPECT_EQ(s[0], "10 of 300 cases (3.33%) have a class error: 1 false hit, 7 false misses, 2 wrong classes.");
   EXPECT_EQ(s[1], "2 of the 8 class-correct cases that carry a t (25%) are more than 2 ulps off (largest: 9).");
@@ -214,7 +214,7 @@ TEST(CheckText, SentencesStateTheTalliesBesideThem) {
   r.families[0].failures.clear();
   r.ulp_tolerance = 1;
   r.promises = {{"exact-class", true, 0}};
-  const auto k = cli::check_sentences(r);
+  const auto k = verify::check_sentences(r);
   ASSERT_EQ(k.size(), 4u);
   EXPECT_EQ(k[0], "No class error in 100 cases.");
   EXPECT_EQ(k[1], "Every t of the 3 class-correct cases that carry one is within 1 ulp of exact (largest: 1).");
@@ -308,7 +308,7 @@ TEST(CheckCli, BadOptionsGetClearErrors) {
 
 TEST(CheckMesh, RobustNeverLeaksAndNaiveFloatDoes) {
   verify::MeshCheckOptions opt;
-  opt.finder = scene::find_scene_method("certified", cli::all_methods());
+  opt.finder = scene::find_scene_method("certified", registry::all_methods());
   verify::MeshFuzzOptions g;
   g.seed = 11;
   std::uint64_t robust_leaks = 0, float_leaks = 0, rays = 0, without = 0;

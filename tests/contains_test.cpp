@@ -1,4 +1,4 @@
-// ClosedMesh (rayproof/contains.h): exact containment on shapes whose inside is known in closed
+// ClosedMesh (rayproof/scene/contains.h): exact containment on shapes whose inside is known in closed
 // form (cube, dented cube, octahedron), on the lattice points whose rays pass through their edges
 // and vertices, on their faces, edges and vertices and one ulp off them; open and misoriented meshes;
 // a self-intersecting mesh; segments; the BVH against a brute-force count along another axis.
@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "mesh/mesh.h"
-#include "rayproof/contains.h"
+#include "rayproof/scene/contains.h"
 #include "rayproof/orient.h"
 #include "scene/contains_exact.h"
 

@@ -15,7 +15,7 @@
 
 #include "api_cases.h"
 #include "io/case_file.h"
-#include "rayproof/exact.h"
+#include "rayproof/verify/exact.h"
 #include "verify/fallback.h"
 
 namespace rayproof {

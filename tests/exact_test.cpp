@@ -1,7 +1,7 @@
 /// The exact method against the shared expected files (bit for bit), hand-derived cases, and
 /// independent oracles for the rounding: IEEE hardware division and addition (correctly rounded,
 /// ties to even, subnormals included) and MPFR at 2000 bits for square roots.
-#include "verify/exact.h"
+#include "verify/exact_method.h"
 
 #include <gtest/gtest.h>
 #include <mpfr.h>

@@ -13,14 +13,14 @@
 #include <variant>
 #include <vector>
 
-#include "cli/registry.h"
+#include "registry/registry.h"
 #include "cli_support.h"
 #include "stats_support.h"
 #include "gen/families.h"
 #include "io/case_file.h"
 #include "methods/exec_kernel.h"
 #include "verify/differential.h"
-#include "verify/exact.h"
+#include "verify/exact_method.h"
 
 using namespace rayproof;
 using rayproof::testing::expect_same_tallies;
@@ -68,7 +68,7 @@ TEST(ExecKernel, BuiltInFloatThroughServeGivesTheInProcessTallies) {
     auto c = gen::generate(f, 24, 5, gen::Precision::float64);
     cases.insert(cases.end(), c.begin(), c.end());
   }
-  const Method* inproc = cli::all_methods().find("float");
+  const Method* inproc = registry::all_methods().find("float");
   ASSERT_NE(inproc, nullptr);
   const Method ext = make(std::string("f=") + RAYPROOF_BIN + " serve --method float");
   ASSERT_TRUE(ext.classify_batch);
@@ -245,7 +245,7 @@ TEST(ExecKernel, VerifyListsKernelFailuresWithTheirReproducer) {
   const auto served = rayproof::testing::run_rayproof("serve --method double", io::format_case(cases[0]) + "\nbogus\n");
   EXPECT_EQ(served.status, 0);
   EXPECT_EQ(served.out, "rayproof-kernel 1 double plane,sphere,ellipsoid,triangle,box,disk\n" +
-                            io::format_result(cli::all_methods().find("double")->run(cases[0])) + "\nerror - -\n");
+                            io::format_result(registry::all_methods().find("double")->run(cases[0])) + "\nerror - -\n");
 }
 
 TEST(ExecKernel, KernelThatReadsNothingDoesNotKillRayproofWithSigpipe) {

@@ -7,7 +7,7 @@
 #include <cmath>
 
 #include "cli_support.h"
-#include "verify/exact.h"
+#include "verify/exact_method.h"
 
 using namespace rayproof;
 

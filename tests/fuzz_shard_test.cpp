@@ -9,7 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/fuzz_summary.h"
-#include "cli/registry.h"
+#include "registry/registry.h"
 #include "cli_support.h"
 
 using namespace rayproof;
@@ -27,7 +27,7 @@ std::string table_of(const std::string& out) { return out.substr(0, out.find("\n
 
 TEST(FuzzShard, ShardsAreDisjointAndAddUpInTheEngine) {
   verify::FuzzOptions opt;
-  for (const char* m : {"float", "robust"}) opt.methods.push_back(cli::all_methods().find(m));
+  for (const char* m : {"float", "robust"}) opt.methods.push_back(registry::all_methods().find(m));
   for (const char* f : {"tri_edge", "plane_exact"}) opt.families.push_back(gen::find_family(f));
   opt.max_cases = 700;  // 6 rounds of 2 x 64 cases
   opt.seed = 12;

@@ -13,7 +13,7 @@
 #include "cli_support.h"
 #include "gen/families.h"
 #include "gen/rng.h"
-#include "verify/exact.h"
+#include "verify/exact_method.h"
 
 namespace {
 

@@ -1,8 +1,8 @@
-/// rayproof/gtest.h: EXPECT_RAY_HIT_MATCHES_EXACT passes on good kernels (the exact and certified
+/// rayproof/verify/gtest.h: EXPECT_RAY_HIT_MATCHES_EXACT passes on good kernels (the exact and certified
 /// APIs, a float kernel on an exactly representable case) and fails, non-fatally, on bad ones with
 /// a message that holds the reproducer case line (which reads back to the same inputs), the exact
 /// and kernel answers and the ulp distance.
-#include "rayproof/gtest.h"
+#include "rayproof/verify/gtest.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest-spi.h>
@@ -15,7 +15,7 @@
 #include <string>
 
 #include "io/case_file.h"
-#include "rayproof/certified.h"
+#include "rayproof/certified/intersect.h"
 #include "rayproof/sphere.h"
 #include "rayproof/triangle.h"
 

@@ -10,8 +10,8 @@
 #include <random>
 #include <set>
 
-#include "cli/registry.h"
-#include "rayproof/certified.h"
+#include "registry/registry.h"
+#include "rayproof/certified/intersect.h"
 #include "scene/accel.h"
 #include "scene/kernels.h"
 #include "scene/leaf_simd.h"
@@ -37,7 +37,7 @@ bool cpu_avx2() {
 
 bool same_bits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
 
-SceneMethod method(const std::string& name) { return find_scene_method(name, cli::all_methods()); }
+SceneMethod method(const std::string& name) { return find_scene_method(name, registry::all_methods()); }
 
 /// Rays and triangles that hit the kernels' special cases: integer grids (rays through edges and
 /// vertices exactly), degenerate, parallel and coplanar triangles, non-finite vertices, and huge,
@@ -112,7 +112,7 @@ TriGroup make_group(const Triangle<float>* t, int n) {
 TEST(LeafSimd, RobustLanesMatchTheScalarKernelBitForBit) {
   if (!cpu_avx2()) GTEST_SKIP() << "no AVX2 on this CPU";
   const Scene empty;
-  const Method* robust = cli::all_methods().find("robust");
+  const Method* robust = registry::all_methods().find("robust");
   ASSERT_NE(robust, nullptr);
   CompiledKernel<float, TriAlgo::robust> k{empty, nullptr, 0, robust};
   Family f(7);
@@ -191,7 +191,7 @@ Ray<double> grazing_ray(std::mt19937& rng, const Triangle<float>& t, double scal
 /// (which hand the undecided lane to the scalar front door) must both report it, in every lane.
 TEST(LeafSimd, RobustLeafKernelsKeepTheFarVertexContact) {
   const Scene empty;
-  const Method* robust = cli::all_methods().find("robust");
+  const Method* robust = registry::all_methods().find("robust");
   ASSERT_NE(robust, nullptr);
   CompiledKernel<float, TriAlgo::robust> k{empty, nullptr, 0, robust};
   const Ray<double> ray{{0.0059814453125, 0.5032958984375, 0.1939697265625},
@@ -219,7 +219,7 @@ TEST(LeafSimd, RobustFloatScreenDecidesOnlyTheScalarKernelsMisses) {
   // from 2^-60 to 2^60, where float and double disagree in sign (counted: the bound is what keeps
   // the screen away from those lanes).
   const Scene empty;
-  const Method* robust = cli::all_methods().find("robust");
+  const Method* robust = registry::all_methods().find("robust");
   ASSERT_NE(robust, nullptr);
   CompiledKernel<float, TriAlgo::robust> k{empty, nullptr, 0, robust};
   Family f(31);

@@ -1,4 +1,4 @@
-// rayproof::MeshCaster (include/rayproof/mesh_caster.h) on users' arrays: every vertex and index
+// rayproof::MeshCaster (include/rayproof/scene/mesh_caster.h) on users' arrays: every vertex and index
 // layout gives the hits of brute force over every triangle with the same kernel; robust and
 // certified do not leak on closed meshes; any, all and the batches agree with closest; bad input
 // throws MeshInputError.
@@ -11,9 +11,9 @@
 #include <type_traits>
 #include <vector>
 
-#include "rayproof/certified.h"
+#include "rayproof/certified/intersect.h"
 #include "rayproof/certified_triangle.h"
-#include "rayproof/mesh_caster.h"
+#include "rayproof/scene/mesh_caster.h"
 #include "rayproof/triangle_moller_trumbore.h"
 #include "rayproof/triangle_watertight.h"
 #include "scene/scene.h"

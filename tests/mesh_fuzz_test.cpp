@@ -6,7 +6,7 @@
 #include <cstdio>
 #include <map>
 
-#include "cli/registry.h"
+#include "registry/registry.h"
 #include "verify/mesh_fuzz.h"
 
 using namespace rayproof;
@@ -42,7 +42,7 @@ TEST(MeshFuzz, RandomMeshesAreClosedWithInteriorPoints) {
 TEST(MeshFuzz, RobustAndCertifiedNeverLeakAndCertifiedKeepsParity) {
   verify::MeshFuzzOptions opt;
   for (const char* name : {"float", "double", "watertight-float", "watertight", "robust", "certified"})
-    opt.methods.push_back(scene::find_scene_method(name, cli::all_methods()));
+    opt.methods.push_back(scene::find_scene_method(name, registry::all_methods()));
   opt.seed = 2024;
   opt.max_meshes = 60;
   opt.interior_points = 2;

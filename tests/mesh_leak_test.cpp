@@ -16,7 +16,7 @@
 
 #include "rayproof/triangle_moller_trumbore.h"
 #include "rayproof/triangle_watertight.h"
-#include "verify/certified.h"
+#include "verify/certified_method.h"
 
 using namespace rayproof;
 

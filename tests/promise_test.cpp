@@ -2,8 +2,8 @@
 #include <gtest/gtest.h>
 
 #include "cli_support.h"
-#include "verify/certified.h"
-#include "verify/exact.h"
+#include "verify/certified_method.h"
+#include "verify/exact_method.h"
 #include "verify/fuzz_campaign.h"
 
 using namespace rayproof;

@@ -7,7 +7,7 @@
 #include <functional>
 #include <numbers>
 
-#include "cli/registry.h"
+#include "registry/registry.h"
 #include "light/irradiance_mc.h"
 #include "tests/cli_support.h"
 #include "verify/radiometry.h"
@@ -186,7 +186,7 @@ TEST(IrradianceMc, EveryEstimatorConvergesToTheReference) {
   near.r = 2, near.h = 0.5, near.offset = 0.3, near.tilt = deg(20);
   std::vector<const Method*> methods;
   for (const char* name : {"certified", "double", "float", "robust"}) {
-    const Method* m = cli::all_methods().find(name);
+    const Method* m = registry::all_methods().find(name);
     ASSERT_NE(m, nullptr) << name;
     methods.push_back(m);
   }
@@ -211,8 +211,8 @@ TEST(IrradianceMc, EveryEstimatorConvergesToTheReference) {
 TEST(IrradianceMc, DeterministicBySeedAndPairedOnTheSameRays) {
   light::DiskLightSetup s;
   s.r = 0.5, s.h = 1, s.offset = 0.7;
-  const Method* dbl = cli::all_methods().find("double");
-  const Method* cert = cli::all_methods().find("certified");
+  const Method* dbl = registry::all_methods().find("double");
+  const Method* cert = registry::all_methods().find("certified");
   const std::vector<const Method*> two{cert, dbl};
   for (light::Estimator est : light::kAllEstimators) {
     const auto a = light::estimate_irradiance(s, est, two, 5000, 9);
@@ -233,7 +233,7 @@ TEST(IrradianceMc, FloatKernelsFarFromTheOriginLoseRimHitsMeasurably) {
   // standard error for `float`; `robust` (FMA disk, the same float inputs) stays within it here.
   light::DiskLightSetup s;
   s.r = 0.01, s.h = 100, s.offset = 3, s.at = {1000, -700, 300};
-  const std::vector<const Method*> ms{cli::all_methods().find("certified"), cli::all_methods().find("float")};
+  const std::vector<const Method*> ms{registry::all_methods().find("certified"), registry::all_methods().find("float")};
   const auto run = light::estimate_irradiance(s, light::Estimator::solid_angle, ms, 100000, 1);
   const auto& f = run.per_method[1];
   EXPECT_GT(f.disagreements, 0u);
@@ -242,7 +242,7 @@ TEST(IrradianceMc, FloatKernelsFarFromTheOriginLoseRimHitsMeasurably) {
 
 TEST(IrradianceMc, BadInputIsRejected) {
   light::DiskLightSetup s;
-  const std::vector<const Method*> ms{cli::all_methods().find("double")};
+  const std::vector<const Method*> ms{registry::all_methods().find("double")};
   s.r = -1;
   EXPECT_NE(light::check_setup(s), "");
   EXPECT_THROW((void)light::estimate_irradiance(s, light::Estimator::cosine, ms, 10, 1), std::invalid_argument);

@@ -1,12 +1,12 @@
 // rayproof render --light (issue 13 part 4): direct lighting with shadow rays; the error-bounded and
 // certified spawn strategies leave no acne (no shadow ray meets the primitive it leaves) and agree
-// with exact visibility, while no offset leaves acne (cli/render_light.h).
+// with exact visibility, while no offset leaves acne (light/render_light.h).
 #include <gtest/gtest.h>
 
 #include <string>
 
-#include "cli/registry.h"
-#include "cli/render_light.h"
+#include "registry/registry.h"
+#include "light/render_light.h"
 #include "tests/cli_support.h"
 
 namespace rayproof {
@@ -15,11 +15,11 @@ namespace {
 struct Frame {
   scene::Scene s;
   std::vector<Ray<double>> rays;
-  std::vector<cli::CastHit> hits;
+  std::vector<scene::CastHit> hits;
   int w, h;
 };
 
-Frame primary(int w, int h, const cli::SceneCaster& caster, const scene::Scene& s) {
+Frame primary(int w, int h, const scene::SceneCaster& caster, const scene::Scene& s) {
   Frame f{s, {}, {}, w, h};
   for (int j = 0; j < h; ++j)
     for (int i = 0; i < w; ++i) f.rays.push_back(s.camera->generate(i, j));
@@ -28,22 +28,22 @@ Frame primary(int w, int h, const cli::SceneCaster& caster, const scene::Scene& 
   return f;
 }
 
-cli::LightResult lit(const scene::Scene& s, const cli::SceneCaster& c, const Frame& f, SpawnStrategy sp, bool solid_angle,
-                     const cli::SceneCaster* exact = nullptr, bool float_inputs = false) {
-  cli::LightOptions o;
+light::LightResult lit(const scene::Scene& s, const scene::SceneCaster& c, const Frame& f, SpawnStrategy sp, bool solid_angle,
+                     const scene::SceneCaster* exact = nullptr, bool float_inputs = false) {
+  light::LightOptions o;
   o.shadow_rays = 2;
   o.spawn = sp;
   o.solid_angle = solid_angle;
   o.threads = 1;
   o.exact = exact;
   o.float_inputs = float_inputs;
-  return cli::render_lit(s, c, f.w, f.h, f.rays, f.hits, o);
+  return light::render_lit(s, c, f.w, f.h, f.rays, f.hits, o);
 }
 
 TEST(RenderLight, ErrorBoundedAndCertifiedHaveNoAcneNoneHas) {
   const scene::Scene s = scene::default_scene(2, 96, 72);
   for (const char* method : {"double", "float", "robust"}) {
-    const cli::SceneCaster c(s, scene::find_scene_method(method, cli::all_methods()));
+    const scene::SceneCaster c(s, scene::find_scene_method(method, registry::all_methods()));
     const Frame f = primary(96, 72, c, s);
     for (bool sa : {false, true}) {
       const std::string what = std::string(method) + (sa ? " solid-angle" : " area");
@@ -69,8 +69,8 @@ TEST(RenderLight, ErrorBoundedAndCertifiedHaveNoAcneNoneHas) {
 
 TEST(RenderLight, VisibilityAgreesWithExactForErrorBounded) {
   const scene::Scene s = scene::default_scene(2, 40, 30);
-  const cli::SceneCaster c(s, scene::find_scene_method("double", cli::all_methods()));
-  const cli::SceneCaster exact(s, scene::find_scene_method("exact", cli::all_methods()));
+  const scene::SceneCaster c(s, scene::find_scene_method("double", registry::all_methods()));
+  const scene::SceneCaster exact(s, scene::find_scene_method("exact", registry::all_methods()));
   const Frame f = primary(40, 30, c, s);
   const auto eb = lit(s, c, f, SpawnStrategy::error_bounded, false, &exact);
   EXPECT_EQ(eb.false_occlusions, 0u);

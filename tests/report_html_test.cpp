@@ -8,7 +8,7 @@
 #include <regex>
 #include <set>
 
-#include "cli/registry.h"
+#include "registry/registry.h"
 #include "cli_support.h"
 #include "report/html.h"
 #include "report/method_style.h"
@@ -51,7 +51,7 @@ double rgb_distance(const char* a, const char* b) {
 }  // namespace
 
 TEST(MethodStyle, NoTwoMethodsOfTheDefaultReportShareColourAndMarker) {
-  const auto methods = rayproof::cli::select_methods("report", {}, true);
+  const auto methods = rayproof::registry::select_methods("report", {}, true);
   ASSERT_TRUE(methods);
   ASSERT_GE(methods->size(), 10u);
   std::set<std::pair<std::string, int>> seen;

@@ -6,7 +6,7 @@
 #include <fstream>
 #include <random>
 
-#include "cli/registry.h"
+#include "registry/registry.h"
 #include "scene/accel.h"
 #include "scene/watertight.h"
 
@@ -22,7 +22,7 @@ std::string error_of(const std::string& json) {
   }
   return "(no error)";
 }
-SceneMethod method(const std::string& name) { return find_scene_method(name, cli::all_methods()); }
+SceneMethod method(const std::string& name) { return find_scene_method(name, registry::all_methods()); }
 }  // namespace
 
 TEST(SceneJson, EveryKindAndTheCamera) {
@@ -75,7 +75,7 @@ TEST(Accel, QueriesMatchBruteForceOnEveryKind) {
   const Scene s = default_scene(2);
   const Accel accel(s);
   const SceneMethod m = method("double");
-  const auto& reg = cli::all_methods();
+  const auto& reg = registry::all_methods();
   const Method& dbl = *reg.find("double");
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> u(-1, 1);
@@ -174,7 +174,7 @@ TEST(Accel, CompiledKernelsThroughLeafRecordsMatchTheRegistryMethods) {
   Scene s = default_scene(2);
   add_mesh(s, bumpy_sphere(3000));
   const Accel accel(s);
-  const auto& reg = cli::all_methods();
+  const auto& reg = registry::all_methods();
   std::mt19937 rng(17);
   std::uniform_real_distribution<double> u(-2, 2);
   std::vector<Ray<double>> rays = leak_rays(Vec3<double>{0.01, 0.02, -0.01}, leak_targets(s.mesh, 1500));

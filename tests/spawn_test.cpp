@@ -5,7 +5,7 @@
 
 #include <cmath>
 
-#include "cli/registry.h"
+#include "registry/registry.h"
 #include "light/spawn_count.h"
 #include "tests/cli_support.h"
 
@@ -14,12 +14,12 @@ namespace {
 
 std::vector<const Method*> methods(std::initializer_list<const char*> names) {
   std::vector<const Method*> out;
-  for (const char* n : names) out.push_back(cli::all_methods().find(n));
+  for (const char* n : names) out.push_back(registry::all_methods().find(n));
   return out;
 }
 
 TEST(Spawn, ErrorBoundedOriginsNeverSelfIntersect) {
-  const Method& exact = *cli::all_methods().find("certified");
+  const Method& exact = *registry::all_methods().find("certified");
   const auto ms = methods({"float", "double", "robust", "certified"});
   for (io::Kind kind : {io::Kind::plane, io::Kind::sphere, io::Kind::disk}) {
     for (int mag : {0, 20, 40}) {
@@ -54,7 +54,7 @@ TEST(Spawn, ErrorBoundedOriginsNeverSelfIntersect) {
 }
 
 TEST(Spawn, FixedEpsilonFailsWhereItIsBelowTheUlp) {
-  const Method& exact = *cli::all_methods().find("certified");
+  const Method& exact = *registry::all_methods().find("certified");
   const auto ms = methods({"float"});
   const auto rows = light::count_self_intersections(io::Kind::sphere, ms, exact, 1000, 3, 20, 1e-4);
   for (const auto& r : rows)
@@ -64,7 +64,7 @@ TEST(Spawn, FixedEpsilonFailsWhereItIsBelowTheUlp) {
 }
 
 TEST(Spawn, NoLeaksThroughThinSlabsForErrorBoundedAndCertifiedOrigins) {
-  const Method& exact = *cli::all_methods().find("certified");
+  const Method& exact = *registry::all_methods().find("certified");
   const auto ms = methods({"float", "double", "robust", "certified"});
   for (int mag : {0, 10, 20}) {
     // A slab 1e-6 of the magnitude thick: about 16 float ulps, thinner than the fixed epsilon at 2^0.

@@ -11,7 +11,7 @@
 #include "gen/knobs.h"
 #include "report/stability_report.h"
 #include "report/stability_text.h"
-#include "verify/exact.h"
+#include "verify/exact_method.h"
 #include "verify/stability.h"
 
 using namespace rayproof;

@@ -1,6 +1,6 @@
-/// rayproof::certified::intersect (rayproof/certified.h): the header-only filters, then the
+/// rayproof::certified::intersect (rayproof/certified/intersect.h): the header-only filters, then the
 /// certified fallback (verify/fallback.h: exact, GMP, no CGAL) for what they leave undecided.
-#include "rayproof/certified.h"
+#include "rayproof/certified/intersect.h"
 
 #include "verify/fallback.h"
 

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <tuple>
 
-#include "verify/exact.h"
+#include "verify/exact_method.h"
 #include "verify/fuzz_campaign.h"
 
 namespace rayproof::verify {

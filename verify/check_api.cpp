@@ -1,6 +1,6 @@
-/// rayproof/check.h: a user's typed C++ kernel wrapped as a Method and run through verify::check,
+/// rayproof/verify/check.h: a user's typed C++ kernel wrapped as a Method and run through verify::check,
 /// the engine of `rayproof check` (one judgement for the tool and the library).
-#include "rayproof/check.h"
+#include "rayproof/verify/check.h"
 
 #include <exception>
 #include <memory>

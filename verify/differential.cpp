@@ -7,7 +7,7 @@
 #include <span>
 
 #include "rayproof/float_util.h"
-#include "verify/exact.h"
+#include "verify/exact_method.h"
 
 namespace rayproof::verify {
 

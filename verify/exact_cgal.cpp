@@ -1,11 +1,11 @@
-/// rayproof::exact::intersect (rayproof/exact.h), the ground truth: the exact algorithm
+/// rayproof::exact::intersect (rayproof/verify/exact.h), the ground truth: the exact algorithm
 /// (exact_algorithms.h) instantiated on CGAL's exact kernel, Simple_cartesian<Gmpq> (GMP rationals;
 /// CGAL's Point_3, Vector_3, determinant and cross_product), with the shared MPFR rounding
 /// (exact_rounding.h). The certified tier's fallback (fallback.cpp) is the same algorithm on gmpxx.
 #include <CGAL/Gmpq.h>
 #include <CGAL/Simple_cartesian.h>
 
-#include "rayproof/exact.h"
+#include "rayproof/verify/exact.h"
 #include "verify/exact_algorithms.h"
 
 namespace rayproof::exact {

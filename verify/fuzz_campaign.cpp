@@ -11,7 +11,7 @@
 #include <span>
 #include <thread>
 
-#include "verify/exact.h"
+#include "verify/exact_method.h"
 
 namespace rayproof::verify {
 

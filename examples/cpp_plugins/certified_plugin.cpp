@@ -3,7 +3,7 @@
 /// build/plugins/plugin_certified.so.
 ///     rayproof verify --methods certified --plugin build/plugins/plugin_certified.so cases.txt
 #include "method_plugin.h"
-#include "verify/certified.h"
+#include "verify/certified_method.h"
 
 namespace {
 const rayproof::Method& certified_method() {

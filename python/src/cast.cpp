@@ -1,5 +1,5 @@
 /// rayproof.Mesh: ray casting (closest, any, all) on a triangle mesh given as numpy arrays, through
-/// the public API rayproof::MeshCaster (include/rayproof/mesh_caster.h) with the float, robust or
+/// the public API rayproof::MeshCaster (include/rayproof/scene/mesh_caster.h) with the float, robust or
 /// certified method.
 #include <fmt/core.h>
 
@@ -11,8 +11,8 @@
 #include <variant>
 
 #include "bindings.h"
-#include "rayproof/contains.h"
-#include "rayproof/mesh_caster.h"
+#include "rayproof/scene/contains.h"
+#include "rayproof/scene/mesh_caster.h"
 
 namespace rayproof::python {
 

@@ -3,12 +3,12 @@
 #include <fmt/core.h>
 
 #include "bindings.h"
-#include "cli/registry.h"
+#include "registry/registry.h"
 
 namespace rayproof::python {
 
 // The tool's registry: the module answers with exactly the methods `rayproof methods` lists.
-const MethodRegistry& registry() { return cli::all_methods(); }
+const MethodRegistry& registry() { return registry::all_methods(); }
 
 const Method& method_named(const std::string& name) {
   if (const Method* m = registry().find(name)) return *m;

@@ -86,7 +86,7 @@ def test_empty_mesh_and_unused_non_finite_vertices():
     assert empty.num_triangles == 0
     r = empty.closest([0, 0, 1], [0, 0, -1])
     assert not r["hit"][0] and r["prim"][0] == -1 and r["classes"][0] == "miss"
-    # A vertex no triangle uses is not checked (include/rayproof/mesh_caster.h).
+    # A vertex no triangle uses is not checked (include/rayproof/scene/mesh_caster.h).
     m = rayproof.Mesh(np.vstack([V, [[np.nan, 0, 0]]]), I)
     assert m.closest([0.25, 0.25, 1], [0, 0, -1], method="certified")["classes"][0] == "interior"
 

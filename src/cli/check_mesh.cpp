@@ -1,11 +1,11 @@
-// check --mesh (rayproof-scene): leak rays on closed meshes through the kernel under test.
+// check --mesh: leak rays on closed meshes through the kernel under test.
 #include <fmt/core.h>
 
 #include <nlohmann/json.hpp>
 
 #include "cli/mesh_check_text.h"
 #include "cli/mesh_modes.h"
-#include "cli/registry.h"
+#include "registry/registry.h"
 #include "cli/scene_input.h"
 #include "cli/user_kernels.h"
 #include "scene/accel.h"
@@ -31,7 +31,7 @@ int run_mesh_check(const CheckCliOptions& o, const Method& kernel) {
     return 2;
   }
   verify::MeshCheckOptions opt;
-  opt.finder = scene::find_scene_method("certified", all_methods());
+  opt.finder = scene::find_scene_method("certified", registry::all_methods());
   opt.max_targets = o.mesh_targets;
   opt.keep = o.reproducers;
   std::vector<verify::MeshCheck> results;
@@ -108,6 +108,5 @@ int run_mesh_check(const CheckCliOptions& o, const Method& kernel) {
   return leaked ? 1 : 0;
 }
 
-MeshModes scene_mesh_modes() { return {run_mesh_check, run_mesh_fuzz_cli, run_spawn_mesh}; }
 
 }  // namespace rayproof::cli

@@ -11,8 +11,7 @@
 
 #include "cli/advise_text.h"
 #include "cli/commands.h"
-#include "cli/scene_commands.h"
-#include "cli/registry.h"
+#include "registry/registry.h"
 #include "cli/scene_input.h"
 #include "scene/advise.h"
 
@@ -48,7 +47,7 @@ int run_advise(AdviseCliOptions& o) {
   try {
     if (!o.quiet) fmt::print(stderr, "advise: loading {}{}\n", o.scene, reader_note(o.scene));
     const auto s = std::make_unique<scene::Scene>(o.scene == "default" ? scene::default_scene() : scene::load_scene(o.scene));
-    const scene::AdviseResult r = scene::advise(*s, all_methods(), o.opt);
+    const scene::AdviseResult r = scene::advise(*s, registry::all_methods(), o.opt);
     if (o.json) {
       fmt::print("{}\n", advise_json(r, o.scene));
       return 0;
@@ -70,7 +69,7 @@ int run_advise(AdviseCliOptions& o) {
 
 Run add_advise(CLI::App& app) {
   auto o = std::make_shared<AdviseCliOptions>();
-  auto* sub = app.add_subcommand("advise", scene_command_summary("advise"));
+  auto* sub = app.add_subcommand("advise", "What a scene needs: its geometry, its rays with every method, the cheapest error-free method");
   sub->add_option("scene", o->scene, "Mesh file (.off .obj .ply .stl .gltf .glb), scene JSON, or 'default'")->required();
   sub->add_option("--rays", o->opt.rays, "Rays per set (primary, leak, random, shadow)")->capture_default_str();
   sub->add_option("--seed", o->opt.seed, "Seed of the random and shadow rays")->capture_default_str();

@@ -24,8 +24,8 @@
 #include "cli/commands.h"
 #include "mesh/mesh.h"
 #include "rayproof/certified_expansion.h"
-#include "rayproof/contains.h"
-#include "rayproof/mesh_caster.h"
+#include "rayproof/scene/contains.h"
+#include "rayproof/scene/mesh_caster.h"
 #include "scene/compare/contains_compare.h"
 
 namespace rayproof::cli {

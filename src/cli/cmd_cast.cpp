@@ -11,9 +11,8 @@
 #include <string>
 
 #include "cli/commands.h"
-#include "cli/scene_commands.h"
 #include "cli/input.h"
-#include "cli/registry.h"
+#include "registry/registry.h"
 #include "cli/scene_input.h"
 #include "scene/ray_file.h"
 
@@ -89,7 +88,7 @@ int run_cast(const CastOptions& opt) {
 
 Run add_cast(CLI::App& app) {
   auto opt = std::make_shared<CastOptions>();
-  auto* sub = app.add_subcommand("cast", scene_command_summary("cast"));
+  auto* sub = app.add_subcommand("cast", "Cast rays into a scene or mesh: one result line per ray");
   sub->add_option("scene", opt->scene, "Mesh file (.off .obj .ply .stl .gltf .glb), scene JSON, or 'default'")->required();
   sub->add_option("rays", opt->rays, "Ray file (ox oy oz dx dy dz per line), or - for standard input")->required();
   sub->add_option("--method,-m", opt->method, "Method (compiled: float, double, cramer-*, watertight*; or any registry method)")

@@ -11,12 +11,12 @@
 #include <nlohmann/json.hpp>
 
 #include "cli/build_compare.h"
-#include "cli/check_text.h"
+#include "verify/check_text.h"
 #include "cli/device_compare.h"
 #include "cli/commands.h"
 #include "cli/mesh_modes.h"
 #include "cli/tool.h"
-#include "cli/registry.h"
+#include "registry/registry.h"
 #include "cli/user_kernels.h"
 #include "methods/plugin_kernel.h"
 #include "report/report.h"
@@ -115,8 +115,7 @@ nlohmann::json result_json(const verify::CheckResult& r) {
 }
 
 
-int run_check(const CheckCliOptions& o, const MeshModes& modes) {
-  if (!o.mesh.empty() && !modes.check) return forward_to_scene("check --mesh");
+int run_check(const CheckCliOptions& o) {
   // The kernel under test: exactly one of --exec, --plugin, --method.
   const std::size_t named =
       o.user.exec.size() + o.user.plugin.size() + o.user.opencl.size() + o.user.glsl.size() + (o.method.empty() ? 0 : 1);
@@ -133,9 +132,9 @@ int run_check(const CheckCliOptions& o, const MeshModes& modes) {
   std::vector<std::unique_ptr<Method>> owned;
   const Method* kernel = nullptr;
   if (!o.method.empty()) {
-    kernel = all_methods().find(o.method);
+    kernel = registry::all_methods().find(o.method);
     if (!kernel) {
-      fmt::print(stderr, "rayproof check: unknown method '{}' (known: {})\n", o.method, all_methods().names());
+      fmt::print(stderr, "rayproof check: unknown method '{}' (known: {})\n", o.method, registry::all_methods().names());
       return 2;
     }
   } else {
@@ -154,7 +153,7 @@ int run_check(const CheckCliOptions& o, const MeshModes& modes) {
     fmt::print(stderr, "rayproof check: kernel '{}' answers no kind of case\n", kernel->name);
     return 2;
   }
-  if (!o.mesh.empty()) return modes.check(o, *kernel);
+  if (!o.mesh.empty()) return run_mesh_check(o, *kernel);
 
   verify::CheckOptions opt;
   opt.count = o.count;
@@ -251,7 +250,7 @@ int run_check(const CheckCliOptions& o, const MeshModes& modes) {
 
   if (!o.out.empty()) {
     std::vector<const Method*> methods{kernel};
-    auto compare = select_methods("check", o.compare, true);
+    auto compare = registry::select_methods("check", o.compare, true);
     if (!compare) return 2;
     for (const Method* m : *compare)
       if (m->name != kernel->name) methods.push_back(m);
@@ -263,12 +262,12 @@ int run_check(const CheckCliOptions& o, const MeshModes& modes) {
                                     kernel->precision == Precision::float32 ? "float" : "double", kernel->summary));
     rep.notes.push_back(fmt::format("cases: {} families x {} (half built in float precision, half in double), seed {}",
                                     res.families.size(), o.count, o.seed));
-    for (const auto& line : check_sentences(res)) rep.notes.push_back(line);
+    for (const auto& line : verify::check_sentences(res)) rep.notes.push_back(line);
     if (builds)
       for (const auto& line : comparison_lines(*builds, device_note))
         if (line.rfind("# the first", 0) != 0 && line.find("  # ") == std::string::npos) rep.notes.push_back(line);
     // The reproducers are the check's own (its worst cases, minimized), not the comparison's first ones.
-    rep.reproducers = reproducer_lines(res);
+    rep.reproducers = verify::reproducer_lines(res);
     rep.reproducers_intro = fmt::format("The worst cases of {} per family, minimized where marked, and its failures: "
                                         "one case-file line each, the input as the kernel saw it.",
                                         kernel->name);
@@ -312,15 +311,15 @@ int run_check(const CheckCliOptions& o, const MeshModes& modes) {
                "precision, half in double), seed {}; the table counts those of the kinds the kernel answers\n\n",
                res.method, res.precision == Precision::float32 ? "float" : "double", o.count, o.seed);
     fmt::print("kernel '{}': {}\n\n", kernel->name, kernel->summary);
-    fmt::print("{}", check_table(res));
-    const auto lines = reproducer_lines(res);
+    fmt::print("{}", verify::check_table(res));
+    const auto lines = verify::reproducer_lines(res);
     if (!lines.empty()) {
       fmt::print("\n# worst reproducers (up to {} per family): case-file lines, the input as the kernel saw it\n",
                  o.reproducers);
       for (const auto& l : lines) fmt::print("{}\n", l);
     }
     fmt::print("\n");
-    for (const auto& s : check_sentences(res)) fmt::print("{}\n", s);
+    for (const auto& s : verify::check_sentences(res)) fmt::print("{}\n", s);
     if (cmp) {
       fmt::print("\n# the device build against the C build {} ({}): up to 3 cases where they differ\n",
                  cmp->c_name, o.compare_plugin);
@@ -336,7 +335,7 @@ int run_check(const CheckCliOptions& o, const MeshModes& modes) {
 }
 }  // namespace
 
-Run add_check(CLI::App& app, const MeshModes& modes) {
+Run add_check(CLI::App& app) {
   auto o = std::make_shared<CheckCliOptions>();
   auto* sub = app.add_subcommand("check", "Check one kernel (yours, or a built-in one) against exact on every family");
   add_user_kernel_options(*sub, o->user);
@@ -375,7 +374,7 @@ Run add_check(CLI::App& app, const MeshModes& modes) {
   sub->add_option("--interior", o->interior, "Interior points per mesh (rays start there)")
       ->check(CLI::Range(1, 64))
       ->capture_default_str();
-  return [o, modes] { return run_check(*o, modes); };
+  return [o] { return run_check(*o); };
 }
 
 }  // namespace rayproof::cli

@@ -7,7 +7,7 @@
 
 #include "cli/commands.h"
 #include "cli/input.h"
-#include "cli/registry.h"
+#include "registry/registry.h"
 
 namespace rayproof::cli {
 
@@ -18,7 +18,7 @@ struct ClassifyOptions {
 };
 
 int run_classify(const ClassifyOptions& opt) {
-  const MethodRegistry& reg = all_methods();
+  const MethodRegistry& reg = registry::all_methods();
   const Method* m = reg.find(opt.method);
   if (!m) {
     fmt::print(stderr, "rayproof classify: unknown method '{}' (known: {})\n", opt.method, reg.names());

@@ -1,5 +1,5 @@
 /// rayproof contains MESH POINTS [--json] [--rule R] [--winding] [--segments]: exact inside /
-/// outside / surface of each point against a closed mesh (rayproof/contains.h, docs/contains.md).
+/// outside / surface of each point against a closed mesh (rayproof/scene/contains.h, docs/contains.md).
 /// A point line is `x y z` (# comments and blank lines skipped); with --segments a line is
 /// `px py pz qx qy qz` and the answer is whether the segment meets the surface and where first.
 /// Errors (exit 2, one message naming the file and line): a missing or unreadable file, a mesh
@@ -15,11 +15,10 @@
 #include <vector>
 
 #include "cli/commands.h"
-#include "cli/scene_commands.h"
 #include "cli/input.h"
 #include "io/case_file.h"
 #include "mesh/mesh.h"
-#include "rayproof/contains.h"
+#include "rayproof/scene/contains.h"
 
 namespace rayproof::cli {
 
@@ -172,7 +171,7 @@ int run_contains(const ContainsOptions& opt) {
 
 Run add_contains(CLI::App& app) {
   auto opt = std::make_shared<ContainsOptions>();
-  auto* sub = app.add_subcommand("contains", scene_command_summary("contains"));
+  auto* sub = app.add_subcommand("contains", "Exact inside / outside / surface of points (or segments) against a closed mesh");
   sub->add_option("mesh", opt->mesh, "Closed mesh file (.off .obj .ply .stl)")->required();
   sub->add_option("points", opt->points, "Point file (x y z per line), or - for standard input")->required();
   sub->add_flag("--json", opt->json, "Print one JSON object (the sides and their tallies)");

@@ -15,12 +15,12 @@
 
 #include <unistd.h>
 
-#include "cli/check_text.h"
+#include "verify/check_text.h"
 #include "cli/commands.h"
 #include "cli/mesh_modes.h"
 #include "cli/tool.h"
 #include "cli/fuzz_summary.h"
-#include "cli/registry.h"
+#include "registry/registry.h"
 #include "cli/user_kernels.h"
 #include "verify/fuzz_campaign.h"
 
@@ -75,8 +75,8 @@ int run_fuzz_merge(const FuzzCliOptions& o) {
 }
 
 
-int run_fuzz_cli(const FuzzCliOptions& o, const MeshModes& modes) {
-  if (o.mesh) return modes.fuzz ? modes.fuzz(o) : forward_to_scene("fuzz --mesh");
+int run_fuzz_cli(const FuzzCliOptions& o) {
+  if (o.mesh) return run_mesh_fuzz_cli(o);
   verify::FuzzOptions opt;
   if (!o.shard.empty()) {
     const auto k = parse_shard(o.shard);
@@ -89,7 +89,7 @@ int run_fuzz_cli(const FuzzCliOptions& o, const MeshModes& modes) {
   auto user = make_user_kernels("fuzz", o.user);
   if (!user) return 2;
   for (const auto& k : *user) fmt::print("# {}: {}\n", k->name, k->summary);  // GPU kernels: the device and driver
-  auto selected = select_methods("fuzz", o.methods, false, *user);
+  auto selected = registry::select_methods("fuzz", o.methods, false, *user);
   if (!selected) return 2;
   opt.methods = std::move(*selected);
   if (o.families.empty()) {
@@ -178,7 +178,7 @@ int run_fuzz_cli(const FuzzCliOptions& o, const MeshModes& modes) {
 }
 }  // namespace
 
-Run add_fuzz(CLI::App& app, const MeshModes& modes) {
+Run add_fuzz(CLI::App& app) {
   auto o = std::make_shared<FuzzCliOptions>();
   auto* sub = app.add_subcommand("fuzz", "Differential fuzz campaign of methods against exact over the case families");
   sub->add_option("--methods", o->methods, "Methods, registered or your --exec/--plugin kernels (default: all but exact; your kernels run "
@@ -207,7 +207,7 @@ Run add_fuzz(CLI::App& app, const MeshModes& modes) {
   sub->add_flag("--mesh", o->mesh,
                 "Mesh mode: random closed meshes; leak rays at every vertex and edge midpoint and the parity of "
                 "random rays' crossings (--cases counts meshes, --jobs threads per query batch)");
-  return [o, merge, modes] { return merge->parsed() ? run_fuzz_merge(*o) : run_fuzz_cli(*o, modes); };
+  return [o, merge] { return merge->parsed() ? run_fuzz_merge(*o) : run_fuzz_cli(*o); };
 }
 
 }  // namespace rayproof::cli

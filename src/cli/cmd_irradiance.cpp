@@ -10,7 +10,7 @@
 #include <numbers>
 
 #include "cli/commands.h"
-#include "cli/registry.h"
+#include "registry/registry.h"
 #include "cli/user_kernels.h"
 #include "light/irradiance_mc.h"
 #include "report/irradiance_sweep.h"
@@ -51,9 +51,9 @@ std::optional<std::vector<const Method*>> resolve(const std::vector<std::string>
     const Method* m = nullptr;
     for (const auto& u : user)
       if (u->name == name) m = u.get();
-    if (!m) m = all_methods().find(name);
+    if (!m) m = registry::all_methods().find(name);
     if (!m) {
-      fmt::print(stderr, "{}: unknown method '{}' (known: {})\n", kCmd, name, all_methods().names());
+      fmt::print(stderr, "{}: unknown method '{}' (known: {})\n", kCmd, name, registry::all_methods().names());
       return std::nullopt;
     }
     if (!m->supports(io::Kind::disk)) {
@@ -193,7 +193,7 @@ int run_irradiance(const IrradianceOptions& opt) {
   std::vector<std::string> names = opt.methods;
   if (names.empty()) {
     if (opt.sweep) {
-      for (const auto& m : all_methods().all())
+      for (const auto& m : registry::all_methods().all())
         if (m.name != "exact" && m.supports(io::Kind::disk)) names.push_back(m.name);
     } else {
       names.push_back("double");

@@ -3,7 +3,7 @@
 /// pixel's first hit is compared with the exact method's (conservative traversal, exact kernels);
 /// a second image marks false misses (red), false hits (blue) and wrong primitive or class
 /// (yellow), and the counts are printed.
-/// With --light (issue 13 part 4): direct lighting from the scene's disk lights (cli/render_light.h),
+/// With --light (issue 13 part 4): direct lighting from the scene's disk lights (light/render_light.h),
 /// --shadow-rays N per pixel, --estimator area|solid-angle, --spawn none|epsilon|error-bounded|
 /// certified; the acne (shadow rays meeting the primitive they leave) is counted. --verify then
 /// compares every shadow ray's visibility with the exact kernels' from the certified origin and
@@ -17,11 +17,14 @@
 #include <memory>
 
 #include "cli/commands.h"
-#include "cli/scene_commands.h"
-#include "cli/render_light.h"
+#include "light/render_light.h"
 #include "cli/scene_input.h"
 
 namespace rayproof::cli {
+
+using light::LightOptions;
+using light::LightResult;
+using light::render_lit;
 
 namespace {
 struct RenderOptions {
@@ -113,7 +116,7 @@ int run_render_light(const RenderOptions& opt, const scene::Scene& s, const Scen
                                   sm.fast == scene::FastKernel::watertight_float || sm.fast == scene::FastKernel::robust);
   std::optional<SceneCaster> exact;
   if (opt.verify) {
-    exact.emplace(s, scene::find_scene_method("exact", all_methods()));
+    exact.emplace(s, scene::find_scene_method("exact", registry::all_methods()));
     lo.exact = &*exact;
   }
   const LightResult r = render_lit(s, caster, w, h, rays, hits, lo);
@@ -175,7 +178,7 @@ int run_render(const RenderOptions& opt) {
 
   // Exact first hits: the registry's exact kernels under conservative traversal, through the scene
   // BVH (the public MeshCaster has no exact method).
-  const scene::SceneMethod exact = scene::find_scene_method("exact", all_methods());
+  const scene::SceneMethod exact = scene::find_scene_method("exact", registry::all_methods());
   const SceneCaster exact_caster(s, exact);
   std::vector<CastHit> truth(rays.size());
   exact_caster.closest(rays, truth, opt.threads);
@@ -199,7 +202,7 @@ int run_render(const RenderOptions& opt) {
 
 Run add_render(CLI::App& app) {
   auto opt = std::make_shared<RenderOptions>();
-  auto* sub = app.add_subcommand("render", scene_command_summary("render"));
+  auto* sub = app.add_subcommand("render", "Render a scene or mesh to PNG, shaded by normal and depth");
   sub->add_option("scene", opt->scene, "Mesh file, scene JSON, or 'default'")->required();
   sub->add_option("--out,-o", opt->out, "Output PNG")->required();
   sub->add_option("--method,-m", opt->method, "Method")->capture_default_str();

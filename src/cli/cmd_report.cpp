@@ -10,7 +10,7 @@
 
 #include "cli/commands.h"
 #include "cli/input.h"
-#include "cli/registry.h"
+#include "registry/registry.h"
 #include "cli/user_kernels.h"
 #include "gen/families.h"
 #include "report/report.h"
@@ -72,7 +72,7 @@ int run_report(const ReportOptions& opt) {
   };
   auto user = make_user_kernels("report", opt.user);
   if (!user) return 2;
-  const auto selected = select_methods("report", opt.methods, true, *user);
+  const auto selected = registry::select_methods("report", opt.methods, true, *user);
   if (!selected) return 2;
   const std::vector<const Method*>& methods = *selected;
 
@@ -172,7 +172,7 @@ int run_report(const ReportOptions& opt) {
       fmt::print(stderr, "rayproof report: {}\n", err);
       return 2;
     }
-  if (auto err = report::write_irradiance_section(opt.out, methods, all_methods().find("certified"), opt.irradiance_samples,
+  if (auto err = report::write_irradiance_section(opt.out, methods, registry::all_methods().find("certified"), opt.irradiance_samples,
                                                   opt.seed, progress); !err.empty()) {
     fmt::print(stderr, "rayproof report: {}\n", err);
     return 2;

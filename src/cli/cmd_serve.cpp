@@ -8,7 +8,7 @@
 #include <memory>
 
 #include "cli/commands.h"
-#include "cli/registry.h"
+#include "registry/registry.h"
 #include "methods/serve.h"
 
 namespace rayproof::cli {
@@ -20,7 +20,7 @@ struct ServeOptions {
 };
 
 int run_serve(const ServeOptions& opt) {
-  const MethodRegistry& reg = all_methods();
+  const MethodRegistry& reg = registry::all_methods();
   const Method* m = reg.find(opt.method);
   if (!m) {
     fmt::print(stderr, "rayproof serve: unknown method '{}' (known: {})\n", opt.method, reg.names());

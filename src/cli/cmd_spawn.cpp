@@ -9,7 +9,7 @@
 #include "cli/commands.h"
 #include "cli/mesh_modes.h"
 #include "cli/tool.h"
-#include "cli/registry.h"
+#include "registry/registry.h"
 #include "light/spawn_count.h"
 
 namespace rayproof::cli {
@@ -18,9 +18,8 @@ namespace {
 
 
 
-int run_spawn(const SpawnOptions& opt, const MeshModes& modes) {
+int run_spawn(const SpawnOptions& opt) {
   constexpr const char* kCmd = "rayproof spawn";
-  if (!opt.mesh.empty() && !modes.spawn) return forward_to_scene("spawn --mesh");
   if (opt.trials == 0 || opt.trials > 100000000) {
     fmt::print(stderr, "{}: --trials must be in 1..1e8\n", kCmd);
     return 2;
@@ -34,8 +33,8 @@ int run_spawn(const SpawnOptions& opt, const MeshModes& modes) {
       fmt::print(stderr, "{}: --magnitudes must be within -60..60 (log2 of the positions' size)\n", kCmd);
       return 2;
     }
-  if (!opt.mesh.empty()) return modes.spawn(opt);
-  const Method* exact = all_methods().find("certified");
+  if (!opt.mesh.empty()) return run_spawn_mesh(opt);
+  const Method* exact = registry::all_methods().find("certified");
   if (!exact) {
     fmt::print(stderr, "{}: the certified method is not registered\n", kCmd);
     return 2;
@@ -45,7 +44,7 @@ int run_spawn(const SpawnOptions& opt, const MeshModes& modes) {
       fmt::print(stderr, "{}: --slab-gap must be in (0, 1) (the gap over the magnitude 2^k)\n", kCmd);
       return 2;
     }
-    const auto sel = select_methods("spawn", opt.methods, false);
+    const auto sel = registry::select_methods("spawn", opt.methods, false);
     if (!sel) return 2;
     std::vector<const Method*> methods;
     for (const Method* m : *sel)
@@ -71,10 +70,10 @@ int run_spawn(const SpawnOptions& opt, const MeshModes& modes) {
     }
     std::vector<const Method*> methods;
     if (opt.methods.empty()) {
-      for (const auto& m : all_methods().all())
+      for (const auto& m : registry::all_methods().all())
         if (m.name != "exact" && m.supports(*kind)) methods.push_back(&m);
     } else {
-      const auto sel = select_methods("spawn", opt.methods, true);
+      const auto sel = registry::select_methods("spawn", opt.methods, true);
       if (!sel) return 2;
       for (const Method* m : *sel)
         if (!m->supports(*kind)) {
@@ -95,7 +94,7 @@ int run_spawn(const SpawnOptions& opt, const MeshModes& modes) {
 
 }  // namespace
 
-Run add_spawn(CLI::App& app, const MeshModes& modes) {
+Run add_spawn(CLI::App& app) {
   auto opt = std::make_shared<SpawnOptions>();
   auto* sub = app.add_subcommand(
       "spawn", "Self-intersections of spawned shadow and reflection rays per origin strategy and method (planes, spheres, disks)");
@@ -111,7 +110,7 @@ Run add_spawn(CLI::App& app, const MeshModes& modes) {
   sub->add_option("--mesh", opt->mesh,
                   "Count on a triangle mesh (a mesh file, or 'generated': a sphere and a thin slab at each magnitude) "
                   "with the float, robust and certified mesh casters");
-  return [opt, modes] { return run_spawn(*opt, modes); };
+  return [opt] { return run_spawn(*opt); };
 }
 
 }  // namespace rayproof::cli

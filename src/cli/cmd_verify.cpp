@@ -9,7 +9,7 @@
 
 #include "cli/commands.h"
 #include "cli/input.h"
-#include "cli/registry.h"
+#include "registry/registry.h"
 #include "cli/user_kernels.h"
 #include "verify/differential.h"
 
@@ -50,7 +50,7 @@ nlohmann::json stats_json(const verify::Stats& s) {
 int run_verify(const VerifyOptions& opt) {
   auto user = make_user_kernels("verify", opt.user);
   if (!user) return 2;
-  const auto selected = select_methods("verify", opt.methods, false, *user);
+  const auto selected = registry::select_methods("verify", opt.methods, false, *user);
   if (!selected) return 2;
   const std::vector<const Method*>& methods = *selected;
   std::vector<io::Case> cases;

@@ -7,24 +7,23 @@ namespace CLI { class App; }
 
 namespace rayproof::cli {
 
-struct MeshModes;  // cli/mesh_modes.h
 using Run = std::function<int()>;
 
 Run add_classify(CLI::App& app);
 Run add_gen(CLI::App& app);
 Run add_verify(CLI::App& app);
 Run add_report(CLI::App& app);
-Run add_fuzz(CLI::App& app, const MeshModes& modes);  ///< --mesh: modes.fuzz, or rayproof-scene
+Run add_fuzz(CLI::App& app);
 Run add_cast(CLI::App& app);
 Run add_render(CLI::App& app);
 Run add_bench(CLI::App& app);
-Run add_check(CLI::App& app, const MeshModes& modes);  ///< --mesh: modes.check, or rayproof-scene
+Run add_check(CLI::App& app);
 Run add_serve(CLI::App& app);
 Run add_plugin_host(CLI::App& app);
 Run add_opencl_host(CLI::App& app);
 Run add_glsl_host(CLI::App& app);
 Run add_irradiance(CLI::App& app);
-Run add_spawn(CLI::App& app, const MeshModes& modes);  ///< --mesh: modes.spawn, or rayproof-scene
+Run add_spawn(CLI::App& app);
 Run add_advise(CLI::App& app);
 Run add_contains(CLI::App& app);
 /// `rayproof bench contains`: registered on the bench subcommand; main runs it before bench.

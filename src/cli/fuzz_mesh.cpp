@@ -1,11 +1,11 @@
-// fuzz --mesh (rayproof-scene): random closed meshes, leak rays at every vertex and edge midpoint,
+// fuzz --mesh: random closed meshes, leak rays at every vertex and edge midpoint,
 // and the crossing parity of random rays (verify/mesh_fuzz.h).
 #include <fmt/core.h>
 #include <fmt/format.h>
 
 #include "cli/mesh_check_text.h"
 #include "cli/mesh_modes.h"
-#include "cli/registry.h"
+#include "registry/registry.h"
 #include "scene/accel.h"
 #include "verify/mesh_check.h"
 #include "verify/mesh_fuzz.h"
@@ -27,10 +27,10 @@ int run_mesh_fuzz_cli(const FuzzCliOptions& o) {
   std::vector<std::string> names;
   if (o.methods.empty()) names = {"float", "double", "watertight-float", "watertight", "robust", "certified"};
   for (const auto& name : o.methods)
-    if (!is_user_kernel(name, *user)) names.push_back(name);
+    if (!registry::is_user_kernel(name, *user)) names.push_back(name);
   for (const auto& name : names) {
     try {
-      opt.methods.push_back(scene::find_scene_method(name, all_methods()));
+      opt.methods.push_back(scene::find_scene_method(name, registry::all_methods()));
     } catch (const std::exception& e) {
       fmt::print(stderr, "rayproof fuzz: {}\n", e.what());
       return 2;
@@ -62,7 +62,7 @@ int run_mesh_fuzz_cli(const FuzzCliOptions& o) {
   int user_bad = 0;
   if (!user->empty()) {
     verify::MeshCheckOptions mopt;
-    mopt.finder = scene::find_scene_method("certified", all_methods());
+    mopt.finder = scene::find_scene_method("certified", registry::all_methods());
     for (const auto& k : *user) {
       std::vector<verify::MeshCheck> checks;
       for (std::size_t i = 0; i < res.meshes; ++i) checks.push_back(verify::check_mesh(*k, verify::generated_mesh(opt, i), mopt));

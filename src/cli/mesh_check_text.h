@@ -1,5 +1,5 @@
 #pragma once
-/// What `rayproof check --mesh` and `fuzz --mesh` print about mesh checks (rayproof-scene): the
+/// What `rayproof check --mesh` and `fuzz --mesh` print about mesh checks: the
 /// table, the leak lines and the sentences. Kept apart from the commands so that a test can build
 /// them from known tallies.
 #include <string>

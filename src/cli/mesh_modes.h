@@ -1,9 +1,7 @@
 #pragma once
-/// check --mesh, fuzz --mesh and spawn --mesh: the modes of case-level commands that traverse BVHs over
-/// meshes. `check`, `fuzz` and `spawn` are compiled into both executables (tool.h); their mesh modes only
-/// into rayproof-scene (check_mesh.cpp, fuzz_mesh.cpp, spawn_mesh_cli.cpp), so `rayproof` hands a --mesh run to
-/// rayproof-scene with the same arguments (MeshModes empty). The options of both commands are here
-/// so that both halves read the same ones.
+/// The options of check, fuzz and spawn, read by both halves of each command: the case-level
+/// run (cmd_check.cpp, cmd_fuzz.cpp, cmd_spawn.cpp) and its --mesh mode, which traverses BVHs over
+/// meshes (check_mesh.cpp, fuzz_mesh.cpp, spawn_mesh_cli.cpp).
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -62,17 +60,9 @@ struct SpawnOptions {
   std::string mesh;     ///< a mesh file or "generated": count on triangle meshes instead
 };
 
-/// The mesh modes compiled in; empty members: hand the run to rayproof-scene.
-struct MeshModes {
-  std::function<int(const CheckCliOptions&, const Method&)> check;
-  std::function<int(const FuzzCliOptions&)> fuzz;
-  std::function<int(const SpawnOptions&)> spawn;
-};
-
-/// rayproof-scene's mesh modes (in rayproof_cli_lib).
+/// The mesh modes (check_mesh.cpp, fuzz_mesh.cpp, spawn_mesh_cli.cpp).
 int run_mesh_check(const CheckCliOptions& o, const Method& kernel);
 int run_mesh_fuzz_cli(const FuzzCliOptions& o);
-int run_spawn_mesh(const SpawnOptions& opt);  // spawn_mesh_cli.cpp
-MeshModes scene_mesh_modes();
+int run_spawn_mesh(const SpawnOptions& opt);
 
 }  // namespace rayproof::cli

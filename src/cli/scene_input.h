@@ -7,12 +7,16 @@
 #include <optional>
 #include <string>
 
-#include "cli/registry.h"
+#include "registry/registry.h"
 #include "mesh/mesh.h"
-#include "cli/scene_caster.h"
+#include "scene/scene_caster.h"
 #include "scene/accel.h"
 
 namespace rayproof::cli {
+
+using scene::CastHit;
+using scene::SceneCaster;
+using scene::to_cast_hit;
 
 /// " (read by tinygltf 2.7.0)", " (read by rayproof's OFF reader)", ... for a mesh file; "" else.
 inline std::string reader_note(const std::string& path) {
@@ -33,7 +37,7 @@ inline std::optional<LoadedScene> load_scene_for_cli(const char* cmd, const std:
                                                      const std::string& builder, bool verbose = false) {
   try {
     LoadedScene l;
-    l.method = scene::find_scene_method(method, all_methods());
+    l.method = scene::find_scene_method(method, registry::all_methods());
     l.scene = std::make_unique<scene::Scene>(path == "default" ? scene::default_scene() : scene::load_scene(path));
     BvhBuildOptions opt;
     opt.builder = builder == "median" ? BvhBuilder::median : BvhBuilder::sah;

@@ -1,4 +1,4 @@
-// spawn --mesh (rayproof-scene): spawned rays on triangle meshes through the mesh casters.
+// spawn --mesh: spawned rays on triangle meshes through the mesh casters.
 #include <fmt/core.h>
 
 #include <algorithm>

@@ -7,7 +7,7 @@
 #include <system_error>
 
 #include "cli/plugin_host.h"
-#include "cli/registry.h"
+#include "registry/registry.h"
 #include "methods/exec_kernel.h"
 #include "methods/glsl_kernel.h"
 #include "methods/opencl_kernel.h"
@@ -27,7 +27,7 @@ std::string self_executable() {
 /// returns false); `option` and `hint` (how NAME is written) go into the message.
 bool add_unique(std::string_view command, std::string_view option, const std::string& spec, std::string_view hint,
                 std::unique_ptr<Method> m, std::vector<std::unique_ptr<Method>>& out) {
-  bool taken = all_methods().find(m->name) != nullptr;
+  bool taken = registry::all_methods().find(m->name) != nullptr;
   for (const auto& other : out) taken = taken || other->name == m->name;
   if (taken) {
     fmt::print(stderr, "rayproof {}: {} {}: the name '{}' is taken; choose another {}\n", command, option, spec, m->name,

@@ -7,8 +7,8 @@
 #include <stdexcept>
 
 #include "gen/rng.h"
-#include "rayproof/certified.h"
-#include "rayproof/mesh_caster.h"
+#include "rayproof/certified/intersect.h"
+#include "rayproof/scene/mesh_caster.h"
 
 namespace rayproof::light {
 

@@ -10,7 +10,7 @@
 
 #include "report/report_text.h"
 #include "report/timing.h"
-#include "verify/exact.h"
+#include "verify/exact_method.h"
 
 namespace rayproof::report {
 

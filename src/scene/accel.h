@@ -17,7 +17,7 @@
 #include "rayproof/bvh_wide.h"
 #include "rayproof/bvh_wide8.h"
 #include "rayproof/bvh_wide_sah.h"
-#include "rayproof/mesh_caster.h"
+#include "rayproof/scene/mesh_caster.h"
 #include "scene/leaf_simd.h"
 #include "scene/scene.h"
 

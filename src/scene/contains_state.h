@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "rayproof/contains.h"
+#include "rayproof/scene/contains.h"
 #include "scene/accel.h"
 
 namespace rayproof::detail {

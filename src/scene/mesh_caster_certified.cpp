@@ -1,7 +1,7 @@
 // MeshCaster<cast::Certified>: the certified triangle filter of rayproof_scene; for the triangles
 // it cannot decide, rayproof::certified::intersect (rayproof_certified: the same filter, then its
 // exact fallback in GMP and MPFR; no CGAL).
-#include "rayproof/certified.h"
+#include "rayproof/certified/intersect.h"
 #include "scene/mesh_caster_state.h"
 
 namespace rayproof {

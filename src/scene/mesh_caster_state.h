@@ -4,7 +4,7 @@
 #include <optional>
 #include <vector>
 
-#include "rayproof/mesh_caster.h"
+#include "rayproof/scene/mesh_caster.h"
 #include "scene/accel.h"
 
 namespace rayproof::detail {

@@ -1,6 +1,6 @@
 // rayproof::certified: certified::intersect on a contact of every kind that only exact signs decide
 // (an edge, a tangent, a graze, a rim), each built so that its t is an exact double.
-#include <rayproof/certified.h>
+#include <rayproof/certified/intersect.h>
 
 #include <cmath>
 #include <cstdio>

@@ -131,7 +131,7 @@ elseif(MODE STREQUAL "deb")
   run(${DPKG_DEB} -x ${deb} ${WORK}/root)
   set(prefix ${WORK}/root/usr)
   set(libdir ${LIBDIR})
-  foreach(f bin/rayproof bin/rayproof-scene include/rayproof/triangle.h ${libdir}/cmake/rayproof/rayproofConfig.cmake
+  foreach(f bin/rayproof include/rayproof/triangle.h ${libdir}/cmake/rayproof/rayproofConfig.cmake
             ${libdir}/cmake/rayproof/rayproofConfigVersion.cmake ${libdir}/pkgconfig/rayproof.pc
             ${libdir}/pkgconfig/rayproof-certified.pc)
     if(NOT EXISTS ${prefix}/${f})
@@ -140,7 +140,7 @@ elseif(MODE STREQUAL "deb")
   endforeach()
   run(${prefix}/bin/rayproof methods)
   message(STATUS "packaged rayproof methods:\n${run_out}")
-  # A scene command through rayproof, which runs rayproof-scene beside it (src/cli/scene_commands.h).
+  # A scene command of the packaged tool.
   run(${prefix}/bin/rayproof cast --help)
   if(NOT run_out MATCHES "--mesh|scene")
     message(FATAL_ERROR "the packaged rayproof cast --help printed no scene options:\n${run_out}")

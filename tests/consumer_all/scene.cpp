@@ -2,7 +2,7 @@
 // with a 16-byte stride, packed indices). Rays from an interior point toward every vertex and edge
 // midpoint must hit it (a miss is a leak) with cast::Robust and cast::Certified, one at a time and
 // in a batch over TBB threads.
-#include <rayproof/mesh_caster.h>
+#include <rayproof/scene/mesh_caster.h>
 
 #include <cstdint>
 #include <cstdio>

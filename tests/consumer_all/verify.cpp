@@ -1,11 +1,11 @@
 // rayproof::verify: exact::intersect agrees with certified::intersect (same class, t within one ulp)
-// on seeded random rays against every kind; verify::check (rayproof/check.h) runs a user's typed
+// on seeded random rays against every kind; verify::check (rayproof/verify/check.h) runs a user's typed
 // kernel (here certified::intersect on triangles) over the built-in triangle families and its
 // promises hold.
-#include <rayproof/certified.h>
-#include <rayproof/exact.h>
+#include <rayproof/certified/intersect.h>
+#include <rayproof/verify/exact.h>
 #include <rayproof/float_util.h>
-#include <rayproof/check.h>
+#include <rayproof/verify/check.h>
 
 #include <cmath>
 #include <cstdint>

@@ -3,7 +3,7 @@
 /// mesh, at BVH speed. The rule and its proof: docs/contains.md.
 ///
 /// Contract:
-/// - Input: the arrays of MeshCaster (rayproof/mesh_caster.h, the same checks and MeshInputError).
+/// - Input: the arrays of MeshCaster (rayproof/scene/mesh_caster.h, the same checks and MeshInputError).
 ///   The vertices and indices are copied (packed doubles); the arrays may be freed afterwards.
 /// - Closed: vertices with equal coordinates are one vertex; every edge must be used by an even
 ///   number of triangles (edges of zero length ignored). Otherwise the constructor throws
@@ -34,7 +34,7 @@
 #include <string>
 
 #include "rayproof/float_util.h"
-#include "rayproof/mesh_caster.h"
+#include "rayproof/scene/mesh_caster.h"
 #include "rayproof/vec3.h"
 
 namespace rayproof {

@@ -1,6 +1,6 @@
 #pragma once
 /// GoogleTest helpers: check a kernel's answer for one ray and one primitive against the exact answer
-/// (rayproof/exact.h, the ground truth on CGAL). Header-only; the test links GTest and
+/// (rayproof/verify/exact.h, the ground truth on CGAL). Header-only; the test links GTest and
 /// rayproof::verify (CGAL, GMP, MPFR), which provides rayproof::exact::intersect.
 ///
 ///   auto kernel = [](const auto& ray, const auto& prim) { return my::intersect(ray, prim); };
@@ -27,7 +27,7 @@
 #include <string>
 #include <type_traits>
 
-#include "rayproof/exact.h"
+#include "rayproof/verify/exact.h"
 #include "rayproof/float_util.h"
 
 namespace rayproof::gtest {
@@ -162,7 +162,7 @@ template <class Kernel, class T, template <class> class Prim>
 }  // namespace rayproof::gtest
 
 /// Non-fatal / fatal check that kernel(ray, prim) has the exact class and its t values within
-/// max_ulps ulps of the exact ones (see the top of rayproof/gtest.h).
+/// max_ulps ulps of the exact ones (see the top of rayproof/verify/gtest.h).
 #define EXPECT_RAY_HIT_MATCHES_EXACT(kernel, ray, prim, max_ulps) \
   EXPECT_TRUE(::rayproof::gtest::matches_exact(kernel, ray, prim, max_ulps))
 #define ASSERT_RAY_HIT_MATCHES_EXACT(kernel, ray, prim, max_ulps) \

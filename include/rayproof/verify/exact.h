@@ -3,7 +3,7 @@
 /// arithmetic on the given doubles (CASES.md), every t correctly rounded to the nearest double
 /// (ties to even), and for triangles the barycentrics b1, b2 of the contact point correctly
 /// rounded too. This is the ground truth: the `exact` method is these kernels on a case's fields,
-/// and the certified tier (rayproof/certified.h) is judged against it.
+/// and the certified tier (rayproof/certified/intersect.h) is judged against it.
 ///
 /// Compiled, in the verify component: link rayproof::verify (CGAL, GMP, MPFR). The exact algorithm
 /// (verify/exact_algorithms.h) runs on CGAL's exact kernel (Gmpq in Simple_cartesian), with MPFR

@@ -1,12 +1,12 @@
 /// The exact method: ground truth of CASES.md, on a case file's fields. The case becomes a typed
 /// ray and primitive (exactly: the fields are doubles) and goes through rayproof::exact::intersect
-/// (rayproof/exact.h: the exact algorithm of exact_algorithms.h on CGAL's kernel, exact_cgal.cpp).
-#include "verify/exact.h"
+/// (rayproof/verify/exact.h: the exact algorithm of exact_algorithms.h on CGAL's kernel, exact_cgal.cpp).
+#include "verify/exact_method.h"
 
 #include <cmath>
 
 #include "methods/primitive_of.h"
-#include "rayproof/exact.h"
+#include "rayproof/verify/exact.h"
 
 namespace rayproof::verify {
 

@@ -3,10 +3,10 @@
 /// implementation as rayproof::certified::intersect, on a case's fields. It is judged against the
 /// `exact` method (CGAL): separate filters, and for the fallback the same exact algorithm
 /// (verify/exact_algorithms.h) on CGAL's kernel instead of gmpxx.
-#include "verify/certified.h"
+#include "verify/certified_method.h"
 
 #include "methods/primitive_of.h"
-#include "rayproof/certified.h"
+#include "rayproof/certified/intersect.h"
 #include "verify/fallback.h"
 
 namespace rayproof::verify {

@@ -14,11 +14,14 @@
 #include <string>
 #include <vector>
 
-#include "cli/scene_caster.h"
+#include "scene/scene_caster.h"
 #include "rayproof/spawn.h"
 #include "scene/scene.h"
 
-namespace rayproof::cli {
+namespace rayproof::light {
+
+using scene::CastHit;
+using scene::SceneCaster;
 
 struct LightOptions {
   int shadow_rays = 4;
@@ -49,4 +52,4 @@ struct LightResult {
                                      std::span<const Ray<double>> rays, std::span<const CastHit> hits,
                                      const LightOptions& opt);
 
-}  // namespace rayproof::cli
+}  // namespace rayproof::light

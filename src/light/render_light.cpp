@@ -1,4 +1,4 @@
-#include "cli/render_light.h"
+#include "light/render_light.h"
 
 #include <algorithm>
 #include <cmath>
@@ -7,9 +7,9 @@
 #include <type_traits>
 
 #include "gen/rng.h"
-#include "rayproof/certified.h"
+#include "rayproof/certified/intersect.h"
 
-namespace rayproof::cli {
+namespace rayproof::light {
 
 namespace {
 
@@ -319,4 +319,4 @@ LightResult render_lit(const scene::Scene& s, const SceneCaster& caster, int wid
   return out;
 }
 
-}  // namespace rayproof::cli
+}  // namespace rayproof::light

@@ -1,8 +1,8 @@
 #pragma once
 /// What `cast`, `render` and `bench` query. A scene of triangles only, with a method the public
 /// API compiles (float, robust, certified) and the SAH builder, goes through rayproof::MeshCaster
-/// (include/rayproof/mesh_caster.h), the mesh's arrays read in place. Anything else (spheres,
-/// boxes, disks, ellipsoids; other methods; the median builder) goes through scene::Accel, the
+/// (include/rayproof/scene/mesh_caster.h), the mesh's arrays read in place. Anything else (spheres,
+/// boxes, disks, ellipsoids; other methods; the median builder) goes through Accel, the
 /// BVH, traversal and kernels behind MeshCaster, with the method's SceneMethod.
 #include <cstdint>
 #include <optional>
@@ -10,10 +10,10 @@
 #include <variant>
 #include <vector>
 
-#include "rayproof/mesh_caster.h"
+#include "rayproof/scene/mesh_caster.h"
 #include "scene/accel.h"
 
-namespace rayproof::cli {
+namespace rayproof::scene {
 
 /// A result line's crossing: MeshHit, whose `triangle` is the global primitive number (triangles
 /// first, then spheres, ellipsoids, disks, boxes: scene.h) when the scene has other kinds.
@@ -22,11 +22,11 @@ using CastHit = MeshHit;
 class SceneCaster {
  public:
   /// `s` must outlive the caster (its vertices are read in place).
-  SceneCaster(const scene::Scene& s, const scene::SceneMethod& m, const BvhBuildOptions& opt = {});
+  SceneCaster(const Scene& s, const SceneMethod& m, const BvhBuildOptions& opt = {});
   /// Queries through a scene BVH built elsewhere (it must outlive the caster).
-  SceneCaster(const scene::Accel& shared, const scene::SceneMethod& m) : shared_(&shared), method_(m) {}
+  SceneCaster(const Accel& shared, const SceneMethod& m) : shared_(&shared), method_(m) {}
   /// Whether SceneCaster(s, m, opt) goes through the public MeshCaster.
-  [[nodiscard]] static bool takes_public_api(const scene::Scene& s, const scene::SceneMethod& m,
+  [[nodiscard]] static bool takes_public_api(const Scene& s, const SceneMethod& m,
                                              const BvhBuildOptions& opt = {});
 
   /// Whether the queries go through the public MeshCaster.
@@ -36,7 +36,7 @@ class SceneCaster {
   /// Bytes per primitive the method's queries read (Accel::bytes_read_per_primitive).
   [[nodiscard]] double bytes_read_per_primitive() const;
   /// The scene BVH, when the queries go through it (else null).
-  [[nodiscard]] const scene::Accel* accel() const { return shared_; }
+  [[nodiscard]] const Accel* accel() const { return shared_; }
 
   void closest(std::span<const Ray<double>> rays, std::span<CastHit> out, int threads, TRange q = {}) const;
   void any(std::span<const Ray<double>> rays, std::span<std::uint8_t> out, int threads, TRange q = {}) const;
@@ -44,12 +44,12 @@ class SceneCaster {
 
  private:
   std::variant<std::monostate, MeshCaster<cast::Float>, MeshCaster<cast::Robust>, MeshCaster<cast::Certified>> mesh_;
-  std::optional<scene::Accel> own_;
-  const scene::Accel* shared_ = nullptr;  ///< own_, or a BVH built elsewhere
-  scene::SceneMethod method_;
+  std::optional<Accel> own_;
+  const Accel* shared_ = nullptr;  ///< own_, or a BVH built elsewhere
+  SceneMethod method_;
 };
 
 /// MeshHit of a scene query's PrimHit.
-[[nodiscard]] CastHit to_cast_hit(const scene::PrimHit& h);
+[[nodiscard]] CastHit to_cast_hit(const PrimHit& h);
 
-}  // namespace rayproof::cli
+}  // namespace rayproof::scene

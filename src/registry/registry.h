@@ -8,7 +8,7 @@
 
 #include "methods/method.h"
 
-namespace rayproof::cli {
+namespace rayproof::registry {
 
 /// The registry of all methods (built once).
 [[nodiscard]] const MethodRegistry& all_methods();
@@ -34,4 +34,4 @@ namespace rayproof::cli {
 /// True when `name` is one of the user's kernels.
 [[nodiscard]] bool is_user_kernel(std::string_view name, const std::vector<std::unique_ptr<Method>>& user);
 
-}  // namespace rayproof::cli
+}  // namespace rayproof::registry

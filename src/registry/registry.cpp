@@ -1,14 +1,14 @@
-#include "cli/registry.h"
+#include "registry/registry.h"
 
 #include <fmt/core.h>
 #include <fmt/format.h>
 
 #include <algorithm>
 
-#include "verify/certified.h"
-#include "verify/exact.h"
+#include "verify/certified_method.h"
+#include "verify/exact_method.h"
 
-namespace rayproof::cli {
+namespace rayproof::registry {
 
 const MethodRegistry& all_methods() {
   static const MethodRegistry reg = [] {
@@ -74,4 +74,4 @@ std::optional<std::vector<const Method*>> select_methods(std::string_view comman
   return methods;
 }
 
-}  // namespace rayproof::cli
+}  // namespace rayproof::registry

@@ -10,7 +10,7 @@
 ///    *undecided*. A decided answer is final: intersect returns exactly that answer.
 ///  - intersect (compiled, link rayproof::certified: GMP and MPFR, no CGAL): try_intersect, then
 ///    the certified tier's exact fallback (GMP rationals, MPFR; verify/fallback.cpp: the exact
-///    algorithm of rayproof/exact.h, verify/exact_algorithms.h, on gmpxx instead of CGAL's kernel)
+///    algorithm of rayproof/verify/exact.h, verify/exact_algorithms.h, on gmpxx instead of CGAL's kernel)
 ///    for whatever it left undecided. Always decided.
 ///
 /// What a decided answer guarantees (fields a class does not carry are NaN, as in rayproof/hit.h):

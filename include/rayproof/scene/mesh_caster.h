@@ -37,7 +37,7 @@
 ///   (interior / edge / vertex / coplanar, CASES.md) and barycentrics b1 (weight of the triangle's
 ///   second vertex) and b2 (third) as the Float and Robust kernels compute them. Certified's
 ///   traversal decides class and t only: its b1, b2 are NaN (for barycentrics within 2^-50 of the
-///   exact ones, call rayproof::certified::intersect, rayproof/certified.h, on the hit triangle).
+///   exact ones, call rayproof::certified::intersect, rayproof/certified/intersect.h, on the hit triangle).
 ///   A coplanar touch (a segment) has none either. A miss has triangle == kNoTriangle.
 /// - Ranges: a crossing counts when tmin <= t <= tmax. closest(): the least t, ties to the lower
 ///   triangle number. any(): whether a crossing exists. all(): every crossing sorted by t, then

@@ -1,7 +1,7 @@
 // The scene commands' queries: the public MeshCaster for meshes, scene::Accel for the rest.
-#include "cli/scene_caster.h"
+#include "scene/scene_caster.h"
 
-namespace rayproof::cli {
+namespace rayproof::scene {
 
 CastHit to_cast_hit(const scene::PrimHit& h) {
   CastHit c;
@@ -88,4 +88,4 @@ std::vector<CastHit> SceneCaster::all(const Ray<double>& r, TRange q) const {
   }, mesh_);
 }
 
-}  // namespace rayproof::cli
+}  // namespace rayproof::scene
