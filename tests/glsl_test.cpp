@@ -156,7 +156,7 @@ TEST(Glsl, BadFilesGetAClearMessage) {
   r = run_rayproof("check --glsl x:half=" + kExample);
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("unknown precision 'half'"), std::string::npos) << r.err;
-  const auto binary = write_file("binary.glsl", std::string("int rayproof_box(\0\x01\x02", 14));
+  const auto binary = write_file("binary.glsl", std::string("int rayproof_box(\0\x01\x02", 20));
   r = run_rayproof("check --glsl x=" + binary.string());
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("not a GLSL text file"), std::string::npos) << r.err;
