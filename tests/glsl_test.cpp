@@ -127,6 +127,32 @@ TEST(Glsl, ExampleCheckedAgainstExactThroughTheCli) {
   EXPECT_NE(t.out.find("kernel 'mt': GLSL shader " + kExample + " (float) on " + name), std::string::npos) << t.out;
 }
 
+// A shader written with the old GLSL names runs as before, with the deprecation message on standard
+// error: the same answers as the same formula under the new names.
+TEST(Glsl, OldNamesRunWithADeprecationMessage) {
+  NEED_VULKAN_DEVICE();
+  // One formula; `@` stands for the macros' prefix.
+  const std::string body = "(vec3 o, vec3 d, vec3 center, float radius, out float t) {\n"
+                           "  vec3 oc = o - center; float b = dot(oc, d), a = dot(d, d);\n"
+                           "  float disc = b * b - a * (dot(oc, oc) - radius * radius);\n"
+                           "  if (disc < 0.0) return @MISS;\n  t = (-b - sqrt(disc)) / a;\n  return t >= 0.0 ? @HIT_T : @MISS;\n}\n";
+  auto spelled = [&](const std::string& fn, const std::string& prefix) {
+    std::string text = "int " + fn + body;
+    for (std::size_t at; (at = text.find('@')) != std::string::npos;) text.replace(at, 1, prefix);
+    return text;
+  };
+  const auto old_file = write_file("old_names.glsl", spelled("rp_sphere", "RP_"));
+  const auto new_file = write_file("new_names.glsl", spelled("rayproof_sphere", "RAYPROOF_"));
+  const auto o = run_rayproof("check --glsl s=" + old_file.string() + " --families sph_generic --count 60");
+  const auto n = run_rayproof("check --glsl s=" + new_file.string() + " --families sph_generic --count 60");
+  EXPECT_NE(o.err.find("rp_sphere is the old GLSL spelling; rename it rayproof_sphere"), std::string::npos) << o.err;
+  EXPECT_EQ(n.err.find("old GLSL spelling"), std::string::npos) << n.err;
+  EXPECT_EQ(o.status, n.status) << o.err;
+  auto table = [](const std::string& out) { return out.substr(std::min(out.size(), out.find("\n family "))); };
+  ASSERT_NE(table(n.out), "") << n.out;
+  EXPECT_EQ(table(o.out), table(n.out));
+}
+
 // A compile error names the user's file and line, not the wrapper's (needs no device).
 TEST(Glsl, CompileErrorNamesTheUsersFileAndLine) {
   const auto f = write_file("syntax.glsl", "// line 1\nint rayproof_triangle(vec3 o, vec3 d, vec3 p0, vec3 p1, vec3 p2, "
