@@ -148,7 +148,7 @@ TEST(Glsl, OldNamesRunWithADeprecationMessage) {
   EXPECT_NE(o.err.find("rp_sphere is the old GLSL spelling; rename it rayproof_sphere"), std::string::npos) << o.err;
   EXPECT_EQ(n.err.find("old GLSL spelling"), std::string::npos) << n.err;
   EXPECT_EQ(o.status, n.status) << o.err;
-  auto table = [](const std::string& out) { return out.substr(std::min(out.size(), out.find("\n family "))); };
+  auto table = [](const std::string& out) { return out.substr(std::min(out.size(), out.find("\nfamily "))); };
   ASSERT_NE(table(n.out), "") << n.out;
   EXPECT_EQ(table(o.out), table(n.out));
 }
