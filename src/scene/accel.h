@@ -23,7 +23,7 @@
 
 namespace rayproof::scene {
 
-/// One crossing of a ray with a primitive: its class (CASES.md) and t. A miss has prim = kNoPrim.
+/// One crossing of a ray with a primitive: its class (docs/cases.md) and t. A miss has prim = kNoPrim.
 struct PrimHit {
   static constexpr std::uint32_t kNoPrim = 0xffffffffu;
   Contact contact = Contact::miss;

@@ -9,7 +9,7 @@
 /// kPadLane and never reported).
 ///
 /// A group holds the triangles' vertices rounded to float (what the `float` and `robust` kernels
-/// intersect: CASES.md's "inputs rounded to float") and a tag per lane: the primitive's global
+/// intersect: docs/cases.md's "inputs rounded to float") and a tag per lane: the primitive's global
 /// number, or kPadLane, or kScalarLane | number for a lane the group kernels leave to the
 /// per-primitive kernel (not a triangle), or kDeadLane | number for a triangle the robust kernel
 /// classes invalid or degenerate whatever the ray (a non-finite float vertex, or the double normal
