@@ -1,5 +1,5 @@
 #pragma once
-/// SIMD leaves (issue 15, item 2): each BVH leaf's triangles packed in groups of kLanes lanes,
+/// SIMD leaves: each BVH leaf's triangles packed in groups of kLanes lanes,
 /// structure of arrays, so one kernel call tests a group of triangles at once.
 ///
 /// Layout. A leaf of the wide BVH is a range [child, child + count) of leaf-order slots; after
