@@ -1,4 +1,4 @@
-// Issue 15 item 5: `rayproof bench`'s targets and output. Verdicts from known numbers (decided on
+// `rayproof bench`'s targets and output. Verdicts from known numbers (decided on
 // the printed value), the targets a set of rows yields, and the JSON of a real run on a tiny closed
 // mesh: fields, rows for both queries, and ratios and verdicts that follow from the printed numbers.
 #include <gtest/gtest.h>
