@@ -66,7 +66,7 @@ struct CaseResult {
 };
 
 /// Shortest text that reads back to the same double, as Python's repr prints it ("2.0", "1e-05",
-/// "-0.0", "inf", "nan"). The expected files in shared/cases use this form.
+/// "-0.0", "inf", "nan"). The expected files in data/ (*.expected) use this form.
 [[nodiscard]] std::string format_double(double x);
 
 /// `CLASS T T2` with `-` for absent values.
