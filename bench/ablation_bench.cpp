@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_rays.h"
 #include "registry/registry.h"
 #include "scene/accel.h"
 #include "scene/compare/competitors.h"
@@ -55,24 +56,10 @@ int main(int argc, char** argv) {
   std::printf("%s: %zu triangles; %s path, %s nodes; build greedy %.1f ms, sah %.1f ms, embree %.1f ms, embree-robust %.1f ms\n",
               mesh.c_str(), s.mesh.triangles.size(), to_string(sah.simd()), to_string(sah.nodes()), 1e3 * greedy.build_seconds(),
               1e3 * sah.build_seconds(), 1e3 * embree.build_s, 1e3 * embree_r.build_s);
-  // Rays as node_bench makes them: from an eye outside the bounds into them, and between two points inside.
-  const BvhBox b = s.bounds();
-  std::mt19937 rng(9);
-  auto in_box = [&] {
-    Vec3<double> p;
-    for (int k = 0; k < 3; ++k) p[k] = std::uniform_real_distribution<double>(b.lo[k], b.hi[k])(rng);
-    return p;
-  };
-  Vec3<double> center, ext;
-  for (int k = 0; k < 3; ++k) center[k] = 0.5 * (double(b.lo[k]) + double(b.hi[k])), ext[k] = double(b.hi[k]) - double(b.lo[k]);
-  const double radius = length(ext);
-  std::vector<Ray<double>> primary, random;
-  for (int i = 0; i < nrays; ++i) {
-    const Vec3<double> eye = center + Vec3<double>{0.2 * radius, 0.3 * radius, 1.5 * radius};
-    primary.push_back({eye, in_box() - eye});
-    const Vec3<double> o = in_box();
-    random.push_back({o, in_box() - o});
-  }
+  // The rays every traversal benchmark uses (bench_rays.h).
+  const bench::BenchRays bench_rays = bench::make_bench_rays(s.bounds(), nrays);
+  const auto& primary = bench_rays.primary;
+  const auto& random = bench_rays.random;
   std::printf("%-10s %-8s %-8s %-13s %22s %22s %22s %s\n", "method", "rays", "query", "reference", "greedy: ratio [range]",
               "sah: ratio [range]", "sah/greedy speed", "answers");
   for (const char* mname : {"robust", "certified", "float"}) {

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_rays.h"
 #include "registry/registry.h"
 #include "rayproof/certified_triangle.h"
 #include "scene/accel.h"
@@ -104,16 +105,18 @@ int main(int argc, char** argv) {
     const Scene empty;
     const double n_tri = double(tris.size());
     std::vector<Variant> vs;
-    vs.push_back({"robust scalar (per triangle)", [&] {
-                    CompiledKernel<float, TriAlgo::robust> k{empty, nullptr, 0};
-                    std::uint64_t s = 0;
-                    Crossing c[2];
-                    for (int r = 0; r < kRays; ++r) {
-                      k.prepare(rays[r]);
-                      for (int j = 0; j < kGroups * kLanes; ++j) s += k.triangle_crossings(tris[r * kGroups * kLanes + j], c);
-                    }
-                    return s;
-                  }, n_tri});
+    // One kernel per triangle, every triangle of every group: the scalar baseline of each method.
+    auto per_triangle = [&](auto kernel) {
+      std::uint64_t s = 0;
+      Crossing c[2];
+      for (int r = 0; r < kRays; ++r) {
+        kernel.prepare(rays[r]);
+        for (int j = 0; j < kGroups * kLanes; ++j) s += kernel.triangle_crossings(tris[r * kGroups * kLanes + j], c);
+      }
+      return s;
+    };
+    vs.push_back({"robust scalar (per triangle)",
+                  [&] { return per_triangle(CompiledKernel<float, TriAlgo::robust>{empty, nullptr, 0}); }, n_tri});
     if (avx2)
       vs.push_back({"robust group (AVX2, 4 double lanes)", [&] {
                       CompiledKernel<float, TriAlgo::robust> k{empty, nullptr, 0};
@@ -190,16 +193,8 @@ int main(int argc, char** argv) {
                         }
                       return s;
                     }, n_tri});
-    vs.push_back({"float scalar (screen + kernel)", [&] {
-                    CompiledKernel<float, TriAlgo::moller_trumbore> k{empty, nullptr, 0};
-                    std::uint64_t s = 0;
-                    Crossing c[2];
-                    for (int r = 0; r < kRays; ++r) {
-                      k.prepare(rays[r]);
-                      for (int j = 0; j < kGroups * kLanes; ++j) s += k.triangle_crossings(tris[r * kGroups * kLanes + j], c);
-                    }
-                    return s;
-                  }, n_tri});
+    vs.push_back({"float scalar (screen + kernel)",
+                  [&] { return per_triangle(CompiledKernel<float, TriAlgo::moller_trumbore>{empty, nullptr, 0}); }, n_tri});
     vs.push_back({"float group (SSE screen + kernel)", [&] {
                     CompiledKernel<float, TriAlgo::moller_trumbore> k{empty, nullptr, 0};
                     std::uint64_t s = 0;
@@ -229,23 +224,9 @@ int main(int argc, char** argv) {
   std::printf("\nMesh: %zu triangles; bytes/triangle %.1f (all the Accel holds, with the vertex array), %.1f (nodes + "
               "groups: what float and robust read)\n",
               s.mesh.triangles.size(), a.bytes_per_primitive(), a.group_bytes_per_primitive());
-  const BvhBox b = s.bounds();
-  std::mt19937 rng(9);
-  auto in_box = [&] {
-    Vec3<double> p;
-    for (int k = 0; k < 3; ++k) p[k] = std::uniform_real_distribution<double>(b.lo[k], b.hi[k])(rng);
-    return p;
-  };
-  Vec3<double> center, ext;
-  for (int k = 0; k < 3; ++k) center[k] = 0.5 * (double(b.lo[k]) + double(b.hi[k])), ext[k] = double(b.hi[k]) - double(b.lo[k]);
-  const double radius = length(ext);
-  std::vector<Ray<double>> primary, random;
-  for (int i = 0; i < nrays; ++i) {
-    const Vec3<double> eye = center + Vec3<double>{0.2 * radius, 0.3 * radius, 1.5 * radius};
-    primary.push_back({eye, in_box() - eye});
-    const Vec3<double> o = in_box();
-    random.push_back({o, in_box() - o});
-  }
+  const bench::BenchRays bench_rays = bench::make_bench_rays(s.bounds(), nrays);
+  const auto& primary = bench_rays.primary;
+  const auto& random = bench_rays.random;
   for (const char* mname : {"robust", "certified", "float"}) {
     if (!only_method.empty() && only_method != mname) continue;
     const SceneMethod m = find_scene_method(mname, registry::all_methods());

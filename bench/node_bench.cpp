@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_rays.h"
 #include "registry/registry.h"
 #include "scene/accel.h"
 #include "scene/watertight.h"
@@ -72,24 +73,10 @@ int main(int argc, char** argv) {
   std::printf("quantize_wide: %.1f ms (one thread; the full accel's build: %.1f ms)\n", 1e3 * quantize,
               1e3 * full.build_seconds());
 
-  // Rays as leaf_bench makes them: from an eye outside the bounds into them, and between two points inside.
-  const BvhBox b = s.bounds();
-  std::mt19937 rng(9);
-  auto in_box = [&] {
-    Vec3<double> p;
-    for (int k = 0; k < 3; ++k) p[k] = std::uniform_real_distribution<double>(b.lo[k], b.hi[k])(rng);
-    return p;
-  };
-  Vec3<double> center, ext;
-  for (int k = 0; k < 3; ++k) center[k] = 0.5 * (double(b.lo[k]) + double(b.hi[k])), ext[k] = double(b.hi[k]) - double(b.lo[k]);
-  const double radius = length(ext);
-  std::vector<Ray<double>> primary, random;
-  for (int i = 0; i < nrays; ++i) {
-    const Vec3<double> eye = center + Vec3<double>{0.2 * radius, 0.3 * radius, 1.5 * radius};
-    primary.push_back({eye, in_box() - eye});
-    const Vec3<double> o = in_box();
-    random.push_back({o, in_box() - o});
-  }
+  // The rays every traversal benchmark uses (bench_rays.h).
+  const bench::BenchRays bench_rays = bench::make_bench_rays(s.bounds(), nrays);
+  const auto& primary = bench_rays.primary;
+  const auto& random = bench_rays.random;
 
   std::printf("%-10s %-8s %-8s %12s %12s %21s %10s %10s\n", "method", "rays", "query", "full ns/ray", "comp ns/ray",
               "comp/full [range]", "B/tri full", "B/tri comp");

@@ -8,7 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "cli/build_compare.h"
+#include "verify/build_compare.h"
 #include "cli_support.h"
 #include "methods/glsl_kernel.h"
 #include "methods/glsl_source.h"
@@ -47,19 +47,41 @@ io::Case triangle_case(double ox) {
 
 TEST(GlslSource, FindsTheKindsDefinedOutsideComments) {
   const auto kinds = glsl::defined_kinds(
-      "// int rp_box(vec3 o) is not here\n/* rp_sphere( */\nint rp_triangle (vec3 o) { return rp_plane_x(o); }\n"
-      "int rp_disk(vec3 o);\nint my_rp_ellipsoid(vec3 o);\n");
+      "// int rayproof_box(vec3 o) is not here\n/* rayproof_sphere( */\nint rayproof_triangle (vec3 o) { return "
+      "rayproof_plane_x(o); }\nint rayproof_disk(vec3 o);\nint my_rayproof_ellipsoid(vec3 o);\n");
   EXPECT_EQ(kinds, (std::vector<io::Kind>{io::Kind::triangle, io::Kind::disk}));
+  EXPECT_TRUE(glsl::legacy_kinds("int rayproof_disk(vec3 o);\n").empty());
+  EXPECT_EQ(glsl::legacy_names_warning("f.glsl", "int rayproof_disk(vec3 o);\n"), "");
+}
+
+// The old GLSL spelling (rp_KIND, RP_*, rp_real, rp_vec*) works for one release, with a message that
+// names what to rename; a file with both spellings of a kind is called by the new one.
+TEST(GlslSource, OldNamesStillWorkWithADeprecationMessage) {
+  const std::string old_text = "int rp_sphere(rp_vec3 o, rp_vec3 d, rp_vec3 c, rp_real r, out rp_real t) { return RP_MISS; }\n"
+                               "int rayproof_box(vec3 o) { return 0; }\n";
+  EXPECT_EQ(glsl::defined_kinds(old_text), (std::vector<io::Kind>{io::Kind::sphere, io::Kind::box}));
+  EXPECT_EQ(glsl::legacy_kinds(old_text), (std::vector<io::Kind>{io::Kind::sphere}));
+  const std::string w = glsl::wrap(old_text, "old.glsl", io::Kind::sphere, Precision::float32);
+  EXPECT_NE(w.find("int code = rp_sphere(o, d, rayproof_center, rayproof_radius, t)"), std::string::npos) << w;
+  EXPECT_NE(w.find("#define rp_vec3 rayproof_real3"), std::string::npos);
+  EXPECT_NE(w.find("#define RP_HIT_T_B 3"), std::string::npos);
+  const std::string msg = glsl::legacy_names_warning("old.glsl", old_text);
+  EXPECT_NE(msg.find("old.glsl: rp_sphere is the old GLSL spelling; rename it rayproof_sphere"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("removed in the next"), std::string::npos) << msg;
+  const std::string both = "int rp_sphere(vec3 o) { return 0; }\nint rayproof_sphere(vec3 o) { return 0; }\n";
+  EXPECT_TRUE(glsl::legacy_kinds(both).empty());
+  EXPECT_NE(glsl::wrap(both, "b.glsl", io::Kind::sphere, Precision::float32).find("int code = rayproof_sphere("), std::string::npos);
 }
 
 TEST(GlslSource, KeepsTheUsersLineNumbersAndDropsItsVersion) {
   EXPECT_EQ(glsl::prepare_user_text("  #version 450 core\nint a;\n# version 460\nint b;"), "\nint a;\n\nint b;");
-  const std::string w = glsl::wrap("int rp_sphere() {}\n", "my file.glsl", io::Kind::sphere, Precision::float64);
-  EXPECT_NE(w.find("#line 1 \"my file.glsl\"\nint rp_sphere() {}\n"), std::string::npos);
-  EXPECT_NE(w.find("#define rp_real double"), std::string::npos);
-  EXPECT_NE(w.find("rp_sphere(o, d, rp_center, rp_radius, t)"), std::string::npos);
+  const std::string w = glsl::wrap("int rayproof_sphere() {}\n", "my file.glsl", io::Kind::sphere, Precision::float64);
+  EXPECT_NE(w.find("#line 1 \"my file.glsl\"\nint rayproof_sphere() {}\n"), std::string::npos);
+  EXPECT_NE(w.find("#define rayproof_real double"), std::string::npos);
+  EXPECT_NE(w.find("#define RAYPROOF_REAL_IS_DOUBLE 1"), std::string::npos);
+  EXPECT_NE(w.find("rayproof_sphere(o, d, rayproof_center, rayproof_radius, t)"), std::string::npos);
   EXPECT_EQ(glsl::signature(io::Kind::triangle, Precision::float32),
-            "int rp_triangle(vec3 o, vec3 d, vec3 p0, vec3 p1, vec3 p2, out float t, out vec2 b)");
+            "int rayproof_triangle(vec3 o, vec3 d, vec3 p0, vec3 p1, vec3 p2, out float t, out vec2 b)");
 }
 
 TEST(GlslSource, NoContractionDecoratesEveryFloatOperation) {
@@ -107,18 +129,18 @@ TEST(Glsl, ExampleCheckedAgainstExactThroughTheCli) {
 
 // A compile error names the user's file and line, not the wrapper's (needs no device).
 TEST(Glsl, CompileErrorNamesTheUsersFileAndLine) {
-  const auto f = write_file("syntax.glsl", "// line 1\nint rp_triangle(vec3 o, vec3 d, vec3 p0, vec3 p1, vec3 p2, "
-                                           "out float t, out vec2 b) {\n  float x = 1.0\n  return RP_MISS;\n}\n");
+  const auto f = write_file("syntax.glsl", "// line 1\nint rayproof_triangle(vec3 o, vec3 d, vec3 p0, vec3 p1, vec3 p2, "
+                                           "out float t, out vec2 b) {\n  float x = 1.0\n  return RAYPROOF_MISS;\n}\n");
   const auto r = run_rayproof("check --glsl bad=" + f.string() + " --count 10");
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find(f.string() + ":4: "), std::string::npos) << r.err;  // glslang reports the line it stopped on
   EXPECT_EQ(r.err.find("rayproof wrapper"), std::string::npos) << r.err;
   // A function whose signature is not the documented one: the compiler points into the wrapper,
   // rayproof says which signature it calls.
-  const auto g = write_file("signature.glsl", "int rp_sphere(vec3 o, vec3 d, float radius, out float t) { return 0; }\n");
+  const auto g = write_file("signature.glsl", "int rayproof_sphere(vec3 o, vec3 d, float radius, out float t) { return 0; }\n");
   const auto s = run_rayproof("check --glsl bad=" + g.string() + " --count 10");
   EXPECT_EQ(s.status, 2);
-  EXPECT_NE(s.err.find("rayproof calls int rp_sphere(vec3 o, vec3 d, vec3 center, float radius, out float t)"),
+  EXPECT_NE(s.err.find("rayproof calls int rayproof_sphere(vec3 o, vec3 d, vec3 center, float radius, out float t)"),
             std::string::npos) << s.err;
 }
 
@@ -127,14 +149,14 @@ TEST(Glsl, BadFilesGetAClearMessage) {
   const auto none = write_file("none.glsl", "float helper(float x) { return x; }\n");
   auto r = run_rayproof("check --glsl x=" + none.string());
   EXPECT_EQ(r.status, 2);
-  EXPECT_NE(r.err.find("defines none of the functions rayproof calls (rp_plane"), std::string::npos) << r.err;
+  EXPECT_NE(r.err.find("defines none of the functions rayproof calls (rayproof_plane"), std::string::npos) << r.err;
   r = run_rayproof("check --glsl x=/nonexistent/file.glsl");
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("/nonexistent/file.glsl: no such file"), std::string::npos) << r.err;
   r = run_rayproof("check --glsl x:half=" + kExample);
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("unknown precision 'half'"), std::string::npos) << r.err;
-  const auto binary = write_file("binary.glsl", std::string("int rp_box(\0\x01\x02", 14));
+  const auto binary = write_file("binary.glsl", std::string("int rayproof_box(\0\x01\x02", 14));
   r = run_rayproof("check --glsl x=" + binary.string());
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("not a GLSL text file"), std::string::npos) << r.err;
@@ -170,10 +192,10 @@ TEST(Glsl, InfiniteLoopTimesOutAndTheRunGoesOn) {
                             "#define S n ^= n << 13u; n ^= n >> 17u; n ^= n << 5u;\n"
                             "#define S8 S S S S S S S S\n#define S64 S8 S8 S8 S8 S8 S8 S8 S8\n"
                             "#define S512 S64 S64 S64 S64 S64 S64 S64 S64\n#define S4K S512 S512 S512 S512 S512 S512 S512 S512\n"
-                            "int rp_triangle(vec3 o, vec3 d, vec3 p0, vec3 p1, vec3 p2, out float t, out vec2 b) {\n"
+                            "int rayproof_triangle(vec3 o, vec3 d, vec3 p0, vec3 p1, vec3 p2, out float t, out vec2 b) {\n"
                             "  uint n = 1u;\n"
                             "  while (o.x > 100.0) { S4K S4K if (n == 0u) break; }\n"
-                            "  t = 1.0;\n  b = vec2(float(n));\n  return RP_HIT_T;\n}\n");
+                            "  t = 1.0;\n  b = vec2(float(n));\n  return RAYPROOF_HIT_T;\n}\n");
   GlslOptions opt;
   opt.host = RAYPROOF_BIN;
   opt.timeout_seconds = 0.5;
@@ -231,32 +253,38 @@ TEST(BuildCompare, SortsDifferencesByCauseAndSaysSo) {
     if (i == 3) k.v[2] = 1e-40;  // a float subnormal
     cases.push_back(k);
   }
-  const auto r = cli::compare_builds(gpu, c, &precise, cases, 10);
+  auto r = verify::compare_builds(verify::DeviceLanguage::glsl, gpu, c, &precise, cases, 10);
   EXPECT_EQ(r.cases, 5u);
   EXPECT_EQ(r.differ, 3u);
+  EXPECT_EQ(r.differ_hit, 0u);
   EXPECT_EQ(r.contraction, 1u);
   EXPECT_EQ(r.subnormal, 1u);
   EXPECT_EQ(r.unexplained, 1u);
+  EXPECT_EQ(r.uncontracted_differ, 4u);  // the precise build agrees with C on case 1 only
   ASSERT_EQ(r.examples.size(), 3u);
   EXPECT_EQ(r.examples[0].why, "contraction");
   EXPECT_EQ(r.examples[1].why, "unexplained");
   EXPECT_EQ(r.examples[2].why, "subnormal");
-  auto lines = cli::comparison_lines(r, "subnormal floats: may be flushed");
-  ASSERT_GE(lines.size(), 6u);
+  r.device_note = "subnormal floats: may be flushed";
+  auto lines = verify::comparison_lines(r);
+  ASSERT_GE(lines.size(), 8u);
   EXPECT_EQ(lines[1].rfind("speed on these 5 cases, one pass each, side by side: 'gpu' ", 0), 0u) << lines[1];
   lines.erase(lines.begin() + 1);
-  EXPECT_EQ(lines[1], "'gpu' and 'c' answer differently on 3 of 5 cases (60.00%):");
-  EXPECT_EQ(lines[2].rfind("  1 of them agree with the C build once every float operation of the shader is precise", 0), 0u);
+  EXPECT_EQ(lines[1], "'gpu' and 'c' answer differently on 3 of 5 cases (60.00%), 0 of them hit against miss:");
+  EXPECT_EQ(lines[2].rfind("  1 of them agree with the C build with every float operation of the shader precise", 0), 0u)
+      << lines[2];
   EXPECT_NE(lines[3].find("  1 of them involve a value in the subnormal range"), std::string::npos);
   EXPECT_NE(lines[3].find("the device: subnormal floats: may be flushed"), std::string::npos);
   EXPECT_EQ(lines[4], "  1 of them: neither cause shows.");
-  const auto same = cli::compare_builds(c, c, nullptr, cases, 10);
+  EXPECT_EQ(lines[5], "The build without contraction ('precise') differs from the C build on 4 cases.");
+  EXPECT_EQ(lines[6].rfind("# the first 3:", 0), 0u) << lines[6];
+  const auto same = verify::compare_builds(verify::DeviceLanguage::glsl, c, c, nullptr, cases, 10);
   auto timed = same;
-  timed.gpu_seconds = 0.5, timed.c_seconds = 0.001;
-  EXPECT_EQ(cli::comparison_lines(timed, "")[1],
+  timed.device_seconds = 0.5, timed.c_seconds = 0.001;
+  EXPECT_EQ(verify::comparison_lines(timed)[1],
             "speed on these 5 cases, one pass each, side by side: 'c' 0.00 M cases/s (batches through the device, "
             "copies and pipes included), 'c' 0.01 M cases/s (one thread)");
-  EXPECT_EQ(cli::comparison_lines(same, "")[2],
+  EXPECT_EQ(verify::comparison_lines(same)[2],
             "'c' and 'c' give the same answer (class, t and barycentrics, bit for bit) on all 5 cases.");
 }
 

@@ -79,17 +79,19 @@ TEST(OpenclCli, CompareWithTheCBuildFindsFmaContraction) {
                                   " --families tri_generic,tri_edge --count 400",
                               "", kNoCache);
   EXPECT_EQ(r.status, 0) << r.out << r.err;
-  const auto at = r.out.find("# the device build against the C build mt-c-float");
+  const auto at = r.out.find("# the device build 'mt-x' against the C build 'mt-c-float'");
   ASSERT_NE(at, std::string::npos) << r.out << r.err;
   const std::string tail = r.out.substr(at);
-  if (tail.find("answers every one of 800 cases exactly as the C build") != std::string::npos) {
-    EXPECT_EQ(tail.find("FP_CONTRACT OFF"), std::string::npos) << tail;
-  } else {
+  EXPECT_NE(tail.find("The build without contraction ('mt-x-contract-off') agrees with the C build on every case."),
+            std::string::npos)
+      << tail;
+  if (tail.find("give the same answer (class, t and barycentrics, bit for bit) on all 800 cases") == std::string::npos) {
     EXPECT_NE(tail.find("of 800 cases"), std::string::npos) << tail;
-    EXPECT_NE(tail.find("Built with `#pragma OPENCL FP_CONTRACT OFF` the device agrees with the C build on every case: "
-                        "the differences are the device compiler's contraction"),
+    EXPECT_NE(tail.find("of them agree with the C build built with `#pragma OPENCL FP_CONTRACT OFF`: the device's "
+                        "compiler contracted"),
               std::string::npos)
         << tail;
+    EXPECT_NE(tail.find("  0 of them: neither cause shows."), std::string::npos) << tail;
   }
 }
 
@@ -199,7 +201,7 @@ TEST(OpenclCli, NoDeviceNamesThePackagesAndABadDeviceListsThem) {
 
 // The parts that need no device: which kinds a file defines, the wrapper, the answer codes, the
 // comparison's sentences from known tallies.
-#include "cli/device_compare.h"
+#include "verify/build_compare.h"
 #include "methods/opencl_wrapper.h"
 
 namespace {
@@ -239,27 +241,39 @@ TEST(OpenclWrapper, AnswerCodes) {
   EXPECT_FALSE(std::get<io::CaseResult>(r).t.has_value());
 }
 
+// The OpenCL wording of the one comparison text (verify/build_compare.h), from known tallies.
 TEST(OpenclCompare, SentencesFromKnownTallies) {
-  cli::DeviceComparison c;
-  c.device_name = "dev", c.c_name = "c";
-  c.cases = 4000, c.differ = 1014, c.differ_hit = 225, c.agree_uncontracted = 1014, c.uncontracted_differ = 0;
-  auto s = cli::device_comparison_sentences(c);
+  verify::BuildComparison c;
+  c.language = verify::DeviceLanguage::opencl;
+  c.device = "dev", c.c = "c", c.uncontracted = "dev-contract-off";
+  c.cases = 4000, c.differ = 1014, c.differ_hit = 225, c.contraction = 1014, c.uncontracted_differ = 0;
+  auto s = verify::comparison_lines(c);
+  ASSERT_EQ(s.size(), 6u);
+  EXPECT_EQ(s[1], "'dev' and 'c' answer differently on 1014 of 4000 cases (25.35%), 225 of them hit against miss:");
+  EXPECT_EQ(s[2].rfind("  1014 of them agree with the C build built with `#pragma OPENCL FP_CONTRACT OFF`: the device's "
+                       "compiler contracted multiply-adds into FMA", 0), 0u) << s[2];
+  EXPECT_EQ(s[3].rfind("  0 of them involve a value in the subnormal range", 0), 0u) << s[3];
+  EXPECT_EQ(s[4], "  0 of them: neither cause shows.");
+  EXPECT_EQ(s[5], "The build without contraction ('dev-contract-off') agrees with the C build on every case.");
+  c.contraction = 14, c.uncontracted_differ = 1000, c.subnormal = 3, c.unexplained = 997;
+  c.device_note = "flushes subnormal floats to zero (no CL_FP_DENORM in CL_DEVICE_SINGLE_FP_CONFIG)";
+  s = verify::comparison_lines(c);
+  ASSERT_EQ(s.size(), 6u);
+  EXPECT_EQ(s[2].rfind("  14 of them agree", 0), 0u) << s[2];
+  EXPECT_NE(s[3].find("  3 of them involve a value in the subnormal range"), std::string::npos) << s[3];
+  EXPECT_NE(s[3].find("the device: flushes subnormal floats to zero"), std::string::npos) << s[3];
+  EXPECT_EQ(s[4], "  997 of them: neither cause shows.");
+  EXPECT_EQ(s[5], "The build without contraction ('dev-contract-off') differs from the C build on 1000 cases.");
+  c = verify::BuildComparison{};
+  c.device = "dev", c.c = "c", c.cases = 10;
+  s = verify::comparison_lines(c);
   ASSERT_EQ(s.size(), 2u);
-  EXPECT_EQ(s[0], "The device build dev answers 1014 of 4000 cases (25.35%) differently from the C build c (class, t or "
-                  "barycentrics not identical); 225 of them are hit against miss.");
-  EXPECT_NE(s[1].find("agrees with the C build on every case"), std::string::npos);
-  c.agree_uncontracted = 14, c.uncontracted_differ = 1000, c.device_flushes = true, c.differ_subnormal = 3;
-  s = cli::device_comparison_sentences(c);
-  ASSERT_EQ(s.size(), 3u);
-  EXPECT_NE(s[1].find("on 14 of the 1014 differing cases"), std::string::npos) << s[1];
-  EXPECT_NE(s[1].find("still differs on 1000 cases"), std::string::npos) << s[1];
-  EXPECT_NE(s[2].find("flushes subnormal floats to zero"), std::string::npos);
-  EXPECT_NE(s[2].find("3 of the differing cases"), std::string::npos);
-  c = cli::DeviceComparison{};
-  c.device_name = "dev", c.c_name = "c", c.cases = 10;
-  s = cli::device_comparison_sentences(c);
-  ASSERT_EQ(s.size(), 1u);
-  EXPECT_EQ(s[0], "The device build dev answers every one of 10 cases exactly as the C build c does.");
+  EXPECT_EQ(s[1], "'dev' and 'c' give the same answer (class, t and barycentrics, bit for bit) on all 10 cases.");
+  c.cases = 0, c.failed = 1;
+  s = verify::comparison_lines(c);
+  ASSERT_EQ(s.size(), 4u);
+  EXPECT_EQ(s[2], "1 case is left out: a failure of either build (reported above).");
+  EXPECT_EQ(s[3], "No case was answered by both 'dev' and 'c': nothing to compare.");
 }
 
 }  // namespace

@@ -5,20 +5,20 @@
 //   rayproof check --glsl mt=examples/glsl/moller_trumbore.glsl
 //   rayproof check --glsl mt:double=examples/glsl/moller_trumbore.glsl     (where the device has shaderFloat64)
 //
-// rp_real and rp_vec3 are float and vec3 (or double and dvec3 for NAME:double=FILE): docs/shaders.md.
-int rp_triangle(rp_vec3 o, rp_vec3 d, rp_vec3 p0, rp_vec3 p1, rp_vec3 p2, out rp_real t, out rp_vec2 b) {
-  rp_vec3 e1 = p1 - p0;
-  rp_vec3 e2 = p2 - p0;
-  rp_vec3 s1 = cross(d, e2);
-  rp_real det = dot(s1, e1);
-  if (det == rp_real(0)) return RP_MISS;  // parallel to the plane (or in it): the naive test misses
-  rp_vec3 s = o - p0;
-  rp_vec3 s2 = cross(s, e1);
-  rp_real inv = rp_real(1) / det;
+// rayproof_real and rayproof_real3 are float and vec3 (or double and dvec3 for NAME:double=FILE): docs/shaders.md.
+int rayproof_triangle(rayproof_real3 o, rayproof_real3 d, rayproof_real3 p0, rayproof_real3 p1, rayproof_real3 p2, out rayproof_real t, out rayproof_real2 b) {
+  rayproof_real3 e1 = p1 - p0;
+  rayproof_real3 e2 = p2 - p0;
+  rayproof_real3 s1 = cross(d, e2);
+  rayproof_real det = dot(s1, e1);
+  if (det == rayproof_real(0)) return RAYPROOF_MISS;  // parallel to the plane (or in it): the naive test misses
+  rayproof_real3 s = o - p0;
+  rayproof_real3 s2 = cross(s, e1);
+  rayproof_real inv = rayproof_real(1) / det;
   t = dot(s2, e2) * inv;
   b.x = dot(s1, s) * inv;
   b.y = dot(s2, d) * inv;
-  if (!(b.x >= rp_real(0) && b.y >= rp_real(0) && rp_real(1) - b.x - b.y >= rp_real(0) && t >= rp_real(0)))
-    return RP_MISS;
-  return RP_HIT_T_B;
+  if (!(b.x >= rayproof_real(0) && b.y >= rayproof_real(0) && rayproof_real(1) - b.x - b.y >= rayproof_real(0) && t >= rayproof_real(0)))
+    return RAYPROOF_MISS;
+  return RAYPROOF_HIT_TB;
 }

@@ -520,16 +520,11 @@ void wide_traverse(const Tree& bvh, const Ray<double>& ray, double tmin, const d
   wide_traverse_slots(bvh, ray, tmin, tmax, mode, query, [&](std::uint32_t j) { return leaf(ids[j]); });
 }
 
-/// The four-wide (SSE) names of wide_traverse_leaves / _slots / wide_traverse.
+/// The four-wide (SSE) names of wide_traverse_leaves and wide_traverse.
 template <class LeafRange>
 void bvh4_traverse_leaves(const Bvh4& bvh, const Ray<double>& ray, double tmin, const double& tmax, BvhTraversal mode,
                           BvhQuery query, LeafRange&& leaf_range) {
   wide_traverse_leaves(bvh, ray, tmin, tmax, mode, query, leaf_range);
-}
-template <class Leaf>
-void bvh4_traverse_slots(const Bvh4& bvh, const Ray<double>& ray, double tmin, const double& tmax, BvhTraversal mode,
-                         BvhQuery query, Leaf&& leaf) {
-  wide_traverse_slots(bvh, ray, tmin, tmax, mode, query, leaf);
 }
 template <class Leaf>
 void bvh4_traverse(const Bvh4& bvh, const Ray<double>& ray, double tmin, const double& tmax, BvhTraversal mode,

@@ -50,7 +50,7 @@
 /// Leaves are handed to the caller whole: `leaf_range(first, count)` gets a range of leaf-order
 /// slots (indices into prim_ids, or the caller's own leaf-order data) and returns true to stop
 /// (honoured for any hit); for closest hit it lowers `tmax` (held by reference) as the per-slot
-/// callbacks do. bvh8_traverse_slots / bvh8_traverse are the per-slot and per-primitive forms. The
+/// callbacks do. wide_traverse_slots (bvh_wide.h) and bvh8_traverse are the per-slot and per-primitive forms. The
 /// loop, the stack, the child ordering and the double fallback are bvh_wide.h's (wide_traverse_loop);
 /// this header adds the AVX2 box test and the AVX2-compiled entry to that loop.
 #include <immintrin.h>
@@ -263,17 +263,12 @@ struct WideTraversal<Bvh8Q> : WideTraversal8<Bvh8Q, Bvh8QBoxTest> {};
 
 }  // namespace detail
 
-/// The eight-wide (AVX2) names of wide_traverse_leaves / _slots / wide_traverse (bvh_wide.h). Need
+/// The eight-wide (AVX2) names of wide_traverse_leaves and wide_traverse (bvh_wide.h). Need
 /// AVX2: call them only when cpu_has_avx2() (bvh_simd_path() == BvhSimd::avx2).
 template <class LeafRange>
 void bvh8_traverse_leaves(const Bvh8& bvh, const Ray<double>& ray, double tmin, const double& tmax, BvhTraversal mode,
                           BvhQuery query, LeafRange&& leaf_range) {
   wide_traverse_leaves(bvh, ray, tmin, tmax, mode, query, leaf_range);
-}
-template <class Leaf>
-void bvh8_traverse_slots(const Bvh8& bvh, const Ray<double>& ray, double tmin, const double& tmax, BvhTraversal mode,
-                         BvhQuery query, Leaf&& leaf) {
-  wide_traverse_slots(bvh, ray, tmin, tmax, mode, query, leaf);
 }
 template <class Leaf>
 void bvh8_traverse(const Bvh8& bvh, const Ray<double>& ray, double tmin, const double& tmax, BvhTraversal mode,

@@ -10,9 +10,8 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 
-#include "cli/build_compare.h"
+#include "verify/build_compare.h"
 #include "verify/check_text.h"
-#include "cli/device_compare.h"
 #include "cli/commands.h"
 #include "cli/mesh_modes.h"
 #include "cli/tool.h"
@@ -28,9 +27,9 @@ namespace rayproof::cli {
 namespace {
 
 /// --compare-plugin: the --opencl kernel against the C build of its formula on the check's cases,
-/// and the same kernel built without contraction (cli/device_compare.h). Nothing on a bad option
+/// and the same kernel built without contraction (verify/build_compare.h). Nothing on a bad option
 /// (the message is printed).
-std::optional<DeviceComparison> compare_with_plugin(const CheckCliOptions& o, const Method& kernel,
+std::optional<verify::BuildComparison> compare_with_plugin(const CheckCliOptions& o, const Method& kernel,
                                                    const verify::CheckResult& res) {
   if (o.user.opencl.size() != 1) {
     fmt::print(stderr, "rayproof check: --compare-plugin compares an --opencl kernel with the C build of its formula\n");
@@ -60,9 +59,16 @@ std::optional<DeviceComparison> compare_with_plugin(const CheckCliOptions& o, co
         if (kernel.supports(cs.kind) && c.supports(cs.kind))
           cases.push_back(kernel.precision == Precision::float32 ? io::round_to_float(cs) : cs);
     }
-  const bool flushes = kernel.precision == Precision::float32 &&
-                       (!rep.float_denorms || o.user.cl_options.find("-cl-denorms-are-zero") != std::string::npos);
-  return compare_device_builds(kernel, c, uncontracted.get(), flushes, cases);
+  auto r = verify::compare_builds(verify::DeviceLanguage::opencl, kernel, c, uncontracted.get(), cases, o.reproducers);
+  if (kernel.precision == Precision::float32) {
+    if (o.user.cl_options.find("-cl-denorms-are-zero") != std::string::npos)
+      r.device_note = "asked to flush subnormal floats to zero (-cl-denorms-are-zero)";
+    else if (!rep.float_denorms)
+      r.device_note = "flushes subnormal floats to zero (no CL_FP_DENORM in CL_DEVICE_SINGLE_FP_CONFIG)";
+    else
+      r.device_note = "declares subnormal floats (CL_FP_DENORM)";
+  }
+  return r;
 }
 
 nlohmann::json ulps_json(std::uint64_t u) {
@@ -202,10 +208,10 @@ int run_check(const CheckCliOptions& o) {
                p.cases_done);
   };
   const verify::CheckResult res = verify::check(*kernel, opt);
-  std::optional<DeviceComparison> cmp;
+  std::optional<verify::BuildComparison> builds;
   if (!o.compare_plugin.empty() && !o.user.opencl.empty()) {  // the --glsl comparison follows
-    cmp = compare_with_plugin(o, *kernel, res);
-    if (!cmp) return 2;
+    builds = compare_with_plugin(o, *kernel, res);
+    if (!builds) return 2;
   }
 
   // The cases of the families run, as the report and the build comparison see them.
@@ -220,8 +226,6 @@ int run_check(const CheckCliOptions& o) {
       }
     return cases;
   };
-  std::optional<BuildComparison> builds;
-  std::string device_note;
   if (!o.compare_plugin.empty() && !o.user.glsl.empty()) {
     auto loaded = load_plugin_method(o.compare_plugin);
     if (auto* why = std::get_if<std::string>(&loaded)) {
@@ -242,10 +246,10 @@ int run_check(const CheckCliOptions& o) {
     auto cases = family_cases();
     if (kernel->precision == Precision::float32)
       for (auto& x : cases) x = io::round_to_float(x);
-    builds = compare_builds(*kernel, c, precise->front().get(), cases, o.reproducers * 4);
-    if (kernel->take_failures) (void)kernel->take_failures();
+    builds = verify::compare_builds(verify::DeviceLanguage::glsl, *kernel, c, precise->front().get(), cases,
+                                    o.reproducers * 4);
     if (const auto at = kernel->summary.find("; subnormal "); at != std::string::npos)
-      device_note = kernel->summary.substr(at + 2);
+      builds->device_note = kernel->summary.substr(at + 2);
   }
 
   if (!o.out.empty()) {
@@ -264,8 +268,10 @@ int run_check(const CheckCliOptions& o) {
                                     res.families.size(), o.count, o.seed));
     for (const auto& line : verify::check_sentences(res)) rep.notes.push_back(line);
     if (builds)
-      for (const auto& line : comparison_lines(*builds, device_note))
-        if (line.rfind("# the first", 0) != 0 && line.find("  # ") == std::string::npos) rep.notes.push_back(line);
+      for (const auto& line : verify::comparison_lines(*builds)) {
+        if (line.rfind("# the first", 0) == 0) break;  // the examples: the report's reproducers are the check's own
+        rep.notes.push_back(line);
+      }
     // The reproducers are the check's own (its worst cases, minimized), not the comparison's first ones.
     rep.reproducers = verify::reproducer_lines(res);
     rep.reproducers_intro = fmt::format("The worst cases of {} per family, minimized where marked, and its failures: "
@@ -285,25 +291,19 @@ int run_check(const CheckCliOptions& o) {
   if (o.json) {
     auto j = result_json(res);
     j["summary"] = kernel->summary;
-    if (cmp)
-      j["compare_plugin"] = {{"plugin", o.compare_plugin}, {"cases", cmp->cases}, {"differ", cmp->differ},
-                             {"differ_hit_miss", cmp->differ_hit},
-                             {"agree_without_contraction", cmp->agree_uncontracted.value_or(0)},
-                             {"differ_without_contraction", cmp->uncontracted_differ.value_or(0)},
-                             {"device_flushes_subnormals", cmp->device_flushes},
-                             {"differ_with_subnormal_input", cmp->differ_subnormal},
-                             {"sentences", device_comparison_sentences(*cmp)}};
     if (is_glsl_kernel(*kernel)) j["kernel"] = kernel->summary;
     if (builds) {
       nlohmann::json ex = nlohmann::json::array();
       for (const auto& d : builds->examples)
-        ex.push_back({{"case", io::format_case(d.input)}, {"gpu", io::format_answer(d.gpu)}, {"c", io::format_answer(d.c)},
-                      {"precise", d.precise ? nlohmann::json(io::format_answer(*d.precise)) : nlohmann::json()},
+        ex.push_back({{"case", io::format_case(d.input)}, {"device", io::format_answer(d.device)}, {"c", io::format_answer(d.c)},
+                      {"uncontracted", d.uncontracted ? nlohmann::json(io::format_answer(*d.uncontracted)) : nlohmann::json()},
                       {"why", d.why}});
       j["compare_plugin"] = {{"plugin", o.compare_plugin}, {"c", builds->c}, {"cases", builds->cases},
-                             {"differ", builds->differ}, {"contraction", builds->contraction},
-                             {"subnormal", builds->subnormal}, {"unexplained", builds->unexplained},
-                             {"examples", ex}};
+                             {"failed", builds->failed}, {"differ", builds->differ}, {"differ_hit_miss", builds->differ_hit},
+                             {"contraction", builds->contraction}, {"subnormal", builds->subnormal},
+                             {"unexplained", builds->unexplained}, {"uncontracted_differ", builds->uncontracted_differ},
+                             {"device_note", builds->device_note}, {"examples", ex},
+                             {"sentences", verify::comparison_lines(*builds)}};
     }
     fmt::print("{}\n", j.dump(1));
   } else {
@@ -320,15 +320,9 @@ int run_check(const CheckCliOptions& o) {
     }
     fmt::print("\n");
     for (const auto& s : verify::check_sentences(res)) fmt::print("{}\n", s);
-    if (cmp) {
-      fmt::print("\n# the device build against the C build {} ({}): up to 3 cases where they differ\n",
-                 cmp->c_name, o.compare_plugin);
-      for (const auto& l : cmp->examples) fmt::print("{}\n", l);
-      for (const auto& l : device_comparison_sentences(*cmp)) fmt::print("{}\n", l);
-    }
     if (builds) {
       fmt::print("\n");
-      for (const auto& l : comparison_lines(*builds, device_note)) fmt::print("{}\n", l);
+      for (const auto& l : verify::comparison_lines(*builds)) fmt::print("{}\n", l);
     }
   }
   return res.promises_kept() ? 0 : 1;

@@ -1,9 +1,10 @@
 #include "methods/exec_kernel.h"
 
+#include "methods/child_process.h"
+
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
-#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -22,7 +23,6 @@
 #include <utility>
 #include <vector>
 
-extern char** environ;
 
 namespace rayproof {
 
@@ -64,43 +64,12 @@ struct Child {
 
   /// Starts `/bin/sh -c command` in its own process group; "" or the reason it could not start.
   std::string start(const std::string& command) {
-    int pin[2], pout[2], perr[2];
-    if (::pipe2(pin, O_CLOEXEC) != 0) return std::string("pipe: ") + std::strerror(errno);
-    if (::pipe2(pout, O_CLOEXEC) != 0) {
-      ::close(pin[0]), ::close(pin[1]);
-      return std::string("pipe: ") + std::strerror(errno);
-    }
-    if (::pipe2(perr, O_CLOEXEC) != 0) {
-      ::close(pin[0]), ::close(pin[1]), ::close(pout[0]), ::close(pout[1]);
-      return std::string("pipe: ") + std::strerror(errno);
-    }
-    posix_spawn_file_actions_t fa;
-    posix_spawn_file_actions_init(&fa);
-    posix_spawn_file_actions_adddup2(&fa, pin[0], 0);
-    posix_spawn_file_actions_adddup2(&fa, pout[1], 1);
-    posix_spawn_file_actions_adddup2(&fa, perr[1], 2);
-    posix_spawnattr_t at;
-    posix_spawnattr_init(&at);
-    sigset_t def, none;
-    sigemptyset(&def);
-    sigaddset(&def, SIGPIPE);
-    sigemptyset(&none);
-    posix_spawnattr_setsigdefault(&at, &def);
-    posix_spawnattr_setsigmask(&at, &none);
-    posix_spawnattr_setpgroup(&at, 0);
-    posix_spawnattr_setflags(&at, POSIX_SPAWN_SETSIGDEF | POSIX_SPAWN_SETSIGMASK | POSIX_SPAWN_SETPGROUP);
-    std::string sh = "/bin/sh", dash_c = "-c", cmd = command;
-    char* argv[] = {sh.data(), dash_c.data(), cmd.data(), nullptr};
-    const int rc = ::posix_spawn(&pid, "/bin/sh", &fa, &at, argv, environ);
-    posix_spawn_file_actions_destroy(&fa);
-    posix_spawnattr_destroy(&at);
-    ::close(pin[0]), ::close(pout[1]), ::close(perr[1]);
-    in = pin[1], out = pout[0], err = perr[0];
-    if (rc != 0) {
-      pid = -1;
-      close_fd(in), close_fd(out), close_fd(err);
-      return std::string("could not start /bin/sh: ") + std::strerror(rc);
-    }
+    proc::SpawnOptions so;
+    so.own_process_group = true;
+    so.pipe_stderr = true;
+    proc::Child c;
+    if (auto why = proc::spawn("/bin/sh", {"/bin/sh", "-c", command}, so, c); !why.empty()) return why;
+    pid = c.pid, in = c.to, out = c.from, err = c.err;
     for (int fd : {in, out, err}) ::fcntl(fd, F_SETFL, ::fcntl(fd, F_GETFL) | O_NONBLOCK);
     ::fcntl(in, F_SETPIPE_SZ, 1 << 20);  // fewer wake-ups; the default size works too
     return "";

@@ -1,9 +1,10 @@
 #include "methods/glsl_kernel.h"
 
+#include "methods/child_process.h"
+
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
-#include <spawn.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -14,6 +15,8 @@
 #include <cmath>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 #include <fmt/core.h>
 #include <memory>
 #include <mutex>
@@ -23,7 +26,6 @@
 #include "methods/plugin_kernel.h"
 #include "rayproof/plugin.h"
 
-extern char** environ;
 
 namespace rayproof {
 
@@ -41,68 +43,14 @@ constexpr std::size_t kChunk = 65536;   // cases per request (Runner::max_cases)
 constexpr std::size_t kMaxKept = 10000;  // failures kept between two takes
 constexpr double kStartSeconds = 60;     // compile and open the device
 
-enum class Io { ok, eof, timeout, error };
+using Clock = proc::Clock;
+using proc::Io;
+using proc::read_all;
+using proc::write_all;
+using Child = proc::Child;
 
-using Clock = std::chrono::steady_clock;
-
-Io write_all(int fd, const void* data, std::size_t n, Clock::time_point deadline) {
-  const char* p = static_cast<const char*>(data);
-  while (n > 0) {
-    const double left = std::chrono::duration<double>(deadline - Clock::now()).count();
-    if (left <= 0) return Io::timeout;
-    pollfd pf{fd, POLLOUT, 0};
-    const int pr = ::poll(&pf, 1, int(std::ceil(left * 1000)));
-    if (pr < 0 && errno == EINTR) continue;
-    if (pr < 0) return Io::error;
-    if (pr == 0) return Io::timeout;
-    const ssize_t w = ::write(fd, p, n);
-    if (w < 0 && (errno == EINTR || errno == EAGAIN)) continue;
-    if (w <= 0) return Io::eof;
-    p += w, n -= std::size_t(w);
-  }
-  return Io::ok;
-}
-
-Io read_all(int fd, void* data, std::size_t n, Clock::time_point deadline) {
-  char* p = static_cast<char*>(data);
-  while (n > 0) {
-    const double left = std::chrono::duration<double>(deadline - Clock::now()).count();
-    if (left <= 0) return Io::timeout;
-    pollfd pf{fd, POLLIN, 0};
-    const int pr = ::poll(&pf, 1, int(std::ceil(left * 1000)));
-    if (pr < 0 && errno == EINTR) continue;
-    if (pr < 0) return Io::error;
-    if (pr == 0) return Io::timeout;
-    const ssize_t r = ::read(fd, p, n);
-    if (r < 0 && (errno == EINTR || errno == EAGAIN)) continue;
-    if (r <= 0) return Io::eof;
-    p += r, n -= std::size_t(r);
-  }
-  return Io::ok;
-}
-
-struct Child {
-  pid_t pid = -1;
-  int to = -1, from = -1;
-};
-
-/// The child's exit, once it has ended (or been killed): "exited with status 3", "killed by signal 11".
-std::string reap(Child& ch, bool kill_first) {
-  if (ch.to >= 0) ::close(ch.to);
-  if (ch.from >= 0) ::close(ch.from);
-  ch.to = ch.from = -1;
-  std::string how;
-  if (ch.pid > 0) {
-    if (kill_first) ::kill(ch.pid, SIGKILL);
-    int status = 0;
-    while (::waitpid(ch.pid, &status, 0) < 0 && errno == EINTR) {
-    }
-    if (WIFSIGNALED(status)) how = fmt::format("killed by signal {}", WTERMSIG(status));
-    else if (WIFEXITED(status)) how = fmt::format("exited with status {}", WEXITSTATUS(status));
-  }
-  ch.pid = -1;
-  return how;
-}
+/// The child's exit, once it has ended (or been killed): "exited with status 3", "killed by signal 11 (...)".
+std::string reap(Child& ch, bool kill_first) { return proc::end(ch, kill_first); }
 
 struct State {
   std::string name, file, host;
@@ -143,32 +91,11 @@ struct State {
   std::string start() {
     static std::once_flag sigpipe;
     std::call_once(sigpipe, [] { ::signal(SIGPIPE, SIG_IGN); });
-    int pin[2], pout[2];
-    if (::pipe2(pin, O_CLOEXEC) != 0) return std::string("pipe: ") + std::strerror(errno);
-    if (::pipe2(pout, O_CLOEXEC) != 0) {
-      ::close(pin[0]), ::close(pin[1]);
-      return std::string("pipe: ") + std::strerror(errno);
-    }
-    posix_spawn_file_actions_t fa;
-    posix_spawn_file_actions_init(&fa);
-    posix_spawn_file_actions_adddup2(&fa, pin[0], 0);
-    posix_spawn_file_actions_adddup2(&fa, pout[1], 1);
     std::vector<std::string> args{host, "glsl-host", "--file", file, "--precision",
                                   precision == Precision::float32 ? "float" : "double", "--device",
                                   std::to_string(opt.device)};
     if (opt.no_contraction) args.push_back("--no-contraction");
-    std::vector<char*> argv;
-    for (auto& a : args) argv.push_back(a.data());
-    argv.push_back(nullptr);
-    pid_t pid = -1;
-    const int rc = ::posix_spawn(&pid, host.c_str(), &fa, nullptr, argv.data(), environ);
-    posix_spawn_file_actions_destroy(&fa);
-    ::close(pin[0]), ::close(pout[1]);
-    if (rc != 0) {
-      ::close(pin[1]), ::close(pout[0]);
-      return fmt::format("cannot start {} glsl-host: {}", host, std::strerror(rc));
-    }
-    child = {pid, pin[1], pout[0]};
+    if (auto why = proc::spawn(host, args, {}, child); !why.empty()) return why + " (the glsl-host of the shader)";
     const auto deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(std::max(kStartSeconds, opt.timeout_seconds)));
     std::array<std::uint32_t, 2> head{};
     if (Io r = read_all(child.from, head.data(), sizeof head, deadline); r != Io::ok) {
@@ -282,8 +209,8 @@ struct State {
         if (code == glsl::kHitTB) ans.has |= RAYPROOF_HAS_B, ans.b1 = a[2], ans.b2 = a[3];
       } else {
         res[i] = {Contact::error};
-        fail(cases[i], fmt::format("answer outside the vocabulary: {} returned {}, not RP_MISS, RP_HIT, RP_HIT_T or "
-                                   "RP_HIT_T_B", glsl::function_name(k), io::format_double(a[0])));
+        fail(cases[i], fmt::format("answer outside the vocabulary: {} returned {}, not RAYPROOF_MISS, RAYPROOF_HIT, "
+                                   "RAYPROOF_HIT_T or RAYPROOF_HIT_TB", glsl::function_name(k), io::format_double(a[0])));
         continue;
       }
       auto got = plugin_answer_to_result(k, ans);
@@ -291,7 +218,7 @@ struct State {
         res[i] = *ok;
       } else {
         res[i] = {Contact::error};
-        fail(cases[i], std::get<std::string>(got) + " (RP_HIT_T_B is for triangles)");
+        fail(cases[i], std::get<std::string>(got) + " (RAYPROOF_HIT_TB is for triangles)");
       }
     }
   }
@@ -337,6 +264,12 @@ std::variant<Method, std::string> make_glsl_method(const std::string& spec, cons
   std::error_code ec;
   if (!std::filesystem::is_regular_file(file, ec)) return fmt::format("--glsl {}: {}: no such file", spec, file);
   if (opt.host.empty()) return fmt::format("--glsl {}: no rayproof executable to host the shader", spec);
+  {  // The old rp_ names work for one release, said once per file.
+    std::ifstream in(file, std::ios::binary);
+    std::stringstream text;
+    text << in.rdbuf();
+    if (const auto w = glsl::legacy_names_warning(file, text.str()); !w.empty()) fmt::print(stderr, "{}\n", w);
+  }
 
   auto st = std::make_shared<State>();
   st->name = name;

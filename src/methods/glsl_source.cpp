@@ -4,6 +4,7 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <cctype>
 #include <utility>
 
@@ -26,7 +27,9 @@ std::vector<std::pair<const char*, int>> fields(io::Kind k) {
 
 }  // namespace
 
-std::string function_name(io::Kind k) { return "rp_" + std::string(io::to_string(k)); }
+std::string function_name(io::Kind k) { return "rayproof_" + std::string(io::to_string(k)); }
+
+std::string legacy_function_name(io::Kind k) { return "rp_" + std::string(io::to_string(k)); }
 
 std::string signature(io::Kind k, Precision p) {
   const bool dbl = p == Precision::float64;
@@ -38,7 +41,36 @@ std::string signature(io::Kind k, Precision p) {
   return s + ")";
 }
 
-std::vector<io::Kind> defined_kinds(std::string_view user_text) { return kinds_defined(user_text, function_name); }
+std::vector<io::Kind> defined_kinds(std::string_view user_text) {
+  const auto now = kinds_defined(user_text, function_name), old = kinds_defined(user_text, legacy_function_name);
+  std::vector<io::Kind> out;
+  for (io::Kind k : io::kAllKinds)
+    if (std::find(now.begin(), now.end(), k) != now.end() || std::find(old.begin(), old.end(), k) != old.end())
+      out.push_back(k);
+  return out;
+}
+
+std::vector<io::Kind> legacy_kinds(std::string_view user_text) {
+  const auto now = kinds_defined(user_text, function_name), old = kinds_defined(user_text, legacy_function_name);
+  std::vector<io::Kind> out;
+  for (io::Kind k : old)
+    if (std::find(now.begin(), now.end(), k) == now.end()) out.push_back(k);
+  return out;
+}
+
+std::string legacy_names_warning(std::string_view file, std::string_view user_text) {
+  const auto old = legacy_kinds(user_text);
+  if (old.empty()) return {};
+  std::string names, renamed;
+  for (io::Kind k : old) {
+    names += (names.empty() ? "" : ", ") + legacy_function_name(k);
+    renamed += (renamed.empty() ? "" : ", ") + function_name(k);
+  }
+  return fmt::format("rayproof --glsl {}: {} {} the old GLSL spelling; rename {} {} (and RP_*, rp_real, rp_vec* to "
+                     "RAYPROOF_*, rayproof_real, rayproof_real*), the names OpenCL kernels use too. The old names "
+                     "work in this release and are removed in the next (docs/shaders.md).",
+                     file, names, old.size() == 1 ? "is" : "are", old.size() == 1 ? "it" : "them", renamed);
+}
 
 std::string prepare_user_text(std::string_view user_text) {
   std::string out;
@@ -69,46 +101,53 @@ std::string wrap(std::string_view user_text, std::string_view label, io::Kind k,
       "#version 450\n"
       "#extension GL_GOOGLE_cpp_style_line_directive : require\n"
       "layout(local_size_x = {}) in;\n"
+      "#define RAYPROOF_MISS 0\n#define RAYPROOF_HIT 1\n#define RAYPROOF_HIT_T 2\n#define RAYPROOF_HIT_TB 3\n"
+      "#define RAYPROOF_REAL_IS_DOUBLE {}\n"
+      "#define rayproof_real {}\n#define rayproof_real2 {}\n#define rayproof_real3 {}\n"
+      "// The old spellings, for one release (legacy_names_warning says so):\n"
       "#define RP_MISS 0\n#define RP_HIT 1\n#define RP_HIT_T 2\n#define RP_HIT_T_B 3\n"
-      "#define rp_real {}\n#define rp_vec2 {}\n#define rp_vec3 {}\n{}",
-      kWorkgroup, dbl ? "double" : "float", dbl ? "dvec2" : "vec2", dbl ? "dvec3" : "vec3",
+      "#define rp_real rayproof_real\n#define rp_vec2 rayproof_real2\n#define rp_vec3 rayproof_real3\n{}",
+      kWorkgroup, dbl ? 1 : 0, dbl ? "double" : "float", dbl ? "dvec2" : "vec2", dbl ? "dvec3" : "vec3",
       dbl ? "#define RP_DOUBLE 1\n" : "");
   s += "#line 1 \"" + safe_label + "\"\n";
   s += prepare_user_text(user_text);
-  s += "\n#line 1 \"rayproof wrapper calling " + function_name(k) + "\"\n";
+  const auto old = legacy_kinds(user_text);
+  const std::string callee = std::find(old.begin(), old.end(), k) != old.end() ? legacy_function_name(k) : function_name(k);
+  s += "\n#line 1 \"rayproof wrapper calling " + callee + "\"\n";
   s += fmt::format(
-      "layout(std430, binding = 0) readonly buffer RpIn {{ rp_real rp_in[]; }};\n"
-      "layout(std430, binding = 1) writeonly buffer RpOut {{ rp_real rp_out[]; }};\n"
-      "layout(push_constant) uniform RpCount {{ uint rp_n; }};\n"
+      "layout(std430, binding = 0) readonly buffer RayproofIn {{ rayproof_real rayproof_in[]; }};\n"
+      "layout(std430, binding = 1) writeonly buffer RayproofOut {{ rayproof_real rayproof_out[]; }};\n"
+      "layout(push_constant) uniform RayproofCount {{ uint rayproof_n; }};\n"
       "void main() {{\n"
       "  uint i = gl_GlobalInvocationID.x;\n"
-      "  if (i >= rp_n) return;\n"
+      "  if (i >= rayproof_n) return;\n"
       "  uint b = i * {}u;\n",
       kInReals);
   int at = 0;
   auto vec = [&](const char* name) {
-    s += fmt::format("  rp_vec3 {0} = rp_vec3(rp_in[b + {1}u], rp_in[b + {2}u], rp_in[b + {3}u]);\n", name, at, at + 1,
-                     at + 2);
+    s += fmt::format("  rayproof_real3 {0} = rayproof_real3(rayproof_in[b + {1}u], rayproof_in[b + {2}u], "
+                     "rayproof_in[b + {3}u]);\n", name, at, at + 1, at + 2);
     at += 3;
   };
   vec("o");
   vec("d");
   std::string args = "o, d";
   for (const auto& [name, n] : fields(k)) {
-    const std::string local = std::string("rp_") + name;
+    const std::string local = std::string("rayproof_") + name;
     if (n == 3) {
       vec(local.c_str());
     } else {
-      s += fmt::format("  rp_real {} = rp_in[b + {}u];\n", local, at);
+      s += fmt::format("  rayproof_real {} = rayproof_in[b + {}u];\n", local, at);
       at += 1;
     }
     args += ", " + local;
   }
-  s += "  rp_real t = rp_real(0);\n  rp_vec2 bc = rp_vec2(0);\n";
-  s += fmt::format("  int code = {}({}, t{});\n", function_name(k), args, k == io::Kind::triangle ? ", bc" : "");
+  s += "  rayproof_real t = rayproof_real(0);\n  rayproof_real2 bc = rayproof_real2(0);\n";
+  s += fmt::format("  int code = {}({}, t{});\n", callee, args, k == io::Kind::triangle ? ", bc" : "");
   s += fmt::format(
       "  uint r = i * {}u;\n"
-      "  rp_out[r] = rp_real(code);\n  rp_out[r + 1u] = t;\n  rp_out[r + 2u] = bc.x;\n  rp_out[r + 3u] = bc.y;\n"
+      "  rayproof_out[r] = rayproof_real(code);\n  rayproof_out[r + 1u] = t;\n  rayproof_out[r + 2u] = bc.x;\n"
+      "  rayproof_out[r + 3u] = bc.y;\n"
       "}}\n",
       kOutReals);
   return s;

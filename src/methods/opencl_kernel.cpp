@@ -3,7 +3,6 @@
 #include <fcntl.h>
 #include <poll.h>
 #include <signal.h>
-#include <spawn.h>
 #include <sys/mman.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -22,10 +21,10 @@
 
 #include <fmt/core.h>
 
+#include "methods/child_process.h"
 #include "methods/opencl_frames.h"
 #include "methods/opencl_wrapper.h"
 
-extern char** environ;
 
 namespace rayproof {
 
@@ -34,10 +33,7 @@ namespace {
 using Clock = std::chrono::steady_clock;
 constexpr std::size_t kMaxKept = 10000;  // failures kept between two takes
 
-struct Child {
-  pid_t pid = -1;
-  int to = -1, from = -1;
-};
+using Child = proc::Child;
 
 struct State {
   std::string name, file, host;
@@ -58,31 +54,11 @@ struct State {
   ~State();
 };
 
-void close_fd(int& fd) {
-  if (fd >= 0) ::close(fd);
-  fd = -1;
-}
-
-/// "killed by signal 9", "exited with status 2".
-std::string status_text(int status) {
-  if (WIFSIGNALED(status)) return fmt::format("killed by signal {} ({})", WTERMSIG(status), strsignal(WTERMSIG(status)));
-  if (WIFEXITED(status)) return fmt::format("exited with status {}", WEXITSTATUS(status));
-  return "ended";
-}
+using proc::close_fd;
 
 /// Ends the child: SIGKILL unless `gently` (then its input is closed and it exits by itself).
 /// Gives its status text.
-std::string end_child(Child& ch, bool gently) {
-  if (ch.pid < 0) return "not running";
-  close_fd(ch.to);
-  if (!gently) ::kill(ch.pid, SIGKILL);
-  int status = 0;
-  while (::waitpid(ch.pid, &status, 0) < 0 && errno == EINTR) {
-  }
-  close_fd(ch.from);
-  ch.pid = -1;
-  return status_text(status);
-}
+std::string end_child(Child& ch, bool gently) { return proc::end(ch, !gently); }
 
 State::~State() {
   if (ch.pid >= 0) {
@@ -95,23 +71,13 @@ State::~State() {
 
 enum class Read { ok, timeout, eof };
 
-/// Reads n bytes before the deadline.
+/// Reads n bytes before the deadline (a broken pipe or a poll error reads as the end).
 Read read_until(int fd, void* p, std::size_t n, Clock::time_point deadline) {
-  char* c = static_cast<char*>(p);
-  while (n > 0) {
-    const double left = std::chrono::duration<double>(deadline - Clock::now()).count();
-    if (left <= 0) return Read::timeout;
-    pollfd pfd{fd, POLLIN, 0};
-    const int pr = ::poll(&pfd, 1, static_cast<int>(std::ceil(std::min(left, 1e6) * 1000)));
-    if (pr < 0 && errno == EINTR) continue;
-    if (pr == 0) return Read::timeout;
-    if (pr < 0) return Read::eof;
-    const ssize_t r = ::read(fd, c, n);
-    if (r < 0 && (errno == EINTR || errno == EAGAIN)) continue;
-    if (r <= 0) return Read::eof;
-    c += r, n -= static_cast<std::size_t>(r);
+  switch (proc::read_all(fd, p, n, deadline)) {
+    case proc::Io::ok: return Read::ok;
+    case proc::Io::timeout: return Read::timeout;
+    default: return Read::eof;
   }
-  return Read::ok;
 }
 
 /// Reads one frame before the deadline; `payload` gets its bytes.
@@ -136,12 +102,6 @@ std::optional<std::string> start(State& st) {
     if (p == MAP_FAILED) return std::string("mmap of the shared memory: ") + std::strerror(errno);
     st.shm = static_cast<unsigned char*>(p);
   }
-  int pin[2], pout[2];
-  if (::pipe2(pin, O_CLOEXEC) != 0) return std::string("pipe: ") + std::strerror(errno);
-  if (::pipe2(pout, O_CLOEXEC) != 0) {
-    ::close(pin[0]), ::close(pin[1]);
-    return std::string("pipe: ") + std::strerror(errno);
-  }
   std::vector<std::string> args{st.host, "opencl-host", "--file", st.file, "--device", std::to_string(st.opt.device),
                                 "--precision", precision_word(st.precision)};
   std::string kinds;
@@ -150,34 +110,9 @@ std::optional<std::string> start(State& st) {
   args.push_back("--max-cases=" + std::to_string(st.opt.max_batch));
   if (st.opt.cl_options) args.push_back("--options=" + *st.opt.cl_options);
   if (st.opt.contract_off) args.push_back("--contract-off");
-  std::vector<char*> argv;
-  for (auto& a : args) argv.push_back(a.data());
-  argv.push_back(nullptr);
-  posix_spawn_file_actions_t fa;
-  posix_spawn_file_actions_init(&fa);
-  posix_spawn_file_actions_adddup2(&fa, pin[0], 0);
-  posix_spawn_file_actions_adddup2(&fa, pout[1], 1);
-  posix_spawn_file_actions_adddup2(&fa, st.shm_fd, 3);
-  posix_spawnattr_t at;
-  posix_spawnattr_init(&at);
-  sigset_t def, none;
-  sigemptyset(&def);
-  sigaddset(&def, SIGPIPE);
-  sigemptyset(&none);
-  posix_spawnattr_setsigdefault(&at, &def);
-  posix_spawnattr_setsigmask(&at, &none);
-  posix_spawnattr_setflags(&at, POSIX_SPAWN_SETSIGDEF | POSIX_SPAWN_SETSIGMASK);
-  pid_t pid = -1;
-  const int rc = ::posix_spawn(&pid, st.host.c_str(), &fa, &at, argv.data(), environ);
-  posix_spawn_file_actions_destroy(&fa);
-  posix_spawnattr_destroy(&at);
-  ::close(pin[0]);
-  ::close(pout[1]);
-  if (rc != 0) {
-    ::close(pin[1]), ::close(pout[0]);
-    return fmt::format("cannot start the device process {}: {}", st.host, std::strerror(rc));
-  }
-  st.ch = Child{pid, pin[1], pout[0]};
+  proc::SpawnOptions so;
+  so.fd3 = st.shm_fd;
+  if (auto why = proc::spawn(st.host, args, so, st.ch); !why.empty()) return why + " (the OpenCL device process)";
   opencl::FrameHeader h;
   std::string payload;
   const auto deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(

@@ -131,7 +131,7 @@ class Accel {
     return bvh_.max_depth + bvh8_.max_depth + bvh4q_.max_depth + bvh8q_.max_depth;  // the others are empty (0)
   }
   /// The tree in use traversed for a ray: `leaf(j)` per leaf-order slot j (leaf_prims()[j]), true
-  /// to stop (any hit), as bvh4_traverse_slots.
+  /// to stop (any hit), as wide_traverse_slots.
   template <class Leaf>
   void traverse_slots(const Ray<double>& r, double tmin, const double& tmax, BvhTraversal mode, BvhQuery query,
                       Leaf&& leaf) const {

@@ -1,0 +1,37 @@
+#pragma once
+// The two ray sets the traversal benchmarks share: primary rays from an eye outside the scene's
+// bounds into them, and random rays between two points inside; the same seed gives the same rays
+// in every benchmark, so their numbers compare.
+#include <random>
+#include <vector>
+
+#include "rayproof/bvh.h"
+#include "rayproof/ray.h"
+
+namespace rayproof::bench {
+
+struct BenchRays {
+  std::vector<Ray<double>> primary, random;
+};
+
+inline BenchRays make_bench_rays(const BvhBox& b, int nrays, unsigned seed = 9) {
+  std::mt19937 rng(seed);
+  auto in_box = [&] {
+    Vec3<double> p;
+    for (int k = 0; k < 3; ++k) p[k] = std::uniform_real_distribution<double>(b.lo[k], b.hi[k])(rng);
+    return p;
+  };
+  Vec3<double> center, ext;
+  for (int k = 0; k < 3; ++k) center[k] = 0.5 * (double(b.lo[k]) + double(b.hi[k])), ext[k] = double(b.hi[k]) - double(b.lo[k]);
+  const double radius = length(ext);
+  BenchRays r;
+  for (int i = 0; i < nrays; ++i) {
+    const Vec3<double> eye = center + Vec3<double>{0.2 * radius, 0.3 * radius, 1.5 * radius};
+    r.primary.push_back({eye, in_box() - eye});
+    const Vec3<double> o = in_box();
+    r.random.push_back({o, in_box() - o});
+  }
+  return r;
+}
+
+}  // namespace rayproof::bench
