@@ -5,7 +5,7 @@
 #     CASES.md): the case format is docs/cases.md. Tests may read the shared case files
 #     (shared/cases), nothing else may;
 #  2. a tracked file (code, comments, build files, tests, printed strings, docs) cites an issue by
-#     number ("issue 15", "Issue #3"): say what the code does and why instead;
+#     number (the word, an optional "#", digits): say what the code does and why instead;
 #  3. a relative link of a tracked markdown file (README.md, docs/*.md, ...) points to a file missing
 #     from the repository or outside it, or to a heading (#anchor) its target does not have.
 #
