@@ -1,8 +1,8 @@
 #!/bin/sh
 # Fails when the repository leans on files a clone does not have, or cites issue numbers:
 #
-#  1. a tracked file names a path under ../shared/ or the spec outside the tree (shared/spec,
-#     CASES.md): the case format is docs/cases.md. Tests may read the shared case files
+#  1. a tracked file names a path under ../shared/ or the spec outside the tree (its folder or its
+#     case page by name): the case format is docs/cases.md. Tests may read the shared case files
 #     (shared/cases), nothing else may;
 #  2. a tracked file (code, comments, build files, tests, printed strings, docs) cites an issue by
 #     number (the word, an optional "#", digits): say what the code does and why instead;
