@@ -9,8 +9,8 @@
 #  3. a relative link of a tracked markdown file (README.md, docs/*.md, ...) points to a file missing
 #     from the repository or outside it, or to a heading (#anchor) its target does not have.
 #
-# Files come from `git ls-files` when SOURCE_DIR is a git checkout, else from find (build trees and
-# .git left out). Binary files are skipped.
+# Files come from `git ls-files` when SOURCE_DIR is a git checkout, else from find (build trees,
+# .git and the report folder of the README's first command left out). Binary files are skipped.
 #
 # usage: self_contained.sh SOURCE_DIR
 set -u
@@ -22,7 +22,7 @@ trap 'rm -f "$list"' EXIT
 if git rev-parse --is-inside-work-tree >/dev/null 2>&1; then
   git ls-files >"$list"
 else
-  find . -path ./.git -prune -o -path './build*' -prune -o -type f -print | sed 's|^\./||' >"$list"
+  find . -path ./.git -prune -o -path './build*' -prune -o -path ./report -prune -o -type f -print | sed 's|^\./||' >"$list"
 fi
 # Keep files that exist (a checkout may have deletions not yet committed) and are text.
 files=$(while IFS= read -r f; do [ -f "$f" ] && [ "$f" != "$self" ] && printf '%s\n' "$f"; done <"$list")
