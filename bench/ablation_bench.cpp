@@ -1,4 +1,4 @@
-/// Issue 20's ablation in one run: Accel with the greedy collapse and with the SAH-optimal one
+/// The collapse ablation in one run: Accel with the greedy collapse and with the SAH-optimal one
 /// (BvhBuildOptions::collapse), beside Embree (default build: the reference of `float`) and
 /// Embree-robust (the reference of `robust` and `certified`), one ray at a time on one thread,
 /// the four interleaved in blocks of 500 rays with the order rotating block by block, thread CPU

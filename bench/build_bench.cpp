@@ -1,4 +1,4 @@
-/// BVH build (issue 15, item 3): the time of scene::Accel's build (bounds, binary SAH build, collapse
+/// BVH build: the time of scene::Accel's build (bounds, binary SAH build, collapse
 /// to wide nodes, leaf-group alignment, groups) beside Embree's (rtcCommitScene with its data set-up,
 /// default and robust build, the faster), at one and two threads, interleaved round after round;
 /// each variant reports its fastest round. Then the phases of our build at one and two threads

@@ -1,5 +1,5 @@
 #pragma once
-/// AVX-512 (F, VL, DQ) child ordering for the eight-wide traversal (issue 20, item 2): closest hit
+/// AVX-512 (F, VL, DQ) child ordering for the eight-wide traversal: closest hit
 /// pushes the hit children of a node farthest first, so the nearest is on top. bvh_wide.h's
 /// wide_push does that with a comparison for two children and an insertion sort for more; here
 /// the hit children's entry distances become 64-bit keys (the float's bits made orderable as

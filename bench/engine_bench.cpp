@@ -1,4 +1,4 @@
-/// The traversal engine alone against Embree (issue 20): the eight-wide AVX2 tree of the greedy
+/// The traversal engine alone against Embree: the eight-wide AVX2 tree of the greedy
 /// collapse, the SAH-optimal collapse, and the SAH collapse with leaf prefetch, each walked by the
 /// library's traversal (bvh_wide8.h) with one plain float Möller–Trumbore leaf test over leaf-order
 /// triangles (the same for all three), beside Embree's rtcIntersect1 / rtcOccluded1 (default build)

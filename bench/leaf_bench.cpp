@@ -1,4 +1,4 @@
-/// SIMD leaves (issue 15, item 2; src/scene/leaf_simd.h): ns per triangle of the group kernels
+/// SIMD leaves (src/scene/leaf_simd.h): ns per triangle of the group kernels
 /// against the per-primitive kernels on the same triangles, and ns per ray of Accel::closest and
 /// Accel::any on a mesh with the groups on each path against the slot-by-slot queries
 /// (RAYPROOF_SIMD=off). The variants run interleaved, round after round, and each reports its

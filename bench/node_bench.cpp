@@ -1,4 +1,4 @@
-/// Compressed (quantized) wide nodes against full ones (issue 15, item 1; BvhWideQNode in
+/// Compressed (quantized) wide nodes against full ones (BvhWideQNode in
 /// rayproof/bvh_wide.h): ns per ray of Accel::closest and Accel::any for robust, certified and
 /// float on primary and random rays, with the same tree shape in full nodes and in compressed
 /// nodes, on one SIMD path. The two accels run interleaved in blocks of 500 rays (the order

@@ -1,4 +1,4 @@
-/// Packets (issue 15, item 4; rayproof/bvh_packet.h): ns per ray of Accel::closest_packets /
+/// Packets (rayproof/bvh_packet.h): ns per ray of Accel::closest_packets /
 /// any_packets against closest_batch / any_batch (single rays) on the same accel and the same rays,
 /// primary rays of the default camera in 4x2 tiles, one thread. The two paths run interleaved,
 /// round after round; each reports its fastest round and the ratio single / packet, so ratios

@@ -1,4 +1,4 @@
-/// Wide-tree quality (issue 20, item 1): the eight-wide tree of the greedy collapse (collapse_wide)
+/// Wide-tree quality: the eight-wide tree of the greedy collapse (collapse_wide)
 /// beside the SAH-optimal one (collapse_wide_sah) over the same binary tree: nodes, children per
 /// node, leaves, the collapse's cost model, and per ray the node visits, leaf visits, leaf groups
 /// and triangles tested, for closest and any hit on primary and random rays. The counts come

@@ -1,5 +1,5 @@
 // libFuzzer harness: raw bytes become one case of each kind; every registered method answers it.
-// Nothing may crash or trip a sanitizer, every answer is a CASES.md class, and any method that
+// Nothing may crash or trip a sanitizer, every answer is a docs/cases.md class, and any method that
 // promises exactness (certified) must equal exact.
 #include <cmath>
 #include <cstdint>

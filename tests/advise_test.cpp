@@ -1,4 +1,4 @@
-// rayproof advise (issue 14 item 4): the scene analysis on hand-built meshes with known counts,
+// rayproof advise: the scene analysis on hand-built meshes with known counts,
 // advise on the default scene and a CGAL mesh at small ray counts, the sentences from known
 // tallies, the JSON fields, and bad input.
 #include <gtest/gtest.h>

@@ -12,7 +12,7 @@ TYPED_TEST_SUITE(BoxConservativeTest, Scalars);
 
 TYPED_TEST(BoxConservativeTest, WorkedExamples) {
   using T = TypeParam;
-  // CASES.md: box -3 4 5 1 -1 -2 -2 -2 -2 2 2 2 -> hit 2 3.5.
+  // docs/cases.md: box -3 4 5 1 -1 -2 -2 -2 -2 2 2 2 -> hit 2 3.5.
   auto h = intersect_conservative(Ray<T>{{-3, 4, 5}, {1, -1, -2}}, Box<T>{{-2, -2, -2}, {2, 2, 2}});
   EXPECT_EQ(h.contact, Contact::hit);
   EXPECT_EQ(h.t, T(2));

@@ -1,4 +1,4 @@
-// Issue 15 item 3: the parallel binned SAH builder. The tree is valid (every primitive exactly
+// The parallel binned SAH builder. The tree is valid (every primitive exactly
 // once, boxes enclose children and primitives, max_depth right) and the same, node for node, for
 // one thread, two threads and tasks run in reverse order; triangle bounds are rounded outward as
 // BvhBox::extend rounds them. The parallel partition of big nodes is a partition (tested on a layout

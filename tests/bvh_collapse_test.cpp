@@ -1,4 +1,4 @@
-// Issue 20 item 1: the SAH-optimal collapse (collapse_wide_sah, bvh_wide_sah.h). Its trees are
+// The SAH-optimal collapse (collapse_wide_sah, bvh_wide_sah.h). Its trees are
 // valid wide trees (every primitive in exactly one leaf, boxes enclosing, merged leaves contiguous),
 // cost no more than the greedy collapse's in the model the programme minimises and are fuller,
 // and the traversal over them gives brute force's answers ray by ray; RAYPROOF_BVH_COLLAPSE picks

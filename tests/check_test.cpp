@@ -1,4 +1,4 @@
-// rayproof check (issue 11, parts 3 and 4): the checker engine (verify/check.h) against verify's own
+// rayproof check: the checker engine (verify/check.h) against verify's own
 // judgement, its promises, its batches and kernel failures; the sentences built from known tallies;
 // the command's verdicts, exit codes and files; the leak check on closed meshes (verify/mesh_check.h).
 #include <gtest/gtest.h>
@@ -145,7 +145,7 @@ TEST(Check, CallableOverloadChecksACppKernel) {
   EXPECT_EQ(res.families[0].stats.class_errors(), ref.families[0].stats.class_errors());
 }
 
-// Issue 24, item 2: one wording of t errors in check (the command and Python's table, which is this
+// One wording of t errors in check (the command and Python's table, which is this
 // function's) and report: no raw 19-digit ulp count.
 TEST(CheckText, TErrorsAreWordedAsReportWordsThem) {
   verify::CheckResult r;

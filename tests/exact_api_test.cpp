@@ -1,5 +1,5 @@
 /// rayproof/verify/exact.h, the typed exact API: the shared sample bit for bit (class, T, T2 and the sign of
-/// zeros), the screening of CASES.md (invalid before degenerate), barycentrics rounded to nearest
+/// zeros), the screening of docs/cases.md (invalid before degenerate), barycentrics rounded to nearest
 /// on the generator's triangle families (a GMP oracle computed here), and concurrent calls giving
 /// the serial answers.
 #include "rayproof/verify/exact.h"

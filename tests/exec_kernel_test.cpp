@@ -261,7 +261,7 @@ TEST(ExecKernel, KernelThatReadsNothingDoesNotKillRayproofWithSigpipe) {
   expect_no_children();
 }
 
-// Issue 24, item 3: a user's kernel is a method like the others for --methods, in verify, report and
+// A user's kernel is a method like the others for --methods, in verify, report and
 // fuzz (cases and --mesh): named alone it runs alone, named in a list it takes its place in the order.
 TEST(ExecKernel, MethodsNamesYourKernelInVerifyReportAndFuzz) {
   using rayproof::testing::run_rayproof;

@@ -95,7 +95,7 @@ TEST(FuzzCli, CampaignPrintsSummaryAndReproducer) {
 }
 
 TEST(FuzzCampaign, TalliesAndFindingsDoNotGrowWithTheCaseCount) {
-  // Issue 21: a campaign once kept every t error and every round until the end (~137 bytes per case).
+  // A campaign once kept every t error and every round until the end (~137 bytes per case).
   // What it holds now is fixed: tallies of fixed size, findings capped per method x family.
   MethodRegistry reg;
   register_fast_methods(reg);

@@ -1,4 +1,4 @@
-// Sharded fuzz campaigns (issue 11, part 5): the shards of a seeded --cases campaign, run as separate
+// Sharded fuzz campaigns: the shards of a seeded --cases campaign, run as separate
 // processes, merge to exactly the counts and the table of the unsharded run; bad shards and foreign
 // summaries get clear errors.
 #include <gtest/gtest.h>

@@ -1,4 +1,4 @@
-// Issue 22 (GLSL half): a user's GLSL functions under the exact test on a Vulkan device (--glsl).
+// A user's GLSL functions under the exact test on a Vulkan device (--glsl).
 // The wrapper's text and the NoContraction pass without a device; with one (lavapipe in CI): the
 // example through `rayproof check`, a compile error's file:line, a shader that never finishes, bad
 // files, the device in the output. Skipped, saying why, where no Vulkan device exists.

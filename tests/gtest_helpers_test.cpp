@@ -86,7 +86,7 @@ TEST(GTestHelpers, FailsOnBadKernelsWithTheCaseAndTheUlps) {
       ASSERT_RAY_HIT_MATCHES_EXACT(wrong_class(Contact::miss), kRay, kTri, 0), "class miss != exact interior");
 }
 
-// The reproducer line reads back (CASES.md) to the same doubles, also for awkward ones.
+// The reproducer line reads back (docs/cases.md) to the same doubles, also for awkward ones.
 TEST(GTestHelpers, CaseLineReadsBackExactly) {
   const Ray<double> ray{{0.1, -0.0, 1e-310}, {std::nextafter(1.0, 2.0), 3e300, -1.0 / 3}};
   const Triangle<double> tri{{1e-5, 2.5, -7}, {0.3, 0.7, 1e22}, {5e-324, -2, 0x1.fffffffffffffp+1023}};

@@ -198,7 +198,7 @@ TEST(HostileMesh, GoodRaysNextToBadLinesAreAnswered) {
                         .string();
   const auto r = run_limited("cast " + scene + " " + rays);
   EXPECT_EQ(r.status, 1);
-  // NaN and infinite components and d = 0 make a ray `invalid` (CASES.md), not an input error.
+  // NaN and infinite components and d = 0 make a ray `invalid` (docs/cases.md), not an input error.
   EXPECT_EQ(r.out, "interior 4.2 3\nerror - -\ninvalid - -\ninvalid - -\ninvalid - -\ninterior 5.0 0\n");
   EXPECT_NE(r.err.find(rays + ":3: expected 6 numbers"), std::string::npos) << r.err;
   EXPECT_NE(r.err.find("1 line(s) could not be read"), std::string::npos) << r.err;

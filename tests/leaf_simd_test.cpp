@@ -1,4 +1,4 @@
-// SIMD leaves (issue 15, item 2; src/scene/leaf_simd.h): the group kernels against the
+// SIMD leaves (src/scene/leaf_simd.h): the group kernels against the
 // per-primitive kernels lane by lane (class, t, b1, b2 bit for bit) on hostile triangle families,
 // the leaf alignment, and whole queries (closest, any, all) through the groups against the same
 // queries slot by slot, on the AVX2, SSE and scalar paths.

@@ -44,7 +44,7 @@ struct Crossing {
   double t, b1, b2;
 };
 
-/// The crossing a kernel's triangle answer carries (as CASES.md and the scene queries count it):
+/// The crossing a kernel's triangle answer carries (as docs/cases.md and the scene queries count it):
 /// interior, edge and vertex cross at t; coplanar at its first touch; anything else does not cross.
 template <class H>
 std::optional<Crossing> crossing_of(const H& h, double b1, double b2) {

@@ -10,7 +10,7 @@ TYPED_TEST_SUITE(PlaneFmaTest, Scalars);
 
 TYPED_TEST(PlaneFmaTest, WorkedExamples) {
   using T = TypeParam;
-  // CASES.md: plane 0 0 0 1 1 0 0 0 5 0 0 1 -> parallel.
+  // docs/cases.md: plane 0 0 0 1 1 0 0 0 5 0 0 1 -> parallel.
   EXPECT_EQ(intersect_fma(Ray<T>{{0, 0, 0}, {1, 1, 0}}, Plane<T>{{0, 0, 5}, {0, 0, 1}}).contact, Contact::parallel);
   EXPECT_EQ(intersect_fma(Ray<T>{{0, 0, 5}, {1, 1, 0}}, Plane<T>{{0, 0, 5}, {0, 0, 1}}).contact, Contact::coplanar);
   auto h = intersect_fma(Ray<T>{{0, 0, 0}, {1, 1, 2}}, Plane<T>{{0, 0, 5}, {0, 0, 1}});

@@ -1,4 +1,4 @@
-// Plugins (rayproof/plugin.h, --plugin) and the example kernels of issue 11: the loader's checks and
+// Plugins (rayproof/plugin.h, --plugin) and the example kernels (examples/): the loader's checks and
 // messages, in-process plugins against the built-in methods and exact, the plugin host (the line
 // protocol), forked plugins (an --exec kernel running the host: a crash is a kernel failure), and
 // the naive Möller–Trumbore examples in C, Python and JavaScript caught on exact edge and vertex hits.
@@ -242,7 +242,7 @@ TEST(PluginOption, VerifyJsonJudgesPluginsLikeBuiltInMethods) {
 }
 
 TEST(PluginOption, MethodsNamesAPluginLikeABuiltInMethod) {
-  // Issue 24, item 3: `--methods mine` with `--plugin mine=...` runs the plugin alone.
+  // `--methods mine` with `--plugin mine=...` runs the plugin alone.
   const auto g = run_rayproof("gen tri_edge -n 30 -s 5");
   ASSERT_EQ(g.status, 0) << g.err;
   const auto file = testing::write_file("plugin_methods.txt", g.out).string();

@@ -11,7 +11,7 @@ TYPED_TEST_SUITE(QuadricStableTest, Scalars);
 TYPED_TEST(QuadricStableTest, WorkedExamples) {
   using T = TypeParam;
   const T eps = std::numeric_limits<T>::epsilon();
-  // CASES.md: ellipsoid 0 0 0 1 1 0 2 2 0 2 1 2 -> hit 2 -+ sqrt(4/5).
+  // docs/cases.md: ellipsoid 0 0 0 1 1 0 2 2 0 2 1 2 -> hit 2 -+ sqrt(4/5).
   auto h = intersect_stable(Ray<T>{{0, 0, 0}, {1, 1, 0}}, Ellipsoid<T>{{2, 2, 0}, {2, 1, 2}});
   EXPECT_EQ(h.contact, Contact::hit);
   EXPECT_NEAR(h.t, T(1.105572809000084), T(4) * eps);

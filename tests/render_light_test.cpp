@@ -1,4 +1,4 @@
-// rayproof render --light (issue 13 part 4): direct lighting with shadow rays; the error-bounded and
+// rayproof render --light: direct lighting with shadow rays; the error-bounded and
 // certified spawn strategies leave no acne (no shadow ray meets the primitive it leaves) and agree
 // with exact visibility, while no offset leaves acne (light/render_light.h).
 #include <gtest/gtest.h>

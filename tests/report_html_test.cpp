@@ -1,4 +1,4 @@
-// Issue 24: report.html, read by a real browser (Debian's chromium, headless) after its scripts ran:
+// report.html, read by a real browser (Debian's chromium, headless) after its scripts ran:
 // the chart with one point per method and kind, hover numbers equal to report.md's, the tables,
 // the stability chart, a copy button per reproducer; and every method drawn in its own style.
 #include <gtest/gtest.h>
@@ -62,7 +62,7 @@ TEST(MethodStyle, NoTwoMethodsOfTheDefaultReportShareColourAndMarker) {
     colours.insert(st.colour);
   }
   // The first ten differ in colour alone, and every two colours of the palette are far apart in RGB
-  // (the two browns of issue 24 were 17 apart); the 70 first indices never repeat colour + marker.
+  // (two browns of an earlier palette were 17 apart); the 70 first indices never repeat colour + marker.
   EXPECT_EQ(colours.size(), std::min<std::size_t>(methods->size(), rayproof::report::kColourCount));
   for (std::size_t i = 0; i < rayproof::report::kColourCount; ++i)
     for (std::size_t j = i + 1; j < rayproof::report::kColourCount; ++j)

@@ -98,7 +98,7 @@ void expect_certified_caster_clean(const mesh::Mesh& m, std::uint64_t trials, st
 }
 
 TEST(SpawnMesh, RepeatedVerticesAreOneVertexForTheNeighbours) {
-  // Issue 24, item 9: a mesh whose triangles repeat their corners (as STL files do, and CGAL's
+  // A mesh whose triangles repeat their corners (as STL files do, and CGAL's
   // boeing.off) had its concave creases counted as leaks of the certified caster with the
   // error-bounded origin (cow.off unshared: 104 leaks in 2000 trials), since neighbours were found
   // through shared vertex indices. The bumpy sphere, every triangle with its own three vertices:

@@ -1,4 +1,4 @@
-// Stability curves (issue 14 item 1): the knob generators hold their knob value exactly and get
+// Stability curves: the knob generators hold their knob value exactly and get
 // their answers from exact; the break finder and every sentence from known tallies; the SVG; and
 // `rayproof report --stability` writing its files.
 #include <gtest/gtest.h>

@@ -34,13 +34,13 @@ TYPED_TEST(WatertightTest, WorkedExamples) {
   auto h = w({0, 0, 0, 1, 1, 1, 2, 4, 2, 5, -7, -1, 0, -9, 4});
   EXPECT_EQ(h.contact, Contact::interior);
   EXPECT_NEAR(h.t, T(2), T(8) * std::numeric_limits<T>::epsilon());
-  h = w({0, 0, 0, 1, 1, 1, 2, 2, 2, 3, 7, -1, 0, 9, -4});  // CASES.md: vertex 2
+  h = w({0, 0, 0, 1, 1, 1, 2, 2, 2, 3, 7, -1, 0, 9, -4});  // docs/cases.md: vertex 2
   EXPECT_EQ(h.contact, Contact::vertex);
   EXPECT_EQ(h.t, T(2));
   h = w({0, 0, 0, 1, 1, 1, -1, -1, -1, 3, 7, -1, 0, 9, -4});
   EXPECT_EQ(h.contact, Contact::behind);
   EXPECT_EQ(h.t, T(-1));
-  h = w({0, 0, 1, 1, 1, 0, 3, 3, 1, 7, 7, 1, 0, -9, -4});  // CASES.md: coplanar 3 7
+  h = w({0, 0, 1, 1, 1, 0, 3, 3, 1, 7, 7, 1, 0, -9, -4});  // docs/cases.md: coplanar 3 7
   EXPECT_EQ(h.contact, Contact::coplanar);
   EXPECT_EQ(h.t, T(3));
   EXPECT_EQ(h.t2, T(7));

@@ -1,7 +1,7 @@
 #pragma once
 /// Differential comparison: every method against `exact`, per method x family. Float methods are
 /// judged on their float-rounded inputs (the reference is exact on those), and their t error is
-/// counted in float ulps (CASES.md, "What correct means").
+/// counted in float ulps (docs/cases.md, "What correct means").
 #include <cstdint>
 #include <map>
 #include <optional>

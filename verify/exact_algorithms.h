@@ -9,7 +9,7 @@
 /// type and the vector operations; exact_crosscheck_test checks that they agree bit for bit.
 /// This header includes neither CGAL nor gmpxx.
 ///
-/// Contract (CASES.md): the class of exact arithmetic on the input doubles; t, t2 and the triangle
+/// Contract (docs/cases.md): the class of exact arithmetic on the input doubles; t, t2 and the triangle
 /// barycentrics b1, b2 rounded to nearest (ties to even, signs of zeros included); NaN for fields a
 /// class does not carry. Every finite double is a rational, so inputs convert exactly; NaN and
 /// infinities are screened out first (`invalid`), then zero sizes (`degenerate`).
@@ -17,7 +17,7 @@
 /// Parts: exact_algo_kernel.h (what K provides, rounding helpers), exact_algo_planar.h,
 /// exact_algo_quadric.h, exact_algo_box.h, exact_algo_triangle.h; here the entry.
 ///
-/// The entry: the screening of CASES.md (invalid, then degenerate), on the doubles themselves, which
+/// The entry: the screening of docs/cases.md (invalid, then degenerate), on the doubles themselves, which
 /// is exact; then the algorithm of the kind. Only the triangle's degeneracy (collinear vertices)
 /// needs exact arithmetic and is decided by triangle<K> itself.
 #include <cmath>

@@ -1,4 +1,4 @@
-/// The exact method: ground truth of CASES.md, on a case file's fields. The case becomes a typed
+/// The exact method: ground truth of docs/cases.md, on a case file's fields. The case becomes a typed
 /// ray and primitive (exactly: the fields are doubles) and goes through rayproof::exact::intersect
 /// (rayproof/verify/exact.h: the exact algorithm of exact_algorithms.h on CGAL's kernel, exact_cgal.cpp).
 #include "verify/exact_method.h"

@@ -1,6 +1,6 @@
 #pragma once
 /// Exact answers: the class of exact arithmetic on the parsed doubles and T/T2 rounded to nearest
-/// double (CASES.md). CGAL's exact number types decide every class by signs of rational
+/// double (docs/cases.md). CGAL's exact number types decide every class by signs of rational
 /// quantities; square roots (quadric roots) are rounded correctly by MPFR and checked exactly.
 #include <array>
 #include <optional>

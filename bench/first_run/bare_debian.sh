@@ -1,5 +1,5 @@
 #!/bin/bash
-# Times the README's first command on a bare Debian 12 root made here (issue 24 item 1): debootstrap
+# Times the README's first command on a bare Debian 12 root made here: debootstrap
 # bookworm (Debian's required and important packages, as a fresh install has), this checkout copied
 # in as a fresh clone, then the command exactly as the README has it, run as root in a chroot, with
 # a timestamp at each phase (apt, configure, build, report). Needs root, debootstrap and Debian's

@@ -26,7 +26,7 @@ static void cross(const double *a, const double *b, double *out) {
 
 static double dot(const double *a, const double *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
-/* in: o(3) d(3) p0(3) p1(3) p2(3), CASES.md order. */
+/* in: o(3) d(3) p0(3) p1(3) p2(3), docs/cases.md order. */
 static void triangle(const double *in, struct rayproof_answer *out) {
   const double *o = in, *d = in + 3, *p0 = in + 6, *p1 = in + 9, *p2 = in + 12;
   double e1[3], e2[3], s[3], s1[3], s2[3];

@@ -25,7 +25,7 @@ static void cross(const float *a, const float *b, float *out) {
 
 static float dot(const float *a, const float *b) { return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]; }
 
-/* in: o(3) d(3) p0(3) p1(3) p2(3), CASES.md order, each rounded to float. */
+/* in: o(3) d(3) p0(3) p1(3) p2(3), docs/cases.md order, each rounded to float. */
 static void triangle(const float *in, struct rayproof_answer *out) {
   const float *o = in, *d = in + 3, *p0 = in + 6, *p1 = in + 9, *p2 = in + 12;
   float e1[3], e2[3], s[3], s1[3], s2[3];

@@ -1,6 +1,6 @@
 /*
  * Textbook kernels for the other three kinds (plane, axis-aligned ellipsoid, disk), so that every
- * kind of CASES.md has an OpenCL C example (docs/opencl.md).
+ * kind of docs/cases.md has an OpenCL C example (docs/opencl.md).
  *     rayproof check --opencl k=examples/opencl/plane_ellipsoid_disk.cl
  */
 int rayproof_plane(rayproof_real3 o, rayproof_real3 d, rayproof_real3 p, rayproof_real3 n, rayproof_real* t) {

@@ -1,5 +1,5 @@
 #pragma once
-/// The contact classes of ../shared/spec/CASES.md: the contract between fast and exact methods.
+/// The contact classes of docs/cases.md: the contract between fast and exact methods.
 #include <array>
 #include <cstdint>
 #include <optional>

@@ -11,7 +11,7 @@
  * const struct is the usual way). The description gives the kernel's name, its precision, and one
  * function per kind of primitive it answers.
  *
- * Inputs. A kind function receives the case's numbers in the order of CASES.md (the kind's fields
+ * Inputs. A kind function receives the case's numbers in the order of docs/cases.md (the kind's fields
  * after the kind name: triangle o(3) d(3) p0(3) p1(3) p2(3), 15 numbers; plane 12, sphere 10,
  * ellipsoid 12, box 12, disk 13). A double kernel gets the doubles of the case file. A float kernel
  * gets each input rounded to nearest float, as floats; its t error is counted in float ulps and it
@@ -20,7 +20,7 @@
  *
  * Answers. The same vocabulary as the line protocol (docs/kernel_protocol.md). The host sets
  * `cls` to RAYPROOF_NO_ANSWER and `has` to 0 before each call; the function then writes either
- *   - a full answer: `cls` one of the CASES.md classes RAYPROOF_INVALID .. RAYPROOF_RIM, with
+ *   - a full answer: `cls` one of the docs/cases.md classes RAYPROOF_INVALID .. RAYPROOF_RIM, with
  *     RAYPROOF_HAS_T / RAYPROOF_HAS_T2 in `has` for the values the class carries (`t`, `t2`), or
  *   - a coarse answer: `cls` RAYPROOF_COARSE_MISS (no contact at t >= 0; nothing in `has`) or
  *     RAYPROOF_COARSE_HIT, optionally with RAYPROOF_HAS_T (`t` = the first contact's t at t >= 0)
@@ -70,7 +70,7 @@
 #define RAYPROOF_FLOAT 1
 #define RAYPROOF_DOUBLE 2
 
-/* Kinds (CASES.md). */
+/* Kinds (docs/cases.md). */
 #define RAYPROOF_KIND_PLANE 0
 #define RAYPROOF_KIND_SPHERE 1
 #define RAYPROOF_KIND_ELLIPSOID 2
@@ -78,7 +78,7 @@
 #define RAYPROOF_KIND_BOX 4
 #define RAYPROOF_KIND_DISK 5
 
-/* Full answers: the classes of CASES.md. */
+/* Full answers: the classes of docs/cases.md. */
 #define RAYPROOF_INVALID 0
 #define RAYPROOF_DEGENERATE 1
 #define RAYPROOF_PARALLEL 2

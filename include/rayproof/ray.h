@@ -11,7 +11,7 @@ struct Ray {
 
   [[nodiscard]] constexpr Vec3<T> at(T t) const { return o + t * d; }
 
-  /// A ray is invalid when a component is NaN or infinite or d = (0,0,0) (CASES.md).
+  /// A ray is invalid when a component is NaN or infinite or d = (0,0,0) (docs/cases.md).
   [[nodiscard]] bool valid() const { return all_finite(o) && all_finite(d) && !is_zero(d); }
 };
 

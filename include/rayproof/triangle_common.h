@@ -1,6 +1,6 @@
 #pragma once
 /// Pieces shared by every ray/triangle method: the triangle type, validity, the barycentric
-/// classification of CASES.md, and the coplanar range of a ray lying in the triangle's plane.
+/// classification of docs/cases.md, and the coplanar range of a ray lying in the triangle's plane.
 #include <algorithm>
 #include <limits>
 
@@ -19,7 +19,7 @@ template <class T>
   return all_finite(tri.p0) && all_finite(tri.p1) && all_finite(tri.p2);
 }
 
-/// Classes a line/plane crossing with barycentrics (b0, b1, b2) at parameter t, as CASES.md orders
+/// Classes a line/plane crossing with barycentrics (b0, b1, b2) at parameter t, as docs/cases.md orders
 /// them: miss (outside the closed triangle; NaN counts as outside), behind (t < 0), then interior,
 /// edge or vertex by the number of barycentrics exactly 0.
 template <class T>

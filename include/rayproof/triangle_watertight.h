@@ -5,7 +5,7 @@
 /// functions U, V, W of the sheared vertices then decide inside/outside. A shared edge is computed
 /// from the same two sheared vertices by both triangles, so a ray can never pass between them.
 ///
-/// Classes (CASES.md): U, V, W are the unnormalized barycentrics of p0, p1, p2 (b_i = U_i / det);
+/// Classes (docs/cases.md): U, V, W are the unnormalized barycentrics of p0, p1, p2 (b_i = U_i / det);
 /// edge / vertex when one / two of them are exactly 0 *in the sheared coordinates* (re-evaluated in
 /// double when float gives a zero, as the paper prescribes). det = U + V + W = 0: parallel or
 /// coplanar, decided by the plane equation; degenerate when (p1-p0) x (p2-p0) = 0.

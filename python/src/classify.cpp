@@ -75,7 +75,7 @@ void bind_classify(py::module_& m) {
 
 kind: 'plane', 'sphere', 'ellipsoid', 'triangle', 'box' or 'disk'.
 origins, directions: (n, 3) arrays, or (3,) broadcast to every row.
-prims: (n, k) or (k,) broadcast; k = PRIM_WIDTH[kind], the fields of CASES.md after o and d
+prims: (n, k) or (k,) broadcast; k = PRIM_WIDTH[kind], the fields of docs/cases.md after o and d
   (triangle: p0 p1 p2 = 9; sphere: center radius = 4; plane: point normal = 6; ellipsoid: center
   semi-axes = 6; box: lo hi = 6; disk: center normal radius = 7).
 Every array may be float or integer; values are converted to float64. Float methods see the

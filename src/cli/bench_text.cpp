@@ -56,7 +56,7 @@ BenchTarget scaling_target(const std::string& mesh, const std::string& what, con
   BenchTarget t = check_target(mesh, what, rays, query, speedup, 1.9, Goal::at_least, 2);
   // A speed-up above 2.10 on two threads is more than twice one thread's rate. It showed up on a
   // shared machine (a disturbed one-thread timing) and also on a quiet one, for every method and for
-  // Embree alike (issue 15's runs: 2.0-2.5 on this 2-vCPU VM, cause not measured), so the pair of
+  // Embree alike (2.0-2.5 on this project's 2-vCPU VM, cause not measured), so the pair of
   // timings does not measure what the target asks and is not judged either way.
   if (std::strtod(t.value.c_str(), nullptr) > 2.1) {
     t.met = false;

@@ -5,8 +5,8 @@
 /// call, bvh_packet.h; Embree: rtcIntersect8 and, where native, rtcIntersect16, and the occluded
 /// calls) on the same rays in 4x2 pixel tiles, the ratio of each to Embree robust, bytes per triangle,
 /// leaks (rays from inside a closed mesh towards every vertex and edge midpoint that find no hit),
-/// BVH build times at one and N threads beside Embree's, and issue 15's targets with a verdict
-/// each (bench_text.h). Without SCENE: bunny00 and refined_elephant (CGAL's demo meshes, where
+/// BVH build times at one and N threads beside Embree's, and the targets with a verdict each
+/// (bench_text.h). Without SCENE: bunny00 and refined_elephant (CGAL's demo meshes, where
 /// the build extracted them) and a generated closed mesh of >= 1M triangles ('generated': that
 /// one alone).
 #include <CLI/CLI.hpp>
@@ -139,7 +139,7 @@ int bench_scene(const BenchOptions& opt, const std::string& path, int threads, s
   std::vector<Ray<double>> leak;
   const bool closed = s.size() == s.mesh.triangles.size() && !s.mesh.triangles.empty();
   if (closed) leak = scene::leak_rays(scene::volume_centroid(s.mesh), scene::leak_targets(s.mesh, opt.leak_rays));
-  // Packets (issue 15 item 4): the primary rays in tiles of 4x2 pixels, so that each eight
+  // Packets: the primary rays in tiles of 4x2 pixels, so that each eight
   // consecutive rays (and each sixteen: two tiles side by side) are one coherent packet.
   std::vector<Ray<double>> tiled;
   for (std::uint32_t p : packet_tile_order(cam.width(), cam.height()))
@@ -345,7 +345,9 @@ int run_bench(const BenchOptions& opt) {
   fmt::print("\n");
   fmt::print("BVH build (SAH, bounds included), best of {}; Embree: the faster of its default and robust builds.\n{}\n",
              std::max(1, opt.repeat), build_table(builds));
-  fmt::print("Targets of issue 15 (verdicts decided on the printed values).\n{}", targets_table(targets));
+  fmt::print("Targets: speed against Embree, two-thread scaling, build time, bytes per triangle, leaks "
+             "(verdicts decided on the printed values).\n{}",
+             targets_table(targets));
   return 0;
 }
 }  // namespace

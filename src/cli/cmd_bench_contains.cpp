@@ -1,5 +1,5 @@
 /// rayproof bench contains [MESH...] [--points N] [--repeat R]: point containment side by side on
-/// one thread (issue 23). Methods: rayproof `contains` (ClosedMesh, exact), CGAL
+/// one thread. Methods: rayproof `contains` (ClosedMesh, exact), CGAL
 /// Side_of_triangle_mesh with Epick and Epeck, Embree 3 one-ray parity along (1, 1, 1) as Open3D
 /// casts it, and rayproof float and robust parity along (1, 1, 1) (MeshCaster::all, crossings
 /// counted). Point sets per mesh: random points in the bounding box, and hard points: the vertices

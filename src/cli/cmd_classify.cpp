@@ -1,4 +1,4 @@
-/// rayproof classify [--method NAME] FILE: one result line per case (CASES.md).
+/// rayproof classify [--method NAME] FILE: one result line per case (docs/cases.md).
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
 

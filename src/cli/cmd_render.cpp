@@ -3,7 +3,7 @@
 /// pixel's first hit is compared with the exact method's (conservative traversal, exact kernels);
 /// a second image marks false misses (red), false hits (blue) and wrong primitive or class
 /// (yellow), and the counts are printed.
-/// With --light (issue 13 part 4): direct lighting from the scene's disk lights (light/render_light.h),
+/// With --light: direct lighting from the scene's disk lights (light/render_light.h),
 /// --shadow-rays N per pixel, --estimator area|solid-angle, --spawn none|epsilon|error-bounded|
 /// certified; the acne (shadow rays meeting the primitive they leave) is counted. --verify then
 /// compares every shadow ray's visibility with the exact kernels' from the certified origin and

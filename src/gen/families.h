@@ -4,7 +4,7 @@
 /// A family is one kind of primitive and one situation that stresses a kernel (an exact edge hit,
 /// a tangent, a ray nearly parallel to a plane, huge offsets, ...). Families that claim a contact
 /// build it exactly: every emitted case is in the claimed class under exact arithmetic on the
-/// emitted doubles (CASES.md), which the tests check against the exact method.
+/// emitted doubles (docs/cases.md), which the tests check against the exact method.
 ///
 /// Determinism: the same (family, count, seed, precision) gives the same cases, bit for bit, on any
 /// machine and compiler (own PRNG and mappings, see rng.h; no FMA contraction). Each family draws

@@ -1,5 +1,5 @@
 #pragma once
-/// Case files (../shared/spec/CASES.md): one ray/primitive case per line, and the result line
+/// Case files (docs/cases.md): one ray/primitive case per line, and the result line
 /// `CLASS T T2` every method prints. Parsing never throws on bad input: a bad line becomes an
 /// error entry naming the line and the problem.
 #include <array>
@@ -48,7 +48,7 @@ using CaseEntry = std::variant<Case, CaseError>;
 /// Reads a whole stream of case lines (lines longer than max_line bytes are errors, not loaded).
 [[nodiscard]] std::vector<CaseEntry> read_cases(std::istream& in, std::size_t max_line = 1 << 16);
 
-/// How much a kernel answered. `full`: a CASES.md class with the T, T2 it carries. `coarse`: only
+/// How much a kernel answered. `full`: a docs/cases.md class with the T, T2 it carries. `coarse`: only
 /// whether the ray touches the primitive at some t >= 0 (most user kernels know no more), with the
 /// first contact's t and, for triangles, the barycentrics of p1 and p2 where the kernel gave them.
 /// A coarse answer's contact is Contact::hit or Contact::miss (Contact::error for a kernel failure).
@@ -66,7 +66,7 @@ struct CaseResult {
 };
 
 /// Shortest text that reads back to the same double, as Python's repr prints it ("2.0", "1e-05",
-/// "-0.0", "inf", "nan"). The expected files in shared/cases use this form.
+/// "-0.0", "inf", "nan"). The expected files in data/ (*.expected) use this form.
 [[nodiscard]] std::string format_double(double x);
 
 /// `CLASS T T2` with `-` for absent values.
@@ -93,7 +93,7 @@ void append_double(std::string& out, double x);
 /// Appends format_case(c) and a newline to `out` (the same text; for streaming many cases).
 void append_case_line(std::string& out, const Case& c);
 
-/// The case with every input rounded to float (the input a float method sees; CASES.md).
+/// The case with every input rounded to float (the input a float method sees; docs/cases.md).
 [[nodiscard]] Case round_to_float(const Case& c);
 
 }  // namespace rayproof::io

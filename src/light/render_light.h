@@ -1,5 +1,5 @@
 #pragma once
-/// Direct lighting for `rayproof render --light` (issue 13 part 4): every pixel's first hit is lit
+/// Direct lighting for `rayproof render --light`: every pixel's first hit is lit
 /// by the scene's disk lights with N shadow rays (a light chosen uniformly, then a point on it by
 /// the area estimator, or a direction by the solid-angle estimator of light/irradiance_mc.h: the
 /// cone around the disk's bounding sphere), leaving the surface by a spawn strategy of

@@ -1,5 +1,5 @@
 #pragma once
-/// Self-intersections of spawned rays (issue 13 part 3, analytic primitives): primary rays hit a
+/// Self-intersections of spawned rays on analytic primitives: primary rays hit a
 /// plane, sphere or disk through a method's kernel, the hit point is computed in the method's
 /// precision, a reflection ray and a shadow ray (toward a point on the incoming side) leave it by
 /// each origin strategy of rayproof/spawn.h, and the spawned rays are tested against the primitive

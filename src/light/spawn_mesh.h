@@ -1,5 +1,5 @@
 #pragma once
-/// Spawned rays on triangle meshes (issue 13 part 3): primary rays hit a mesh through a
+/// Spawned rays on triangle meshes: primary rays hit a mesh through a
 /// MeshCaster (float, robust, certified), the hit point is interpolated from the kernel's
 /// barycentrics in the method's precision with pbrt-v4's bound on its error (gamma(7) times
 /// sum |b_i v_i| per coordinate, projected on the normal), and three rays leave it by every origin

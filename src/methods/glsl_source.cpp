@@ -12,7 +12,7 @@ namespace rayproof::glsl {
 
 namespace {
 
-/// The named inputs of a kind after o and d, each a vec3 (3) or a real (1), in CASES.md order.
+/// The named inputs of a kind after o and d, each a vec3 (3) or a real (1), in docs/cases.md order.
 std::vector<std::pair<const char*, int>> fields(io::Kind k) {
   switch (k) {
     case io::Kind::plane: return {{"point", 3}, {"normal", 3}};

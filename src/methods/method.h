@@ -15,7 +15,7 @@
 namespace rayproof {
 
 /// The precision a method is judged in: float methods see float-rounded inputs and their t error
-/// is counted in float ulps (CASES.md).
+/// is counted in float ulps (docs/cases.md).
 enum class Precision { float32, float64 };
 
 /// A user kernel's failure on one case.
@@ -92,7 +92,7 @@ void register_robust_methods(MethodRegistry& reg);
 /// The promise of an exact method on every kind: exact class, no false miss, t within 1 ulp.
 [[nodiscard]] std::map<io::Kind, Promise> exact_promises();
 
-/// Which classes carry T and T2, per kind (CASES.md), to turn a kernel result into a CaseResult.
+/// Which classes carry T and T2, per kind (docs/cases.md), to turn a kernel result into a CaseResult.
 [[nodiscard]] io::CaseResult make_result(io::Kind kind, Contact c, double t, double t2);
 
 }  // namespace rayproof

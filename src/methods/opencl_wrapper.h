@@ -11,7 +11,7 @@
 
 namespace rayproof::opencl {
 
-/// The numbers of fields the wrapper reads per case of kind k (CASES.md order).
+/// The numbers of fields the wrapper reads per case of kind k (docs/cases.md order).
 [[nodiscard]] int fields(io::Kind k);
 
 /// The user function's name for kind k: rayproof_triangle, rayproof_box, ...

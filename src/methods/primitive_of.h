@@ -1,5 +1,5 @@
 #pragma once
-/// Builds kernel inputs (ray and primitive in scalar type T) from a case's fields (CASES.md order).
+/// Builds kernel inputs (ray and primitive in scalar type T) from a case's fields (docs/cases.md order).
 #include "io/case_file.h"
 #include "rayproof/box.h"
 #include "rayproof/disk.h"

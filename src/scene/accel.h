@@ -23,7 +23,7 @@
 
 namespace rayproof::scene {
 
-/// One crossing of a ray with a primitive: its class (CASES.md) and t. A miss has prim = kNoPrim.
+/// One crossing of a ray with a primitive: its class (docs/cases.md) and t. A miss has prim = kNoPrim.
 struct PrimHit {
   static constexpr std::uint32_t kNoPrim = 0xffffffffu;
   Contact contact = Contact::miss;
@@ -185,7 +185,7 @@ class Accel {
   void any_batch(std::span<const Ray<double>> rays, std::span<const QueryRange> ranges, std::span<std::uint8_t> out,
                  const SceneMethod& m, int threads = 0) const;
 
-  /// Packets (issue 15): closest() / any() for every ray, the rays taken eight at a time in the
+  /// Packets: closest() / any() for every ray, the rays taken eight at a time in the
   /// order given (a caller groups coherent rays, e.g. camera tiles of 4x2 pixels, into consecutive
   /// eights; the last packet may be partial). On the AVX2 path each eight goes through the packet
   /// traversal of rayproof/bvh_packet.h (rays out of its float range: ray by ray); on the SSE path

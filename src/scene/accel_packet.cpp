@@ -1,4 +1,4 @@
-// Packets of eight rays (issue 15; the traversal in rayproof/bvh_packet.h): Accel::closest_packets
+// Packets of eight rays (the traversal in rayproof/bvh_packet.h): Accel::closest_packets
 // and any_packets, the leaf code of accel_query.h's traverse_with called per lane.
 #include <algorithm>
 #include <type_traits>

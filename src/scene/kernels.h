@@ -19,7 +19,7 @@ struct Crossing {
   double b1 = kNaN<double>, b2 = kNaN<double>;  ///< a triangle's barycentrics, where the kernel has them
 };
 
-/// The crossings a primitive's class carries, from its class and T, T2 (CASES.md): a quadric or
+/// The crossings a primitive's class carries, from its class and T, T2 (docs/cases.md): a quadric or
 /// box hit crosses twice, inside crosses at the exit, tangent and graze once.
 inline int crossings_of(Contact c, double t, double t2, Crossing out[2]) {
   switch (c) {
@@ -79,7 +79,7 @@ struct GenericKernel {
 
   void prepare(const Ray<double>& r) { ray = r; }
   int crossings(const LeafPrim& p, Crossing out[2]) const { return crossings(p.id, out); }
-  /// Float methods are run on the float-rounded ray (CASES.md): traverse with that one.
+  /// Float methods are run on the float-rounded ray (docs/cases.md): traverse with that one.
   [[nodiscard]] Ray<double> traversal_ray() const {
     if (m.precision != Precision::float32) return ray;
     return {ray.o.template cast<float>().template cast<double>(), ray.d.template cast<float>().template cast<double>()};

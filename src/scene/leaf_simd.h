@@ -1,5 +1,5 @@
 #pragma once
-/// SIMD leaves (issue 15, item 2): each BVH leaf's triangles packed in groups of kLanes lanes,
+/// SIMD leaves: each BVH leaf's triangles packed in groups of kLanes lanes,
 /// structure of arrays, so one kernel call tests a group of triangles at once.
 ///
 /// Layout. A leaf of the wide BVH is a range [child, child + count) of leaf-order slots; after
@@ -9,7 +9,7 @@
 /// kPadLane and never reported).
 ///
 /// A group holds the triangles' vertices rounded to float (what the `float` and `robust` kernels
-/// intersect: CASES.md's "inputs rounded to float") and a tag per lane: the primitive's global
+/// intersect: docs/cases.md's "inputs rounded to float") and a tag per lane: the primitive's global
 /// number, or kPadLane, or kScalarLane | number for a lane the group kernels leave to the
 /// per-primitive kernel (not a triangle), or kDeadLane | number for a triangle the robust kernel
 /// classes invalid or degenerate whatever the ray (a non-finite float vertex, or the double normal

@@ -1,7 +1,7 @@
 #pragma once
 /// Ray files for `rayproof cast`: one ray `ox oy oz dx dy dz` per line, `#` comments, blank lines
 /// skipped. Numbers are whatever strtod reads whole (so `nan` and `inf` read, and make the ray
-/// `invalid` as CASES.md says). A line that cannot be read is kept as an error naming the file and
+/// `invalid` as docs/cases.md says). A line that cannot be read is kept as an error naming the file and
 /// the line, so that the caller can answer it in place and go on with the good lines.
 #include <iosfwd>
 #include <string>

@@ -1,5 +1,5 @@
 #!/bin/bash
-# docs/cluster.md's Slurm scripts, run for real (issue 21, part 3).
+# docs/cluster.md's Slurm scripts, run for real.
 #
 # Starts a private one-node Slurm on this machine (munged, slurmctld, slurmd, all three in the
 # foreground of this script, with their key, sockets, state and logs under WORK), submits the job

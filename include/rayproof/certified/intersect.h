@@ -1,5 +1,5 @@
 #pragma once
-/// The certified tier, one call per query: the exact class of CASES.md and t (and t2) within one
+/// The certified tier, one call per query: the exact class of docs/cases.md and t (and t2) within one
 /// double ulp of the exact value, for a double-precision ray against a plane, sphere, ellipsoid,
 /// box, disk or triangle; for triangles also the barycentrics b1, b2 within kBarycentricError.
 ///

@@ -34,7 +34,7 @@
 ///                    links rayproof_scene_certified, which brings rayproof_certified (else: an
 ///                    undefined reference to MeshCaster<cast::Certified>'s constructor).
 /// - Results (MeshHit): triangle number (its position in the index array), t, contact class
-///   (interior / edge / vertex / coplanar, CASES.md) and barycentrics b1 (weight of the triangle's
+///   (interior / edge / vertex / coplanar, docs/cases.md) and barycentrics b1 (weight of the triangle's
 ///   second vertex) and b2 (third) as the Float and Robust kernels compute them. Certified's
 ///   traversal decides class and t only: its b1, b2 are NaN (for barycentrics within 2^-50 of the
 ///   exact ones, call rayproof::certified::intersect, rayproof/certified/intersect.h, on the hit triangle).

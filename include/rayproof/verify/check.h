@@ -11,7 +11,7 @@
 /// double, so the same options give the same cases on every machine. A float kernel gets every
 /// input rounded to float and is judged against the exact answer on those rounded inputs, with its
 /// t error in float ulps; a double kernel on the inputs as given, in double ulps. The kernel's class
-/// is judged as CASES.md defines it (false hit, false miss, wrong class); only the fields its class
+/// is judged as docs/cases.md defines it (false hit, false miss, wrong class); only the fields its class
 /// carries are read (t, t2; NaN elsewhere). An exception thrown by the kernel is a kernel failure on
 /// that case (reported with the case), not a class error, and the run goes on.
 ///
@@ -60,7 +60,7 @@ struct PromiseVerdict {
   std::size_t violations = 0;
 };
 
-/// One bad case: a CASES.md case line (the input as the kernel saw it), the kernel's answer and
+/// One bad case: a docs/cases.md case line (the input as the kernel saw it), the kernel's answer and
 /// exact's, as `CLASS T T2` lines.
 struct CaseReport {
   std::string family, case_line, kernel_answer, exact_answer;

@@ -1,6 +1,6 @@
 #pragma once
 /// Exact answers for one ray against one primitive, typed (no case file): the class of exact real
-/// arithmetic on the given doubles (CASES.md), every t correctly rounded to the nearest double
+/// arithmetic on the given doubles (docs/cases.md), every t correctly rounded to the nearest double
 /// (ties to even), and for triangles the barycentrics b1, b2 of the contact point correctly
 /// rounded too. This is the ground truth: the `exact` method is these kernels on a case's fields,
 /// and the certified tier (rayproof/certified/intersect.h) is judged against it.

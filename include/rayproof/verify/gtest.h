@@ -9,12 +9,12 @@
 ///
 /// kernel: any callable taking (const Ray<T>&, const Prim<T>&) for T = float or double and returning
 /// Hit<T> (TriangleHit<T> for triangles) or anything with .contact, .t, .t2 of those meanings.
-/// It matches when its class is the exact class and every t the class carries (CASES.md: t for
+/// It matches when its class is the exact class and every t the class carries (docs/cases.md: t for
 /// hits and behind; t2 too for spheres, ellipsoids and boxes; [t, t2] for a coplanar triangle
 /// range) is within max_ulps ulps, in T, of the exact value rounded to T. The exact answer is that
 /// of exact arithmetic on the inputs as given (a float input is a double exactly); for T = float the
 /// exact t is rounded to double, then to float, which near a tie can be one float ulp from the
-/// correctly rounded float. A failure prints the case as a CASES.md line (a one-line reproducer for
+/// correctly rounded float. A failure prints the case as a docs/cases.md line (a one-line reproducer for
 /// `rayproof classify` or `rayproof verify`), the exact answer, the kernel's answer and the ulp
 /// distances, as `CLASS T T2` lines.
 #include <gtest/gtest.h>
@@ -49,7 +49,7 @@ inline void append(std::string& s, const Vec3<double>& v) { append(s, v.x), appe
 
 template <class T> Vec3<double> wide(const Vec3<T>& v) { return v.template cast<double>(); }
 
-// The primitive in double (exact for float inputs), its CASES.md kind and fields.
+// The primitive in double (exact for float inputs), its docs/cases.md kind and fields.
 template <class T> Plane<double> wide(const Plane<T>& p) { return {wide(p.point), wide(p.normal)}; }
 template <class T> Sphere<double> wide(const Sphere<T>& s) { return {wide(s.center), double(s.radius)}; }
 template <class T> Ellipsoid<double> wide(const Ellipsoid<T>& e) { return {wide(e.center), wide(e.semi_axes)}; }
@@ -73,7 +73,7 @@ inline void append_prim(std::string& s, const Disk<double>& p) {
 }
 inline void append_prim(std::string& s, const Triangle<double>& p) { append(s, p.p0), append(s, p.p1), append(s, p.p2); }
 
-/// The CASES.md case line of a ray and a primitive (in double).
+/// The docs/cases.md case line of a ray and a primitive (in double).
 template <class Prim>
 std::string case_line(const Ray<double>& ray, const Prim& prim) {
   std::string s = kind_name(prim);
@@ -81,7 +81,7 @@ std::string case_line(const Ray<double>& ray, const Prim& prim) {
   return s;
 }
 
-/// Which of t, t2 a class carries for a kind (CASES.md; the same rule as the CLI's output).
+/// Which of t, t2 a class carries for a kind (docs/cases.md; the same rule as the CLI's output).
 struct Carried {
   bool t = false, t2 = false;
 };

@@ -1,5 +1,5 @@
 #pragma once
-/// Point containment by other libraries, for `rayproof bench contains` (issue 23): CGAL's
+/// Point containment by other libraries, for `rayproof bench contains`: CGAL's
 /// Side_of_triangle_mesh with Epick (exact predicates on the double inputs) and Epeck, and Embree 3
 /// one-ray parity along (1, 1, 1) as Open3D casts it (a context filter counts every hit of
 /// rtcIntersect1 and rejects it, so traversal goes on; the point and direction rounded to float).
