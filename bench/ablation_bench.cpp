@@ -17,7 +17,7 @@
 #include <string>
 #include <vector>
 
-#include "bench_rays.h"
+#include "bench_common.h"
 #include "registry/registry.h"
 #include "scene/accel.h"
 #include "scene/compare/competitors.h"
@@ -27,12 +27,6 @@ using namespace rayproof;
 using namespace rayproof::scene;
 
 namespace {
-
-double now() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
-}
 
 volatile std::uint64_t sink_value = 0;
 
@@ -56,7 +50,7 @@ int main(int argc, char** argv) {
   std::printf("%s: %zu triangles; %s path, %s nodes; build greedy %.1f ms, sah %.1f ms, embree %.1f ms, embree-robust %.1f ms\n",
               mesh.c_str(), s.mesh.triangles.size(), to_string(sah.simd()), to_string(sah.nodes()), 1e3 * greedy.build_seconds(),
               1e3 * sah.build_seconds(), 1e3 * embree.build_s, 1e3 * embree_r.build_s);
-  // The rays every traversal benchmark uses (bench_rays.h).
+  // The rays every traversal benchmark uses (bench_common.h).
   const bench::BenchRays bench_rays = bench::make_bench_rays(s.bounds(), nrays);
   const auto& primary = bench_rays.primary;
   const auto& random = bench_rays.random;
@@ -84,7 +78,7 @@ int main(int argc, char** argv) {
             std::vector<std::uint64_t> ans[2];
             for (int step = 0; step < 3; ++step) {
               const int which = (step + int(blk) + r) % 3;
-              const double t0 = now();
+              const double t0 = bench::thread_seconds();
               if (which == 2) {
                 const std::span<const Ray<double>> span(rays.data() + b0, e - b0);
                 if (closest) ref.closest(span, std::span(out.data(), e - b0), 1);
@@ -94,7 +88,7 @@ int main(int argc, char** argv) {
                 const Accel& a = which ? sah : greedy;
                 for (std::size_t i = b0; i < e; ++i) ans[which].push_back(closest ? a.closest(rays[i], m).prim : a.any(rays[i], m));
               }
-              t[which] += now() - t0;
+              t[which] += bench::thread_seconds() - t0;
             }
             same = same && ans[0] == ans[1];
           }

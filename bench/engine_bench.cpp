@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "bench_common.h"
 #include "mesh/mesh.h"
 #include "rayproof/bvh_build.h"
 #include "rayproof/bvh_wide.h"
@@ -29,12 +30,6 @@
 using namespace rayproof;
 
 namespace {
-
-double now() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
-}
 
 struct TriF {
   Vec3<float> p0, e1, e2;
@@ -182,10 +177,10 @@ int main(int argc, char** argv) {
           for (std::size_t k = 0; k <= nv; ++k) {
             const std::size_t which = (k + blk + std::size_t(r)) % (nv + 1);
             const std::size_t e = std::min(set->size(), b + 1000);
-            const double t0 = now();
+            const double t0 = bench::thread_seconds();
             double acc = 0;
             for (std::size_t i = b; i < e; ++i) acc += which == nv ? embree((*set)[i], closest) : query(vs[which], (*set)[i], closest);
-            t[which] += now() - t0;
+            t[which] += bench::thread_seconds() - t0;
             sink = sink + acc;
           }
         for (std::size_t k = 0; k < nv; ++k) ratio[k].push_back(t[nv] / t[k]);

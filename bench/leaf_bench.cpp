@@ -15,7 +15,7 @@
 #include <string>
 #include <vector>
 
-#include "bench_rays.h"
+#include "bench_common.h"
 #include "registry/registry.h"
 #include "rayproof/certified_triangle.h"
 #include "scene/accel.h"
@@ -29,14 +29,6 @@ using namespace rayproof::scene::detail;
 
 namespace {
 
-/// The thread's CPU time, not the wall clock: on a machine shared with other jobs the time this
-/// thread waits for a core is not counted (cache disturbance by the others still is).
-double now() {
-  timespec ts;
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
-}
-
 volatile std::uint64_t sink_value = 0;
 
 struct Variant {
@@ -49,9 +41,9 @@ struct Variant {
 void run_rounds(std::vector<Variant>& vs, int rounds) {
   for (int r = 0; r < rounds; ++r)
     for (auto& v : vs) {
-      const double t0 = now();
+      const double t0 = bench::thread_seconds();
       sink_value = sink_value + v.run();
-      v.best = std::min(v.best, now() - t0);
+      v.best = std::min(v.best, bench::thread_seconds() - t0);
     }
 }
 

@@ -16,7 +16,7 @@
 #include <string>
 #include <vector>
 
-#include "bench_rays.h"
+#include "bench_common.h"
 #include "registry/registry.h"
 #include "scene/accel.h"
 #include "scene/watertight.h"
@@ -25,13 +25,6 @@ using namespace rayproof;
 using namespace rayproof::scene;
 
 namespace {
-
-/// This thread's CPU time: time the scheduler gives other processes on the shared machine is not counted.
-double now() {
-  timespec ts{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
-  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
-}
 
 volatile std::uint64_t sink_value = 0;
 
@@ -73,7 +66,7 @@ int main(int argc, char** argv) {
   std::printf("quantize_wide: %.1f ms (one thread; the full accel's build: %.1f ms)\n", 1e3 * quantize,
               1e3 * full.build_seconds());
 
-  // The rays every traversal benchmark uses (bench_rays.h).
+  // The rays every traversal benchmark uses (bench_common.h).
   const bench::BenchRays bench_rays = bench::make_bench_rays(s.bounds(), nrays);
   const auto& primary = bench_rays.primary;
   const auto& random = bench_rays.random;
@@ -100,10 +93,10 @@ int main(int argc, char** argv) {
               const int which = (step + int(blk + r)) % 2;  // alternate which goes first
               const Accel& a = which ? comp : full;
               std::uint64_t hits = 0;
-              const double t0 = now();
+              const double t0 = bench::thread_seconds();
               for (std::size_t i = b0; i < std::min(n, b0 + kBlock); ++i)
                 hits += closest ? a.closest(rays[i], m).prim : a.any(rays[i], m);
-              total[which] += now() - t0;
+              total[which] += bench::thread_seconds() - t0;
               check[which] += hits;
             }
           ratio.push_back(total[1] / total[0]);

@@ -91,8 +91,7 @@ MeshStatePtr make_mesh_state(const VertexArray& v, const IndexArray& i, cast::Ro
 
 }  // namespace detail
 
-namespace {
-MeshHit to_mesh_hit(const scene::PrimHit& h) {
+MeshHit detail::to_mesh_hit(const scene::PrimHit& h) {
   MeshHit m;
   m.contact = h.contact;
   if (h.prim == scene::PrimHit::kNoPrim) return m;
@@ -100,7 +99,10 @@ MeshHit to_mesh_hit(const scene::PrimHit& h) {
   return m;
 }
 
+namespace {
+
 using detail::str;
+using detail::to_mesh_hit;
 
 /// The batch's spans agree: as many results as rays, and 0, 1 or one range per ray.
 void check_batch(std::size_t rays, std::size_t ranges, std::size_t results) {

@@ -19,6 +19,10 @@ struct MeshState {
 /// Checks the arrays (MeshInputError), converts the vertices when needed and builds the BVH for `m`.
 [[nodiscard]] MeshStatePtr build_mesh_state(const VertexArray& v, const IndexArray& i, scene::SceneMethod m);
 
+/// A scene query's answer as a MeshHit: the global primitive number as `triangle` (the scene's
+/// caster uses it for scenes with other kinds too).
+[[nodiscard]] MeshHit to_mesh_hit(const scene::PrimHit& h);
+
 /// The method's state: Float and Robust in rayproof_scene, Certified in rayproof_scene_certified.
 [[nodiscard]] MeshStatePtr make_mesh_state(const VertexArray& v, const IndexArray& i, cast::Float);
 [[nodiscard]] MeshStatePtr make_mesh_state(const VertexArray& v, const IndexArray& i, cast::Robust);

@@ -1,15 +1,11 @@
 // The scene commands' queries: the public MeshCaster for meshes, scene::Accel for the rest.
 #include "scene/scene_caster.h"
 
+#include "scene/mesh_caster_state.h"
+
 namespace rayproof::scene {
 
-CastHit to_cast_hit(const scene::PrimHit& h) {
-  CastHit c;
-  c.contact = h.contact;
-  if (h.prim == scene::PrimHit::kNoPrim) return c;
-  c.triangle = h.prim, c.t = h.t, c.b1 = h.b1, c.b2 = h.b2;
-  return c;
-}
+CastHit to_cast_hit(const scene::PrimHit& h) { return detail::to_mesh_hit(h); }
 
 bool SceneCaster::takes_public_api(const scene::Scene& s, const scene::SceneMethod& m, const BvhBuildOptions& opt) {
   const bool kernel = m.fast == scene::FastKernel::mt_float || m.fast == scene::FastKernel::robust ||

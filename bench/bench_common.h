@@ -1,7 +1,9 @@
 #pragma once
-// The two ray sets the traversal benchmarks share: primary rays from an eye outside the scene's
-// bounds into them, and random rays between two points inside; the same seed gives the same rays
-// in every benchmark, so their numbers compare.
+// What the traversal benchmarks share: the two ray sets (primary rays from an eye outside the
+// scene's bounds into them, and random rays between two points inside; the same seed gives the same
+// rays in every benchmark, so their numbers compare) and the clock (this thread's CPU time).
+#include <time.h>
+
 #include <random>
 #include <vector>
 
@@ -9,6 +11,14 @@
 #include "rayproof/ray.h"
 
 namespace rayproof::bench {
+
+/// This thread's CPU time in seconds: time the scheduler gives other processes on a shared machine
+/// is not counted.
+inline double thread_seconds() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
 
 struct BenchRays {
   std::vector<Ray<double>> primary, random;
