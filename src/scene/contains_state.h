@@ -2,6 +2,7 @@
 /// What a rayproof::ClosedMesh holds (internal to rayproof_scene_certified): packed copies of the
 /// vertices and triangles, the closure report, the bounding box and the BVH over the copies.
 #include <array>
+#include <memory>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -9,6 +10,7 @@
 
 #include "rayproof/scene/contains.h"
 #include "scene/accel.h"
+#include "scene/winding_tree.h"
 
 namespace rayproof::detail {
 
@@ -30,6 +32,8 @@ struct ContainsState {
   /// The triangles' vertices in the BVH's leaf order (slot j: leaf_prims()[j]; padding slots
   /// zero), read contiguously by the point query instead of through the vertex indices.
   std::vector<std::array<Vec3<double>, 3>> slots;
+  /// The generalized winding number's tree: built for meshes that are not closed and oriented.
+  std::unique_ptr<WindingTree> tree;
 };
 
 [[nodiscard]] ClosureReport check_closure(const std::vector<Vec3<double>>& v,
