@@ -237,6 +237,109 @@ void WindingTree::build(std::vector<std::uint32_t>& ids, std::size_t lo, std::si
   nodes_[self] = nd;
 }
 
+namespace {
+/// A node's far-field term at p and its bound (section 2), when its ball is seen at r / d <= qmax.
+struct FarTerm {
+  bool ok = false;
+  double omega = 0, err = 0;
+};
+template <class Node>
+inline FarTerm far_term(const Node& nd, const Vec3<double>& p, double qmax) {
+  const double rx = nd.c[0] - p.x, ry = nd.c[1] - p.y, rz = nd.c[2] - p.z;
+  const double d2 = rx * rx + ry * ry + rz * rz;
+  const double rr = nd.r * kUp;
+  // Admissible: r_up <= qmax d_down (squared: d2 has relative error below 3u + the differences').
+  if (!(d2 > 0 && rr * rr <= qmax * qmax * d2 * kDown)) return {};
+  const double d = std::sqrt(d2);
+  const double q = rr / (d * kDown);
+  const double inv_d2 = 1 / d2, inv_d3 = inv_d2 / d;
+  const double* m = nd.m;
+  const double tr = m[0] + m[4] + m[8];
+  const double rmr = rx * (m[0] * rx + m[1] * ry + m[2] * rz) + ry * (m[3] * rx + m[4] * ry + m[5] * rz) +
+                     rz * (m[6] * rx + m[7] * ry + m[8] * rz);
+  const double omega = (nd.n[0] * rx + nd.n[1] * ry + nd.n[2] * rz + tr) * inv_d3 - 3 * rmr * inv_d3 * inv_d2;
+  const double one_q = 1 - q;
+  const double trunc = nd.area * q * q * (4 - 3 * q) / (one_q * one_q) * inv_d2;
+  const double round = 0x1p-38 * (1 + q) * nd.area * inv_d2;
+  return {true, omega, (trunc + round) * (1 + 8 * kU) * kUp / (kDown * kDown)};
+}
+}  // namespace
+
+template <class Done>
+WindingValue WindingTree::refine(const Vec3<double>& p, Done&& done) const {
+  WindingValue v;
+  if (nodes_.empty()) {
+    v.w = 0, v.bound = 0;
+    return v;
+  }
+  struct Item {
+    double err, omega;
+    std::uint32_t node;
+    bool operator<(const Item& o) const { return err < o.err; }
+  };
+  std::vector<Item> heap;
+  heap.reserve(64);
+  WindingSum direct;
+  double far_sum = 0, far_err = 0;  // running, for the stopping heuristic only
+  bool surface = false;
+  std::uint32_t stack[128];
+  auto open = [&](std::uint32_t root) {
+    int top = 0;
+    stack[top++] = root;
+    while (top > 0) {
+      const Node& nd = nodes_[stack[--top]];
+      if (nd.count == 0) {
+        for (std::uint32_t k : {nd.first, nd.first + 1}) {
+          const FarTerm f = far_term(nodes_[k], p, kQMax);
+          if (f.ok) {
+            heap.push_back({f.err, f.omega, k});
+            std::push_heap(heap.begin(), heap.end());
+            far_sum += f.omega, far_err += f.err;
+          } else {
+            if (top >= 127) throw std::logic_error("WindingTree: stack overflow");
+            stack[top++] = k;
+          }
+        }
+        continue;
+      }
+      for (std::uint32_t i = nd.first; i < nd.first + nd.count; ++i) {
+        const auto& T = tris_[i];
+        SolidAngle a = solid_angle_double(T[0], T[1], T[2], p);
+        if (a.status != 0 || a.err > kLooseTriangle) a = solid_angle_resolved(T[0], T[1], T[2], p);
+        if (a.status == 2) return (void)(surface = true);
+        direct.add(a.omega, a.err);
+      }
+    }
+  };
+  constexpr double kInv4Pi = 1 / (4 * std::numbers::pi);
+  const FarTerm rootf = far_term(nodes_[0], p, kQMax);
+  if (rootf.ok) {
+    heap.push_back({rootf.err, rootf.omega, 0});
+    far_sum = rootf.omega, far_err = rootf.err;
+  } else {
+    open(0);
+  }
+  for (;;) {
+    if (surface) {
+      v.surface = true, v.bound = 0, v.w = kNaN<double>;
+      return v;
+    }
+    const double w = (far_sum + direct.sum) * kInv4Pi, b = (far_err + direct.err) * kInv4Pi;
+    if (heap.empty() || done(w, b * 1.01 + 1e-15)) {
+      // The rigorous value: a fresh sum of the terms held.
+      WindingSum s = direct;
+      for (const Item& it : heap) s.add(it.omega, it.err);
+      v = s.value();
+      if (heap.empty() || done(v.w, v.bound)) return v;
+    }
+    std::pop_heap(heap.begin(), heap.end());
+    const Item it = heap.back();
+    heap.pop_back();
+    far_sum -= it.omega, far_err -= it.err;
+    open(it.node);
+  }
+}
+
 WindingValue WindingTree::eval(const Vec3<double>& p, double beta) const {
   WindingSum s;
   if (nodes_.empty()) {
@@ -247,26 +350,10 @@ WindingValue WindingTree::eval(const Vec3<double>& p, double beta) const {
   std::uint32_t stack[128];
   int top = 0;
   stack[top++] = 0;
-  const double beta2 = beta * beta;
   while (top > 0) {
     const Node& nd = nodes_[stack[--top]];
-    const double rx = nd.c[0] - p.x, ry = nd.c[1] - p.y, rz = nd.c[2] - p.z;
-    const double d2 = rx * rx + ry * ry + rz * rz;
-    const double rr = nd.r * kUp;
-    // Admissible: r_up <= beta d_down (squared: d2 has relative error below 3u + the differences').
-    if (d2 > 0 && rr * rr <= beta2 * d2 * kDown) {
-      const double d = std::sqrt(d2);
-      const double q = rr / (d * kDown);
-      const double inv_d2 = 1 / d2, inv_d3 = inv_d2 / d;
-      const double* m = nd.m;
-      const double tr = m[0] + m[4] + m[8];
-      const double rmr = rx * (m[0] * rx + m[1] * ry + m[2] * rz) + ry * (m[3] * rx + m[4] * ry + m[5] * rz) +
-                         rz * (m[6] * rx + m[7] * ry + m[8] * rz);
-      const double omega = (nd.n[0] * rx + nd.n[1] * ry + nd.n[2] * rz + tr) * inv_d3 - 3 * rmr * inv_d3 * inv_d2;
-      const double one_q = 1 - q;
-      const double trunc = nd.area * q * q * (4 - 3 * q) / (one_q * one_q) * inv_d2;
-      const double round = 0x1p-38 * (1 + q) * nd.area * inv_d2;
-      s.add(omega, (trunc + round) * (1 + 8 * kU) * kUp / (kDown * kDown));
+    if (const FarTerm f = far_term(nd, p, beta); f.ok) {
+      s.add(f.omega, f.err);
       continue;
     }
     if (nd.count == 0) {
@@ -293,27 +380,20 @@ WindingValue WindingTree::eval(const Vec3<double>& p, double beta) const {
 }
 
 WindingValue WindingTree::value(const Vec3<double>& p, double tolerance) const {
-  WindingValue v;
-  for (double beta : {kBeta0, kBeta0 / 3, kBeta0 / 10}) {
-    v = eval(p, beta);
-    if (v.surface || v.bound <= tolerance) return v;
-  }
-  return eval(p, 0);
+  return refine(p, [tolerance](double, double bound) { return bound <= tolerance; });
 }
 
 Side WindingTree::side(const Vec3<double>& p, bool* tie) const {
   if (tie) *tie = false;
-  auto decided = [](const WindingValue& v) { return v.surface || std::fabs(v.w - 0.5) > v.bound; };
-  auto answer = [](const WindingValue& v) { return v.surface ? Side::surface : (v.w > 0.5 ? Side::inside : Side::outside); };
-  for (double beta : {kBeta0, kBeta0 / 3, kBeta0 / 10, 0.0}) {
-    const WindingValue v = eval(p, beta);
-    if (decided(v)) return answer(v);
-  }
-  // Within a few ulps per triangle of 1/2: every triangle and the sum in MPFR.
+  const WindingValue v = refine(p, [](double w, double bound) { return std::fabs(w - 0.5) > bound; });
+  if (v.surface) return Side::surface;
+  if (std::fabs(v.w - 0.5) > v.bound) return v.w > 0.5 ? Side::inside : Side::outside;
+  // Every triangle directly and still within a few ulps per triangle of 1/2: every triangle and
+  // the sum in MPFR.
   for (int bits : {256, 1024}) {
     int vs = 0;
-    const WindingValue v = winding_mpfr(vertices_, triangles_, p, bits, &vs);
-    if (v.surface) return Side::surface;
+    const WindingValue m = winding_mpfr(vertices_, triangles_, p, bits, &vs);
+    if (m.surface) return Side::surface;
     if (vs != 0) return vs > 0 ? Side::inside : Side::outside;
   }
   if (tie) *tie = true;

@@ -68,8 +68,13 @@ class WindingTree {
   [[nodiscard]] Side side(const Vec3<double>& p, bool* tie = nullptr) const;
 
   [[nodiscard]] std::size_t node_count() const { return nodes_.size(); }
-  /// The first beta side() tries.
-  static constexpr double kBeta0 = 0.3;
+  /// Refinement by largest error first: starting from the root, the node whose far-field bound is
+  /// largest is replaced by its children (a leaf by its triangles, evaluated directly) until
+  /// `done(w, bound)` holds for the rigorous value or nothing is left to refine (then every triangle
+  /// has been evaluated directly). Nodes seen at a ratio r / d above kQMax are opened at once.
+  template <class Done>
+  [[nodiscard]] WindingValue refine(const Vec3<double>& p, Done&& done) const;
+  static constexpr double kQMax = 0.5;
 
  private:
   struct Node {
