@@ -277,8 +277,8 @@ WindingValue WindingTree::refine(const Vec3<double>& p, Done&& done) const {
     std::uint32_t node;
     bool operator<(const Item& o) const { return err < o.err; }
   };
-  std::vector<Item> heap;
-  heap.reserve(64);
+  thread_local std::vector<Item> heap;  // reused: no allocation per point
+  heap.clear();
   WindingSum direct;
   double far_sum = 0, far_err = 0;  // running, for the stopping heuristic only
   bool surface = false;
