@@ -121,14 +121,6 @@ std::string edge_text(const std::vector<Vec3<double>>& v, const std::array<std::
 
 }  // namespace detail
 
-namespace detail {
-/// The side of p through the perturbed ray: the winding number (nonzero rule) and crossing count.
-struct PointQuery {
-  bool surface = false;
-  std::int32_t winding = 0;
-  std::uint32_t crossings = 0;
-};
-}  // namespace detail
 
 namespace {
 
@@ -235,7 +227,7 @@ ContainsRule ClosedMesh::rule() const { return s_->rule; }
 
 Side ClosedMesh::contains(const Vec3<double>& p) const {
   if (!finite(p)) return Side::invalid;
-  if (s_->rule == ContainsRule::winding) return s_->tree->side(p);  // w > 1/2 (winding_tree.cpp)
+  if (s_->rule == ContainsRule::winding) return detail::winding_side(*s_, p);  // w > 1/2 (winding_caps.cpp)
   if (!in_box(*s_, p)) return Side::outside;
   const detail::PointQuery q = detail::query_point(*s_, p);
   if (q.surface) return Side::surface;

@@ -70,6 +70,7 @@ void load_contains_state(ContainsState& s, const VertexArray& v, const IndexArra
   const bool oriented = s.closure.misoriented_edges == 0 && s.closure.open_edges == 0;
   if (s.closure.open_edges) rule = ContainsRule::winding;
   if (rule == ContainsRule::winding || !oriented) s.tree = std::make_unique<WindingTree>(s.vertices, s.triangles);
+  if (rule == ContainsRule::winding) build_caps(s);
   if (rule == ContainsRule::nonzero && !oriented)
     throw MeshNotClosedError("the mesh is closed but not oriented: " + str(s.closure.misoriented_edges) +
                              " edges are not used as often in each direction, e.g. " +

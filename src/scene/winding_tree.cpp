@@ -383,6 +383,10 @@ WindingValue WindingTree::value(const Vec3<double>& p, double tolerance) const {
   return refine(p, [tolerance](double, double bound) { return bound <= tolerance; });
 }
 
+WindingValue WindingTree::value_against(const Vec3<double>& p, double offset) const {
+  return refine(p, [offset](double w, double bound) { return std::fabs(offset - w - 0.5) > bound; });
+}
+
 Side WindingTree::side(const Vec3<double>& p, bool* tie) const {
   if (tie) *tie = false;
   const WindingValue v = refine(p, [](double w, double bound) { return std::fabs(w - 0.5) > bound; });

@@ -72,6 +72,9 @@ class WindingTree {
   /// largest is replaced by its children (a leaf by its triangles, evaluated directly) until
   /// `done(w, bound)` holds for the rigorous value or nothing is left to refine (then every triangle
   /// has been evaluated directly). Nodes seen at a ratio r / d above kQMax are opened at once.
+  /// Refines the value of this tree's triangles until |offset - w - 1/2| > bound (or nothing is
+  /// left to refine): for w = offset - (this tree's w).
+  [[nodiscard]] WindingValue value_against(const Vec3<double>& p, double offset) const;
   template <class Done>
   [[nodiscard]] WindingValue refine(const Vec3<double>& p, Done&& done) const;
   static constexpr double kQMax = 0.5;
