@@ -1,7 +1,10 @@
 // rayproof contains: the answers and tallies on a cube (inside known), JSON, segments, and the
-// errors users meet (missing file, a bad points line, a NaN point, an open mesh) with clear messages.
+// errors users meet (missing file, a bad points line, a NaN point, an open mesh with --rule nonzero)
+// with clear messages; an open box answered by the generalized winding number.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <cstdio>
 #include <string>
 
 #include "cli_support.h"
@@ -59,12 +62,36 @@ TEST(ContainsCli, ClearErrors) {
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("-:3: coordinate 2 is NaN or infinite"), std::string::npos) << r.err;
   const auto open = write_file("open.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
-  r = run_rayproof("contains " + open.string() + " -", "0 0 0\n");
+  r = run_rayproof("contains " + open.string() + " - --rule nonzero", "0 0 0\n");
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("not closed: 3 edges are used by an odd number of triangles, e.g. vertex 0 (0, 0, 0) - vertex 1 (1, 0, 0)"),
             std::string::npos)
       << r.err;
   EXPECT_TRUE(r.out.empty());
+}
+
+TEST(ContainsCli, OpenMeshByTheGeneralizedWindingNumber) {
+  // The cube without its top face (z = 2): the centre sees five faces, w = 5/6.
+  std::string off = cube_off();
+  off.replace(off.find("8 12 0"), 6, "8 10 0");
+  off.erase(off.find("3 4 5 6\n3 5 7 6\n"), 16);
+  const auto open = write_file("open_box.off", off);
+  auto r = run_rayproof("contains " + open.string() + " - --winding", "1 1 1\n1 1 3\n0 0 0\n1 1 2\n");
+  ASSERT_EQ(r.status, 0) << r.err;
+  double w = 0, bound = 1;
+  ASSERT_EQ(std::sscanf(r.out.c_str(), "inside %lf +- %lf", &w, &bound), 2) << r.out;
+  EXPECT_LE(std::fabs(w - 5.0 / 6), bound) << r.out;
+  ASSERT_EQ(std::sscanf(r.out.c_str() + r.out.find('\n') + 1, "outside %lf +- %lf", &w, &bound), 2) << r.out;
+  EXPECT_LE(std::fabs(w - 1.0 / 6), bound) << r.out;  // (1 1 3) sees the opening: 4 atan(1 / sqrt 3) / 4 pi
+  EXPECT_NE(r.out.find("\nsurface\noutside 0.5"), std::string::npos) << r.out;  // (1 1 2): w = 1/2 exactly, outside
+  EXPECT_NE(r.err.find("4 points: 1 inside, 2 outside, 1 on the surface (rule winding: inside where the generalized "
+                       "winding number > 1/2, the mesh is not closed, 10 triangles)"),
+            std::string::npos)
+      << r.err;
+  r = run_rayproof("contains " + open.string() + " - --json --winding", "1 1 1\n");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("\"rule\": \"winding\""), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("\"winding\": [{\"w\": 0.83333333333333"), std::string::npos) << r.out;
 }
 
 }  // namespace

@@ -163,12 +163,14 @@ TEST(ClosedMesh, InvalidPoints) {
   EXPECT_EQ(c.contains({1e308, -1e308, 1}), Side::outside);
 }
 
-TEST(ClosedMesh, OpenMeshIsRefusedNamingAnEdge) {
+TEST(ClosedMesh, OpenMeshIsRefusedForNonzeroAndParityNamingAnEdge) {
   Shape s = cube();
   s.t.pop_back();
+  EXPECT_EQ(make(s).rule(), rayproof::ContainsRule::winding);  // automatic: the generalized winding number
+  EXPECT_THROW((void)make(s, rayproof::ContainsRule::parity), rayproof::MeshNotClosedError);
   try {
-    (void)make(s);
-    FAIL() << "an open mesh was accepted";
+    (void)make(s, rayproof::ContainsRule::nonzero);
+    FAIL() << "an open mesh was accepted for the nonzero rule";
   } catch (const rayproof::MeshNotClosedError& e) {
     const std::string m = e.what();
     EXPECT_NE(m.find("not closed: 3 edges"), std::string::npos) << m;

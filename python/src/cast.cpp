@@ -127,10 +127,24 @@ class PyMesh {
     return out;
   }
 
-  /// winding(): the exact winding number per point (int32; INT32_MIN on the surface, 0 when invalid).
-  py::array_t<std::int32_t> winding(py::handle points) {
+  /// winding(): on a closed oriented mesh the exact winding number per point (int32; INT32_MIN on
+  /// the surface, 0 when invalid); on any other mesh, or with with_bound, the generalized winding
+  /// number and its bound as two float64 arrays (w NaN on the surface and for invalid points).
+  py::object winding(py::handle points, double tolerance, bool with_bound, int threads) {
     const Rows p = rows_of(points, "points", 3, true);
     const std::size_t n = p.broadcast ? 1 : p.rows;
+    const ClosedMesh& any = closed("automatic");
+    if (!(tolerance > 0)) throw py::value_error("tolerance: must be positive");
+    if (with_bound || !any.closed() || !any.oriented()) {
+      py::array_t<double> w(static_cast<py::ssize_t>(n)), bound(static_cast<py::ssize_t>(n));
+      const double* xyz = p.data.data();
+      double *wo = w.mutable_data(), *bo = bound.mutable_data();
+      {
+        py::gil_scoped_release unlocked;
+        any.winding_values(xyz, n, 3 * sizeof(double), wo, bo, tolerance, threads);
+      }
+      return py::make_tuple(w, bound);
+    }
     const ClosedMesh& cm = closed("nonzero");
     py::array_t<std::int32_t> out(static_cast<py::ssize_t>(n));
     std::int32_t* o = out.mutable_data();
@@ -180,18 +194,23 @@ class PyMesh {
   }
 
   [[nodiscard]] bool oriented() { return closed("automatic").oriented(); }
+  [[nodiscard]] bool is_closed() { return closed("automatic").closed(); }
+  [[nodiscard]] std::string rule() { return to_string(closed("automatic").rule()); }
 
  private:
   /// The ClosedMesh of `rule`, built once (GIL released); MeshNotClosedError becomes ValueError.
   const ClosedMesh& closed(const std::string& rule) {
-    const int k = rule == "automatic" ? 0 : rule == "nonzero" ? 1 : rule == "parity" ? 2 : -1;
-    if (k < 0) throw py::value_error(fmt::format("rule: '{}' is not a rule (automatic, nonzero, parity)", rule));
+    const int k = rule == "automatic" ? 0 : rule == "nonzero" ? 1 : rule == "parity" ? 2 : rule == "winding" ? 3 : -1;
+    if (k < 0) throw py::value_error(fmt::format("rule: '{}' is not a rule (automatic, nonzero, parity, winding)", rule));
     LazyClosed& lazy = closed_[k];
     {
       py::gil_scoped_release unlocked;
       std::call_once(lazy.once, [&] {
         try {
-          const ContainsRule r = k == 0 ? ContainsRule::automatic : k == 1 ? ContainsRule::nonzero : ContainsRule::parity;
+          const ContainsRule r = k == 0   ? ContainsRule::automatic
+                                 : k == 1 ? ContainsRule::nonzero
+                                 : k == 2 ? ContainsRule::parity
+                                          : ContainsRule::winding;
           lazy.mesh = std::make_unique<ClosedMesh>(VertexArray(vertices_.data(), vertices()),
                                                    IndexArray{indices_.data(), triangles()}, r);
         } catch (const std::invalid_argument& e) {
@@ -276,7 +295,7 @@ class PyMesh {
   std::vector<double> vertices_;
   std::vector<std::uint32_t> indices_;
   std::tuple<Lazy<cast::Float>, Lazy<cast::Robust>, Lazy<cast::Certified>> casters_;
-  LazyClosed closed_[3];  ///< automatic, nonzero, parity
+  LazyClosed closed_[4];  ///< automatic, nonzero, parity, winding
 };
 
 }  // namespace
@@ -312,19 +331,28 @@ A ray with a NaN or infinite component or a zero direction has no crossing (clos
            "'prim', 't', 'b1', 'b2', 'classes', 'codes', and 'offsets' (r + 1: ray i's crossings are "
            "offsets[i]:offsets[i+1]). The GIL is released.")
       .def("contains", &PyMesh::contains, "points"_a, "rule"_a = "automatic", "threads"_a = 0,
-           "Exact side of each point ((n, 3) or (3,)) against the closed mesh: a uint8 array, "
+           "Side of each point ((n, 3) or (3,)), decided with certainty: a uint8 array, "
            "rayproof.OUTSIDE (0), INSIDE (1), SURFACE (2: on a triangle, edges and vertices included) or "
-           "INVALID (3: a NaN or infinite coordinate). rule: 'automatic' (nonzero winding number when the mesh "
-           "is oriented, else parity), 'nonzero' or 'parity'. A mesh that is not closed raises ValueError naming "
-           "an open edge. float64 C-contiguous points are read in place; the GIL is released. docs/contains.md.")
-      .def("winding", &PyMesh::winding, "points"_a,
-           "Exact winding number of the closed oriented mesh at each point (int32; -2**31 on the surface).")
+           "INVALID (3: a NaN or infinite coordinate). rule: 'automatic' (closed mesh: nonzero winding number "
+           "when oriented, else parity; any other mesh: 'winding'), 'nonzero', 'parity' (these two raise "
+           "ValueError naming an open edge on a mesh that is not closed) or 'winding' (inside where the "
+           "generalized winding number > 1/2; exactly 1/2 is outside). The rule used: Mesh.rule. float64 "
+           "C-contiguous points are read in place; the GIL is released. docs/contains.md.")
+      .def("winding", &PyMesh::winding, "points"_a, "tolerance"_a = 1e-6, "with_bound"_a = false, "threads"_a = 0,
+           "Winding number at each point. On a closed oriented mesh (and with_bound False): the exact integer "
+           "(int32; -2**31 on the surface). On any other mesh, or with with_bound: a tuple (w, bound) of float64 "
+           "arrays, the generalized winding number and a guaranteed bound (|w_exact - w| <= bound <= tolerance "
+           "unless the direct evaluation of every triangle is coarser); w NaN on the surface (bound 0) and for "
+           "invalid points (bound inf). The GIL is released.")
       .def("segment", &PyMesh::segment, "p"_a, "q"_a,
            "Whether each closed segment p -> q meets the surface (exact) and its first contact: a dict of "
            "'crosses', 't' (in [0, 1], within a few ulps; NaN for none), 'prim' (-1 for none), 'classes', "
            "'codes' (interior, edge, vertex, coplanar), 'p_side', 'q_side' (as contains).")
       .def_property_readonly("oriented", &PyMesh::oriented,
-                             "Whether the closed mesh is oriented (winding numbers defined).");
+                             "Whether the mesh is closed and oriented (integer winding numbers defined).")
+      .def_property_readonly("closed", &PyMesh::is_closed, "Whether every edge is used by an even number of triangles.")
+      .def_property_readonly("rule", &PyMesh::rule,
+                             "The rule contains() applies by default: 'nonzero', 'parity' or 'winding'.");
   m.attr("OUTSIDE") = static_cast<int>(Side::outside);
   m.attr("INSIDE") = static_cast<int>(Side::inside);
   m.attr("SURFACE") = static_cast<int>(Side::surface);

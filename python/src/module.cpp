@@ -112,7 +112,7 @@ PYBIND11_MODULE(rayproof, m) {
       "methods",
       [] {
         py::list out;
-        for (const auto& meth : registry().all()) {
+        for (const auto& meth : python::registry().all()) {
           py::dict d;
           d["name"] = meth.name;
           d["summary"] = meth.summary;

@@ -1,5 +1,5 @@
 """Mesh.contains / winding / segment: exact sides on a cube and an octahedron (inside known in closed
-form), points on faces, edges and vertices and one ulp off them, an open mesh refused, dtype and shape
+form), points on faces, edges and vertices and one ulp off them, an open mesh refused for nonzero, dtype and shape
 errors, the GIL released (another thread runs meanwhile), and agreement with the command-line tool."""
 import threading
 
@@ -62,10 +62,11 @@ def test_dtype_shape_and_rule_errors():
         m.contains(np.zeros((1, 3)), rule="even-odd")
 
 
-def test_open_mesh_is_refused_naming_an_edge():
+def test_open_mesh_is_refused_for_nonzero_naming_an_edge():
     m = rayproof.Mesh(CUBE_V, CUBE_T[:-1])
     with pytest.raises(ValueError, match=r"not closed: 3 edges are used by an odd number of triangles, e\.g\. vertex"):
-        m.contains(np.zeros((1, 3)))
+        m.contains(np.zeros((1, 3)), rule="nonzero")
+    assert m.rule == "winding"  # the default answers it by the generalized winding number
     m.closest([0, 0, -1], [0, 0, 1])  # ray casting still works on the open mesh
 
 

@@ -1,9 +1,11 @@
-/// rayproof contains MESH POINTS [--json] [--rule R] [--winding] [--segments]: exact inside /
-/// outside / surface of each point against a closed mesh (rayproof/scene/contains.h, docs/contains.md).
+/// rayproof contains MESH POINTS [--json] [--rule R] [--winding] [--segments]: inside / outside /
+/// surface of each point (rayproof/scene/contains.h, docs/contains.md): on a closed mesh by its exact
+/// winding number or parity, on any other mesh by the generalized winding number (w > 1/2, decided
+/// with certainty; `--winding` prints w with its bound).
 /// A point line is `x y z` (# comments and blank lines skipped); with --segments a line is
 /// `px py pz qx qy qz` and the answer is whether the segment meets the surface and where first.
 /// Errors (exit 2, one message naming the file and line): a missing or unreadable file, a mesh
-/// that is not closed, a line that is not three (six) numbers, a NaN or infinite coordinate.
+/// that is not closed with --rule nonzero or parity, a line that is not three (six) numbers, a NaN or infinite coordinate.
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
 
@@ -28,6 +30,7 @@ struct ContainsOptions {
   std::string mesh, points, rule = "automatic";
   bool json = false, winding = false, segments = false;
   int threads = 0;
+  double tolerance = 1e-6;
 };
 
 /// Reads lines of `want` numbers; on error returns false with "PATH:LINE: what" in `error`.
@@ -70,9 +73,20 @@ bool read_numbers(std::istream& in, const std::string& path, int want, std::vect
 }
 
 ContainsRule parse_rule(const std::string& r) {
-  return r == "nonzero" ? ContainsRule::nonzero : (r == "parity" ? ContainsRule::parity : ContainsRule::automatic);
+  if (r == "nonzero") return ContainsRule::nonzero;
+  if (r == "parity") return ContainsRule::parity;
+  return r == "winding" ? ContainsRule::winding : ContainsRule::automatic;
 }
-const char* rule_name(ContainsRule r) { return r == ContainsRule::parity ? "parity" : "nonzero"; }
+/// The rule as the summary line states it.
+std::string rule_text(const ClosedMesh& m) {
+  switch (m.rule()) {
+    case ContainsRule::parity: return "rule parity";
+    case ContainsRule::winding:
+      return std::string("rule winding: inside where the generalized winding number > 1/2") +
+             (m.closed() ? "" : ", the mesh is not closed");
+    default: return "rule nonzero";
+  }
+}
 
 int run_contains(const ContainsOptions& opt) {
   const char* me = "rayproof contains";
@@ -95,8 +109,11 @@ int run_contains(const ContainsOptions& opt) {
     fmt::print(stderr, "{}: {}: {}\n", me, opt.mesh, e.what());
     return 2;
   }
-  if (opt.winding && !cm->oriented()) {
-    fmt::print(stderr, "{}: {}: --winding needs an oriented mesh (this one is closed but its triangles disagree)\n", me, opt.mesh);
+  // --winding: the exact integer on a closed oriented mesh (unless the winding rule was asked for),
+  // else the generalized winding number with its bound.
+  const bool integer_winding = cm->closed() && cm->oriented() && cm->rule() != ContainsRule::winding;
+  if (opt.winding && !(opt.tolerance > 0)) {
+    fmt::print(stderr, "{}: --tolerance must be positive\n", me);
     return 2;
   }
   Input in = open_input(opt.points);
@@ -116,7 +133,7 @@ int run_contains(const ContainsOptions& opt) {
   std::size_t tally[4] = {0, 0, 0, 0};
   std::string windings;  // JSON with --winding: the winding numbers (null on the surface)  // outside, inside, surface; segments: crossing / not
   if (opt.json) out += fmt::format("{{\"mesh\": \"{}\", \"triangles\": {}, \"oriented\": {}, \"rule\": \"{}\", \"{}\": [", opt.mesh,
-                                   cm->triangle_count(), cm->oriented() ? "true" : "false", rule_name(cm->rule()),
+                                   cm->triangle_count(), cm->oriented() ? "true" : "false", to_string(cm->rule()),
                                    opt.segments ? "segments" : "points");
   if (opt.segments) {
     for (std::size_t i = 0; i < n; ++i) {
@@ -140,12 +157,20 @@ int run_contains(const ContainsOptions& opt) {
     cm->contains(std::span<const Vec3<double>>(reinterpret_cast<const Vec3<double>*>(xs.data()), n), sides, opt.threads);
     for (std::size_t i = 0; i < n; ++i) {
       ++tally[int(sides[i])];
-      std::string w;
-      if (opt.winding && sides[i] != Side::surface)
-        w = std::to_string(cm->winding({xs[3 * i], xs[3 * i + 1], xs[3 * i + 2]}));
+      std::string w, wj;  // text and JSON
+      if (opt.winding && sides[i] != Side::surface) {
+        const Vec3<double> p{xs[3 * i], xs[3 * i + 1], xs[3 * i + 2]};
+        if (integer_winding) {
+          w = wj = std::to_string(cm->winding(p));
+        } else {
+          const WindingValue v = cm->winding_value(p, opt.tolerance);
+          w = fmt::format("{} +- {:.3g}", io::format_double(v.w), v.bound);
+          wj = fmt::format("{{\"w\": {}, \"bound\": {:.3g}}}", io::format_double(v.w), v.bound);
+        }
+      }
       if (opt.json) {
         out += fmt::format("{}\"{}\"", i ? ", " : "", to_string(sides[i]));
-        if (opt.winding) windings += (i ? ", " : "") + (w.empty() ? std::string("null") : w);
+        if (opt.winding) windings += (i ? ", " : "") + (wj.empty() ? std::string("null") : wj);
       } else
         out += std::string(to_string(sides[i])) + (w.empty() ? "" : " " + w) + "\n";
       if (out.size() > (1 << 16) && !opt.json) std::fwrite(out.data(), 1, out.size(), stdout), out.clear();
@@ -162,8 +187,8 @@ int run_contains(const ContainsOptions& opt) {
   if (opt.segments)
     fmt::print(stderr, "{}: {} segments: {} meet the surface, {} do not\n", me, n, tally[0], tally[1]);
   else
-    fmt::print(stderr, "{}: {} points: {} inside, {} outside, {} on the surface (rule {}, {} triangles)\n", me, n, tally[1],
-               tally[0], tally[2], rule_name(cm->rule()), cm->triangle_count());
+    fmt::print(stderr, "{}: {} points: {} inside, {} outside, {} on the surface ({}, {} triangles)\n", me, n, tally[1],
+               tally[0], tally[2], rule_text(*cm), cm->triangle_count());
   return 0;
 }
 
@@ -171,14 +196,20 @@ int run_contains(const ContainsOptions& opt) {
 
 Run add_contains(CLI::App& app) {
   auto opt = std::make_shared<ContainsOptions>();
-  auto* sub = app.add_subcommand("contains", "Exact inside / outside / surface of points (or segments) against a closed mesh");
-  sub->add_option("mesh", opt->mesh, "Closed mesh file (.off .obj .ply .stl)")->required();
+  auto* sub = app.add_subcommand("contains", "Inside / outside / surface of points (or segments), decided with certainty: "
+                                              "closed meshes by the winding number, others by the generalized winding number");
+  sub->add_option("mesh", opt->mesh, "Mesh file (.off .obj .ply .stl); open meshes and soups too")->required();
   sub->add_option("points", opt->points, "Point file (x y z per line), or - for standard input")->required();
   sub->add_flag("--json", opt->json, "Print one JSON object (the sides and their tallies)");
-  sub->add_option("--rule", opt->rule, "automatic (nonzero winding when the mesh is oriented, else parity), nonzero or parity")
-      ->check(CLI::IsMember({"automatic", "nonzero", "parity"}))
+  sub->add_option("--rule", opt->rule,
+                  "automatic (closed: nonzero winding when oriented, else parity; not closed: winding), nonzero, parity, "
+                  "or winding (generalized winding number > 1/2, any mesh)")
+      ->check(CLI::IsMember({"automatic", "nonzero", "parity", "winding"}))
       ->capture_default_str();
-  sub->add_flag("--winding", opt->winding, "Append the exact winding number to each line (oriented meshes)");
+  sub->add_flag("--winding", opt->winding,
+                "Append the winding number to each line: the exact integer on a closed oriented mesh, else the "
+                "generalized winding number and its bound ('W +- BOUND')");
+  sub->add_option("--tolerance", opt->tolerance, "--winding: refine w until its bound is at most this")->capture_default_str();
   sub->add_flag("--segments", opt->segments, "Lines are segments 'px py pz qx qy qz': CONTACT T TRIANGLE P_SIDE Q_SIDE, or miss");
   sub->add_option("--threads,-j", opt->threads, "Threads (0: all)")->capture_default_str();
   return [opt] { return run_contains(*opt); };

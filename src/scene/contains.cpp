@@ -36,6 +36,16 @@ const char* to_string(Side s) {
   return "?";
 }
 
+const char* to_string(ContainsRule r) {
+  switch (r) {
+    case ContainsRule::automatic: return "automatic";
+    case ContainsRule::nonzero: return "nonzero";
+    case ContainsRule::parity: return "parity";
+    case ContainsRule::winding: return "winding";
+  }
+  return "?";
+}
+
 namespace {
 
 using scene::detail::orient2d_exact;
@@ -111,14 +121,6 @@ std::string edge_text(const std::vector<Vec3<double>>& v, const std::array<std::
 
 }  // namespace detail
 
-namespace detail {
-/// The side of p through the perturbed ray: the winding number (nonzero rule) and crossing count.
-struct PointQuery {
-  bool surface = false;
-  std::int32_t winding = 0;
-  std::uint32_t crossings = 0;
-};
-}  // namespace detail
 
 namespace {
 
@@ -219,11 +221,13 @@ ClosedMesh::ClosedMesh(ClosedMesh&&) noexcept = default;
 ClosedMesh& ClosedMesh::operator=(ClosedMesh&&) noexcept = default;
 
 std::size_t ClosedMesh::triangle_count() const { return s_->triangles.size(); }
-bool ClosedMesh::oriented() const { return s_->closure.misoriented_edges == 0; }
+bool ClosedMesh::oriented() const { return s_->closure.misoriented_edges == 0 && s_->closure.open_edges == 0; }
+bool ClosedMesh::closed() const { return s_->closure.open_edges == 0; }
 ContainsRule ClosedMesh::rule() const { return s_->rule; }
 
 Side ClosedMesh::contains(const Vec3<double>& p) const {
   if (!finite(p)) return Side::invalid;
+  if (s_->rule == ContainsRule::winding) return detail::winding_side(*s_, p);  // w > 1/2 (winding_caps.cpp)
   if (!in_box(*s_, p)) return Side::outside;
   const detail::PointQuery q = detail::query_point(*s_, p);
   if (q.surface) return Side::surface;
@@ -232,6 +236,8 @@ Side ClosedMesh::contains(const Vec3<double>& p) const {
 }
 
 std::int32_t ClosedMesh::winding(const Vec3<double>& p) const {
+  if (!closed()) throw std::logic_error("ClosedMesh::winding: the mesh is not closed (" + str(s_->closure.open_edges) +
+                                        " open edges): its winding number is not an integer; see winding_value");
   if (!oriented()) throw std::logic_error("ClosedMesh::winding: the mesh is not oriented (" +
                                           str(s_->closure.misoriented_edges) + " edges used unequally in each direction)");
   if (!finite(p) || !in_box(*s_, p)) return 0;

@@ -62,12 +62,15 @@ void load_contains_state(ContainsState& s, const VertexArray& v, const IndexArra
     }
   }
   s.closure = check_closure(s.vertices, s.triangles);
-  if (s.closure.open_edges)
+  if (s.closure.open_edges && (rule == ContainsRule::nonzero || rule == ContainsRule::parity))
     throw MeshNotClosedError("the mesh is not closed: " + str(s.closure.open_edges) +
                              " edges are used by an odd number of triangles, e.g. " +
-                             edge_text(s.vertices, s.closure.open_example) +
-                             " (point containment needs a closed surface; fill the holes first)");
-  const bool oriented = s.closure.misoriented_edges == 0;
+                             edge_text(s.vertices, s.closure.open_example) + " (the " + to_string(rule) +
+                             " rule needs a closed surface; the winding rule answers any mesh)");
+  const bool oriented = s.closure.misoriented_edges == 0 && s.closure.open_edges == 0;
+  if (s.closure.open_edges) rule = ContainsRule::winding;
+  if (rule == ContainsRule::winding || !oriented) s.tree = std::make_unique<WindingTree>(s.vertices, s.triangles);
+  if (rule == ContainsRule::winding) build_caps(s);
   if (rule == ContainsRule::nonzero && !oriented)
     throw MeshNotClosedError("the mesh is closed but not oriented: " + str(s.closure.misoriented_edges) +
                              " edges are not used as often in each direction, e.g. " +

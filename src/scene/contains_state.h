@@ -2,6 +2,7 @@
 /// What a rayproof::ClosedMesh holds (internal to rayproof_scene_certified): packed copies of the
 /// vertices and triangles, the closure report, the bounding box and the BVH over the copies.
 #include <array>
+#include <memory>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -9,6 +10,7 @@
 
 #include "rayproof/scene/contains.h"
 #include "scene/accel.h"
+#include "scene/winding_tree.h"
 
 namespace rayproof::detail {
 
@@ -30,7 +32,26 @@ struct ContainsState {
   /// The triangles' vertices in the BVH's leaf order (slot j: leaf_prims()[j]; padding slots
   /// zero), read contiguously by the point query instead of through the vertex indices.
   std::vector<std::array<Vec3<double>, 3>> slots;
+  /// The generalized winding number's tree: built for meshes that are not closed and oriented.
+  std::unique_ptr<WindingTree> tree;
+  /// The winding rule's fast path (winding_caps.cpp): the mesh closed by caps over its boundary
+  /// (its exact integer winding number) and a tree over the caps alone.
+  std::unique_ptr<ContainsState> capped;
+  std::unique_ptr<WindingTree> caps;
 };
+
+/// The side of p through the perturbed ray: the winding number (nonzero rule) and crossing count.
+struct PointQuery {
+  bool surface = false;
+  std::int32_t winding = 0;
+  std::uint32_t crossings = 0;
+};
+/// The perturbed ray's count at p (finite, inside the closed bounding box; contains.cpp).
+[[nodiscard]] PointQuery query_point(const ContainsState& s, const Vec3<double>& p);
+/// Builds s.capped and s.caps when the caps close the mesh (winding_caps.cpp).
+void build_caps(ContainsState& s);
+/// The winding rule's side of a finite p (winding_caps.cpp).
+[[nodiscard]] Side winding_side(const ContainsState& s, const Vec3<double>& p);
 
 [[nodiscard]] ClosureReport check_closure(const std::vector<Vec3<double>>& v,
                                           const std::vector<std::array<std::uint32_t, 3>>& tris);

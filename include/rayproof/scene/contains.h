@@ -5,10 +5,10 @@
 /// Contract:
 /// - Input: the arrays of MeshCaster (rayproof/scene/mesh_caster.h, the same checks and MeshInputError).
 ///   The vertices and indices are copied (packed doubles); the arrays may be freed afterwards.
-/// - Closed: vertices with equal coordinates are one vertex; every edge must be used by an even
-///   number of triangles (edges of zero length ignored). Otherwise the constructor throws
-///   MeshNotClosedError naming the number of open edges and one of them (its vertices and their
-///   coordinates). No guess is made for open meshes.
+/// - Closed: vertices with equal coordinates are one vertex; every edge used by an even number of
+///   triangles (edges of zero length ignored). A mesh that is not closed (open, holed, cracked, a
+///   soup) is answered by ContainsRule::winding, the generalized winding number (winding.h); asking
+///   for nonzero or parity on it throws MeshNotClosedError naming the open edges.
 /// - Oriented: when moreover every edge is used as often a->b as b->a, the mesh is a closed oriented
 ///   surface (oriented() is true) and winding() is its exact winding number at p; inside means
 ///   winding != 0 (the nonzero rule; for a mesh that does not intersect itself the winding number
@@ -35,6 +35,7 @@
 
 #include "rayproof/float_util.h"
 #include "rayproof/scene/mesh_caster.h"
+#include "rayproof/scene/winding.h"
 #include "rayproof/vec3.h"
 
 namespace rayproof {
@@ -43,8 +44,11 @@ namespace rayproof {
 enum class Side : std::uint8_t { outside = 0, inside = 1, surface = 2, invalid = 3 };
 [[nodiscard]] const char* to_string(Side s);
 
-/// Inside by the winding number (nonzero; needs an oriented mesh) or by crossing parity.
-enum class ContainsRule : std::uint8_t { automatic, nonzero, parity };
+/// Inside by the winding number (nonzero; needs an oriented mesh), by crossing parity (needs a
+/// closed mesh), or by the generalized winding number w > 1/2 (any mesh; automatic picks it for
+/// meshes that are not closed; w = 1/2 exactly is outside; docs/contains.md).
+enum class ContainsRule : std::uint8_t { automatic, nonzero, parity, winding };
+[[nodiscard]] const char* to_string(ContainsRule r);
 
 /// The mesh is not closed: message says how many edges are open and names one.
 class MeshNotClosedError : public std::invalid_argument {
@@ -78,15 +82,25 @@ class ClosedMesh {
   [[nodiscard]] std::size_t triangle_count() const;
   /// Every edge used as often in each direction: the winding number is defined.
   [[nodiscard]] bool oriented() const;
-  /// The rule contains() applies: nonzero or parity.
+  /// The rule contains() applies: nonzero, parity or winding.
   [[nodiscard]] ContainsRule rule() const;
+  /// Every edge used by an even number of triangles.
+  [[nodiscard]] bool closed() const;
 
   [[nodiscard]] Side contains(const Vec3<double>& p) const;
   /// The exact winding number at p; kOnSurface on the surface, 0 for an invalid point. Throws
-  /// std::logic_error when the mesh is not oriented.
+  /// std::logic_error when the mesh is not closed and oriented (see winding_value).
   [[nodiscard]] std::int32_t winding(const Vec3<double>& p) const;
   /// Crossings of the perturbed parity ray (the parity rule's count; mainly for tests).
   [[nodiscard]] std::uint32_t crossings(const Vec3<double>& p) const;
+  /// The generalized winding number at p with its bound (any mesh): on a closed oriented mesh the
+  /// exact integer with bound 0; elsewhere a value refined until bound <= tolerance (or the bound
+  /// of evaluating every triangle directly, a few ulps per triangle, if that is larger).
+  [[nodiscard]] WindingValue winding_value(const Vec3<double>& p, double tolerance = 1e-6) const;
+  /// winding_value of n packed points `stride` bytes apart into w[i] and bound[i] (surface: w NaN
+  /// and bound 0; invalid: w NaN and bound infinite).
+  void winding_values(const double* xyz, std::size_t n, std::size_t stride, double* w, double* bound,
+                      double tolerance = 1e-6, int threads = 0) const;
 
   /// contains() of every point into `out` (same size; MeshInputError otherwise).
   void contains(std::span<const Vec3<double>> points, std::span<Side> out, int threads = 0) const;

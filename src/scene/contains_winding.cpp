@@ -1,0 +1,53 @@
+// ClosedMesh's generalized winding numbers (winding_tree.cpp): the value with its bound, one point
+// or a batch.
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <string>
+
+#include "scene/contains_state.h"
+
+namespace rayproof {
+
+WindingValue ClosedMesh::winding_value(const Vec3<double>& p, double tolerance) const {
+  WindingValue v;
+  if (!(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z))) return v;
+  if (!s_->tree) {  // closed and oriented: the exact integer
+    const std::int32_t k = winding(p);
+    if (k == kOnSurface) {
+      v.surface = true, v.bound = 0;
+    } else {
+      v.w = k, v.bound = 0;
+    }
+    return v;
+  }
+  return s_->tree->value(p, tolerance);
+}
+
+void ClosedMesh::winding_values(const double* xyz, std::size_t n, std::size_t stride, double* w, double* bound,
+                                double tolerance, int threads) const {
+  if (n == 0) return;
+  if (!xyz || !w || !bound) throw MeshInputError("ClosedMesh::winding_values: null pointer with a count of " + std::to_string(n));
+  if (stride < 3 * sizeof(double) || stride % sizeof(double))
+    throw MeshInputError("ClosedMesh::winding_values: stride of " + std::to_string(stride) +
+                         " bytes (need a multiple of 8, at least 24)");
+  const auto* base = reinterpret_cast<const std::byte*>(xyz);
+  auto body = [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i < r.end(); ++i) {
+      Vec3<double> p;
+      std::memcpy(&p, base + i * stride, sizeof p);
+      const WindingValue v = winding_value(p, tolerance);
+      w[i] = v.w;
+      bound[i] = v.bound;
+    }
+  };
+  if (threads == 1 || n < 256) return body(tbb::blocked_range<std::size_t>(0, n));
+  tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
+  arena.execute([&] { tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 64), body); });
+}
+
+}  // namespace rayproof

@@ -1,0 +1,99 @@
+#pragma once
+/// The generalized winding number over a tree with a far-field expansion and a guaranteed bound
+/// (internal to rayproof_scene_certified; the public face is ClosedMesh::winding_value and
+/// ContainsRule::winding). The derivations are in winding_tree.cpp.
+#include <array>
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "rayproof/scene/contains.h"
+#include "rayproof/scene/winding.h"
+
+namespace rayproof::detail {
+
+/// One triangle's solid angle at p with a bound on its error: |Omega_exact - omega| <= err.
+/// status: 0 bounded; 1 unresolved in this precision (p on or within rounding of the triangle's
+/// plane and closure, or coordinates out of the double window); 2 p is on the closed triangle.
+struct SolidAngle {
+  double omega = 0, err = 0;
+  int status = 0;
+};
+
+/// The solid angle of triangle abc at p in double with its rounding bound (status 0 or 1).
+[[nodiscard]] SolidAngle solid_angle_double(const Vec3<double>& a, const Vec3<double>& b, const Vec3<double>& c,
+                                            const Vec3<double>& p);
+/// The brute force in MPFR at `bits`; *vs_half: +1 when w > 1/2 is proven, -1 when w < 1/2, 0
+/// when undecided at this precision (or p is on the surface).
+[[nodiscard]] WindingValue winding_mpfr(std::span<const Vec3<double>> vertices,
+                                        std::span<const std::array<std::uint32_t, 3>> triangles, const Vec3<double>& p,
+                                        int bits, int* vs_half);
+/// The exact decision and, when needed, MPFR at increasing precision (status 0 or 2): used where
+/// the double evaluation is unresolved (winding_mpfr.cpp).
+[[nodiscard]] SolidAngle solid_angle_resolved(const Vec3<double>& a, const Vec3<double>& b, const Vec3<double>& c,
+                                              const Vec3<double>& p);
+/// p on the closed triangle abc (exact; false for zero area).
+[[nodiscard]] bool on_closed_triangle_exact(const Vec3<double>& a, const Vec3<double>& b, const Vec3<double>& c,
+                                            const Vec3<double>& p);
+
+/// A running sum of solid angles with its bound (see winding_tree.cpp for the summation bound).
+struct WindingSum {
+  double sum = 0, err = 0, abs = 0;
+  std::uint64_t terms = 0;
+  void add(double omega, double e) {
+    sum += omega;
+    err += e;
+    abs += omega < 0 ? -omega : omega;
+    ++terms;
+  }
+  /// w = sum / 4 pi with every error of the sum included.
+  [[nodiscard]] WindingValue value() const;
+};
+
+/// A binary tree over the triangles with per-node moments (Barill et al. 2018, first order: area
+/// vector and first moment about the node's centre) and a bounding ball.
+class WindingTree {
+ public:
+  WindingTree(const std::vector<Vec3<double>>& v, const std::vector<std::array<std::uint32_t, 3>>& t);
+
+  /// w(p) with far-field terms for the nodes seen at a radius-to-distance ratio <= beta (beta in
+  /// [0, 0.9]; 0: every triangle directly) and an exact near field.
+  [[nodiscard]] WindingValue eval(const Vec3<double>& p, double beta) const;
+  /// w(p) refined until bound <= tolerance or no refinement is left (then the direct evaluation of
+  /// every triangle, its bound a few ulps per triangle).
+  [[nodiscard]] WindingValue value(const Vec3<double>& p, double tolerance) const;
+  /// inside (w > 1/2), outside (w < 1/2) or surface, refined until decided; `tie` set when even the
+  /// MPFR evaluation at the highest precision tried leaves |w - 1/2| within its bound (w = 1/2
+  /// exactly, or within about 2^-1000 of it): then the answer is outside.
+  [[nodiscard]] Side side(const Vec3<double>& p, bool* tie = nullptr) const;
+
+  [[nodiscard]] std::size_t node_count() const { return nodes_.size(); }
+  /// Refinement by largest error first: starting from the root, the node whose far-field bound is
+  /// largest is replaced by its children (a leaf by its triangles, evaluated directly) until
+  /// `done(w, bound)` holds for the rigorous value or nothing is left to refine (then every triangle
+  /// has been evaluated directly). Nodes seen at a ratio r / d above kQMax are opened at once.
+  /// Refines the value of this tree's triangles until |offset - w - 1/2| > bound (or nothing is
+  /// left to refine): for w = offset - (this tree's w).
+  [[nodiscard]] WindingValue value_against(const Vec3<double>& p, double offset) const;
+  template <class Done>
+  [[nodiscard]] WindingValue refine(const Vec3<double>& p, Done&& done) const;
+  static constexpr double kQMax = 0.5;
+
+ private:
+  struct Node {
+    double c[3];   ///< centre (area-weighted centroid)
+    double r;      ///< radius of a ball about c holding every vertex of the node's triangles
+    double area;   ///< sum of the triangles' unsigned areas
+    double n[3];   ///< sum of the area vectors (half cross products)
+    double m[9];   ///< first moment m[3 i + j] = sum area_vector_i (centroid - c)_j
+    std::uint32_t first, count;  ///< leaf: its triangles in tris_; inner: count = 0, children first, first + 1
+  };
+  std::vector<Node> nodes_;
+  std::vector<std::array<Vec3<double>, 3>> tris_;  ///< leaf order
+  std::vector<Vec3<double>> vertices_;             ///< for the MPFR stage
+  std::vector<std::array<std::uint32_t, 3>> triangles_;
+  void build(std::vector<std::uint32_t>& ids, std::size_t lo, std::size_t hi, const std::vector<Vec3<double>>& cen,
+             std::uint32_t self, int depth);
+};
+
+}  // namespace rayproof::detail
