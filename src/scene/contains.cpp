@@ -58,6 +58,11 @@ std::string str(const Vec3<double>& p) {
   return buf;
 }
 
+
+}  // namespace
+
+namespace detail {
+
 /// The vertices with equal coordinates (+0 and -0 alike) mapped to the first of them.
 std::vector<std::uint32_t> weld(const std::vector<Vec3<double>>& v) {
   struct Key {
@@ -80,9 +85,6 @@ std::vector<std::uint32_t> weld(const std::vector<Vec3<double>>& v) {
   return out;
 }
 
-}  // namespace
-
-namespace detail {
 
 ClosureReport check_closure(const std::vector<Vec3<double>>& v, const std::vector<std::array<std::uint32_t, 3>>& tris) {
   const std::vector<std::uint32_t> id = weld(v);
@@ -133,9 +135,14 @@ inline int sos_edge(double au, double av, double bu, double bv) {
   return bu > au ? 1 : (bu < au ? -1 : 0);
 }
 
+
+}  // namespace
+
+namespace detail {
+
 /// p on the closed triangle, knowing orient3d(a, b, c, p) = 0: a projection where the triangle has
 /// area, and the three edge signs there 0 or the triangle's.
-bool on_closed_triangle(const Vec3<double>& a, const Vec3<double>& b, const Vec3<double>& c, const Vec3<double>& p) {
+bool on_closed_triangle_coplanar(const Vec3<double>& a, const Vec3<double>& b, const Vec3<double>& c, const Vec3<double>& p) {
   for (int j = 0; j < 3; ++j) {
     const int u = (j + 1) % 3, v = (j + 2) % 3;
     const double au = coord(a, u), av = coord(a, v), bu = coord(b, u), bv = coord(b, v), cu = coord(c, u), cv = coord(c, v);
@@ -148,9 +155,6 @@ bool on_closed_triangle(const Vec3<double>& a, const Vec3<double>& b, const Vec3
   return false;  // zero area: not part of the surface
 }
 
-}  // namespace
-
-namespace detail {
 
 /// The perturbed ray's count at p (finite, inside the closed bounding box).
 PointQuery query_point(const ContainsState& s, const Vec3<double>& p) {
@@ -184,7 +188,7 @@ PointQuery query_point(const ContainsState& s, const Vec3<double>& p) {
     const int d0 = orient3d_exact(a, b, c, p);
     if (sk == 0) {
       // Parallel to the ray: never crossed by p'; only the surface test.
-      if (d0 == 0 && on_closed_triangle(a, b, c, p)) return q.surface = true;
+      if (d0 == 0 && on_closed_triangle_coplanar(a, b, c, p)) return q.surface = true;
       return false;
     }
     // p is in the closed projection (the nonzero e_i sum to orient2d(a, b, c), so they have sign sk).

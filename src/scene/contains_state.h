@@ -56,6 +56,14 @@ void build_caps(ContainsState& s);
 [[nodiscard]] ClosureReport check_closure(const std::vector<Vec3<double>>& v,
                                           const std::vector<std::array<std::uint32_t, 3>>& tris);
 /// "vertex A (x, y, z) - vertex B (x, y, z), used by N triangles".
+/// The vertices with equal coordinates (+0 and -0 alike) mapped to the first of them.
+[[nodiscard]] std::vector<std::uint32_t> weld(const std::vector<Vec3<double>>& v);
+
+/// p on the closed triangle abc, knowing orient3d(a, b, c, p) = 0 (exact): a projection where the
+/// triangle has area, and the three edge signs there 0 or the triangle's. False for zero area.
+[[nodiscard]] bool on_closed_triangle_coplanar(const Vec3<double>& a, const Vec3<double>& b, const Vec3<double>& c,
+                                               const Vec3<double>& p);
+
 [[nodiscard]] std::string edge_text(const std::vector<Vec3<double>>& v, const std::array<std::uint32_t, 3>& e);
 /// Checks and copies the arrays, checks closure (MeshNotClosedError), builds the BVH.
 void load_contains_state(ContainsState& s, const VertexArray& v, const IndexArray& ix, ContainsRule rule);

@@ -22,28 +22,6 @@ namespace rayproof::detail {
 
 namespace {
 
-std::vector<std::uint32_t> welded_ids(const std::vector<Vec3<double>>& v) {
-  struct Key {
-    std::uint64_t x, y, z;
-    bool operator==(const Key&) const = default;
-  };
-  struct Hash {
-    std::size_t operator()(const Key& k) const {
-      return std::size_t((k.x * 0x9e3779b97f4a7c15ull) ^ ((k.y + 0x632be59bd9b4e019ull) * 0xbf58476d1ce4e5b9ull) ^
-                         (k.z * 0x94d049bb133111ebull));
-    }
-  };
-  std::unordered_map<Key, std::uint32_t, Hash> first;
-  first.reserve(v.size());
-  std::vector<std::uint32_t> out(v.size());
-  for (std::size_t i = 0; i < v.size(); ++i) {
-    const Key k{std::bit_cast<std::uint64_t>(v[i].x + 0.0), std::bit_cast<std::uint64_t>(v[i].y + 0.0),
-                std::bit_cast<std::uint64_t>(v[i].z + 0.0)};
-    out[i] = first.try_emplace(k, std::uint32_t(i)).first->second;
-  }
-  return out;
-}
-
 std::uint32_t find(std::vector<std::uint32_t>& parent, std::uint32_t x) {
   while (parent[x] != x) x = parent[x] = parent[parent[x]];
   return x;
@@ -56,7 +34,7 @@ bool in_box(const ContainsState& s, const Vec3<double>& p) {
 }  // namespace
 
 void build_caps(ContainsState& s) {
-  const std::vector<std::uint32_t> id = welded_ids(s.vertices);
+  const std::vector<std::uint32_t> id = weld(s.vertices);
   std::unordered_map<std::uint64_t, int> balance;
   for (const auto& t : s.triangles)
     for (int k = 0; k < 3; ++k) {

@@ -16,6 +16,7 @@
 #include <utility>
 
 #include "scene/contains_exact.h"
+#include "scene/contains_state.h"
 #include "scene/winding_tree.h"
 
 namespace rayproof::detail {
@@ -142,17 +143,7 @@ int solid_angle_exact_mpfr(const Vec3<double>& a, const Vec3<double>& b, const V
 
 bool on_closed_triangle_exact(const Vec3<double>& a, const Vec3<double>& b, const Vec3<double>& c,
                               const Vec3<double>& p) {
-  if (orient3d_exact(a, b, c, p) != 0) return false;
-  for (int j = 0; j < 3; ++j) {
-    const int u = (j + 1) % 3, v = (j + 2) % 3;
-    const double au = coord(a, u), av = coord(a, v), bu = coord(b, u), bv = coord(b, v), cu = coord(c, u), cv = coord(c, v);
-    const int s = orient2d_exact(au, av, bu, bv, cu, cv);
-    if (s == 0) continue;
-    const double pu = coord(p, u), pv = coord(p, v);
-    return orient2d_exact(au, av, bu, bv, pu, pv) != -s && orient2d_exact(bu, bv, cu, cv, pu, pv) != -s &&
-           orient2d_exact(cu, cv, au, av, pu, pv) != -s;
-  }
-  return false;  // zero area
+  return orient3d_exact(a, b, c, p) == 0 && on_closed_triangle_coplanar(a, b, c, p);
 }
 
 SolidAngle solid_angle_resolved(const Vec3<double>& a, const Vec3<double>& b, const Vec3<double>& c,
