@@ -21,21 +21,18 @@
 #include <string>
 #include <vector>
 
-#include "cli/bench_winding.h"
 #include "cli/commands.h"
 #include "mesh/mesh.h"
-#include "rayproof/certified_expansion.h"
 #include "rayproof/scene/contains.h"
-#include "rayproof/scene/mesh_caster.h"
-#include "scene/compare/contains_compare.h"
+#include "scene/compare/contains_bench.h"
 
 namespace rayproof::cli {
 
 namespace {
 
-using Codes = std::vector<std::uint8_t>;
-using Pts = std::vector<Vec3<double>>;
-using Runner = std::function<void(std::span<const Vec3<double>>, std::span<std::uint8_t>)>;
+using scene::compare::TimedMethod;
+using Codes = scene::compare::PointCodes;
+using Pts = scene::compare::Points;
 
 struct Options {
   std::vector<std::string> meshes;
@@ -45,46 +42,18 @@ struct Options {
   std::vector<std::string> open;  ///< meshes for the generalized winding number ("none": skip)
 };
 
-struct Method {
-  std::string name;
-  Runner run;
-  bool once = false;  ///< timed once (slow: Epeck)
-  bool parity = false;  ///< cannot answer `surface`: judged on the points off the surface only
-  std::vector<double> rates;  ///< Mpoints/s per run
-  std::size_t wrong = 0;
-  bool ran = false;
-};
-
-double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
-
-template <class Caster>
-Runner parity_runner(std::shared_ptr<Caster> c) {
-  return [c](std::span<const Vec3<double>> p, std::span<std::uint8_t> out) {
-    for (std::size_t i = 0; i < p.size(); ++i) out[i] = c->all(Ray<double>{p[i], {1, 1, 1}}).size() & 1;
-  };
+/// The methods for a mesh; those that cannot run here are named with the reason.
+std::vector<TimedMethod> methods(const mesh::Mesh& m, const ClosedMesh& cm, bool epeck) {
+  std::vector<TimedMethod> ms = scene::compare::contains_methods(m, cm, epeck);
+  for (const auto& t : ms)
+    if (!t.run) fmt::print("  {}: {}\n", t.name, t.note);
+  return ms;
 }
 
-/// Runs every method `repeat` times, interleaved, on `pts`; wrong answers against `truth` (when given).
-void measure(std::vector<Method>& ms, const Pts& pts, const Codes* truth, int repeat) {
-  Codes out(pts.size());
-  for (auto& m : ms) m.rates.clear(), m.wrong = 0, m.ran = false;
-  for (int r = 0; r < repeat; ++r)
-    for (auto& m : ms) {
-      if (!m.run || (m.once && r > 0)) continue;
-      const double t0 = now();
-      m.run(pts, out);
-      const double dt = now() - t0;
-      m.rates.push_back(double(pts.size()) / dt * 1e-6);
-      if (truth && !m.ran) {
-        for (std::size_t i = 0; i < pts.size(); ++i) {
-          const bool bad = out[i] != (*truth)[i] && !(m.parity && (*truth)[i] == 2);
-          if (bad && m.name == "contains" && m.wrong < 3)  // an exact method's disagreement: show it
-            fmt::print("  contains disagrees at ({:a}, {:a}, {:a}): {} against {}\n", pts[i].x, pts[i].y, pts[i].z, out[i], (*truth)[i]);
-          m.wrong += bad;
-        }
-      }
-      m.ran = true;
-    }
+/// Times the methods; an exact method's disagreement with the reference is shown.
+void measure_and_show(std::vector<TimedMethod>& ms, const Pts& pts, const Codes* truth, int repeat) {
+  for (const auto& d : scene::compare::measure(ms, pts, truth, repeat))
+    fmt::print("  contains disagrees at ({:a}, {:a}, {:a}): {} against {}\n", d.p.x, d.p.y, d.p.z, d.got, d.want);
 }
 
 struct Verdicts {
@@ -92,7 +61,7 @@ struct Verdicts {
   std::vector<std::string> lines;
 };
 
-void print_table(const std::string& title, const Codes* truth, std::size_t n, const std::vector<Method>& ms, const char* truth_name,
+void print_table(const std::string& title, const Codes* truth, std::size_t n, const std::vector<TimedMethod>& ms, const char* truth_name,
                  Verdicts& v) {
   const bool have_truth = truth != nullptr;
   const std::size_t on = have_truth ? std::size_t(std::count(truth->begin(), truth->end(), std::uint8_t(2))) : 0;
@@ -123,107 +92,43 @@ void print_table(const std::string& title, const Codes* truth, std::size_t n, co
                                   best_contains >= e ? "met" : "missed"));
 }
 
-/// Vertices (surface), one ulp off them along each axis, points whose +x and (1, 1, 1) rays pass
-/// through a vertex, edge midpoints (rounded to double).
-Pts hard_points(const mesh::Mesh& m, std::size_t nv, double extent, std::mt19937_64& rng) {
-  Pts out;
-  const double s = std::exp2(std::floor(std::log2(extent)) - 6);  // a power of two: v - s is exact near v
-  for (std::size_t k = 0; k < nv; ++k) {
-    const Vec3<double> v = m.vertices[rng() % m.vertices.size()];
-    out.push_back(v);
-    for (int a = 0; a < 3; ++a)
-      for (double dir : {-1.0, 1.0}) {
-        Vec3<double> q = v;
-        double* c = reinterpret_cast<double*>(&q) + a;
-        *c = std::nextafter(*c, dir * 1e300);
-        out.push_back(q);
-      }
-    out.push_back({v.x - s, v.y, v.z});
-    out.push_back({v.x - s, v.y - s, v.z - s});
-    const auto& t = m.triangles[rng() % m.triangles.size()];
-    const Vec3<double>&a = m.vertices[t[0]], &b = m.vertices[t[1]];
-    out.push_back({(a.x + b.x) / 2, (a.y + b.y) / 2, (a.z + b.z) / 2});
+/// The open meshes: contains by the winding rule beside a brute force and beside contains on the
+/// closed `closed_reference`. Appends the target lines; returns the wrong answers.
+std::size_t bench_open_meshes(const std::vector<std::string>& paths, const std::string& closed_reference, std::size_t points,
+                              int repeat, std::vector<std::string>& verdicts) {
+  std::mt19937_64 rng(30);
+  scene::compare::ClosedRun closed;
+  if (!closed_reference.empty()) {
+    closed = scene::compare::time_closed_mesh(closed_reference, points, repeat, rng);
+    if (closed.error.empty())
+      fmt::print("\n== open meshes: the generalized winding number (contains, rule winding), one thread\n"
+                 "  reference: contains on the closed {} ({} triangles, rule {}): {:.3f}-{:.3f} Mpoints/s\n",
+                 closed.name, closed.triangles, closed.rule, closed.lo, closed.hi);
+    else
+      fmt::print("  closed reference {}: skipped: {}\n", closed_reference, closed.error);
   }
-  return out;
-}
-
-/// The three shapes whose inside is known: [0, 2]^3, the cube dented to (1, 1, 1) from its top,
-/// and |x| + |y| + |z| <= 1 (outward triangles), with the exact side of a point (for the dyadic
-/// lattice points and one-ulp neighbours used, the arithmetic below is exact or its rounding
-/// cannot cross the surface: a one-ulp neighbour is compared coordinate-wise).
-struct KnownShape {
-  std::string name;
-  mesh::Mesh mesh;
-  std::function<std::uint8_t(const Vec3<double>&)> truth;
-  double lo, hi, step;
-};
-
-/// Exact sign of a sum of expansions (the closed forms evaluated without rounding).
-int sign_of(const certified::Expansion& e) { return e.sign(); }
-certified::Expansion abs_diff(double x, double y) {
-  certified::Expansion d = certified::diff(x, y);
-  return d.sign() < 0 ? -d : d;
-}
-
-std::vector<KnownShape> known_shapes() {
-  mesh::Mesh cube;
-  for (int i = 0; i < 8; ++i) cube.vertices.push_back({2.0 * (i & 1), 2.0 * (i >> 1 & 1), 2.0 * (i >> 2 & 1)});
-  cube.triangles = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
-                    {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
-  mesh::Mesh dent = cube;
-  dent.triangles.erase(dent.triangles.begin() + 2, dent.triangles.begin() + 4);
-  dent.vertices.push_back({1, 1, 1});
-  for (std::array<std::uint32_t, 3> t : {std::array<std::uint32_t, 3>{4, 5, 8}, {5, 7, 8}, {7, 6, 8}, {6, 4, 8}}) dent.triangles.push_back(t);
-  mesh::Mesh octa;
-  octa.vertices = {{1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}, {0, 0, 1}, {0, 0, -1}};
-  for (std::uint32_t sx : {0u, 1u})
-    for (std::uint32_t sy : {2u, 3u})
-      for (std::uint32_t sz : {4u, 5u})
-        octa.triangles.push_back(((sx == 1) + (sy == 3) + (sz == 5)) % 2 ? std::array<std::uint32_t, 3>{sx, sz, sy}
-                                                                        : std::array<std::uint32_t, 3>{sx, sy, sz});
-  auto box = [](const Vec3<double>& p, double top) -> std::uint8_t {
-    if (p.x < 0 || p.x > 2 || p.y < 0 || p.y > 2 || p.z < 0 || p.z > top) return 0;
-    if (p.x == 0 || p.x == 2 || p.y == 0 || p.y == 2 || p.z == 0 || p.z == top) return 2;
-    return 1;
-  };
-  std::vector<KnownShape> out;
-  out.push_back({"cube", cube, [box](const Vec3<double>& p) { return box(p, 2); }, -0.5, 2.5, 0.125});
-  out.push_back({"dented cube", dent,
-                 [box](const Vec3<double>& p) -> std::uint8_t {
-                   // The top: z = 1 + max(|x - 1|, |y - 1|), compared exactly.
-                   const std::uint8_t side = box(p, 3);
-                   if (side == 0) return 0;
-                   const certified::Expansion a = abs_diff(p.x, 1), b = abs_diff(p.y, 1);
-                   const certified::Expansion m = sign_of(a - b) >= 0 ? a : b;
-                   const int top = sign_of(certified::diff(p.z, 1) - m);  // z - h
-                   return top > 0 ? 0 : (top == 0 ? 2 : side);
-                 },
-                 -0.5, 2.5, 0.125});
-  out.push_back({"octahedron", octa, [](const Vec3<double>& p) -> std::uint8_t {
-                   const certified::Expansion r = certified::Expansion(std::fabs(p.x)) + certified::Expansion(std::fabs(p.y)) +
-                                                  certified::Expansion(std::fabs(p.z)) - certified::Expansion(1.0);
-                   const int s = sign_of(r);  // exact |x| + |y| + |z| - 1
-                   return s < 0 ? 1 : (s == 0 ? 2 : 0);
-                 },
-                 -1.25, 1.25, 0.0625});
-  return out;
-}
-
-std::vector<Method> methods_for(const mesh::Mesh& m, const ClosedMesh& cm, bool epeck) {
-  std::vector<Method> ms;
-  ms.push_back({"contains", [&cm](std::span<const Vec3<double>> p, std::span<std::uint8_t> o) {
-                  cm.contains(std::span<const Vec3<double>>(p), std::span<Side>(reinterpret_cast<Side*>(o.data()), o.size()), 1);
-                }, false, false, {}});
-  for (auto& c : scene::compare::make_contains_competitors(m.vertices, m.triangles,
-                                                           epeck ? "cgal-epick,cgal-epeck,embree-parity" : "cgal-epick,embree-parity")) {
-    if (!c.run) fmt::print("  {}: {}\n", c.name, c.note);
-    ms.push_back({c.name, c.run, c.name == "cgal-epeck", c.name == "embree-parity", {}});
+  std::size_t wrong_total = 0;
+  for (const auto& path : paths) {
+    const scene::compare::OpenRun r = scene::compare::time_open_mesh(path, points, repeat, rng);
+    if (!r.error.empty()) {
+      fmt::print("  {}: skipped: {}\n", path, r.error);
+      continue;
+    }
+    wrong_total += r.wrong;
+    fmt::print("\n{} ({} triangles, {}): {} random points in its box: {} inside, {} outside, {} surface\n", r.name, r.triangles,
+               r.closed ? "closed" : "not closed", r.points, r.sides[1], r.sides[0], r.sides[2]);
+    fmt::print("  {:<28} {:>20} {:>12}\n", "method", "Mpoints/s (min-max)", "vs brute");
+    fmt::print("  {:<28} {:>9.4f}-{:<10.4f} {:>11.1f}x\n", "contains (rule winding)", r.lo, r.hi, r.hi / r.brute);
+    fmt::print("  {:<28} {:>9.4f}{:<11} {:>11.1f}x   ({} points)\n", "brute-force double winding", r.brute, "", 1.0, r.brute_points);
+    fmt::print("  contains against the brute force where |w - 1/2| >= 1e-6: {} wrong of {} ({} inside)\n", r.wrong, r.compared,
+               r.inside);
+    verdicts.push_back(fmt::format("{}: winding contains / brute-force double = {:.1f} (target >= 20 on a large mesh)", r.name,
+                                   r.hi / r.brute));
+    if (closed.error.empty() && closed.hi > 0)
+      verdicts.push_back(fmt::format("{}: winding contains / contains on the closed {} = {:.2f} (target >= 0.5): {}", r.name,
+                                     closed.name, r.hi / closed.hi, r.hi >= 0.5 * closed.hi ? "met" : "missed"));
   }
-  const VertexArray va(&m.vertices[0].x, m.vertices.size());
-  const IndexArray ia{m.triangles.front().data(), m.triangles.size()};
-  ms.push_back({"rayproof-float", parity_runner(std::make_shared<MeshCaster<cast::Float>>(va, ia)), false, true, {}});
-  ms.push_back({"rayproof-robust", parity_runner(std::make_shared<MeshCaster<cast::Robust>>(va, ia)), false, true, {}});
-  return ms;
+  return wrong_total;
 }
 
 int run_bench_contains(const Options& opt) {
@@ -258,22 +163,20 @@ int run_bench_contains(const Options& opt) {
     const std::string name = std::filesystem::path(path).stem().string();
     fmt::print("\n== {} ({} triangles, {}; contains below uses the parity rule, as CGAL does)\n", name, m.triangles.size(),
                cm->oriented() ? "oriented" : "closed, not oriented");
-    std::vector<Method> ms = methods_for(m, *cm, !opt.no_epeck);
+    std::vector<TimedMethod> ms = methods(m, *cm, !opt.no_epeck);
     Vec3<double> lo = m.vertices[0], hi = lo;
     for (const auto& p : m.vertices)
       lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)}, hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
-    std::uniform_real_distribution<double> u(0, 1);
-    Pts random(opt.points);
-    for (auto& p : random) p = {lo.x + u(rng) * (hi.x - lo.x), lo.y + u(rng) * (hi.y - lo.y), lo.z + u(rng) * (hi.z - lo.z)};
-    const Pts hard = hard_points(m, opt.hard_vertices, std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z}), rng);
+    const Pts random = scene::compare::box_points(m, opt.points, rng);
+    const Pts hard = scene::compare::hard_points(m, opt.hard_vertices, std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z}), rng);
     for (const Pts* set : {static_cast<const Pts*>(&random), &hard}) {
       // The reference: Epeck's answers (its run is the first, timed once).
       Codes truth;
-      const Method* ref = nullptr;
+      const TimedMethod* ref = nullptr;
       for (const auto& me : ms)
         if (me.name == "cgal-epeck" && me.run) ref = &me;
       if (ref) truth.resize(set->size()), ref->run(*set, truth);
-      measure(ms, *set, ref ? &truth : nullptr, opt.repeat);
+      measure_and_show(ms, *set, ref ? &truth : nullptr, opt.repeat);
       print_table(name + (set == &random ? " random" : " hard"), ref ? &truth : nullptr, set->size(), ms, "cgal-epeck", v);
       std::vector<Side> a(set->size()), b(set->size());
       cm->contains(*set, a, 1), nz->contains(*set, b, 1);
@@ -283,31 +186,17 @@ int run_bench_contains(const Options& opt) {
                  differ ? " (winding number even and nonzero: the mesh overlaps itself there)" : "");
     }
   }
-  for (auto& shape : known_shapes()) {
+  for (auto& shape : scene::compare::known_shapes()) {
     const ClosedMesh cm(VertexArray(&shape.mesh.vertices[0].x, shape.mesh.vertices.size()),
                         IndexArray{shape.mesh.triangles.front().data(), shape.mesh.triangles.size()});
-    std::vector<Method> ms = methods_for(shape.mesh, cm, !opt.no_epeck);
-    Pts pts;
-    for (double x = shape.lo; x <= shape.hi; x += shape.step)
-      for (double y = shape.lo; y <= shape.hi; y += shape.step)
-        for (double z = shape.lo; z <= shape.hi; z += shape.step) pts.push_back({x, y, z});
-    // One ulp off the lattice points that are on the surface, along each axis.
-    const std::size_t lattice = pts.size();
-    for (std::size_t i = 0; i < lattice; ++i)
-      if (shape.truth(pts[i]) == 2)
-        for (int a = 0; a < 3; ++a)
-          for (double dir : {-1.0, 1.0}) {
-            Vec3<double> q = pts[i];
-            double* c = reinterpret_cast<double*>(&q) + a;
-            *c = std::nextafter(*c, dir * 1e300);
-            pts.push_back(q);
-          }
+    std::vector<TimedMethod> ms = methods(shape.mesh, cm, !opt.no_epeck);
+    const Pts pts = scene::compare::lattice_points(shape);
     Codes truth(pts.size());
     for (std::size_t i = 0; i < pts.size(); ++i) truth[i] = shape.truth(pts[i]);
-    measure(ms, pts, &truth, opt.repeat);
+    measure_and_show(ms, pts, &truth, opt.repeat);
     print_table(shape.name + " lattice+ulp", &truth, pts.size(), ms, "closed form", v);
   }
-  // Open meshes: the generalized winding number beside a brute force (cli/bench_winding.cpp).
+  // Open meshes: the generalized winding number beside a brute force.
   std::vector<std::string> open = opt.open;
   std::string closed_ref;
 #ifdef RAYPROOF_BENCH_MESH_DIR
