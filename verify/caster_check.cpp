@@ -498,6 +498,9 @@ CasterRays caster_rays(const CasterMesh& mesh, const CasterCheckOptions& opt) {
         {centre, {0, -kInf, 0}}};
     b.add("invalid", std::move(rays));
   }
+  // A float caster gets float rays (what it would be given in its own precision), judged as given.
+  if (opt.precision == CasterPrecision::float32)
+    for (Ray<double>& r : out.rays) r = {r.o.cast<float>().cast<double>(), r.d.cast<float>().cast<double>()};
   return out;
 }
 

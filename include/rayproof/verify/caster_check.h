@@ -38,7 +38,9 @@
 /// Ray sets (caster_rays): `leak` rays from interior points of closed meshes through every vertex
 /// and edge midpoint; `graze` rays along random view directions through silhouette edges; `face`
 /// rays lying in triangles' planes; `surface` rays starting on triangles (centroids, vertices);
-/// `random` rays; `extreme` rays with huge and tiny coordinates; `invalid` rays.
+/// `random` rays; `extreme` rays with huge and tiny coordinates; `invalid` rays. For a float caster
+/// (precision float32) every ray is rounded to float (a component beyond float's range becomes
+/// infinite: an invalid ray) and judged as rounded; the mesh is judged as given.
 ///
 /// Thread safety: the caster is called from the calling thread only, batch by batch; the judgement
 /// runs on TBB threads. Bad mesh arrays throw MeshInputError (rayproof/scene/mesh_caster.h).
