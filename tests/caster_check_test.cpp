@@ -193,6 +193,8 @@ CasterCheck brute_tally(const OwnedMesh& m, const verify::CasterRays& rays, std:
     bool cop;
     if (!crossing(hc, tc, cop) || tc != e.t) {
       ++c.wrong_triangle, note("wrong-triangle", i);
+      if (crossing(hc, tc, cop) && (f32 ? ulp_distance(float(tc), float(e.t)) : ulp_distance(tc, e.t)) <= 1)
+        ++c.wrong_triangle_near;
       continue;
     }
     if (cop || e.coplanar) continue;
@@ -210,6 +212,7 @@ void expect_same_counts(const CasterCheck& got, const CasterCheck& want) {
   EXPECT_EQ(got.coplanar_miss, want.coplanar_miss);
   EXPECT_EQ(got.false_hit, want.false_hit);
   EXPECT_EQ(got.wrong_triangle, want.wrong_triangle);
+  EXPECT_EQ(got.wrong_triangle_near, want.wrong_triangle_near);
   EXPECT_EQ(got.t_over_1ulp, want.t_over_1ulp);
   EXPECT_EQ(got.max_ulps, want.max_ulps);
   EXPECT_EQ(got.garbage, want.garbage);
@@ -290,7 +293,10 @@ TEST(CasterCheck, StrictBarycentricFloatCasterIsCaughtWithReproducers) {
   EXPECT_TRUE(leak_repro) << verify::summary_text(c);
   // Its leak rays leak: the set's findings are counted per set.
   for (const auto& s : c.sets)
-    if (s.set == "leak") EXPECT_GT(s.findings, 0u);
+    if (s.set == "leak") {
+      EXPECT_GT(s.findings, 0u);
+      EXPECT_GT(s.false_miss, 0u);
+    }
   const auto fail = ::rayproof::gtest::caster_matches_exact(strict_float_caster(m), m.view(), o);
   EXPECT_FALSE(fail);
   EXPECT_NE(std::string(fail.message()).find("false-miss set="), std::string::npos);

@@ -58,8 +58,8 @@ TEST(CasterCli, ExampleCasterLeaksWhenStrictAndTheNanCrashIsReported) {
                               mesh.string() + " --caster-rays 200 --caster-sets leak,random,invalid");
   EXPECT_EQ(r.status, 1) << r.err;
   // The plain one: nothing on the leak rays; the strict one: every leak ray through a vertex or edge.
-  EXPECT_NE(r.out.find("set leak       rays      52  findings 0"), std::string::npos) << r.out;
-  EXPECT_NE(r.out.find("set leak       rays      52  findings 52"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("set leak       rays      52  findings       0"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("set leak       rays      52  findings      52  false_miss 52"), std::string::npos) << r.out;
   EXPECT_EQ(count_of(r.out, "mt", "invalid_failures"), 0u) << r.out;
   EXPECT_EQ(count_of(r.out, "strict", "invalid_failures"), 3u) << r.out;  // the three rays with a NaN
   EXPECT_EQ(count_of(r.out, "strict", "rays"), 260u) << r.out;

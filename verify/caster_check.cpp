@@ -102,7 +102,7 @@ std::optional<double> round_t(const Ray<double>& r, const Triangle<double>& tri,
 
 struct Tally {
   CasterCheck c;
-  std::vector<std::size_t> set_rays, set_findings;
+  std::vector<std::size_t> set_rays, set_findings, set_false_miss;
   std::vector<CasterReproducer> reps;
 };
 
@@ -145,6 +145,7 @@ CasterCheck CasterJudge::judge(const CasterRays& rays, std::span<const CasterAns
     CasterCheck& c = T.c;
     T.set_rays.assign(nsets, 0);
     T.set_findings.assign(nsets, 0);
+    T.set_false_miss.assign(nsets, 0);
     for (std::size_t i = begin; i < end; ++i) {
       const Ray<double>& r = rays.rays[i];
       const CasterAnswer& a = answers[i];
@@ -226,7 +227,7 @@ CasterCheck CasterJudge::judge(const CasterRays& rays, std::span<const CasterAns
       if (!e.hit() && !c_hit) continue;
       if (!c_hit) {
         if (first_coplanar) ++c.coplanar_miss;
-        else finding(c.false_miss, "false-miss", exact_text(), caster_text());
+        else finding(c.false_miss, "false-miss", exact_text(), caster_text()), ++T.set_false_miss[set];
         continue;
       }
       const auto claimed = static_cast<std::uint32_t>(a.triangle);
@@ -251,6 +252,8 @@ CasterCheck CasterJudge::judge(const CasterRays& rays, std::span<const CasterAns
         continue;
       }
       if (k.t != m) {
+        const std::uint64_t dt = f32 ? ulp_distance(static_cast<float>(k.t), static_cast<float>(m)) : ulp_distance(k.t, m);
+        if (dt <= 1) ++c.wrong_triangle_near;
         finding(c.wrong_triangle, "wrong-triangle", exact_text(),
                 fmt::format("{} (crossed at t {})", caster_text(), num(k.t)));
         continue;
@@ -280,20 +283,21 @@ CasterCheck CasterJudge::judge(const CasterRays& rays, std::span<const CasterAns
   else run();
 
   CasterCheck out;
-  std::vector<std::size_t> set_rays(nsets, 0), set_findings(nsets, 0);
+  std::vector<std::size_t> set_rays(nsets, 0), set_findings(nsets, 0), set_false_miss(nsets, 0);
   std::vector<std::size_t> kept_per_kind;
   std::vector<std::string> kinds;
   for (Tally& p : parts) {
     const CasterCheck& c = p.c;
     out.rays += c.rays, out.hits += c.hits, out.false_miss += c.false_miss, out.coplanar_miss += c.coplanar_miss;
     out.false_hit += c.false_hit, out.wrong_triangle += c.wrong_triangle, out.t_over_1ulp += c.t_over_1ulp;
+    out.wrong_triangle_near += c.wrong_triangle_near;
     out.max_ulps = std::max(out.max_ulps, c.max_ulps);
     out.garbage += c.garbage, out.caster_failures += c.caster_failures, out.any_rays += c.any_rays;
     out.any_false_miss += c.any_false_miss, out.any_false_hit += c.any_false_hit;
     out.any_coplanar_miss += c.any_coplanar_miss, out.invalid_rays += c.invalid_rays;
     out.invalid_hit += c.invalid_hit, out.invalid_failures += c.invalid_failures;
     for (std::size_t k = 0; k < nsets && k < p.set_rays.size(); ++k)
-      set_rays[k] += p.set_rays[k], set_findings[k] += p.set_findings[k];
+      set_rays[k] += p.set_rays[k], set_findings[k] += p.set_findings[k], set_false_miss[k] += p.set_false_miss[k];
     for (CasterReproducer& r : p.reps) {
       const auto it = std::find(kinds.begin(), kinds.end(), r.kind);
       std::size_t at = static_cast<std::size_t>(it - kinds.begin());
@@ -301,7 +305,7 @@ CasterCheck CasterJudge::judge(const CasterRays& rays, std::span<const CasterAns
       if (kept_per_kind[at]++ < opt.reproducers) out.reproducers.push_back(std::move(r));
     }
   }
-  for (std::size_t k = 0; k < nsets; ++k) out.sets.push_back({rays.names[k], set_rays[k], set_findings[k]});
+  for (std::size_t k = 0; k < nsets; ++k) out.sets.push_back({rays.names[k], set_rays[k], set_findings[k], set_false_miss[k]});
   out.notes = rays.notes;
   return out;
 }
@@ -581,6 +585,7 @@ std::string summary_text(const CasterCheck& c) {
   line("coplanar_miss", c.coplanar_miss);
   line("false_hit", c.false_hit);
   line("wrong_triangle", c.wrong_triangle);
+  line("  within_1ulp", c.wrong_triangle_near);
   line("t_over_1ulp", c.t_over_1ulp);
   line("max_ulps", c.max_ulps);
   line("garbage", c.garbage);
@@ -595,7 +600,7 @@ std::string summary_text(const CasterCheck& c) {
   line("invalid_hit", c.invalid_hit);
   line("invalid_failures", c.invalid_failures);
   line("findings", c.findings());
-  for (const auto& st : c.sets) s += fmt::format("set {:<10} rays {:>7}  findings {}\n", st.set, st.rays, st.findings);
+  for (const auto& st : c.sets) s += fmt::format("set {:<10} rays {:>7}  findings {:>7}  false_miss {}\n", st.set, st.rays, st.findings, st.false_miss);
   for (const auto& n : c.notes) s += "note: " + n + "\n";
   for (const auto& r : c.reproducers) s += r.line + "\n";
   return s;

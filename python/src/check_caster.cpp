@@ -58,6 +58,7 @@ py::dict result_dict(const verify::CasterCheck& c) {
   d["coplanar_miss"] = c.coplanar_miss;
   d["false_hit"] = c.false_hit;
   d["wrong_triangle"] = c.wrong_triangle;
+  d["wrong_triangle_within_1ulp"] = c.wrong_triangle_near;
   d["t_over_1ulp"] = c.t_over_1ulp;
   d["max_ulps"] = c.max_ulps;
   d["garbage"] = c.garbage;
@@ -75,6 +76,7 @@ py::dict result_dict(const verify::CasterCheck& c) {
     py::dict e;
     e["rays"] = s.rays;
     e["findings"] = s.findings;
+    e["false_miss"] = s.false_miss;
     sets[py::str(s.set)] = e;
   }
   d["sets"] = sets;
@@ -205,7 +207,7 @@ precision ('double' or 'float') sets the ulps t errors are counted in. The rays:
 directions). An exception fn raises fails that batch's rays (counted in caster_failures, or
 invalid_failures on invalid rays), and the run goes on.
 
-Returns a dict of counts (rays, hits, false_miss, coplanar_miss, false_hit, wrong_triangle,
+Returns a dict of counts (rays, hits, false_miss, coplanar_miss, false_hit, wrong_triangle, wrong_triangle_within_1ulp,
 t_over_1ulp, max_ulps, garbage, caster_failures, any_false_miss, any_false_hit, any_coplanar_miss,
 invalid_rays, invalid_hit, invalid_failures, findings), per-set counts (`sets`), one-line
 `reproducers` and `notes`. docs/check.md explains each count.)");

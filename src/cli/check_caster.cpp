@@ -114,13 +114,14 @@ int run_caster_check(const CheckCliOptions& o) {
       any_finding = any_finding || res.findings() > 0;
       if (o.json) {
         nlohmann::json sets = nlohmann::json::object();
-        for (const auto& s : res.sets) sets[s.set] = {{"rays", s.rays}, {"findings", s.findings}};
+        for (const auto& s : res.sets) sets[s.set] = {{"rays", s.rays}, {"findings", s.findings}, {"false_miss", s.false_miss}};
         nlohmann::json reps = nlohmann::json::array();
         for (const auto& r : res.reproducers) reps.push_back(r.line);
         jruns.push_back({{"caster", c.name}, {"command", c.command}, {"mesh", m.name},
                          {"triangles", m.mesh.triangles.size()}, {"rays", res.rays}, {"hits", res.hits},
                          {"false_miss", res.false_miss}, {"coplanar_miss", res.coplanar_miss},
                          {"false_hit", res.false_hit}, {"wrong_triangle", res.wrong_triangle},
+                         {"wrong_triangle_within_1ulp", res.wrong_triangle_near},
                          {"t_over_1ulp", res.t_over_1ulp}, {"max_ulps", res.max_ulps}, {"garbage", res.garbage},
                          {"caster_failures", res.caster_failures}, {"invalid_rays", res.invalid_rays},
                          {"invalid_hit", res.invalid_hit}, {"invalid_failures", res.invalid_failures},

@@ -20,7 +20,9 @@
 ///                    miss (counted apart: many engines treat such rays as misses by design)
 ///  - false_hit       the ray crosses nothing at t > 0; the caster answered a hit
 ///  - wrong_triangle  the caster's triangle is not crossed, or crossed farther than the first
-///                    crossing (ties, triangles whose exact t rounds to the same double, are all right)
+///                    crossing (ties, triangles whose exact t rounds to the same double, are all right);
+///                    wrong_triangle_near counts those of them crossed within 1 ulp (of the caster's
+///                    precision) of the first crossing: near ties a caster of that precision cannot order
 ///  - t_over_1ulp     right triangle (or a tied one), t more than 1 ulp from the exact t, in ulps of
 ///                    the caster's precision (exact t rounded to double, then to float for a float
 ///                    caster); max_ulps the largest such error. A ray whose first contact is coplanar
@@ -107,12 +109,12 @@ struct CasterReproducer {
 
 struct CasterSetCounts {
   std::string set;
-  std::size_t rays = 0, findings = 0;
+  std::size_t rays = 0, findings = 0, false_miss = 0;
 };
 
 struct CasterCheck {
   std::size_t rays = 0, hits = 0;  ///< rays judged; rays with an exact crossing at t > 0
-  std::size_t false_miss = 0, coplanar_miss = 0, false_hit = 0, wrong_triangle = 0;
+  std::size_t false_miss = 0, coplanar_miss = 0, false_hit = 0, wrong_triangle = 0, wrong_triangle_near = 0;
   std::size_t t_over_1ulp = 0;
   std::uint64_t max_ulps = 0;
   std::size_t garbage = 0, caster_failures = 0;
