@@ -16,10 +16,12 @@
 #include <random>
 #include <optional>
 #include <stdexcept>
+#include <string_view>
 #include <tuple>
 
 #include "rayproof/certified/intersect.h"
 #include "rayproof/certified_expansion.h"
+#include "rayproof/certified_filter.h"
 #include "rayproof/float_util.h"
 #include "rayproof/scene/contains.h"
 #include "rayproof/scene/mesh_caster.h"
@@ -68,25 +70,41 @@ Contact1 contact_of(const TriangleHit<double>& h) {
 /// floating-point expansions). Nothing when the inputs are outside the range where every product is
 /// exact (the caller then asks exact::intersect).
 std::optional<double> round_t(const Ray<double>& r, const Triangle<double>& tri, double t0) {
+  using certified::Bounded;
   using certified::Expansion;
   const double at = std::fabs(t0);
   if (!(at > 0x1p-200 && at < 0x1p200)) return std::nullopt;
   if (!certified::in_range<-150, 150>(r.o.x, r.o.y, r.o.z, r.d.x, r.d.y, r.d.z, tri.p0.x, tri.p0.y, tri.p0.z,
                                       tri.p1.x, tri.p1.y, tri.p1.z, tri.p2.x, tri.p2.y, tri.p2.z))
     return std::nullopt;
-  const certified::ExpVec3 e1 = certified::diff3(tri.p1, tri.p0), e2 = certified::diff3(tri.p2, tri.p0);
-  const certified::ExpVec3 n = cross(e1, e2);
-  const Expansion N = dot(certified::diff3(tri.p0, r.o), n);
-  const Expansion D = dot(certified::exact3(r.d), n);
-  if (N.bad || D.bad || D.n == 0) return std::nullopt;
-  const int sd = D.sign();
-  // side(m): sign of t - m (exact t = N / D).
+  // First in Wide with running error bounds (certified_filter.h); the expansions only where that
+  // cannot tell the sign.
+  const Vec3<Bounded> p0 = certified::lift(tri.p0);
+  const Vec3<Bounded> nb = cross(certified::lift(tri.p1) - p0, certified::lift(tri.p2) - p0);
+  const Bounded Nb = dot(p0 - certified::lift(r.o), nb), Db = dot(certified::lift(r.d), nb);
+  std::optional<int> sdb = certified::kFilterAvailable ? certified::sign(Db) : std::nullopt;
+  std::optional<Expansion> N, D;
+  auto exact_parts = [&] {
+    if (N) return;
+    const certified::ExpVec3 e1 = certified::diff3(tri.p1, tri.p0), e2 = certified::diff3(tri.p2, tri.p0);
+    const certified::ExpVec3 n = cross(e1, e2);
+    N = dot(certified::diff3(tri.p0, r.o), n);
+    D = dot(certified::exact3(r.d), n);
+  };
+  // side(lo, hi): sign of t - (lo + hi) / 2 for adjacent doubles lo < hi (exact t = N / D).
   auto side = [&](double lo, double hi) -> std::optional<int> {
-    Expansion m(lo * 0.5);
-    m.grow(hi * 0.5);  // halves of normal doubles are exact (|t| > 2^-200)
-    const Expansion s = N - m * D;
-    if (s.bad) return std::nullopt;
-    return s.sign() * sd;
+    const double half = (hi - lo) * 0.5;  // exact: adjacent normal doubles
+    if (sdb && *sdb != 0) {
+      const auto sb = certified::sign(Nb - Bounded(lo) * Db - Bounded(half) * Db);
+      if (sb) return *sb * *sdb;
+    }
+    exact_parts();
+    if (N->bad || D->bad || D->n == 0) return std::nullopt;
+    Expansion m(lo);
+    m.grow(half);
+    const Expansion sx = *N - m * *D;
+    if (sx.bad) return std::nullopt;
+    return sx.sign() * D->sign();
   };
   const double lo = next_down(t0), hi = next_up(t0);
   const auto up = side(t0, hi);
@@ -98,6 +116,28 @@ std::optional<double> round_t(const Ray<double>& r, const Triangle<double>& tri,
   if (*down < 0) return lo;
   if (*down == 0) return (std::bit_cast<std::uint64_t>(lo) & 1) ? t0 : lo;
   return t0;
+}
+
+/// The exact contact of a ray with one triangle: the class from the certified filter (exact; GMP
+/// where it cannot decide), t correctly rounded by round_t, exact::intersect for what is left
+/// (coplanar ranges, extreme magnitudes).
+struct ExactContact {
+  Contact1 k;
+  Contact contact = Contact::miss;
+};
+ExactContact exact_contact(const Ray<double>& r, const Triangle<double>& tri) {
+  const TriangleHit<double> h = certified::intersect(r, tri);
+  switch (h.contact) {
+    case Contact::interior: case Contact::edge: case Contact::vertex:
+      if (h.t > 0) {
+        if (const auto rt = round_t(r, tri, h.t)) return {{Contact1::point, *rt}, h.contact};
+      }
+      break;
+    case Contact::coplanar: break;
+    default: return {{}, h.contact};
+  }
+  const TriangleHit<double> x = exact::intersect(r, tri);
+  return {contact_of(x), x.contact};
 }
 
 struct Tally {
@@ -146,6 +186,17 @@ CasterCheck CasterJudge::judge(const CasterRays& rays, std::span<const CasterAns
     T.set_rays.assign(nsets, 0);
     T.set_findings.assign(nsets, 0);
     T.set_false_miss.assign(nsets, 0);
+    // Reproducers kept per kind in this chunk: the first opt.reproducers of each kind over all
+    // chunks (in ray order) are among them; the rest are never formatted.
+    std::vector<std::pair<std::string_view, std::size_t>> kept;
+    auto keep = [&](std::string_view kind) {
+      for (auto& [k, n] : kept)
+        if (k == kind) return n++ < opt.reproducers;
+      kept.emplace_back(kind, 1);
+      return opt.reproducers > 0;
+    };
+    std::vector<MeshHit> near;
+    std::vector<double> near_t;  // correctly rounded t of each near crossing (when more than one)
     for (std::size_t i = begin; i < end; ++i) {
       const Ray<double>& r = rays.rays[i];
       const CasterAnswer& a = answers[i];
@@ -156,54 +207,62 @@ CasterCheck CasterJudge::judge(const CasterRays& rays, std::span<const CasterAns
         if (a.failed) return std::string("failed");
         return fmt::format("tri {} t {}", a.triangle, num(a.t));
       };
-      auto finding = [&](std::size_t& counter, const char* kind, const std::string& exact_text,
-                         const std::string& caster_answer) {
+      // exact_text and caster_answer: callables giving the text, called only for a kept reproducer.
+      auto finding = [&](std::size_t& counter, const char* kind, auto&& exact_text, auto&& caster_answer) {
         ++counter;
         ++T.set_findings[set];
+        if (!keep(kind)) return;
         T.reps.push_back({kind, i,
                           fmt::format("{} set={} mesh={} ray {} exact: {} caster: {}", kind, set_name, s.name,
-                                      ray_text(r), exact_text, caster_answer)});
+                                      ray_text(r), exact_text(), caster_answer())});
       };
+      auto text = [](const char* t) { return [t] { return std::string(t); }; };
       ++c.rays;
       if (!r.valid()) {
         ++c.invalid_rays;
-        if (a.failed) finding(c.invalid_failures, "invalid-ray-failure", "invalid", caster_text());
-        else if (a.triangle != -1 || a.any == 1) finding(c.invalid_hit, "invalid-ray-hit", "invalid", caster_text());
+        if (a.failed) finding(c.invalid_failures, "invalid-ray-failure", text("invalid"), caster_text);
+        else if (a.triangle != -1 || a.any == 1) finding(c.invalid_hit, "invalid-ray-hit", text("invalid"), caster_text);
         continue;
       }
       if (a.failed) {
-        finding(c.caster_failures, "caster-failure", "-", "failed");
+        finding(c.caster_failures, "caster-failure", text("-"), text("failed"));
         continue;
       }
       const MeshHit e = s.caster.closest(r, kPositive);
       // The exact first crossing: every crossing whose certified t is within 4 ulps of the winner's
       // (certified t values are within 1 ulp of the rounded exact ones, so a triangle crossed first
-      // exactly, or tied, is among them), each with its correctly rounded t.
-      struct Near {
-        std::uint32_t tri;
-        double t;
-        bool coplanar;
+      // exactly, or tied, is among them). With one such crossing it is the first; with several,
+      // their correctly rounded t decide (ties to the lowest triangle number).
+      std::uint32_t first = e.triangle;
+      bool first_coplanar = e.contact == Contact::coplanar;
+      std::optional<double> m;  // the first crossing's correctly rounded t, computed when needed
+      near.clear(), near_t.clear();
+      auto rounded = [&](const MeshHit& h) {
+        std::optional<double> rt;
+        if (h.contact != Contact::coplanar) rt = round_t(r, s.triangle(h.triangle), h.t);
+        return rt ? *rt : exact_contact(r, s.triangle(h.triangle)).k.t;
       };
-      std::vector<Near> near;
-      double m = kInf;  // the first crossing's correctly rounded t
-      std::uint32_t first = MeshHit::kNoTriangle;
-      bool first_coplanar = false;
       if (e.hit()) {
         double lo = e.t, hi = e.t;
         for (int k = 0; k < 4; ++k) lo = next_down(lo), hi = next_up(hi);
-        for (const MeshHit& h : s.caster.all(r, {std::max(lo, kPositive.tmin), hi})) {
-          const bool cop = h.contact == Contact::coplanar;
-          std::optional<double> rt;
-          if (!cop) rt = round_t(r, s.triangle(h.triangle), h.t);
-          const double t = rt ? *rt : contact_of(exact::intersect(r, s.triangle(h.triangle))).t;
-          near.push_back({h.triangle, t, cop});
-          if (t < m || (t == m && h.triangle < first)) m = t, first = h.triangle, first_coplanar = cop;
+        near = s.caster.all(r, {std::max(lo, kPositive.tmin), hi});
+        if (near.size() > 1) {
+          double best = kInf;
+          for (const MeshHit& h : near) {
+            near_t.push_back(rounded(h));
+            if (near_t.back() < best || (near_t.back() == best && h.triangle < first))
+              best = near_t.back(), first = h.triangle, first_coplanar = h.contact == Contact::coplanar;
+          }
+          m = best;
         }
-        if (first == MeshHit::kNoTriangle) first = e.triangle, m = e.t, first_coplanar = e.contact == Contact::coplanar;
       }
+      auto first_t = [&] {
+        if (!m) m = rounded(e);
+        return *m;
+      };
       auto exact_text = [&] {
         if (!e.hit()) return std::string("miss");
-        return fmt::format("tri {} t {} {}", first, num(m), first_coplanar ? "coplanar" : "crossing");
+        return fmt::format("tri {} t {} {}", first, num(first_t()), first_coplanar ? "coplanar" : "crossing");
       };
       if (e.hit()) ++c.hits;
       // Occlusion.
@@ -211,62 +270,99 @@ CasterCheck CasterJudge::judge(const CasterRays& rays, std::span<const CasterAns
         ++c.any_rays;
         if (e.hit() && a.any == 0) {
           if (first_coplanar) ++c.any_coplanar_miss;
-          else finding(c.any_false_miss, "any-false-miss", exact_text(), "any 0");
+          else finding(c.any_false_miss, "any-false-miss", exact_text, text("any 0"));
         } else if (!e.hit() && a.any == 1) {
-          if (!s.caster.any(r, {0, kInf})) finding(c.any_false_hit, "any-false-hit", exact_text(), "any 1");
+          if (!s.caster.any(r, {0, kInf})) finding(c.any_false_hit, "any-false-hit", exact_text, text("any 1"));
         }
       }
       // Closest.
       const bool garbage = std::isnan(a.t) || a.triangle < -1 || a.triangle >= ntri ||
                            (a.triangle == -1 && !(a.t == kInf)) || (a.triangle >= 0 && !(a.t >= 0 && a.t < kInf));
       if (garbage) {
-        finding(c.garbage, "garbage", exact_text(), caster_text());
+        finding(c.garbage, "garbage", exact_text, caster_text);
         continue;
       }
       const bool c_hit = a.triangle >= 0;
       if (!e.hit() && !c_hit) continue;
       if (!c_hit) {
         if (first_coplanar) ++c.coplanar_miss;
-        else finding(c.false_miss, "false-miss", exact_text(), caster_text()), ++T.set_false_miss[set];
+        else finding(c.false_miss, "false-miss", exact_text, caster_text), ++T.set_false_miss[set];
         continue;
       }
       const auto claimed = static_cast<std::uint32_t>(a.triangle);
-      // The claimed triangle: among the near crossings, or tested exactly.
+      if (claimed == first && e.hit()) {
+        // The first crossing's triangle: t judged unless coplanar.
+        if (first_coplanar) continue;
+        // The reference in the caster's precision, from the certified t (within 1 ulp of the
+        // rounded exact t) where that decides it, else from the rounded exact t.
+        std::uint64_t d = 0;
+        bool exact_d = false;
+        const double tc = near_t.empty() ? e.t : first_t();
+        if (m) {
+          exact_d = true;
+          d = f32 ? ulp_distance(static_cast<float>(a.t), static_cast<float>(*m)) : ulp_distance(a.t, *m);
+        } else if (f32) {
+          const float fc = static_cast<float>(tc);
+          if (static_cast<float>(next_down(tc)) == fc && static_cast<float>(next_up(tc)) == fc) {
+            exact_d = true;
+            d = ulp_distance(static_cast<float>(a.t), fc);
+          }
+        } else {
+          const std::uint64_t d0 = ulp_distance(a.t, tc);  // the true distance is within 1 of it
+          if (d0 >= 3 && d0 + 1 <= c.max_ulps) exact_d = true, d = d0;  // over 1 ulp, and not a new maximum
+        }
+        if (!exact_d) {
+          const double t_ref = first_t();
+          d = f32 ? ulp_distance(static_cast<float>(a.t), static_cast<float>(t_ref)) : ulp_distance(a.t, t_ref);
+        }
+        c.max_ulps = std::max(c.max_ulps, d);
+        if (d > 1)
+          finding(c.t_over_1ulp, "t-error", exact_text, [&] {
+            const double t_ref = first_t();
+            const std::uint64_t dd =
+                f32 ? ulp_distance(static_cast<float>(a.t), static_cast<float>(t_ref)) : ulp_distance(a.t, t_ref);
+            return caster_text() + fmt::format(" ({} ulps of {})", dd, f32 ? "float" : "double");
+          });
+        continue;
+      }
+      // Another triangle: among the near crossings, or tested exactly.
       Contact1 k;
-      TriangleHit<double> hc{};
-      const auto it = std::find_if(near.begin(), near.end(), [&](const Near& n) { return n.tri == claimed; });
-      if (it != near.end()) {
-        k = {it->coplanar ? Contact1::coplanar : Contact1::point, it->t};
+      ExactContact hc;
+      std::size_t at = near.size();
+      for (std::size_t j = 0; j < near.size(); ++j)
+        if (near[j].triangle == claimed) at = j;
+      if (at < near.size()) {
+        k = {near[at].contact == Contact::coplanar ? Contact1::coplanar : Contact1::point,
+             near_t.empty() ? rounded(near[at]) : near_t[at]};
       } else {
-        hc = exact::intersect(r, s.triangle(claimed));
-        k = contact_of(hc);
+        hc = exact_contact(r, s.triangle(claimed));
+        k = hc.k;
       }
       if (k.kind == Contact1::origin && a.t == 0) continue;  // the origin lies on the claimed triangle
       if (!e.hit()) {
-        finding(c.false_hit, "false-hit", exact_text(), caster_text());
+        finding(c.false_hit, "false-hit", exact_text, caster_text);
         continue;
       }
       if (k.kind == Contact1::none || k.kind == Contact1::origin) {
-        finding(c.wrong_triangle, "wrong-triangle", exact_text(),
-                fmt::format("{} (not crossed at t > 0: {})", caster_text(), to_string(hc.contact)));
+        finding(c.wrong_triangle, "wrong-triangle", exact_text,
+                [&] { return fmt::format("{} (not crossed at t > 0: {})", caster_text(), to_string(hc.contact)); });
         continue;
       }
-      if (k.t != m) {
-        const std::uint64_t dt = f32 ? ulp_distance(static_cast<float>(k.t), static_cast<float>(m)) : ulp_distance(k.t, m);
+      const double mt = first_t();
+      if (k.t != mt) {
+        const std::uint64_t dt = f32 ? ulp_distance(static_cast<float>(k.t), static_cast<float>(mt)) : ulp_distance(k.t, mt);
         if (dt <= 1) ++c.wrong_triangle_near;
-        finding(c.wrong_triangle, "wrong-triangle", exact_text(),
-                fmt::format("{} (crossed at t {})", caster_text(), num(k.t)));
+        finding(c.wrong_triangle, "wrong-triangle", exact_text,
+                [&] { return fmt::format("{} (crossed at t {})", caster_text(), num(k.t)); });
         continue;
       }
-      const double t_ref = k.kind == Contact1::point && !first_coplanar ? m : kNaN<double>;  // coplanar: t not judged
-      if (std::isnan(t_ref)) continue;
-      const std::uint64_t d = f32 ? ulp_distance(static_cast<float>(a.t), static_cast<float>(t_ref))
-                                  : ulp_distance(a.t, t_ref);
+      // A triangle tied with the first crossing: t judged against the same exact t.
+      if (k.kind != Contact1::point || first_coplanar) continue;
+      const std::uint64_t d = f32 ? ulp_distance(static_cast<float>(a.t), static_cast<float>(mt)) : ulp_distance(a.t, mt);
       c.max_ulps = std::max(c.max_ulps, d);
       if (d > 1)
-        finding(c.t_over_1ulp, "t-error",
-                exact_text(),
-                caster_text() + fmt::format(" ({} ulps of {})", d, f32 ? "float" : "double"));
+        finding(c.t_over_1ulp, "t-error", exact_text,
+                [&] { return caster_text() + fmt::format(" ({} ulps of {})", d, f32 ? "float" : "double"); });
     }
   };
 
