@@ -14,6 +14,7 @@
 #include <limits>
 #include <mutex>
 #include <random>
+#include <set>
 #include <optional>
 #include <stdexcept>
 #include <string_view>
@@ -414,6 +415,15 @@ struct SetBuilder {
   CasterRays& out;
   std::size_t cap;
   void add(const std::string& name, std::vector<Ray<double>> rays) {
+    // Each ray once (a vertex on several silhouette edges, an interior point met twice), first
+    // occurrence kept, by bit pattern.
+    std::set<std::array<std::uint64_t, 6>> seen;
+    std::erase_if(rays, [&](const Ray<double>& r) {
+      return !seen.insert({std::bit_cast<std::uint64_t>(r.o.x), std::bit_cast<std::uint64_t>(r.o.y),
+                           std::bit_cast<std::uint64_t>(r.o.z), std::bit_cast<std::uint64_t>(r.d.x),
+                           std::bit_cast<std::uint64_t>(r.d.y), std::bit_cast<std::uint64_t>(r.d.z)})
+                  .second;
+    });
     const auto id = static_cast<std::uint8_t>(out.names.size());
     out.names.push_back(name);
     const std::size_t n = rays.size();

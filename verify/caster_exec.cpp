@@ -23,6 +23,7 @@ namespace rayproof::verify {
 namespace {
 
 using Clock = proc::Clock;
+constexpr std::size_t kMaxFailures = 20;
 
 std::string num(double x) {
   if (std::isnan(x)) return "nan";
@@ -132,14 +133,21 @@ ExecCasterRun run_exec_caster(const std::string& command, const CasterMesh& mesh
   run.answers.assign(n, CasterAnswer{});
   Running child;
   const std::size_t batch = std::max<std::size_t>(opt.batch, 1);
-  std::size_t at = 0;
+  std::size_t at = 0, failures = 0;
   while (at < n) {
+    if (failures >= kMaxFailures) {  // as --exec kernels: dropped after this many failures
+      for (std::size_t i = at; i < n; ++i) run.answers[i].failed = true;
+      run.events.push_back(fmt::format("dropped after {} failures: rays {}..{} not sent ({} rays counted as failures)",
+                                       failures, at, n - 1, n - at));
+      break;
+    }
     // A batch: up to `batch` rays of one set (one ray in the invalid set).
     const std::uint8_t set = rays.set[at];
     const std::size_t cap = rays.names[set] == "invalid" ? 1 : batch;
     std::size_t end = at;
     while (end < n && end - at < cap && rays.set[end] == set) ++end;
     auto fail_rest = [&](std::size_t from, const std::string& why) {
+      ++failures;
       for (std::size_t i = from; i < end; ++i) run.answers[i].failed = true;
       const std::string rays_text = end - from == 1 ? fmt::format("ray {}", from) : fmt::format("rays {}..{}", from, end - 1);
       run.events.push_back(fmt::format("{} on {} (set {}; {} rays counted as failures)", why, rays_text,

@@ -5,7 +5,8 @@
 /// exits, hangs (no answer line for `timeout_seconds`) or writes an unreadable line fails the rays
 /// of that batch it has not answered (CasterAnswer::failed); it is started again for the next batch,
 /// and the event is kept in `events`. Batches never span two ray sets, and the `invalid` set goes
-/// one ray per batch, so a crash on a NaN ray names that ray.
+/// one ray per batch, so a crash on a NaN ray names that ray. After 20 failures the caster is
+/// dropped: the rays left are failures, not sent.
 #include <cstddef>
 #include <string>
 #include <vector>
