@@ -81,6 +81,28 @@ TEST(CasterCli, HangAndGarbageAreReportedAndTheRunGoesOn) {
   EXPECT_NE(r.out.find("event: unreadable answer 'hello'"), std::string::npos) << r.out;
 }
 
+TEST(CasterCli, OutWritesTheReportBesideRayproofsCasters) {
+  if (!have_numpy()) GTEST_SKIP() << "/usr/bin/python3 has no numpy";
+  const auto mesh = write_file("cube.off", kCube);
+  const auto dir = testing::scratch_dir() / "caster_report";
+  const auto r = run_rayproof("check --caster 'strict=/usr/bin/python3 " + example() + " --strict' --mesh " +
+                              mesh.string() + " --caster-rays 100 --caster-precision float --out " + dir.string());
+  EXPECT_EQ(r.status, 1) << r.err;
+  const std::string md = testing::slurp(dir / "report.md"), html = testing::slurp(dir / "report.html");
+  EXPECT_NE(md.find("| **strict** |"), std::string::npos) << md;
+  for (const char* builtin : {"| rayproof float |", "| rayproof robust |", "| rayproof certified |"})
+    EXPECT_NE(md.find(builtin), std::string::npos) << builtin;
+  EXPECT_NE(md.find("false-miss set=leak"), std::string::npos);
+  // rayproof's certified caster finds nothing on the cube's rays: its row ends in 0 findings.
+  const auto cert = md.find("| rayproof certified |");
+  ASSERT_NE(cert, std::string::npos);
+  const std::string row = md.substr(cert, md.find('\n', cert) - cert);
+  EXPECT_EQ(row.substr(row.size() - 5), "| 0 |") << row;
+  EXPECT_NE(html.find("<table>"), std::string::npos);
+  EXPECT_NE(html.find("strict (/usr/bin/python3"), std::string::npos);
+  EXPECT_EQ(run_rayproof("check --caster x=cat --mesh " + mesh.string() + " --caster-sets random --out /proc/nope").status, 2);
+}
+
 TEST(CasterCli, BadUsageIsRefused) {
   const auto mesh = write_file("cube.off", kCube);
   EXPECT_EQ(run_rayproof("check --caster 'x=cat'").status, 2);

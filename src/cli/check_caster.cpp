@@ -12,6 +12,7 @@
 #include "mesh/mesh.h"
 #include "rayproof/verify/caster_check.h"
 #include "verify/caster_exec.h"
+#include "verify/caster_report.h"
 #include "verify/mesh_check.h"
 
 namespace rayproof::cli {
@@ -41,9 +42,9 @@ int run_caster_check(const CheckCliOptions& o) {
   }
   const std::size_t others = o.user.exec.size() + o.user.plugin.size() + o.user.opencl.size() + o.user.glsl.size() +
                              (o.method.empty() ? 0 : 1);
-  if (others > 0 || !o.families.empty() || !o.expect.empty() || o.max_ulps || !o.out.empty()) {
-    fmt::print(stderr, "rayproof check: --caster takes --mesh and the --caster-* options; --exec, --plugin, --glsl, "
-                       "--opencl, --method, --families, --expect, --max-ulps and --out apply to kernels\n");
+  if (others > 0 || !o.families.empty() || !o.expect.empty() || o.max_ulps) {
+    fmt::print(stderr, "rayproof check: --caster takes --mesh, --out and the --caster-* options; --exec, --plugin, "
+                       "--glsl, --opencl, --method, --families, --expect and --max-ulps apply to kernels\n");
     return 2;
   }
   if (o.mesh.empty()) {
@@ -92,6 +93,7 @@ int run_caster_check(const CheckCliOptions& o) {
   eo.batch = o.caster_batch;
   bool any_finding = false;
   nlohmann::json jruns = nlohmann::json::array();
+  std::vector<verify::CasterReportRow> report_rows;
   if (!o.json)
     fmt::print("rayproof check --caster: {} precision; crossings at t > 0 judged against rayproof's certified caster "
                "and exact per-triangle tests (docs/check.md)\n",
@@ -112,6 +114,8 @@ int run_caster_check(const CheckCliOptions& o) {
       const verify::ExecCasterRun run = verify::run_exec_caster(c.command, cm, rays, eo);
       verify::CasterCheck res = judge->judge(rays, run.answers, opt);
       any_finding = any_finding || res.findings() > 0;
+      if (!o.out.empty())
+        report_rows.push_back({c.name, c.command, m.name, m.mesh.triangles.size(), res, run.events});
       if (o.json) {
         nlohmann::json sets = nlohmann::json::object();
         for (const auto& s : res.sets) sets[s.set] = {{"rays", s.rays}, {"findings", s.findings}, {"false_miss", s.false_miss}};
@@ -138,6 +142,22 @@ int run_caster_check(const CheckCliOptions& o) {
                    res.rays, m.name);
       else
         fmt::print("caster '{}' differs from exact on {} of {} rays on {}\n", c.name, res.findings(), res.rays, m.name);
+    }
+  }
+  if (!o.out.empty()) {
+    // rayproof's own casters on the same rays, beside the casters under test.
+    for (const auto& m : meshes) {
+      const verify::CasterMesh cm{m.mesh.vertices, m.mesh.triangles, m.name};
+      const verify::CasterRays rays = verify::caster_rays(cm, opt);
+      const verify::CasterJudge judge(cm);
+      for (auto& row : verify::builtin_caster_rows(cm, rays, judge, opt)) report_rows.push_back(std::move(row));
+    }
+    try {
+      verify::write_caster_report(o.out, report_rows, o.caster_precision);
+      fmt::print(stderr, "rayproof check: wrote {}/report.md and {}/report.html\n", o.out, o.out);
+    } catch (const std::exception& e) {
+      fmt::print(stderr, "rayproof check: {}\n", e.what());
+      return 2;
     }
   }
   if (o.json) fmt::print("{}\n", nlohmann::json{{"casters", jruns}, {"findings", any_finding}}.dump(1));

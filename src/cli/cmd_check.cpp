@@ -371,7 +371,8 @@ Run add_check(CLI::App& app) {
       ->capture_default_str();
   sub->add_option("--caster", o->caster,
                   "NAME=COMMAND: a whole caster (BVH and all) judged on --mesh: it reads the mesh, then batches of rays, "
-                  "and answers `t triangle` per ray (docs/check.md); repeatable");
+                  "and answers `t triangle` per ray (docs/check.md); repeatable. With --out: report.md and report.html, "
+                  "rayproof's own casters beside");
   sub->add_option("--caster-precision", o->caster_precision, "The caster's precision: float (float rays, t in float ulps) or double")
       ->capture_default_str();
   sub->add_option("--caster-timeout", o->caster_timeout, "Seconds the caster may take per answer line")->capture_default_str();
