@@ -138,8 +138,9 @@ py::dict check_caster(py::function fn, py::handle vertices, py::handle triangles
       const auto iv = column<std::int64_t>(pair[1], o.size(), "triangle");
       for (std::size_t i = 0; i < o.size(); ++i) t[i] = tv.data()[i], tri[i] = iv.data()[i];
     } catch (py::error_already_set& e) {
+      const std::string what = e.what();
       if (is_interrupt(e)) interrupt.emplace(std::move(e));
-      throw std::runtime_error(e.what());
+      throw std::runtime_error(what);
     }
   };
   verify::AnyCaster any;
@@ -149,8 +150,9 @@ py::dict check_caster(py::function fn, py::handle vertices, py::handle triangles
         const auto a = column<std::int64_t>((*any_fn)(rays_array(o), rays_array(d)), o.size(), "any_fn result");
         for (std::size_t i = 0; i < o.size(); ++i) out[i] = a.data()[i] != 0;
       } catch (py::error_already_set& e) {
+        const std::string what = e.what();
         if (is_interrupt(e)) interrupt.emplace(std::move(e));
-        throw std::runtime_error(e.what());
+        throw std::runtime_error(what);
       }
     };
   }

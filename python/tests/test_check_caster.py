@@ -136,3 +136,21 @@ def test_own_rays_and_bad_arguments():
         rayproof.check_caster(fn, v, f, sets=["nope"])
     with pytest.raises(TypeError):
         rayproof.check_caster(fn, v.astype(str), f)
+
+
+def test_interrupt_propagates_and_odd_meshes_are_handled():
+    v, f = octahedron()
+
+    def interrupted(O, D):
+        raise KeyboardInterrupt
+
+    with pytest.raises(KeyboardInterrupt):
+        rayproof.check_caster(interrupted, v, f, random_rays=10)
+    miss = lambda O, D: (np.full(len(O), np.inf), np.full(len(O), -1))
+    empty = rayproof.check_caster(miss, np.zeros((0, 3)), np.zeros((0, 3), dtype=np.int64), random_rays=10)
+    assert empty["hits"] == 0 and empty["findings"] == 0
+    one = rayproof.check_caster(miss, v, f[:1], random_rays=50)  # an open mesh: no leak rays
+    assert one["sets"]["leak"]["rays"] == 0 and any(n.startswith("leak:") for n in one["notes"])
+    assert one["false_miss"] == one["hits"] > 0
+    with pytest.raises(ValueError, match="NaN"):
+        rayproof.check_caster(miss, np.where(v == 1, np.nan, v), f)
