@@ -12,7 +12,6 @@
 #include <bit>
 #include <cmath>
 #include <limits>
-#include <mutex>
 #include <random>
 #include <set>
 #include <optional>
