@@ -80,29 +80,35 @@ int main(int argc, char** argv) {
 
   // Per ray set: the certified caster's time, and judging the float caster's answers (the one
   // with the most wrong answers), side by side.
-  fmt::print("\nper set, judging the float caster's answers:\n{:<9} {:>7} {:>10} {:>12} {:>12} {:>10}\n", "set", "rays",
-             "findings", "cert ns/ray", "judge ns/ray", "judge/cert");
-  opt.precision = verify::CasterPrecision::float32;
+  fmt::print("\nper set: judging the certified caster's answers and the float caster's:\n"
+             "{:<9} {:>7} {:>12} {:>16} {:>10} {:>10} {:>16} {:>10}\n",
+             "set", "rays", "cert ns/ray", "judge cert ns/ray", "ratio", "findings", "judge float ns/ray", "ratio");
   for (std::size_t k = 0; k < rays.names.size(); ++k) {
     verify::CasterRays sub;
     sub.names = rays.names;
     for (std::size_t i = 0; i < rays.rays.size(); ++i)
       if (rays.set[i] == k) sub.rays.push_back(rays.rays[i]), sub.set.push_back(rays.set[i]);
     if (sub.rays.empty()) continue;
-    double cs = 1e300, js = 1e300;
+    double cs = 1e300, js = 1e300, jc = 1e300;
     std::size_t findings = 0;
     const auto answers = answers_of(flt, sub.rays);
+    const auto cert_answers = answers_of(cert, sub.rays);
     for (int r = 0; r < reps; ++r) {
       double t0 = bench::thread_seconds();
       (void)answers_of(cert, sub.rays);
       cs = std::min(cs, bench::thread_seconds() - t0);
+      opt.precision = verify::CasterPrecision::float64;
+      t0 = bench::thread_seconds();
+      (void)judge.judge(sub, cert_answers, opt);
+      jc = std::min(jc, bench::thread_seconds() - t0);
+      opt.precision = verify::CasterPrecision::float32;
       t0 = bench::thread_seconds();
       findings = judge.judge(sub, answers, opt).findings();
       js = std::min(js, bench::thread_seconds() - t0);
     }
     const double n = double(sub.rays.size());
-    fmt::print("{:<9} {:>7} {:>10} {:>12.1f} {:>12.1f} {:>10.2f}\n", rays.names[k], sub.rays.size(), findings,
-               1e9 * cs / n, 1e9 * js / n, js / cs);
+    fmt::print("{:<9} {:>7} {:>12.1f} {:>16.1f} {:>10.2f} {:>10} {:>16.1f} {:>10.2f}\n", rays.names[k], sub.rays.size(),
+               1e9 * cs / n, 1e9 * jc / n, jc / cs, findings, 1e9 * js / n, js / cs);
   }
   return 0;
 }
