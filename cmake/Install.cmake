@@ -17,7 +17,8 @@ set(_rp_table
   "core:rayproof_core"
   "certified:rayproof_certified|rayproof_certified_gmp"
   "verify:rayproof_check|rayproof_verify"
-  "scene:rayproof_scene,rayproof_scene_certified")
+  "scene:rayproof_scene,rayproof_scene_certified"
+  "caster_check:rayproof_caster_check")
 # Link-interface items that only the build uses: warning flags, header-only libraries linked
 # privately. They are dropped from the installed interface.
 set(_rp_build_only rayproof_warnings nlohmann_json::nlohmann_json)

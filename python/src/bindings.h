@@ -54,5 +54,6 @@ void bind_classify(py::module_& m);
 void bind_cast(py::module_& m);
 void bind_check(py::module_& m);
 void bind_load_mesh(py::module_& m);
+void bind_check_caster(py::module_& m);
 
 }  // namespace rayproof::python

@@ -129,4 +129,5 @@ PYBIND11_MODULE(rayproof, m) {
   bind_cast(m);
   bind_check(m);
   bind_load_mesh(m);
+  bind_check_caster(m);
 }

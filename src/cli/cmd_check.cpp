@@ -122,6 +122,7 @@ nlohmann::json result_json(const verify::CheckResult& r) {
 
 
 int run_check(const CheckCliOptions& o) {
+  if (!o.caster.empty()) return run_caster_check(o);
   // The kernel under test: exactly one of --exec, --plugin, --method.
   const std::size_t named =
       o.user.exec.size() + o.user.plugin.size() + o.user.opencl.size() + o.user.glsl.size() + (o.method.empty() ? 0 : 1);
@@ -368,6 +369,22 @@ Run add_check(CLI::App& app) {
   sub->add_option("--interior", o->interior, "Interior points per mesh (rays start there)")
       ->check(CLI::Range(1, 64))
       ->capture_default_str();
+  sub->add_option("--caster", o->caster,
+                  "NAME=COMMAND: a whole caster (BVH and all) judged on --mesh: it reads the mesh, then batches of rays, "
+                  "and answers `t triangle` per ray (docs/check.md); repeatable. With --out: report.md and report.html, "
+                  "rayproof's own casters beside");
+  sub->add_option("--caster-precision", o->caster_precision, "The caster's precision: float (float rays, t in float ulps) or double")
+      ->capture_default_str();
+  sub->add_option("--caster-timeout", o->caster_timeout, "Seconds the caster may take per answer line")->capture_default_str();
+  sub->add_option("--caster-batch", o->caster_batch, "Rays per batch sent to the caster")
+      ->check(CLI::Range(std::size_t{1}, std::size_t{1000000}))
+      ->capture_default_str();
+  sub->add_option("--caster-rays", o->caster_rays, "Random rays per mesh (the other sets follow the mesh)")->capture_default_str();
+  sub->add_option("--caster-max-per-set", o->caster_max_per_set, "Rays per set at most (evenly subsampled)")
+      ->check(CLI::Range(std::size_t{1}, std::size_t{100000000}))
+      ->capture_default_str();
+  sub->add_option("--caster-sets", o->caster_sets, "Ray sets: leak, graze, face, surface, random, extreme, invalid (default: all)")
+      ->delimiter(',')->allow_extra_args(false);
   return [o] { return run_check(*o); };
 }
 

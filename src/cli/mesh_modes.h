@@ -30,6 +30,11 @@ struct CheckCliOptions {
   int interior = 2;
   bool plugin_in_process = false;
   std::string compare_plugin;  ///< --compare-plugin: the C build of an --opencl or --glsl kernel's formula
+  std::vector<std::string> caster;       ///< --caster NAME=COMMAND: whole casters on --mesh (check_caster.cpp)
+  std::string caster_precision = "double";
+  double caster_timeout = 10;
+  std::size_t caster_batch = 1024, caster_rays = 2000, caster_max_per_set = 20000;
+  std::vector<std::string> caster_sets;
 };
 
 
@@ -62,6 +67,7 @@ struct SpawnOptions {
 
 /// The mesh modes (check_mesh.cpp, fuzz_mesh.cpp, spawn_mesh_cli.cpp).
 int run_mesh_check(const CheckCliOptions& o, const Method& kernel);
+int run_caster_check(const CheckCliOptions& o);
 int run_mesh_fuzz_cli(const FuzzCliOptions& o);
 int run_spawn_mesh(const SpawnOptions& opt);
 

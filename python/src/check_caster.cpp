@@ -1,0 +1,218 @@
+/// rayproof.check_caster: a user's whole ray caster (a Python function over numpy arrays of rays)
+/// judged on a mesh against exact answers, through verify::check_caster
+/// (include/rayproof/verify/caster_check.h): the same ray sets, counts and reproducers as
+/// `rayproof check --caster` and the C++ API.
+#include <pybind11/stl.h>
+
+#include <fmt/core.h>
+
+#include <cmath>
+#include <limits>
+#include <optional>
+
+#include "bindings.h"
+#include "rayproof/scene/mesh_caster.h"
+#include "rayproof/verify/caster_check.h"
+
+namespace rayproof::python {
+
+namespace {
+
+bool is_interrupt(const py::error_already_set& e) {
+  return e.matches(PyExc_KeyboardInterrupt) || e.matches(PyExc_SystemExit);
+}
+
+py::array_t<double> rays_array(std::span<const Vec3<double>> v) {
+  py::array_t<double> a({static_cast<py::ssize_t>(v.size()), py::ssize_t(3)});
+  double* p = a.mutable_data();
+  for (std::size_t i = 0; i < v.size(); ++i) p[3 * i] = v[i].x, p[3 * i + 1] = v[i].y, p[3 * i + 2] = v[i].z;
+  return a;
+}
+
+/// A 1-D numeric array of n values from the function's result (what it returned is named in the error).
+template <class T>
+py::array_t<T, py::array::c_style | py::array::forcecast> column(py::handle obj, std::size_t n, const char* what) {
+  py::array a;
+  try {
+    a = py::module_::import("numpy").attr("asarray")(obj);
+  } catch (py::error_already_set& e) {
+    throw std::runtime_error(fmt::format("the function's {} is not an array ({})", what, e.what()));
+  }
+  const char k = a.dtype().kind();
+  if (!(k == 'f' || k == 'i' || k == 'u' || k == 'b'))
+    throw std::runtime_error(fmt::format("the function's {} has dtype {}, not numbers", what,
+                                         py::str(a.dtype()).cast<std::string>()));
+  if (a.ndim() != 1 || static_cast<std::size_t>(a.shape(0)) != n)
+    throw std::runtime_error(fmt::format("the function's {} has shape {}, expected ({},)", what,
+                                         py::str(a.attr("shape")).cast<std::string>(), n));
+  auto out = py::array_t<T, py::array::c_style | py::array::forcecast>::ensure(a);
+  if (!out) throw std::runtime_error(fmt::format("the function's {} cannot be read as numbers", what));
+  return out;
+}
+
+py::dict result_dict(const verify::CasterCheck& c) {
+  py::dict d;
+  d["rays"] = c.rays;
+  d["hits"] = c.hits;
+  d["false_miss"] = c.false_miss;
+  d["coplanar_miss"] = c.coplanar_miss;
+  d["false_hit"] = c.false_hit;
+  d["wrong_triangle"] = c.wrong_triangle;
+  d["wrong_triangle_within_1ulp"] = c.wrong_triangle_near;
+  d["t_over_1ulp"] = c.t_over_1ulp;
+  d["max_ulps"] = c.max_ulps;
+  d["garbage"] = c.garbage;
+  d["caster_failures"] = c.caster_failures;
+  d["any_rays"] = c.any_rays;
+  d["any_false_miss"] = c.any_false_miss;
+  d["any_false_hit"] = c.any_false_hit;
+  d["any_coplanar_miss"] = c.any_coplanar_miss;
+  d["invalid_rays"] = c.invalid_rays;
+  d["invalid_hit"] = c.invalid_hit;
+  d["invalid_failures"] = c.invalid_failures;
+  d["findings"] = c.findings();
+  py::dict sets;
+  for (const auto& s : c.sets) {
+    py::dict e;
+    e["rays"] = s.rays;
+    e["findings"] = s.findings;
+    e["false_miss"] = s.false_miss;
+    sets[py::str(s.set)] = e;
+  }
+  d["sets"] = sets;
+  py::list reps;
+  for (const auto& r : c.reproducers) reps.append(r.line);
+  d["reproducers"] = reps;
+  d["notes"] = c.notes;
+  return d;
+}
+
+py::dict check_caster(py::function fn, py::handle vertices, py::handle triangles, std::optional<py::function> any_fn,
+                      const std::string& precision, std::size_t random_rays, std::size_t max_rays_per_set,
+                      std::uint64_t seed, std::optional<std::vector<std::string>> sets, std::size_t batch,
+                      std::size_t reproducers, std::optional<py::tuple> rays, const std::string& mesh_name,
+                      int threads) {
+  const py::array v = checked_array(vertices, "vertices", 3, false, DtypeRule::real);
+  const py::array ix = checked_array(triangles, "triangles", 3, false, DtypeRule::integer);
+  const auto vd = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(v);
+  const auto id = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(ix);
+  if (!vd || !id) throw py::error_already_set();
+  const std::size_t nv = static_cast<std::size_t>(vd.shape(0)), nt = static_cast<std::size_t>(id.shape(0));
+  std::vector<Vec3<double>> verts(nv);
+  for (std::size_t i = 0; i < nv; ++i) verts[i] = {vd.data()[3 * i], vd.data()[3 * i + 1], vd.data()[3 * i + 2]};
+  std::vector<std::array<std::uint32_t, 3>> tris(nt);
+  for (std::size_t i = 0; i < nt; ++i)
+    for (std::size_t k = 0; k < 3; ++k) {
+      const std::int64_t x = id.data()[3 * i + k];
+      if (x < 0 || static_cast<std::uint64_t>(x) >= nv)
+        throw py::value_error(fmt::format("triangles: row {} has vertex index {} outside [0, {})", i, x, nv));
+      tris[i][k] = static_cast<std::uint32_t>(x);
+    }
+  verify::CasterCheckOptions opt;
+  if (precision == "float") opt.precision = verify::CasterPrecision::float32;
+  else if (precision == "double") opt.precision = verify::CasterPrecision::float64;
+  else throw py::value_error(fmt::format("precision: '{}' is neither 'float' nor 'double'", precision));
+  if (batch == 0) throw py::value_error("batch: must be at least 1");
+  opt.random_rays = random_rays;
+  opt.max_rays_per_set = max_rays_per_set;
+  opt.seed = seed;
+  if (sets) opt.sets = *sets;
+  opt.batch = batch;
+  opt.reproducers = reproducers;
+  opt.threads = threads;
+  const verify::CasterMesh mesh{verts, tris, mesh_name};
+
+  std::optional<py::error_already_set> interrupt;
+  verify::ClosestCaster closest = [&](std::span<const Vec3<double>> o, std::span<const Vec3<double>> d,
+                                      std::span<double> t, std::span<std::int64_t> tri) {
+    try {
+      py::object res = fn(rays_array(o), rays_array(d));
+      py::tuple pair;
+      if (!py::isinstance<py::tuple>(res) && !py::isinstance<py::list>(res))
+        throw std::runtime_error("the function returned " + py::str(res.get_type()).cast<std::string>() +
+                                 ", expected a pair (t, triangle)");
+      pair = py::tuple(res);
+      if (pair.size() != 2)
+        throw std::runtime_error(fmt::format("the function returned {} values, expected (t, triangle)", pair.size()));
+      const auto tv = column<double>(pair[0], o.size(), "t");
+      const auto iv = column<std::int64_t>(pair[1], o.size(), "triangle");
+      for (std::size_t i = 0; i < o.size(); ++i) t[i] = tv.data()[i], tri[i] = iv.data()[i];
+    } catch (py::error_already_set& e) {
+      const std::string what = e.what();
+      if (is_interrupt(e)) interrupt.emplace(std::move(e));
+      throw std::runtime_error(what);
+    }
+  };
+  verify::AnyCaster any;
+  if (any_fn) {
+    any = [&](std::span<const Vec3<double>> o, std::span<const Vec3<double>> d, std::span<std::uint8_t> out) {
+      try {
+        const auto a = column<std::int64_t>((*any_fn)(rays_array(o), rays_array(d)), o.size(), "any_fn result");
+        for (std::size_t i = 0; i < o.size(); ++i) out[i] = a.data()[i] != 0;
+      } catch (py::error_already_set& e) {
+        const std::string what = e.what();
+        if (is_interrupt(e)) interrupt.emplace(std::move(e));
+        throw std::runtime_error(what);
+      }
+    };
+  }
+
+  verify::CasterRays ray_set;
+  if (rays) {
+    if (rays->size() != 2) throw py::value_error("rays: expected a pair (origins, directions)");
+    const Rows o = rows_of((*rays)[0], "rays[0] (origins)", 3, false), d = rows_of((*rays)[1], "rays[1] (directions)", 3, false);
+    const std::size_t n = common_rows({{"rays[0] (origins)", &o}, {"rays[1] (directions)", &d}});
+    for (std::size_t i = 0; i < n; ++i)
+      ray_set.rays.push_back({{o.row(i)[0], o.row(i)[1], o.row(i)[2]}, {d.row(i)[0], d.row(i)[1], d.row(i)[2]}});
+    ray_set.set.assign(n, 0);
+    ray_set.names = {"user"};
+  } else {
+    try {
+      py::gil_scoped_release unlocked;
+      ray_set = verify::caster_rays(mesh, opt);
+    } catch (const MeshInputError& e) {
+      throw py::value_error(e.what());
+    } catch (const std::invalid_argument& e) {
+      throw py::value_error(e.what());
+    }
+  }
+  std::vector<verify::CasterAnswer> answers(ray_set.rays.size());
+  std::string error;
+  verify::run_caster(closest, any, ray_set.rays, opt.batch, answers, error);
+  if (interrupt) throw std::move(*interrupt);
+  verify::CasterCheck c;
+  try {
+    py::gil_scoped_release unlocked;
+    c = verify::CasterJudge(mesh).judge(ray_set, answers, opt);
+  } catch (const MeshInputError& e) {
+    throw py::value_error(std::string("vertices/triangles: ") + e.what());
+  }
+  if (!error.empty()) c.notes.push_back("the function raised: " + error);
+  return result_dict(c);
+}
+
+}  // namespace
+
+void bind_check_caster(py::module_& m) {
+  m.def("check_caster", &check_caster, py::arg("fn"), py::arg("vertices"), py::arg("triangles"), py::kw_only(),
+        py::arg("any_fn") = py::none(), py::arg("precision") = "double", py::arg("random_rays") = 2000,
+        py::arg("max_rays_per_set") = 20000, py::arg("seed") = 1, py::arg("sets") = py::none(),
+        py::arg("batch") = 4096, py::arg("reproducers") = 5, py::arg("rays") = py::none(),
+        py::arg("mesh_name") = "mesh", py::arg("threads") = 0,
+        R"(Judge a whole ray caster on a mesh against exact arithmetic.
+
+fn(origins, directions) takes (n, 3) float64 arrays and returns (t, triangle): the closest crossing
+at t > 0 of each ray, t (float) and the triangle's row in `triangles` (int), inf and -1 for a miss.
+any_fn(origins, directions), optional, returns n booleans: whether each ray crosses anything.
+precision ('double' or 'float') sets the ulps t errors are counted in. The rays: rayproof's sets
+(leak, graze, face, surface, random, extreme, invalid; `sets` picks some), or rays=(origins,
+directions). An exception fn raises fails that batch's rays (counted in caster_failures, or
+invalid_failures on invalid rays), and the run goes on.
+
+Returns a dict of counts (rays, hits, false_miss, coplanar_miss, false_hit, wrong_triangle, wrong_triangle_within_1ulp,
+t_over_1ulp, max_ulps, garbage, caster_failures, any_false_miss, any_false_hit, any_coplanar_miss,
+invalid_rays, invalid_hit, invalid_failures, findings), per-set counts (`sets`), one-line
+`reproducers` and `notes`. docs/check.md explains each count.)");
+}
+
+}  // namespace rayproof::python

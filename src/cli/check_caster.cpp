@@ -1,0 +1,167 @@
+// check --caster: whole casters (programs speaking the line protocol of docs/check.md) judged on
+// meshes against exact answers (verify/caster_exec.h, rayproof/verify/caster_check.h).
+#include <fmt/core.h>
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <optional>
+
+#include "cli/mesh_modes.h"
+#include "cli/scene_input.h"
+#include "mesh/mesh.h"
+#include "rayproof/verify/caster_check.h"
+#include "verify/caster_exec.h"
+#include "verify/caster_report.h"
+#include "verify/mesh_check.h"
+
+namespace rayproof::cli {
+
+namespace {
+
+struct NamedCaster {
+  std::string name, command;
+};
+
+struct CasterMeshInput {
+  std::string name;
+  mesh::Mesh mesh;
+};
+
+}  // namespace
+
+int run_caster_check(const CheckCliOptions& o) {
+  std::vector<NamedCaster> casters;
+  for (const auto& spec : o.caster) {
+    const auto eq = spec.find('=');
+    if (eq == std::string::npos || eq == 0 || eq + 1 == spec.size()) {
+      fmt::print(stderr, "rayproof check: --caster '{}' is not NAME=COMMAND\n", spec);
+      return 2;
+    }
+    casters.push_back({spec.substr(0, eq), spec.substr(eq + 1)});
+  }
+  const std::size_t others = o.user.exec.size() + o.user.plugin.size() + o.user.opencl.size() + o.user.glsl.size() +
+                             (o.method.empty() ? 0 : 1);
+  if (others > 0 || !o.families.empty() || !o.expect.empty() || o.max_ulps) {
+    fmt::print(stderr, "rayproof check: --caster takes --mesh, --out and the --caster-* options; --exec, --plugin, "
+                       "--glsl, --opencl, --method, --families, --expect and --max-ulps apply to kernels\n");
+    return 2;
+  }
+  if (o.mesh.empty()) {
+    fmt::print(stderr, "rayproof check: --caster needs --mesh MESH... (mesh files, or `generated`)\n");
+    return 2;
+  }
+  verify::CasterCheckOptions opt;
+  if (o.caster_precision == "float") opt.precision = verify::CasterPrecision::float32;
+  else if (o.caster_precision != "double") {
+    fmt::print(stderr, "rayproof check: --caster-precision '{}' is neither float nor double\n", o.caster_precision);
+    return 2;
+  }
+  if (!(o.caster_timeout > 0) || !std::isfinite(o.caster_timeout)) {
+    fmt::print(stderr, "rayproof check: --caster-timeout must be a positive number of seconds\n");
+    return 2;
+  }
+  opt.seed = o.seed;
+  opt.random_rays = o.caster_rays;
+  opt.max_rays_per_set = o.caster_max_per_set;
+  opt.reproducers = o.reproducers;
+  opt.sets = o.caster_sets;
+
+  std::vector<CasterMeshInput> meshes;
+  for (const auto& name : o.mesh) {
+    if (name == "generated") {
+      verify::MeshFuzzOptions gen_opt;
+      gen_opt.seed = o.seed;
+      for (std::size_t i = 0; i < o.meshes; ++i) {
+        verify::MeshUnderTest mt = verify::generated_mesh(gen_opt, i);
+        meshes.push_back({mt.name, std::move(mt.mesh)});
+      }
+      continue;
+    }
+    try {
+      meshes.push_back({name, mesh::read_mesh(name)});
+      fmt::print(stderr, "rayproof check: {}: {} triangles{}\n", name, meshes.back().mesh.triangles.size(),
+                 reader_note(name));
+    } catch (const std::exception& e) {
+      fmt::print(stderr, "rayproof check: {}\n", e.what());
+      return 2;
+    }
+  }
+
+  verify::ExecCasterOptions eo;
+  eo.timeout_seconds = o.caster_timeout;
+  eo.batch = o.caster_batch;
+  bool any_finding = false;
+  nlohmann::json jruns = nlohmann::json::array();
+  std::vector<verify::CasterReportRow> report_rows;
+  if (!o.json)
+    fmt::print("rayproof check --caster: {} precision; crossings at t > 0 judged against rayproof's certified caster "
+               "and exact per-triangle tests (docs/check.md)\n",
+               o.caster_precision);
+  for (const auto& m : meshes) {
+    const verify::CasterMesh cm{m.mesh.vertices, m.mesh.triangles, m.name};
+    verify::CasterRays rays;
+    std::optional<verify::CasterJudge> judge;
+    try {
+      rays = verify::caster_rays(cm, opt);
+      judge.emplace(cm);
+    } catch (const std::exception& e) {
+      fmt::print(stderr, "rayproof check: {}: {}\n", m.name, e.what());
+      return 2;
+    }
+    for (const auto& c : casters) {
+      fmt::print(stderr, "[caster] {} on {}: {} rays\n", c.name, m.name, rays.rays.size());
+      const verify::ExecCasterRun run = verify::run_exec_caster(c.command, cm, rays, eo);
+      verify::CasterCheck res = judge->judge(rays, run.answers, opt);
+      any_finding = any_finding || res.findings() > 0;
+      if (!o.out.empty())
+        report_rows.push_back({c.name, c.command, m.name, m.mesh.triangles.size(), res, run.events});
+      if (o.json) {
+        nlohmann::json sets = nlohmann::json::object();
+        for (const auto& s : res.sets) sets[s.set] = {{"rays", s.rays}, {"findings", s.findings}, {"false_miss", s.false_miss}};
+        nlohmann::json reps = nlohmann::json::array();
+        for (const auto& r : res.reproducers) reps.push_back(r.line);
+        jruns.push_back({{"caster", c.name}, {"command", c.command}, {"mesh", m.name},
+                         {"triangles", m.mesh.triangles.size()}, {"rays", res.rays}, {"hits", res.hits},
+                         {"false_miss", res.false_miss}, {"coplanar_miss", res.coplanar_miss},
+                         {"false_hit", res.false_hit}, {"wrong_triangle", res.wrong_triangle},
+                         {"wrong_triangle_within_1ulp", res.wrong_triangle_near},
+                         {"t_over_1ulp", res.t_over_1ulp}, {"max_ulps", res.max_ulps}, {"garbage", res.garbage},
+                         {"caster_failures", res.caster_failures}, {"invalid_rays", res.invalid_rays},
+                         {"invalid_hit", res.invalid_hit}, {"invalid_failures", res.invalid_failures},
+                         {"findings", res.findings()}, {"sets", sets}, {"events", run.events},
+                         {"starts", run.starts}, {"reproducers", reps}, {"notes", res.notes}});
+        continue;
+      }
+      fmt::print("\ncaster '{}' ({}) on {} ({} triangles): {} rays, started {} time{}\n", c.name, c.command, m.name,
+                 m.mesh.triangles.size(), res.rays, run.starts, run.starts == 1 ? "" : "s");
+      fmt::print("{}", verify::summary_text(res));
+      for (const auto& e : run.events) fmt::print("event: {}\n", e);
+      if (res.findings() == 0)
+        fmt::print("caster '{}' answered all {} rays on {} as exact arithmetic does (t within 1 ulp)\n", c.name,
+                   res.rays, m.name);
+      else
+        fmt::print("caster '{}' differs from exact on {} of {} rays on {}\n", c.name, res.findings(), res.rays, m.name);
+    }
+  }
+  if (!o.out.empty()) {
+    // rayproof's own casters on the same rays, beside the casters under test.
+    for (const auto& m : meshes) {
+      const verify::CasterMesh cm{m.mesh.vertices, m.mesh.triangles, m.name};
+      const verify::CasterRays rays = verify::caster_rays(cm, opt);
+      const verify::CasterJudge judge(cm);
+      for (auto& row : verify::builtin_caster_rows(cm, rays, judge, opt)) report_rows.push_back(std::move(row));
+    }
+    try {
+      verify::write_caster_report(o.out, report_rows, o.caster_precision);
+      fmt::print(stderr, "rayproof check: wrote {}/report.md and {}/report.html\n", o.out, o.out);
+    } catch (const std::exception& e) {
+      fmt::print(stderr, "rayproof check: {}\n", e.what());
+      return 2;
+    }
+  }
+  if (o.json) fmt::print("{}\n", nlohmann::json{{"casters", jruns}, {"findings", any_finding}}.dump(1));
+  return any_finding ? 1 : 0;
+}
+
+}  // namespace rayproof::cli

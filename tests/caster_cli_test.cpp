@@ -1,0 +1,119 @@
+// rayproof check --caster: programs speaking the caster line protocol, judged on a mesh file. The
+// example numpy caster leaks with strict edge tests; crashes, hangs and garbage are reported as
+// events and the run goes on.
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <string>
+
+#include "cli_support.h"
+
+namespace rayproof {
+namespace {
+
+using testing::run_rayproof;
+using testing::write_file;
+
+const std::string kCube = R"(OFF
+8 12 0
+0 0 0
+1 0 0
+0 1 0
+1 1 0
+0 0 1
+1 0 1
+0 1 1
+1 1 1
+3 0 2 3
+3 0 3 1
+3 4 5 7
+3 4 7 6
+3 0 1 5
+3 0 5 4
+3 2 6 7
+3 2 7 3
+3 0 4 6
+3 0 6 2
+3 1 3 7
+3 1 7 5
+)";
+
+std::string example() { return std::string(RAYPROOF_DATA_DIR) + "/../examples/caster/mt_caster.py"; }
+
+bool have_numpy() { return std::system("/usr/bin/python3 -c 'import numpy' >/dev/null 2>&1") == 0; }
+
+std::size_t count_of(const std::string& out, const std::string& caster, const std::string& key) {
+  const auto at = out.find("caster '" + caster + "'");
+  if (at == std::string::npos) return std::size_t(-1);
+  const auto k = out.find("\n" + key + " ", at);
+  if (k == std::string::npos) return std::size_t(-1);
+  return std::stoul(out.substr(out.find_first_not_of(' ', k + key.size() + 1)));
+}
+
+TEST(CasterCli, ExampleCasterLeaksWhenStrictAndTheNanCrashIsReported) {
+  if (!have_numpy()) GTEST_SKIP() << "/usr/bin/python3 has no numpy";
+  const auto mesh = write_file("cube.off", kCube);
+  const auto r = run_rayproof("check --caster 'mt=/usr/bin/python3 " + example() +
+                              "' --caster 'strict=/usr/bin/python3 " + example() + " --strict --crash-on-nan' --mesh " +
+                              mesh.string() + " --caster-rays 200 --caster-sets leak,random,invalid");
+  EXPECT_EQ(r.status, 1) << r.err;
+  // The plain one: nothing on the leak rays; the strict one: every leak ray through a vertex or edge.
+  EXPECT_NE(r.out.find("set leak       rays      52  findings       0"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("set leak       rays      52  findings      52  false_miss 52"), std::string::npos) << r.out;
+  EXPECT_EQ(count_of(r.out, "mt", "invalid_failures"), 0u) << r.out;
+  EXPECT_EQ(count_of(r.out, "strict", "invalid_failures"), 3u) << r.out;  // the three rays with a NaN
+  EXPECT_EQ(count_of(r.out, "strict", "rays"), 260u) << r.out;
+  EXPECT_NE(r.out.find("false-miss set=leak mesh="), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("event: crashed (signal 11"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("caster 'strict' differs from exact on"), std::string::npos) << r.out;
+}
+
+TEST(CasterCli, HangAndGarbageAreReportedAndTheRunGoesOn) {
+  const auto mesh = write_file("cube.off", kCube);
+  const auto r = run_rayproof("check --caster 'hang=sleep 30' --caster 'junk=while read l; do echo hello; done' --mesh " +
+                              mesh.string() + " --caster-rays 10 --caster-sets random,invalid --caster-timeout 0.3");
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_EQ(count_of(r.out, "hang", "caster_failures"), 10u) << r.out;
+  EXPECT_EQ(count_of(r.out, "hang", "invalid_failures"), 8u) << r.out;
+  EXPECT_NE(r.out.find("event: timed out: no answer for 0.3 s on rays 0..9 (set random; 10 rays"), std::string::npos)
+      << r.out;
+  EXPECT_EQ(count_of(r.out, "junk", "caster_failures"), 10u) << r.out;
+  EXPECT_NE(r.out.find("event: unreadable answer 'hello'"), std::string::npos) << r.out;
+}
+
+TEST(CasterCli, OutWritesTheReportBesideRayproofsCasters) {
+  if (!have_numpy()) GTEST_SKIP() << "/usr/bin/python3 has no numpy";
+  const auto mesh = write_file("cube.off", kCube);
+  const auto dir = testing::scratch_dir() / "caster_report";
+  const auto r = run_rayproof("check --caster 'strict=/usr/bin/python3 " + example() + " --strict' --mesh " +
+                              mesh.string() + " --caster-rays 100 --caster-precision float --out " + dir.string());
+  EXPECT_EQ(r.status, 1) << r.err;
+  const std::string md = testing::slurp(dir / "report.md"), html = testing::slurp(dir / "report.html");
+  EXPECT_NE(md.find("| **strict** |"), std::string::npos) << md;
+  for (const char* builtin : {"| rayproof float |", "| rayproof robust |", "| rayproof certified |"})
+    EXPECT_NE(md.find(builtin), std::string::npos) << builtin;
+  EXPECT_NE(md.find("false-miss set=leak"), std::string::npos);
+  // rayproof's certified caster finds nothing on the cube's rays: its row ends in 0 findings.
+  const auto cert = md.find("| rayproof certified |");
+  ASSERT_NE(cert, std::string::npos);
+  const std::string row = md.substr(cert, md.find('\n', cert) - cert);
+  EXPECT_EQ(row.substr(row.size() - 5), "| 0 |") << row;
+  EXPECT_NE(html.find("<table>"), std::string::npos);
+  EXPECT_NE(html.find("strict (/usr/bin/python3"), std::string::npos);
+  EXPECT_EQ(run_rayproof("check --caster x=cat --mesh " + mesh.string() + " --caster-sets random --out /proc/nope").status, 2);
+}
+
+TEST(CasterCli, BadUsageIsRefused) {
+  const auto mesh = write_file("cube.off", kCube);
+  EXPECT_EQ(run_rayproof("check --caster 'x=cat'").status, 2);
+  EXPECT_EQ(run_rayproof("check --caster nocommand --mesh " + mesh.string()).status, 2);
+  EXPECT_EQ(run_rayproof("check --caster x=cat --method float --mesh " + mesh.string()).status, 2);
+  EXPECT_EQ(run_rayproof("check --caster x=cat --caster-precision half --mesh " + mesh.string()).status, 2);
+  EXPECT_EQ(run_rayproof("check --caster x=cat --caster-sets nope --mesh " + mesh.string()).status, 2);
+  const auto missing = run_rayproof("check --caster x=cat --mesh /nonexistent/mesh.off");
+  EXPECT_EQ(missing.status, 2);
+  EXPECT_NE(missing.err.find("/nonexistent/mesh.off"), std::string::npos) << missing.err;
+}
+
+}  // namespace
+}  // namespace rayproof
