@@ -325,6 +325,7 @@ void check_against_brute(const Shape& s, int n, int rays, std::uint32_t seed, bo
     const Expected want = brute(s, r);
     ASSERT_EQ(dirs(got), want.dirs) << "ray " << i << " o (" << r.o.x << ", " << r.o.y << ", " << r.o.z << ") d ("
                                     << r.d.x << ", " << r.d.y << ", " << r.d.z << ")";
+    for (std::size_t k = 1; k < got.crossings.size(); ++k) EXPECT_LE(got.crossings[k - 1].t, got.crossings[k].t);
     for (std::size_t k = 0; k < want.t.size(); ++k) {
       const double t = got.crossings[k].t, exact = want.t[k].get_d();
       EXPECT_LE(std::fabs(t - exact), std::nextafter(std::fabs(exact), INFINITY) - std::fabs(exact)) << "ray " << i;

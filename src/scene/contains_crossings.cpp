@@ -13,8 +13,10 @@
 // at the same exact t (the same point of the ray) are one contact: their net count of perturbed
 // crossings (+1 in, -1 out each) is the crossing (or, 0, a touch). Equal rounded t do not say equal
 // exact t, nor the reverse: contacts whose t lie within two ulps are ordered and grouped by their
-// exact t in GMP rationals.
+// exact t in GMP rationals, and their t is then the exact t correctly rounded (MPFR), so the listed
+// t never decrease.
 #include <gmpxx.h>
+#include <mpfr.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -53,6 +55,16 @@ mpq_class exact_t(const Ray<double>& r, const std::array<Vec3<double>, 3>& p) {
   const Q3 p0 = q3(p[0]);
   const Q3 n = cross(sub(q3(p[1]), p0), sub(q3(p[2]), p0));
   return mpq_class(dot(sub(p0, q3(r.o)), n) / dot(q3(r.d), n));
+}
+
+/// x rounded to the nearest double (ties to even).
+double round_nearest(const mpq_class& x) {
+  mpfr_t r;
+  mpfr_init2(r, 53);
+  mpfr_set_q(r, x.get_mpq_t(), MPFR_RNDN);
+  const double d = mpfr_get_d(r, MPFR_RNDN);
+  mpfr_clear(r);
+  return d;
 }
 
 /// Sign of d . n, n = (p1 - p0) x (p2 - p0): in double when the error bound allows (every rounding
@@ -183,6 +195,9 @@ RayCrossings ClosedMesh::crossings(const Ray<double>& ray, TRange range) const {
       }
     }
     for (const auto& [b, g] : groups) {
+      // In a run, the contact's t correctly rounded from its exact value: monotone in the exact t,
+      // so the listed t never decrease (a lone contact keeps the filter's t, within one ulp).
+      const double t = e - i == 1 ? cand[i].t : round_nearest(exact[order[b] - i]);
       int net = 0;
       for (std::size_t k = b; k < g; ++k) net += cand[order[k]].net;
       // The reported triangle: the lowest-numbered one crossed in the net's direction, or (a touch)
@@ -195,12 +210,12 @@ RayCrossings ClosedMesh::crossings(const Ray<double>& ray, TRange range) const {
         const bool fits = net == 0 || (net > 0 ? c.net > 0 : c.net < 0);
         if (fits && (!rep || c.triangle < rep->triangle)) rep = &c;
       }
-      if (!(rep->t >= range.tmin && rep->t <= range.tmax)) continue;
+      if (!(t >= range.tmin && t <= range.tmax)) continue;
       if (net == 0) {
-        out.touches.push_back({rep->t, rep->t, rep->triangle, worst});
+        out.touches.push_back({t, t, rep->triangle, worst});
       } else {
         const CrossingDirection dir = net > 0 ? CrossingDirection::in : CrossingDirection::out;
-        for (int m = 0; m < std::abs(net); ++m) out.crossings.push_back({rep->t, rep->triangle, dir});
+        for (int m = 0; m < std::abs(net); ++m) out.crossings.push_back({t, rep->triangle, dir});
       }
     }
     i = e;

@@ -76,7 +76,9 @@ enum class CrossingDirection : std::uint8_t { in = 0, out = 1 };
 /// A point where a ray passes from one side of the surface to the other, counted once however
 /// many triangles meet there (a shared edge, a vertex's fan).
 struct Crossing {
-  double t = kNaN<double>;  ///< within one ulp of the exact t of the contact
+  /// Within one ulp of the exact t of the contact; correctly rounded where contacts lie within a
+  /// few ulps of each other, so the listed t never decrease.
+  double t = kNaN<double>;
   std::uint32_t triangle = MeshHit::kNoTriangle;  ///< a triangle the perturbed ray crosses there
   CrossingDirection direction = CrossingDirection::in;
 };
