@@ -27,6 +27,7 @@
 #include <vector>
 
 #include "rayproof/certified/intersect.h"
+#include "rayproof/certified_expansion.h"
 #include "scene/contains_state.h"
 
 namespace rayproof {
@@ -80,17 +81,62 @@ int sign_dn(const Vec3<double>& d, const std::array<Vec3<double>, 3>& p) {
   return sgn(dot(q3(d), cross(sub(q3(p[1]), q0), sub(q3(p[2]), q0))));
 }
 
-/// An edge or vertex contact: d . n's sign and whether the perturbed ray crosses the triangle.
+/// Where an edge or vertex contact is: the vertex, or the edge's two ends in coordinate order
+/// (contacts at the same vertex or on the same edge, as coordinates, are at the same point).
+struct Where {
+  int kind = 0;  ///< 0 unknown (interior), 1 edge, 2 vertex
+  Vec3<double> a{0, 0, 0}, b{0, 0, 0};
+  bool operator==(const Where&) const = default;
+};
+bool less_xyz(const Vec3<double>& p, const Vec3<double>& q) {
+  return p.x != q.x ? p.x < q.x : (p.y != q.y ? p.y < q.y : p.z < q.z);
+}
+
+/// An edge or vertex contact: d . n's sign, whether the perturbed ray crosses the triangle, and
+/// where the contact is.
 struct Decided {
   int sdn = 0;
   bool crossed = false;
+  Where where;
 };
-Decided decide_perturbed(const Ray<double>& r, const std::array<Vec3<double>, 3>& p) {
+
+/// From the exact signs of u_i (the edge function of edge (p_{i+1}, p_{i+2}); their sum is d . n)
+/// and, where u_i = 0, of the perturbation's coefficients g_i = (p_{i+1} - p_{i+2}) x d.
+Decided finish(const std::array<Vec3<double>, 3>& p, const int (&s)[3], const int (&gs)[3], int sdn) {
+  Decided out;
+  out.sdn = sdn;
+  int zeros = 0;
+  bool crossed = sdn != 0;
+  for (int i = 0; i < 3; ++i) {
+    zeros += s[i] == 0;
+    crossed = crossed && (s[i] ? s[i] : gs[i]) == sdn;
+  }
+  out.crossed = crossed;
+  if (zeros == 1) {
+    const int i = s[0] == 0 ? 0 : (s[1] == 0 ? 1 : 2);
+    Vec3<double> a = p[(i + 1) % 3], b = p[(i + 2) % 3];
+    if (less_xyz(b, a)) std::swap(a, b);
+    out.where = {1, a, b};
+  } else if (zeros == 2) {
+    const int m = 3 - (s[0] == 0 ? 0 : 1) - (s[2] == 0 ? 2 : 1);  // the vertex on both zero edges
+    out.where = {2, p[m], p[m]};
+  }
+  return out;
+}
+
+/// The first nonzero sign of (x, y, z).
+template <class F>
+int first_sign(F&& sign_of) {
+  for (int k = 0; k < 3; ++k)
+    if (const int v = sign_of(k)) return v;
+  return 0;
+}
+
+Decided decide_gmp(const Ray<double>& r, const std::array<Vec3<double>, 3>& p) {
   const Q3 o = q3(r.o), d = q3(r.d);
   const Q3 P[3] = {q3(p[0]), q3(p[1]), q3(p[2])};
   const Q3 A[3] = {sub(P[0], o), sub(P[1], o), sub(P[2], o)};
-  // u_i: the edge function of edge (p_{i+1}, p_{i+2}); their sum is d . n.
-  int s[3];
+  int s[3], gs[3] = {0, 0, 0};
   mpq_class den = 0;
   for (int i = 0; i < 3; ++i) {
     const int j = (i + 1) % 3, k = (i + 2) % 3;
@@ -99,13 +145,37 @@ Decided decide_perturbed(const Ray<double>& r, const std::array<Vec3<double>, 3>
     s[i] = sgn(u);
     if (s[i] == 0) {
       const Q3 g = cross(sub(P[j], P[k]), d);  // the perturbation's coefficients: eps, eps^2, eps^3
-      s[i] = sgn(g.x) ? sgn(g.x) : (sgn(g.y) ? sgn(g.y) : sgn(g.z));
+      gs[i] = first_sign([&](int c) { return sgn(c == 0 ? g.x : (c == 1 ? g.y : g.z)); });
     }
   }
-  Decided out;
-  out.sdn = sgn(den);
-  out.crossed = out.sdn != 0 && s[0] == out.sdn && s[1] == out.sdn && s[2] == out.sdn;
-  return out;
+  return finish(p, s, gs, sgn(den));
+}
+
+/// The same in expansions (exact for inputs in the exponent window of a degree-3 polynomial), else GMP.
+Decided decide_perturbed(const Ray<double>& r, const std::array<Vec3<double>, 3>& p) {
+  using certified::ExpVec3;
+  const Vec3<double>&o = r.o, &dd = r.d, &p0 = p[0], &p1 = p[1], &p2 = p[2];
+  if (!certified::in_range<-200, 200>(o.x, o.y, o.z, dd.x, dd.y, dd.z, p0.x, p0.y, p0.z, p1.x, p1.y, p1.z, p2.x, p2.y,
+                                      p2.z))
+    return decide_gmp(r, p);
+  const ExpVec3 d = certified::exact3(dd);
+  const ExpVec3 A[3] = {certified::diff3(p0, o), certified::diff3(p1, o), certified::diff3(p2, o)};
+  int s[3], gs[3] = {0, 0, 0};
+  certified::Expansion den;
+  for (int i = 0; i < 3; ++i) {
+    const int j = (i + 1) % 3, k = (i + 2) % 3;
+    const certified::Expansion u = dot(d, cross(A[j], A[k]));
+    if (u.bad) return decide_gmp(r, p);
+    den = den + u;
+    s[i] = u.sign();
+    if (s[i] == 0) {
+      const ExpVec3 g = cross(certified::diff3(p[j], p[k]), d);
+      if (certified::any_bad(g)) return decide_gmp(r, p);
+      gs[i] = first_sign([&](int c) { return (c == 0 ? g.x : (c == 1 ? g.y : g.z)).sign(); });
+    }
+  }
+  if (den.bad) return decide_gmp(r, p);
+  return finish(p, s, gs, den.sign());
 }
 
 struct Candidate {
@@ -114,6 +184,7 @@ struct Candidate {
   std::uint32_t slot;
   Contact contact;
   int net;  ///< +1 crossed in, -1 crossed out, 0 not crossed by the perturbed ray
+  Where where;
 };
 
 /// Two ulps above x (the rounded t of two contacts at the same exact t differ by at most that).
@@ -128,16 +199,58 @@ double down2(double x) {
 
 }  // namespace
 
-RayCrossings ClosedMesh::crossings(const Ray<double>& ray, TRange range) const {
-  RayCrossings out;
-  if (!ray.valid() || !(range.tmin <= range.tmax)) return out;
+namespace {
+
+/// The contacts of one group [b, g) of `order` (indices into cand), at t: a crossing (or, net 0, a touch).
+void emit_group(const std::vector<Candidate>& cand, const std::size_t* order, std::size_t b, std::size_t g, double t,
+                TRange range, RayCrossings& out) {
+  int net = 0;
+  for (std::size_t k = b; k < g; ++k) net += cand[order[k]].net;
+  // The reported triangle: the lowest-numbered one crossed in the net's direction, or (a touch)
+  // the lowest-numbered one met.
+  const Candidate* rep = nullptr;
+  Contact worst = Contact::interior;
+  for (std::size_t k = b; k < g; ++k) {
+    const Candidate& c = cand[order[k]];
+    if (c.contact == Contact::vertex || (c.contact == Contact::edge && worst == Contact::interior)) worst = c.contact;
+    const bool fits = net == 0 || (net > 0 ? c.net > 0 : c.net < 0);
+    if (fits && (!rep || c.triangle < rep->triangle)) rep = &c;
+  }
+  if (!(t >= range.tmin && t <= range.tmax)) return;
+  if (net == 0) {
+    out.touches.push_back({t, t, rep->triangle, worst});
+  } else {
+    const CrossingDirection dir = net > 0 ? CrossingDirection::in : CrossingDirection::out;
+    for (int m = 0; m < std::abs(net); ++m) out.crossings.push_back({t, rep->triangle, dir});
+  }
+}
+
+/// Per thread: the candidates of the current ray and the scratch of its runs (no allocation per ray
+/// once grown).
+struct Scratch {
+  std::vector<Candidate> cand;
+  std::vector<std::size_t> order;
+  std::vector<mpq_class> exact;
+};
+
+}  // namespace
+
+void ClosedMesh::crossings_into(const Ray<double>& ray, TRange range, RayCrossings& out) const {
+  out.crossings.clear();
+  out.touches.clear();
+  out.valid = false;
+  if (!ray.valid() || !(range.tmin <= range.tmax)) return;
   out.valid = true;
   const auto& s = *s_;
-  if (s.triangles.empty()) return out;
+  if (s.triangles.empty()) return;
+  thread_local Scratch scratch;
+  std::vector<Candidate>& cand = scratch.cand;
+  std::vector<std::size_t>& order = scratch.order;
+  std::vector<mpq_class>& exact = scratch.exact;
+  cand.clear();
   const scene::LeafPrim* leaves = s.accel->leaf_prims().data();
   const std::array<Vec3<double>, 3>* slots = s.slots.data();
   const double lo = down2(range.tmin), hi = up2(range.tmax);
-  std::vector<Candidate> cand;
   s.accel->traverse_slots(ray, lo, hi, BvhTraversal::conservative, BvhQuery::all, [&](std::uint32_t j) {
     const scene::LeafPrim& lp = leaves[j];
     if (lp.id == scene::PrimHit::kNoPrim) return false;
@@ -151,13 +264,13 @@ RayCrossings ClosedMesh::crossings(const Ray<double>& ray, TRange range) const {
     }
     switch (h.contact) {
       case Contact::interior:
-        if (h.t >= lo && h.t <= hi) cand.push_back({h.t, lp.id, j, h.contact, -sign_dn(ray.d, slots[j])});
+        if (h.t >= lo && h.t <= hi) cand.push_back({h.t, lp.id, j, h.contact, -sign_dn(ray.d, slots[j]), {}});
         break;
       case Contact::edge:
       case Contact::vertex:
         if (h.t >= lo && h.t <= hi) {
           const Decided dd = decide_perturbed(ray, slots[j]);
-          cand.push_back({h.t, lp.id, j, h.contact, dd.crossed ? -dd.sdn : 0});
+          cand.push_back({h.t, lp.id, j, h.contact, dd.crossed ? -dd.sdn : 0, dd.where});
         }
         break;
       case Contact::coplanar:
@@ -171,18 +284,19 @@ RayCrossings ClosedMesh::crossings(const Ray<double>& ray, TRange range) const {
   });
   std::sort(cand.begin(), cand.end(),
             [](const Candidate& a, const Candidate& b) { return a.t != b.t ? a.t < b.t : a.triangle < b.triangle; });
-  // Runs whose rounded t chain within two ulps: ordered and grouped by exact t.
-  std::vector<mpq_class> exact;
-  std::vector<std::size_t> order;
+  // Runs whose rounded t chain within two ulps: one group when every member is at the same vertex
+  // or on the same edge (as coordinates: the same point); else ordered and grouped by exact t.
   for (std::size_t i = 0; i < cand.size();) {
     std::size_t e = i + 1;
     while (e < cand.size() && cand[e].t <= up2(cand[e - 1].t)) ++e;
-    // groups: [b, g) ranges of equal exact t, in exact order, as indices into cand
-    std::vector<std::pair<std::size_t, std::size_t>> groups;
     order.clear();
     for (std::size_t k = i; k < e; ++k) order.push_back(k);
-    if (e - i == 1) {
-      groups.push_back({0, 1});
+    bool one_point = cand[i].where.kind != 0;
+    for (std::size_t k = i + 1; k < e && one_point; ++k) one_point = cand[k].where == cand[i].where;
+    if (e - i == 1 || one_point) {
+      // One point: every member's t is within one ulp of its exact t; the least is taken (the runs
+      // around are more than two ulps away, so the order stays).
+      emit_group(cand, order.data(), 0, e - i, cand[i].t, range, out);
     } else {
       exact.clear();
       for (std::size_t k = i; k < e; ++k) exact.push_back(exact_t(ray, slots[cand[k].slot]));
@@ -190,32 +304,9 @@ RayCrossings ClosedMesh::crossings(const Ray<double>& ray, TRange range) const {
       for (std::size_t b = 0; b < order.size();) {
         std::size_t g = b + 1;
         while (g < order.size() && exact[order[g] - i] == exact[order[b] - i]) ++g;
-        groups.push_back({b, g});
+        // The exact t correctly rounded: monotone in the exact t, so the listed t never decrease.
+        emit_group(cand, order.data(), b, g, round_nearest(exact[order[b] - i]), range, out);
         b = g;
-      }
-    }
-    for (const auto& [b, g] : groups) {
-      // In a run, the contact's t correctly rounded from its exact value: monotone in the exact t,
-      // so the listed t never decrease (a lone contact keeps the filter's t, within one ulp).
-      const double t = e - i == 1 ? cand[i].t : round_nearest(exact[order[b] - i]);
-      int net = 0;
-      for (std::size_t k = b; k < g; ++k) net += cand[order[k]].net;
-      // The reported triangle: the lowest-numbered one crossed in the net's direction, or (a touch)
-      // the lowest-numbered one met; its t is the contact's.
-      const Candidate* rep = nullptr;
-      Contact worst = Contact::interior;
-      for (std::size_t k = b; k < g; ++k) {
-        const Candidate& c = cand[order[k]];
-        if (c.contact == Contact::vertex || (c.contact == Contact::edge && worst == Contact::interior)) worst = c.contact;
-        const bool fits = net == 0 || (net > 0 ? c.net > 0 : c.net < 0);
-        if (fits && (!rep || c.triangle < rep->triangle)) rep = &c;
-      }
-      if (!(t >= range.tmin && t <= range.tmax)) continue;
-      if (net == 0) {
-        out.touches.push_back({t, t, rep->triangle, worst});
-      } else {
-        const CrossingDirection dir = net > 0 ? CrossingDirection::in : CrossingDirection::out;
-        for (int m = 0; m < std::abs(net); ++m) out.crossings.push_back({t, rep->triangle, dir});
       }
     }
     i = e;
@@ -223,6 +314,11 @@ RayCrossings ClosedMesh::crossings(const Ray<double>& ray, TRange range) const {
   std::stable_sort(out.touches.begin(), out.touches.end(), [](const Touch& a, const Touch& b) {
     return a.t != b.t ? a.t < b.t : a.triangle < b.triangle;
   });
+}
+
+RayCrossings ClosedMesh::crossings(const Ray<double>& ray, TRange range) const {
+  RayCrossings out;
+  crossings_into(ray, range, out);
   return out;
 }
 
@@ -232,7 +328,7 @@ void ClosedMesh::crossings(std::span<const Ray<double>> rays, std::span<RayCross
     throw MeshInputError("ClosedMesh::crossings: " + std::to_string(out.size()) + " results for " +
                          std::to_string(rays.size()) + " rays");
   auto body = [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t i = r.begin(); i < r.end(); ++i) out[i] = crossings(rays[i], range);
+    for (std::size_t i = r.begin(); i < r.end(); ++i) crossings_into(rays[i], range, out[i]);
   };
   if (threads == 1 || rays.size() < 256) return body(tbb::blocked_range<std::size_t>(0, rays.size()));
   tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);

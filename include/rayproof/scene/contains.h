@@ -153,7 +153,10 @@ class ClosedMesh {
   /// the triangles met at one exact point (equal exact t) form one contact whose net count decides:
   /// +k (-k): k crossings in (out), 0: a touch. Any mesh (open, a soup): triangles as given.
   [[nodiscard]] RayCrossings crossings(const Ray<double>& ray, TRange range = {}) const;
-  /// crossings() of every ray into `out` (same size; MeshInputError otherwise).
+  /// crossings() into `out`, reusing its vectors' storage.
+  void crossings_into(const Ray<double>& ray, TRange range, RayCrossings& out) const;
+  /// crossings() of every ray into `out` (same size; MeshInputError otherwise; its vectors' storage
+  /// is reused).
   void crossings(std::span<const Ray<double>> rays, std::span<RayCrossings> out, TRange range = {},
                  int threads = 0) const;
 
