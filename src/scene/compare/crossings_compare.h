@@ -2,7 +2,7 @@
 /// All hits along a ray by Embree 3, for `rayproof bench crossings`: an intersect-context filter
 /// function records every hit of rtcIntersect1 and rejects it (valid = 0), so the traversal goes on
 /// to the next; the hits of one ray are then sorted by t. This is how users collect every crossing
-/// with Embree (its issue 188: a ray through a shared edge or vertex reports each triangle there).
+/// with Embree (a ray through a shared edge or vertex then reports each triangle there).
 /// The ray and the vertices are rounded to float (Embree's precision). Embree stays inside this
 /// target.
 #include <array>
