@@ -151,31 +151,106 @@ Decided decide_gmp(const Ray<double>& r, const std::array<Vec3<double>, 3>& p) {
   return finish(p, s, gs, sgn(den));
 }
 
-/// The same in expansions (exact for inputs in the exponent window of a degree-3 polynomial), else GMP.
-Decided decide_perturbed(const Ray<double>& r, const std::array<Vec3<double>, 3>& p) {
-  using certified::ExpVec3;
-  const Vec3<double>&o = r.o, &dd = r.d, &p0 = p[0], &p1 = p[1], &p2 = p[2];
-  if (!certified::in_range<-200, 200>(o.x, o.y, o.z, dd.x, dd.y, dd.z, p0.x, p0.y, p0.z, p1.x, p1.y, p1.z, p2.x, p2.y,
-                                      p2.z))
-    return decide_gmp(r, p);
-  const ExpVec3 d = certified::exact3(dd);
-  const ExpVec3 A[3] = {certified::diff3(p0, o), certified::diff3(p1, o), certified::diff3(p2, o)};
-  int s[3], gs[3] = {0, 0, 0};
-  certified::Expansion den;
-  for (int i = 0; i < 3; ++i) {
-    const int j = (i + 1) % 3, k = (i + 2) % 3;
-    const certified::Expansion u = dot(d, cross(A[j], A[k]));
-    if (u.bad) return decide_gmp(r, p);
-    den = den + u;
-    s[i] = u.sign();
-    if (s[i] == 0) {
-      const ExpVec3 g = cross(certified::diff3(p[j], p[k]), d);
-      if (certified::any_bad(g)) return decide_gmp(r, p);
-      gs[i] = first_sign([&](int c) { return (c == 0 ? g.x : (c == 1 ? g.y : g.z)).sign(); });
+/// The exact sign of the sum of n doubles (Shewchuk's GROW-EXPANSION on a local array; n <= 24, no
+/// overflow: callers' terms are exact products of inputs in the exponent window).
+int sign_of_sum(const double* x, int n) {
+  double c[32];
+  int m = 0;
+  for (int i = 0; i < n; ++i) {
+    double q = x[i];
+    int k = 0;
+    for (int j = 0; j < m; ++j) {
+      const TwoTerm<double> t = two_sum(q, c[j]);
+      q = t.hi;
+      if (t.lo != 0) c[k++] = t.lo;
+    }
+    if (q != 0) c[k++] = q;
+    m = k;
+  }
+  return m == 0 ? 0 : (c[m - 1] > 0 ? 1 : -1);
+}
+
+/// The exact sign of u = d . (B x C) when B = a - o and C = b - o are exact in double (often so when
+/// a ray is aimed along an axis at a vertex): every product two_prod'ed into at most 24 terms.
+/// Returns 2 when a difference is not exact.
+int u_sign_exact_small(const Vec3<double>& d, const Vec3<double>& o, const Vec3<double>& a, const Vec3<double>& b) {
+  const double A[3] = {a.x, a.y, a.z}, O[3] = {o.x, o.y, o.z}, Bv[3] = {b.x, b.y, b.z}, D[3] = {d.x, d.y, d.z};
+  double B[3], C[3];
+  for (int c = 0; c < 3; ++c) {
+    const TwoTerm<double> x = two_sum(A[c], -O[c]), y = two_sum(Bv[c], -O[c]);
+    if (x.lo != 0 || y.lo != 0) return 2;
+    B[c] = x.hi, C[c] = y.hi;
+  }
+  double terms[24];
+  int n = 0;
+  for (int c = 0; c < 3; ++c) {
+    if (D[c] == 0) continue;
+    const int j = (c + 1) % 3, k = (c + 2) % 3;
+    const TwoTerm<double> p = two_prod(B[j], C[k]), q = two_prod(B[k], C[j]);
+    for (const double v : {p.hi, p.lo, -q.hi, -q.lo}) {
+      if (v == 0) continue;
+      const TwoTerm<double> w = two_prod(D[c], v);
+      terms[n++] = w.hi;
+      if (w.lo != 0) terms[n++] = w.lo;
     }
   }
-  if (den.bad) return decide_gmp(r, p);
-  return finish(p, s, gs, den.sign());
+  return sign_of_sum(terms, n);
+}
+
+double norm_inf(const Vec3<double>& v) { return std::max({std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)}); }
+
+/// The same with a double filter first: u = (d x B) . C with B = a - o, C = b - o rounded, and the
+/// bound of the certified filter's first stage for that expression (certified_triangle.h:
+/// 2^-49 |d|_1 |B|_inf |C|_inf plus 2^-1000 (|C|_inf + 1) for underflow); g_c with the bound
+/// 2^-49 (|e_j d_k| + |e_k d_j|) + 2^-1000 (e = a - b rounded: gamma_3 of the permanent, with room).
+/// What a bound leaves undecided (mostly the exact zeros of an edge or vertex contact) goes to the
+/// expansions, exact for inputs in the exponent window of a degree-3 polynomial; outside it, GMP.
+Decided decide_perturbed(const Ray<double>& r, const std::array<Vec3<double>, 3>& p) {
+  using certified::ExpVec3;
+  const Vec3<double>&o = r.o, &d = r.d, &p0 = p[0], &p1 = p[1], &p2 = p[2];
+  if (!certified::in_range<-200, 200>(o.x, o.y, o.z, d.x, d.y, d.z, p0.x, p0.y, p0.z, p1.x, p1.y, p1.z, p2.x, p2.y,
+                                      p2.z))
+    return decide_gmp(r, p);
+  const double d1 = std::fabs(d.x) + std::fabs(d.y) + std::fabs(d.z);
+  const bool filter = d1 >= 0x1p-960;
+  int s[3], gs[3] = {0, 0, 0};
+  for (int i = 0; i < 3; ++i) {
+    const int j = (i + 1) % 3, k = (i + 2) % 3;
+    const Vec3<double> B = p[j] - o, C = p[k] - o;
+    const double u = dot(cross(d, B), C);
+    const double mc = norm_inf(C), eu = 0x1p-49 * d1 * norm_inf(B) * mc + 0x1p-1000 * (mc + 1);
+    if (filter && eu < 0x1p1000 && std::fabs(u) > eu) {
+      s[i] = u > 0 ? 1 : -1;
+      continue;
+    }
+    if (const int small = u_sign_exact_small(d, o, p[j], p[k]); small != 2) {
+      s[i] = small;
+    } else {
+      const certified::Expansion ux =
+          dot(certified::exact3(d), cross(certified::diff3(p[j], o), certified::diff3(p[k], o)));
+      if (ux.bad) return decide_gmp(r, p);
+      s[i] = ux.sign();
+    }
+    if (s[i] != 0) continue;
+    const Vec3<double> e = p[j] - p[k], gv = cross(e, d);
+    const double eg[3] = {0x1p-49 * (std::fabs(e.y * d.z) + std::fabs(e.z * d.y)) + 0x1p-1000,
+                          0x1p-49 * (std::fabs(e.z * d.x) + std::fabs(e.x * d.z)) + 0x1p-1000,
+                          0x1p-49 * (std::fabs(e.x * d.y) + std::fabs(e.y * d.x)) + 0x1p-1000};
+    const double gd[3] = {gv.x, gv.y, gv.z};
+    bool done = false;
+    for (int c = 0; c < 3 && !done; ++c) {
+      if (std::fabs(gd[c]) > eg[c] && eg[c] < 0x1p1000) {
+        gs[i] = gd[c] > 0 ? 1 : -1;
+        done = true;
+      } else {
+        const ExpVec3 g = cross(certified::diff3(p[j], p[k]), certified::exact3(d));
+        if (certified::any_bad(g)) return decide_gmp(r, p);
+        const int v = (c == 0 ? g.x : (c == 1 ? g.y : g.z)).sign();
+        if (v) gs[i] = v, done = true;  // else this component is exactly 0: the next one decides
+      }
+    }
+  }
+  return finish(p, s, gs, sign_dn(d, p));
 }
 
 struct Candidate {
