@@ -406,3 +406,69 @@ TEST(Crossings, BatchMatchesSingle) {
 }
 
 }  // namespace
+
+namespace {
+
+/// A UV sphere of n rings with radii scaled at random in [0.6, 1.4] (closed, oriented, often
+/// self-intersecting), coordinates generic doubles.
+Shape bumpy_sphere(int n, std::mt19937& rng) {
+  std::uniform_real_distribution<double> scale(0.6, 1.4);
+  Shape s;
+  const double pi = std::acos(-1.0);
+  s.v.push_back({0, 0, scale(rng)}), s.v.push_back({0, 0, -scale(rng)});
+  for (int i = 1; i < n; ++i)
+    for (int j = 0; j < 2 * n; ++j) {
+      const double a = pi * i / n, b = pi * j / n, r = scale(rng);
+      s.v.push_back({r * std::sin(a) * std::cos(b), r * std::sin(a) * std::sin(b), r * std::cos(a)});
+    }
+  auto ring = [&](int i, int j) { return std::uint32_t(2 + i * 2 * n + (j % (2 * n))); };
+  for (int j = 0; j < 2 * n; ++j) {
+    s.t.push_back({0, ring(0, j), ring(0, j + 1)});
+    s.t.push_back({1, ring(n - 2, j + 1), ring(n - 2, j)});
+  }
+  for (int i = 0; i + 1 < n - 1; ++i)
+    for (int j = 0; j < 2 * n; ++j) {
+      s.t.push_back({ring(i, j), ring(i + 1, j), ring(i + 1, j + 1)});
+      s.t.push_back({ring(i, j), ring(i + 1, j + 1), ring(i, j + 1)});
+    }
+  return s;
+}
+
+// Many random closed meshes with generic coordinates: axis rays exactly through vertices (the
+// vertex's coordinates kept, the origin moved along one axis) and random rays; the net count must
+// be minus the exact winding number at the origin, and t must never decrease.
+TEST(CrossingsRandomMeshes, WindingIdentityThroughVertices) {
+  std::mt19937 rng(42);
+  std::size_t checked = 0, vertex_contacts = 0;
+  for (int mesh = 0; mesh < 40; ++mesh) {
+    const Shape s = bumpy_sphere(6 + int(rng() % 6), rng);
+    const ClosedMesh m = make(s);
+    ASSERT_TRUE(m.oriented());
+    std::uniform_real_distribution<double> u(-1.5, 1.5);
+    for (int i = 0; i < 200; ++i) {
+      Ray<double> r;
+      if (i % 2 == 0) {
+        const Vec3<double>& v = s.v[rng() % s.v.size()];
+        const int k = int(rng() % 3);
+        const double shift = u(rng);
+        r.o = v;
+        (k == 0 ? r.o.x : (k == 1 ? r.o.y : r.o.z)) += shift;
+        r.d = {0, 0, 0};
+        (k == 0 ? r.d.x : (k == 1 ? r.d.y : r.d.z)) = shift > 0 ? -1 : 1;
+      } else {
+        r = {{u(rng), u(rng), u(rng)}, {u(rng), u(rng), u(rng)}};
+      }
+      const RayCrossings got = m.crossings(r);
+      for (std::size_t k = 1; k < got.crossings.size(); ++k) ASSERT_LE(got.crossings[k - 1].t, got.crossings[k].t);
+      for (const auto& t : got.touches) vertex_contacts += t.contact == Contact::vertex;
+      const std::int32_t w = m.winding(r.o);
+      if (w == ClosedMesh::kOnSurface) continue;
+      ASSERT_EQ(got.net(), -w) << "mesh " << mesh << " ray " << i;
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 7000u);
+  EXPECT_GT(vertex_contacts, 0u);
+}
+
+}  // namespace

@@ -196,7 +196,7 @@ int run_bench_crossings(const BenchCrossingsOptions& opt) {
       const double best_embree = *std::max_element(rate_embree.begin(), rate_embree.end());
       fmt::print("  rayproof / embree (best runs): {:.2f}\n", best_ours / best_embree);
       fmt::print("  embree's {} hits: {} at a crossing (first), {} duplicates (a crossing reported again), {} at touches, "
-                 "{} at no exact contact; {} of rayproof's crossings had no embree hit; {} of {} rays with exactly "
+                 "{} at no exact contact; {} of rayproof's crossings had no embree hit matched to them; {} of {} rays with exactly "
                  "one embree hit per crossing and no other\n",
                  t.hits, t.right, t.duplicates, t.at_touches, t.unmatched, t.missed, t.rays_exact, set->size());
     }
