@@ -21,6 +21,8 @@
 ///   the parity ray with edges and vertices are decided by Simulation of Simplicity: no retry, no
 ///   epsilon. Zero-area triangles are never crossed and are not surface.
 /// - A point with a NaN or infinite coordinate is Side::invalid.
+/// - crossings(ray): every crossing of a ray once, with its direction, and the touches apart, exact
+///   (any mesh; docs/contains.md, "Crossings").
 /// - Threads: queries are const and may run concurrently; the batch calls run on a TBB arena of
 ///   `threads` threads (0: TBB's default).
 /// Link rayproof::scene_certified (its exact fallback for inputs outside the expansions' exponent
