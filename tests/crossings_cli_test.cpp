@@ -68,3 +68,20 @@ TEST(CrossingsCli, ClearErrors) {
 }
 
 }  // namespace
+
+namespace {
+
+// fuzz --mesh --crossings: a short campaign on the random closed meshes of fuzz --mesh passes, and
+// says how many rays it aimed at vertices and edges (where all-hits double-counts).
+TEST(CrossingsCli, FuzzCampaign) {
+  auto r = rayproof::testing::run_rayproof("fuzz --mesh --crossings --cases 6 --seed 5");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("crossings: 6 meshes"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("aimed at a vertex or an edge midpoint"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("; 0 rays where the net count"), std::string::npos) << r.out;
+  r = rayproof::testing::run_rayproof("fuzz --crossings --cases 1");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("--crossings goes with --mesh"), std::string::npos) << r.err;
+}
+
+}  // namespace
