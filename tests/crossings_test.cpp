@@ -472,3 +472,28 @@ TEST(CrossingsRandomMeshes, WindingIdentityThroughVertices) {
 }
 
 }  // namespace
+
+namespace {
+
+// Far from 1: the cube and its rays scaled by 2^-600 and 2^600 (outside the expansions' exponent
+// window: the GMP paths) give the unscaled answers, t included (t does not change when o and d scale
+// together).
+TEST(Crossings, ScaledFarFromOne) {
+  const Ray<double> rays[] = {ray({-1, 0.5, 0.75}, {1, 0, 0}), ray({-1, -1, 0.5}, {1, 1, 0}), ray({-1, -1, -1}, {1, 1, 1}),
+                              ray({-1, 1, 1}, {1, 0, 1}), ray({-1, 1, 2}, {1, 0, 0}), ray({-1, 1, 0}, {1, 0, 0})};
+  const ClosedMesh unit = make(cube());
+  for (const double f : {0x1p-600, 0x1p600}) {
+    Shape s = cube();
+    for (auto& p : s.v) p = {p.x * f, p.y * f, p.z * f};
+    const ClosedMesh m = make(s);
+    for (const auto& r : rays) {
+      const RayCrossings a = unit.crossings(r);
+      const RayCrossings b = m.crossings(ray({r.o.x * f, r.o.y * f, r.o.z * f}, {r.d.x * f, r.d.y * f, r.d.z * f}));
+      EXPECT_EQ(dirs(a), dirs(b)) << f;
+      EXPECT_EQ(ts(a), ts(b)) << f;
+      EXPECT_EQ(a.touches.size(), b.touches.size()) << f;
+    }
+  }
+}
+
+}  // namespace
