@@ -97,7 +97,7 @@ struct Touch {
 
 /// Every crossing of one ray in exact t order, and its touches (docs/contains.md, "Crossings").
 struct RayCrossings {
-  bool valid = false;  ///< false for a ray with a NaN or infinite component or d = 0
+  bool valid = false;  ///< false for a ray with a NaN or infinite component or d = 0, or tmin > tmax (or NaN)
   std::vector<Crossing> crossings;
   std::vector<Touch> touches;
   /// (number in) - (number out): on a closed oriented mesh, the winding number at the far end of
