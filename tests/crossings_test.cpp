@@ -1,4 +1,4 @@
-// ClosedMesh::crossings (rayproof/scene/contains.h): every crossing of a ray once, with its
+// ClosedMesh::ray_crossings (rayproof/scene/contains.h): every crossing of a ray once, with its
 // direction, touches apart. Rays through a cube's faces, edges, face diagonals and vertices, along
 // its faces and grazing its silhouette; a tetrahedron through and along its edges; an open box; and
 // random rays on lattice meshes (closed, bumpy, holed) against a brute force in GMP rationals that
@@ -72,7 +72,7 @@ std::size_t touches_of(const RayCrossings& r, Contact c) {
 
 TEST(Crossings, CubeThroughFaces) {
   const ClosedMesh m = make(cube());
-  const RayCrossings r = m.crossings(ray({-1, 0.5, 0.75}, {1, 0, 0}));
+  const RayCrossings r = m.ray_crossings(ray({-1, 0.5, 0.75}, {1, 0, 0}));
   ASSERT_TRUE(r.valid);
   EXPECT_EQ(dirs(r), (std::vector{In, Out}));
   EXPECT_EQ(ts(r), (std::vector{1.0, 3.0}));
@@ -86,22 +86,22 @@ TEST(Crossings, CubeThroughFaces) {
 TEST(Crossings, CubeThroughEdgesDiagonalsAndVertices) {
   const ClosedMesh m = make(cube());
   // Through the vertical edges x = y = 0 and x = y = 2 (each shared by two faces' triangles).
-  RayCrossings r = m.crossings(ray({-1, -1, 0.5}, {1, 1, 0}));
+  RayCrossings r = m.ray_crossings(ray({-1, -1, 0.5}, {1, 1, 0}));
   EXPECT_EQ(dirs(r), (std::vector{In, Out}));
   EXPECT_EQ(ts(r), (std::vector{1.0, 3.0}));
   EXPECT_TRUE(r.touches.empty());
   // Through the diagonals of the bottom and top faces (edges shared by coplanar triangles).
-  r = m.crossings(ray({1, 1, -1}, {0, 0, 1}));
+  r = m.ray_crossings(ray({1, 1, -1}, {0, 0, 1}));
   EXPECT_EQ(dirs(r), (std::vector{In, Out}));
   EXPECT_EQ(ts(r), (std::vector{1.0, 3.0}));
   EXPECT_TRUE(r.touches.empty());
   // Through the opposite corners (0, 0, 0) and (2, 2, 2): six triangles meet at each.
-  r = m.crossings(ray({-1, -1, -1}, {1, 1, 1}));
+  r = m.ray_crossings(ray({-1, -1, -1}, {1, 1, 1}));
   EXPECT_EQ(dirs(r), (std::vector{In, Out}));
   EXPECT_EQ(ts(r), (std::vector{1.0, 3.0}));
   EXPECT_TRUE(r.touches.empty());
   // Through a corner out of the other side's face interior.
-  r = m.crossings(ray({-2, -1, -1}, {2, 1, 1}));
+  r = m.ray_crossings(ray({-2, -1, -1}, {2, 1, 1}));
   EXPECT_EQ(dirs(r), (std::vector{In, Out}));
   EXPECT_EQ(ts(r), (std::vector{1.0, 2.0}));
 }
@@ -109,19 +109,19 @@ TEST(Crossings, CubeThroughEdgesDiagonalsAndVertices) {
 TEST(Crossings, CubeGrazingSilhouette) {
   const ClosedMesh m = make(cube());
   // Touches the edge x = 0, z = 2 at (0, 1, 2) and leaves above the cube.
-  RayCrossings r = m.crossings(ray({-1, 1, 1}, {1, 0, 1}));
+  RayCrossings r = m.ray_crossings(ray({-1, 1, 1}, {1, 0, 1}));
   EXPECT_TRUE(r.crossings.empty());
   ASSERT_EQ(r.touches.size(), 1u);
   EXPECT_EQ(r.touches[0].contact, Contact::edge);
   EXPECT_EQ(r.touches[0].t, 1.0);
   // Touches the corner (0, 0, 0) only.
-  r = m.crossings(ray({-1, -1, 1}, {1, 1, -1}));
+  r = m.ray_crossings(ray({-1, -1, 1}, {1, 1, -1}));
   EXPECT_TRUE(r.crossings.empty());
   ASSERT_EQ(r.touches.size(), 1u);
   EXPECT_EQ(r.touches[0].contact, Contact::vertex);
   EXPECT_EQ(r.touches[0].t, 1.0);
   // A miss is neither.
-  r = m.crossings(ray({-1, -1, 1}, {1, 0, 0}));
+  r = m.ray_crossings(ray({-1, -1, 1}, {1, 0, 0}));
   EXPECT_TRUE(r.crossings.empty() && r.touches.empty());
 }
 
@@ -129,7 +129,7 @@ TEST(Crossings, CubeAlongFaces) {
   const ClosedMesh m = make(cube());
   // In the plane of the top face: its two triangles are coplanar touches; the perturbed ray
   // (moved by eps^3 towards +z) passes above the cube, so the side faces are touched, not crossed.
-  RayCrossings r = m.crossings(ray({-1, 1, 2}, {1, 0, 0}));
+  RayCrossings r = m.ray_crossings(ray({-1, 1, 2}, {1, 0, 0}));
   EXPECT_TRUE(r.crossings.empty());
   EXPECT_EQ(touches_of(r, Contact::coplanar), 2u);
   EXPECT_EQ(touches_of(r, Contact::edge), 2u);
@@ -139,7 +139,7 @@ TEST(Crossings, CubeAlongFaces) {
     }
   }
   // In the plane of the bottom face the perturbed ray runs just inside: in at x = 0, out at x = 2.
-  r = m.crossings(ray({-1, 1, 0}, {1, 0, 0}));
+  r = m.ray_crossings(ray({-1, 1, 0}, {1, 0, 0}));
   EXPECT_EQ(dirs(r), (std::vector{In, Out}));
   EXPECT_EQ(ts(r), (std::vector{1.0, 3.0}));
   EXPECT_EQ(touches_of(r, Contact::coplanar), 2u);
@@ -147,30 +147,30 @@ TEST(Crossings, CubeAlongFaces) {
 
 TEST(Crossings, OriginsInsideAndOnTheSurfaceAndRanges) {
   const ClosedMesh m = make(cube());
-  RayCrossings r = m.crossings(ray({1, 1, 1}, {1, 0.25, 0.5}));
+  RayCrossings r = m.ray_crossings(ray({1, 1, 1}, {1, 0.25, 0.5}));
   EXPECT_EQ(dirs(r), (std::vector{Out}));
   EXPECT_EQ(r.net(), -m.winding({1, 1, 1}));
   // On the face x = 0: the contact at t = 0 counts (the range is closed).
-  r = m.crossings(ray({0, 1, 1}, {1, 0, 0}));
+  r = m.ray_crossings(ray({0, 1, 1}, {1, 0, 0}));
   EXPECT_EQ(dirs(r), (std::vector{In, Out}));
   EXPECT_EQ(ts(r), (std::vector{0.0, 2.0}));
-  r = m.crossings(ray({0, 1, 1}, {1, 0, 0}), {0.5, 10});
+  r = m.ray_crossings(ray({0, 1, 1}, {1, 0, 0}), {0.5, 10});
   EXPECT_EQ(dirs(r), (std::vector{Out}));
-  r = m.crossings(ray({-1, 1, 1}, {1, 0, 0}), {0, 1});
+  r = m.ray_crossings(ray({-1, 1, 1}, {1, 0, 0}), {0, 1});
   EXPECT_EQ(dirs(r), (std::vector{In}));
-  r = m.crossings(ray({-1, 1, 1}, {1, 0, 0}), {0, 0.5});
+  r = m.ray_crossings(ray({-1, 1, 1}, {1, 0, 0}), {0, 0.5});
   EXPECT_TRUE(r.valid && r.crossings.empty());
   // Bad rays: not valid, nothing found.
   const double nan = std::nan("");
-  EXPECT_FALSE(m.crossings(ray({0, 0, 0}, {0, 0, 0})).valid);
-  EXPECT_FALSE(m.crossings(ray({nan, 0, 0}, {1, 0, 0})).valid);
-  EXPECT_FALSE(m.crossings(ray({0, 0, 0}, {1, 0, INFINITY})).valid);
+  EXPECT_FALSE(m.ray_crossings(ray({0, 0, 0}, {0, 0, 0})).valid);
+  EXPECT_FALSE(m.ray_crossings(ray({nan, 0, 0}, {1, 0, 0})).valid);
+  EXPECT_FALSE(m.ray_crossings(ray({0, 0, 0}, {1, 0, INFINITY})).valid);
 }
 
 TEST(Crossings, Tetrahedron) {
   const ClosedMesh m = make(tetrahedron());
   // Through the slanted face's interior, out through the corner where three faces meet.
-  RayCrossings r = m.crossings(ray({1, 1, 1}, {-1, -1, -1}));
+  RayCrossings r = m.ray_crossings(ray({1, 1, 1}, {-1, -1, -1}));
   EXPECT_EQ(dirs(r), (std::vector{In, Out}));
   ASSERT_EQ(r.crossings.size(), 2u);
   EXPECT_NEAR(r.crossings[0].t, 2.0 / 3.0, 1e-15);
@@ -178,7 +178,7 @@ TEST(Crossings, Tetrahedron) {
   EXPECT_EQ(r.crossings[1].t, 1.0);
   // Down the edge x = y = 0: faces x = 0 and y = 0 hold the ray (coplanar touches); the perturbed
   // ray (x = eps, y = eps^2) runs inside, in through the top vertex and out through the bottom one.
-  r = m.crossings(ray({0, 0, 2}, {0, 0, -1}));
+  r = m.ray_crossings(ray({0, 0, 2}, {0, 0, -1}));
   EXPECT_EQ(dirs(r), (std::vector{In, Out}));
   EXPECT_EQ(ts(r), (std::vector{1.0, 2.0}));
   EXPECT_EQ(touches_of(r, Contact::coplanar), 2u);
@@ -187,7 +187,7 @@ TEST(Crossings, Tetrahedron) {
   Shape mirrored = t;
   for (auto& p : mirrored.v) p.x = -p.x;
   for (auto& tri : mirrored.t) std::swap(tri[1], tri[2]);
-  r = make(mirrored).crossings(ray({0, 0, 2}, {0, 0, -1}));
+  r = make(mirrored).ray_crossings(ray({0, 0, 2}, {0, 0, -1}));
   EXPECT_TRUE(r.crossings.empty());
   EXPECT_EQ(touches_of(r, Contact::vertex), 2u);
 }
@@ -198,11 +198,11 @@ TEST(Crossings, OpenBox) {
   const ClosedMesh m = make(s);
   EXPECT_FALSE(m.closed());
   // Down through the missing top: only the bottom, crossed along its normal (-z): out.
-  RayCrossings r = m.crossings(ray({0.5, 0.75, 3}, {0, 0, -1}));
+  RayCrossings r = m.ray_crossings(ray({0.5, 0.75, 3}, {0, 0, -1}));
   EXPECT_EQ(dirs(r), (std::vector{Out}));
   EXPECT_EQ(ts(r), (std::vector{3.0}));
   // Up through the bottom: in, and nothing at the top.
-  r = m.crossings(ray({0.5, 0.75, -1}, {0, 0, 1}));
+  r = m.ray_crossings(ray({0.5, 0.75, -1}, {0, 0, 1}));
   EXPECT_EQ(dirs(r), (std::vector{In}));
 }
 
@@ -321,7 +321,7 @@ void check_against_brute(const Shape& s, int n, int rays, std::uint32_t seed, bo
   std::size_t edge_or_vertex = 0, touched = 0, coplanar = 0, checked_winding = 0;
   for (int i = 0; i < rays; ++i) {
     const Ray<double> r = lattice_ray(rng, n);
-    const RayCrossings got = m.crossings(r);
+    const RayCrossings got = m.ray_crossings(r);
     const Expected want = brute(s, r);
     ASSERT_EQ(dirs(got), want.dirs) << "ray " << i << " o (" << r.o.x << ", " << r.o.y << ", " << r.o.z << ") d ("
                                     << r.d.x << ", " << r.d.y << ", " << r.d.z << ")";
@@ -394,15 +394,15 @@ TEST(Crossings, BatchMatchesSingle) {
   std::vector<Ray<double>> rays;
   for (int i = 0; i < 2000; ++i) rays.push_back(lattice_ray(rng, 4));
   std::vector<RayCrossings> out(rays.size());
-  m.crossings(rays, out, {}, 2);
+  m.ray_crossings(rays, out, {}, 2);
   for (std::size_t i = 0; i < rays.size(); ++i) {
-    const RayCrossings one = m.crossings(rays[i]);
+    const RayCrossings one = m.ray_crossings(rays[i]);
     ASSERT_EQ(dirs(out[i]), dirs(one));
     ASSERT_EQ(ts(out[i]), ts(one));
     ASSERT_EQ(out[i].touches.size(), one.touches.size());
   }
   std::vector<RayCrossings> wrong(3);
-  EXPECT_THROW(m.crossings(rays, wrong), rayproof::MeshInputError);
+  EXPECT_THROW(m.ray_crossings(rays, wrong), rayproof::MeshInputError);
 }
 
 }  // namespace
@@ -458,7 +458,7 @@ TEST(CrossingsRandomMeshes, WindingIdentityThroughVertices) {
       } else {
         r = {{u(rng), u(rng), u(rng)}, {u(rng), u(rng), u(rng)}};
       }
-      const RayCrossings got = m.crossings(r);
+      const RayCrossings got = m.ray_crossings(r);
       for (std::size_t k = 1; k < got.crossings.size(); ++k) ASSERT_LE(got.crossings[k - 1].t, got.crossings[k].t);
       for (const auto& t : got.touches) vertex_contacts += t.contact == Contact::vertex;
       const std::int32_t w = m.winding(r.o);
@@ -487,8 +487,8 @@ TEST(Crossings, ScaledFarFromOne) {
     for (auto& p : s.v) p = {p.x * f, p.y * f, p.z * f};
     const ClosedMesh m = make(s);
     for (const auto& r : rays) {
-      const RayCrossings a = unit.crossings(r);
-      const RayCrossings b = m.crossings(ray({r.o.x * f, r.o.y * f, r.o.z * f}, {r.d.x * f, r.d.y * f, r.d.z * f}));
+      const RayCrossings a = unit.ray_crossings(r);
+      const RayCrossings b = m.ray_crossings(ray({r.o.x * f, r.o.y * f, r.o.z * f}, {r.d.x * f, r.d.y * f, r.d.z * f}));
       EXPECT_EQ(dirs(a), dirs(b)) << f;
       EXPECT_EQ(ts(a), ts(b)) << f;
       EXPECT_EQ(a.touches.size(), b.touches.size()) << f;

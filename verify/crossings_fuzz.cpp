@@ -1,4 +1,4 @@
-// run_crossings_fuzz: ClosedMesh::crossings on the random closed meshes of fuzz --mesh, against the
+// run_crossings_fuzz: ClosedMesh::ray_crossings on the random closed meshes of fuzz --mesh, against the
 // exact winding number at each ray's origin.
 #include "verify/crossings_fuzz.h"
 
@@ -51,7 +51,7 @@ CrossingsFuzzResult run_crossings_fuzz(const MeshFuzzOptions& opt) {
       for (int k = 0; k < opt.parity_rays; ++k) rays.push_back({{p, {g(rng), g(rng), g(rng)}}, false});
       for (const auto& [r, aimed] : rays) {
         if (!r.valid()) continue;
-        const RayCrossings c = cm.crossings(r);
+        const RayCrossings c = cm.ray_crossings(r);
         ++res.rays;
         res.aimed_rays += aimed;
         res.crossings += c.crossings.size();

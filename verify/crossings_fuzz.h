@@ -1,5 +1,5 @@
 #pragma once
-/// Fuzzing of ClosedMesh::crossings (`rayproof fuzz --mesh --crossings`): the random closed meshes of
+/// Fuzzing of ClosedMesh::ray_crossings (`rayproof fuzz --mesh --crossings`): the random closed meshes of
 /// `fuzz --mesh` (verify/mesh_fuzz.h, the same mesh i for a seed), rays from their interior points
 /// and from points outside aimed exactly at every vertex, at every edge's midpoint and in random
 /// directions. On a closed oriented mesh the net count of crossings (in minus out) along a ray from

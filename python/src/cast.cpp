@@ -203,7 +203,7 @@ class PyMesh {
     std::vector<RayCrossings> res(n);
     {
       py::gil_scoped_release unlocked;
-      cm.crossings(rays, res, {tmin, tmax}, threads);
+      cm.ray_crossings(rays, res, {tmin, tmax}, threads);
     }
     std::size_t nc = 0, nt = 0;
     for (const auto& r : res) nc += r.crossings.size(), nt += r.touches.size();

@@ -60,7 +60,7 @@ int run_cast_crossings(const CastCrossingsArgs& a) {
     return 2;
   }
   std::vector<RayCrossings> out(rays.size());
-  cm->crossings(rays, out, {a.tmin, a.tmax}, a.threads);
+  cm->ray_crossings(rays, out, {a.tmin, a.tmax}, a.threads);
   std::string text;
   int bad = 0;
   for (std::size_t i = 0; i < rays.size(); ++i) {

@@ -1,5 +1,5 @@
 /// rayproof bench crossings [MESH...] [--rays N] [--repeat R]: every crossing along rays, side by
-/// side on one thread: rayproof's ClosedMesh::crossings (each crossing once, exact) and Embree 3's
+/// side on one thread: rayproof's ClosedMesh::ray_crossings (each crossing once, exact) and Embree 3's
 /// all hits (a filter function records every hit and rejects it so traversal goes on; sorted by
 /// t). Both see the mesh with its vertices rounded to float (Embree's precision) and rays whose
 /// origin and direction are floats. Ray sets: random (origins in the box, uniform directions) and
@@ -164,7 +164,7 @@ int run_bench_crossings(const BenchCrossingsOptions& opt) {
       std::vector<double> rate_ours, rate_embree;
       for (int rep = 0; rep < opt.repeat; ++rep) {
         double t0 = thread_seconds();
-        cm->crossings(*set, ours, {}, 1);
+        cm->ray_crossings(*set, ours, {}, 1);
         rate_ours.push_back(double(set->size()) / (thread_seconds() - t0) * 1e-6);
         if (embree.run) {
           t0 = thread_seconds();

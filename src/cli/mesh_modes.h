@@ -41,7 +41,7 @@ struct FuzzCliOptions {
   int jobs = 1;
   std::string out = "fuzz-findings";
   bool mesh = false;
-  bool crossings = false;  ///< with mesh: fuzz ClosedMesh::crossings instead (fuzz_crossings.cpp)
+  bool crossings = false;  ///< with mesh: fuzz ClosedMesh::ray_crossings instead (fuzz_crossings.cpp)
   std::string shard;    ///< K/N
   std::string summary;  ///< write the summary as JSON here
   UserKernelOptions user;

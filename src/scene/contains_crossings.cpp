@@ -1,4 +1,4 @@
-// ClosedMesh::crossings: every point where a ray passes through the surface, once, with its
+// ClosedMesh::ray_crossings: every point where a ray passes through the surface, once, with its
 // direction, and the touches apart (docs/contains.md, "Crossings").
 //
 // Candidates: the BVH along the ray (conservative traversal), each triangle classified by the
@@ -364,7 +364,7 @@ struct Scratch {
 
 }  // namespace
 
-void ClosedMesh::crossings_into(const Ray<double>& ray, TRange range, RayCrossings& out) const {
+void ClosedMesh::ray_crossings_into(const Ray<double>& ray, TRange range, RayCrossings& out) const {
   out.crossings.clear();
   out.touches.clear();
   out.valid = false;
@@ -439,19 +439,19 @@ void ClosedMesh::crossings_into(const Ray<double>& ray, TRange range, RayCrossin
   });
 }
 
-RayCrossings ClosedMesh::crossings(const Ray<double>& ray, TRange range) const {
+RayCrossings ClosedMesh::ray_crossings(const Ray<double>& ray, TRange range) const {
   RayCrossings out;
-  crossings_into(ray, range, out);
+  ray_crossings_into(ray, range, out);
   return out;
 }
 
-void ClosedMesh::crossings(std::span<const Ray<double>> rays, std::span<RayCrossings> out, TRange range,
+void ClosedMesh::ray_crossings(std::span<const Ray<double>> rays, std::span<RayCrossings> out, TRange range,
                            int threads) const {
   if (rays.size() != out.size())
-    throw MeshInputError("ClosedMesh::crossings: " + std::to_string(out.size()) + " results for " +
+    throw MeshInputError("ClosedMesh::ray_crossings: " + std::to_string(out.size()) + " results for " +
                          std::to_string(rays.size()) + " rays");
   auto body = [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t i = r.begin(); i < r.end(); ++i) crossings_into(rays[i], range, out[i]);
+    for (std::size_t i = r.begin(); i < r.end(); ++i) ray_crossings_into(rays[i], range, out[i]);
   };
   if (threads == 1 || rays.size() < 256) return body(tbb::blocked_range<std::size_t>(0, rays.size()));
   tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);

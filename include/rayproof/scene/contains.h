@@ -21,7 +21,7 @@
 ///   the parity ray with edges and vertices are decided by Simulation of Simplicity: no retry, no
 ///   epsilon. Zero-area triangles are never crossed and are not surface.
 /// - A point with a NaN or infinite coordinate is Side::invalid.
-/// - crossings(ray): every crossing of a ray once, with its direction, and the touches apart, exact
+/// - ray_crossings(ray): every crossing of a ray once, with its direction, and the touches apart, exact
 ///   (any mesh; docs/contains.md, "Crossings").
 /// - Threads: queries are const and may run concurrently; the batch calls run on a TBB arena of
 ///   `threads` threads (0: TBB's default).
@@ -154,12 +154,12 @@ class ClosedMesh {
   /// not as by the ray moved sideways by an infinitesimal (o + eps e_x + eps^2 e_y + eps^3 e_z), and
   /// the triangles met at one exact point (equal exact t) form one contact whose net count decides:
   /// +k (-k): k crossings in (out), 0: a touch. Any mesh (open, a soup): triangles as given.
-  [[nodiscard]] RayCrossings crossings(const Ray<double>& ray, TRange range = {}) const;
-  /// crossings() into `out`, reusing its vectors' storage.
-  void crossings_into(const Ray<double>& ray, TRange range, RayCrossings& out) const;
-  /// crossings() of every ray into `out` (same size; MeshInputError otherwise; its vectors' storage
+  [[nodiscard]] RayCrossings ray_crossings(const Ray<double>& ray, TRange range = {}) const;
+  /// ray_crossings() into `out`, reusing its vectors' storage.
+  void ray_crossings_into(const Ray<double>& ray, TRange range, RayCrossings& out) const;
+  /// ray_crossings() of every ray into `out` (same size; MeshInputError otherwise; its vectors' storage
   /// is reused).
-  void crossings(std::span<const Ray<double>> rays, std::span<RayCrossings> out, TRange range = {},
+  void ray_crossings(std::span<const Ray<double>> rays, std::span<RayCrossings> out, TRange range = {},
                  int threads = 0) const;
 
   /// Whether the closed segment p->q meets the surface, and where first.
