@@ -3,6 +3,7 @@
 // meet (a bad ray line, a scene that is not a mesh file, --touches without crossings).
 #include <gtest/gtest.h>
 
+#include <cstdio>
 #include <string>
 
 #include "cli_support.h"
@@ -82,6 +83,45 @@ TEST(CrossingsCli, FuzzCampaign) {
   r = rayproof::testing::run_rayproof("fuzz --crossings --cases 1");
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("--crossings goes with --mesh"), std::string::npos) << r.err;
+}
+
+}  // namespace
+
+namespace {
+
+// bench crossings on an octahedron: the rays through vertices are axis rays, each through one
+// vertex where four triangles meet; Embree's counts (when built) are printed beside rayproof's.
+std::string octahedron_off() {
+  std::string s = "OFF\n6 8 0\n1 0 0\n-1 0 0\n0 1 0\n0 -1 0\n0 0 1\n0 0 -1\n";
+  for (int sx : {0, 1})
+    for (int sy : {2, 3})
+      for (int sz : {4, 5}) {
+        const bool flip = ((sx == 1) + (sy == 3) + (sz == 5)) % 2;  // outward
+        s += flip ? "3 " + std::to_string(sx) + " " + std::to_string(sz) + " " + std::to_string(sy) + "\n"
+                  : "3 " + std::to_string(sx) + " " + std::to_string(sy) + " " + std::to_string(sz) + "\n";
+      }
+  return s;
+}
+
+TEST(CrossingsCli, BenchOnAnOctahedron) {
+  const auto mesh = write_file("octahedron.off", octahedron_off());
+  const auto r = run_rayproof("bench crossings " + mesh.string() + " --rays 300 --repeat 1");
+  ASSERT_EQ(r.status, 0) << r.err;
+  // A ray along the vertex's own axis crosses twice (in at one vertex, out at the opposite one);
+  // along another axis it touches the vertex only: crossings / 2 + touches = rays.
+  const std::string head = "rays through vertices: 300 rays; rayproof: ";
+  const auto at = r.out.find(head);
+  ASSERT_NE(at, std::string::npos) << r.out;
+  std::size_t crossings = 0, touches = 0;
+  ASSERT_EQ(std::sscanf(r.out.c_str() + at + head.size(), "%zu crossings, %zu touches", &crossings, &touches), 2) << r.out;
+  EXPECT_EQ(crossings % 2, 0u);
+  EXPECT_EQ(crossings / 2 + touches, 300u) << r.out;
+  EXPECT_GT(crossings, 0u);
+  EXPECT_GT(touches, 0u);
+  EXPECT_NE(r.out.find("rayproof crossings"), std::string::npos) << r.out;
+  if (r.out.find("embree all hits ") != std::string::npos) {
+    EXPECT_NE(r.out.find("duplicates (a crossing reported again)"), std::string::npos) << r.out;
+  }
 }
 
 }  // namespace

@@ -194,7 +194,7 @@ int run_bench_crossings(const BenchCrossingsOptions& opt) {
       fmt::print("  {:<18} {:>20}\n", "embree all hits", range(rate_embree));
       const double best_ours = *std::max_element(rate_ours.begin(), rate_ours.end());
       const double best_embree = *std::max_element(rate_embree.begin(), rate_embree.end());
-      fmt::print("  rayproof / embree (best runs): {:.2f}\n", best_ours / best_embree);
+      fmt::print("  rayproof / embree (best runs): {:.3g}\n", best_ours / best_embree);
       fmt::print("  embree's {} hits: {} at a crossing (first), {} duplicates (a crossing reported again), {} at touches, "
                  "{} at no exact contact; {} of rayproof's crossings had no embree hit matched to them; {} of {} rays with exactly "
                  "one embree hit per crossing and no other\n",
