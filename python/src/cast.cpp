@@ -193,6 +193,70 @@ class PyMesh {
     return out;
   }
 
+  /// crossings(): every crossing of each ray once, in exact t order, with its direction (+1 in,
+  /// -1 out), as flat arrays with offsets; with touches also the touches.
+  py::dict crossings(py::handle origins, py::handle directions, double tmin, double tmax, bool touches, int threads) {
+    const auto rays = rays_of(origins, directions);
+    const std::size_t n = rays.size();
+    if (!(tmin <= tmax)) throw py::value_error(fmt::format("tmin {} is not <= tmax {}", tmin, tmax));
+    const ClosedMesh& cm = closed("automatic");
+    std::vector<RayCrossings> res(n);
+    {
+      py::gil_scoped_release unlocked;
+      cm.ray_crossings(rays, res, {tmin, tmax}, threads);
+    }
+    std::size_t nc = 0, nt = 0;
+    for (const auto& r : res) nc += r.crossings.size(), nt += r.touches.size();
+    py::array_t<std::int64_t> offsets(static_cast<py::ssize_t>(n + 1)), ray(static_cast<py::ssize_t>(nc)),
+        prim(static_cast<py::ssize_t>(nc));
+    py::array_t<double> t(static_cast<py::ssize_t>(nc));
+    py::array_t<std::int8_t> dir(static_cast<py::ssize_t>(nc));
+    py::array_t<bool> valid(static_cast<py::ssize_t>(n));
+    py::array_t<std::int64_t> toff(static_cast<py::ssize_t>(n + 1)), tray(static_cast<py::ssize_t>(nt)),
+        tprim(static_cast<py::ssize_t>(nt));
+    py::array_t<double> tt(static_cast<py::ssize_t>(nt)), tt2(static_cast<py::ssize_t>(nt));
+    py::array_t<std::uint8_t> tcodes(static_cast<py::ssize_t>(nt));
+    std::size_t k = 0, m = 0;
+    offsets.mutable_data()[0] = 0, toff.mutable_data()[0] = 0;
+    for (std::size_t i = 0; i < n; ++i) {
+      valid.mutable_data()[i] = res[i].valid;
+      for (const Crossing& c : res[i].crossings) {
+        ray.mutable_data()[k] = static_cast<std::int64_t>(i);
+        prim.mutable_data()[k] = static_cast<std::int64_t>(c.triangle);
+        t.mutable_data()[k] = c.t;
+        dir.mutable_data()[k] = c.direction == CrossingDirection::in ? 1 : -1;
+        ++k;
+      }
+      for (const Touch& h : res[i].touches) {
+        tray.mutable_data()[m] = static_cast<std::int64_t>(i);
+        tprim.mutable_data()[m] = static_cast<std::int64_t>(h.triangle);
+        tt.mutable_data()[m] = h.t;
+        tt2.mutable_data()[m] = h.t2;
+        tcodes.mutable_data()[m] = static_cast<std::uint8_t>(h.contact);
+        ++m;
+      }
+      offsets.mutable_data()[i + 1] = static_cast<std::int64_t>(k);
+      toff.mutable_data()[i + 1] = static_cast<std::int64_t>(m);
+    }
+    py::dict out;
+    out["offsets"] = offsets;
+    out["ray"] = ray;
+    out["t"] = t;
+    out["prim"] = prim;
+    out["direction"] = dir;
+    out["valid"] = valid;
+    if (touches) {
+      out["touch_offsets"] = toff;
+      out["touch_ray"] = tray;
+      out["touch_t"] = tt;
+      out["touch_t2"] = tt2;
+      out["touch_prim"] = tprim;
+      out["touch_classes"] = class_names(tcodes);
+      out["touch_codes"] = tcodes;
+    }
+    return out;
+  }
+
   [[nodiscard]] bool oriented() { return closed("automatic").oriented(); }
   [[nodiscard]] bool is_closed() { return closed("automatic").closed(); }
   [[nodiscard]] std::string rule() { return to_string(closed("automatic").rule()); }
@@ -348,6 +412,16 @@ A ray with a NaN or infinite component or a zero direction has no crossing (clos
            "Whether each closed segment p -> q meets the surface (exact) and its first contact: a dict of "
            "'crosses', 't' (in [0, 1], within a few ulps; NaN for none), 'prim' (-1 for none), 'classes', "
            "'codes' (interior, edge, vertex, coplanar), 'p_side', 'q_side' (as contains).")
+      .def("crossings", &PyMesh::crossings, "origins"_a, "directions"_a, "tmin"_a = 0.0, "tmax"_a = kInf,
+           "touches"_a = false, "threads"_a = 0,
+           "Every point where each ray passes through the surface, once (a shared edge or vertex is one "
+           "crossing), in exact t order, decided exactly (any mesh: open meshes and soups too). Returns a dict "
+           "of flat arrays 't' (within one ulp of the exact t), 'prim', 'direction' (int8: +1 in, against the "
+           "triangle's normal; -1 out), 'ray', 'offsets' (r + 1: ray i's crossings are offsets[i]:offsets[i+1]) "
+           "and 'valid' (per ray: False for a NaN or infinite component or a zero direction). With touches: "
+           "'touch_offsets', 'touch_ray', 'touch_t', 'touch_t2', 'touch_prim', 'touch_classes', 'touch_codes' "
+           "(edge or vertex: a silhouette point; coplanar: the ray along a triangle from touch_t to touch_t2). "
+           "A crossing counts when tmin <= t <= tmax. The GIL is released. docs/contains.md, 'Crossings'.")
       .def_property_readonly("oriented", &PyMesh::oriented,
                              "Whether the mesh is closed and oriented (integer winding numbers defined).")
       .def_property_readonly("closed", &PyMesh::is_closed, "Whether every edge is used by an even number of triangles.")

@@ -1,6 +1,7 @@
 /// rayproof cast SCENE RAYS [--method M] [--query closest|any|all]: one result line per ray.
 ///   closest: `CLASS T PRIM` or `miss - -`;  any: `hit` or `miss`;
-///   all: every crossing `CLASS T PRIM ...` sorted by t, or `miss - -`.
+///   all: every crossing `CLASS T PRIM ...` sorted by t, or `miss - -`;
+///   crossings (a mesh file): `N t:in|out ...`, each crossing once (cli/cast_crossings.h).
 /// A ray line is `ox oy oz dx dy dz` (# comments); a bad line is named on stderr and answered
 /// `error - -`; a ray with a NaN or infinite component or d = 0 is `invalid - -`.
 #include <CLI/CLI.hpp>
@@ -10,6 +11,7 @@
 #include <memory>
 #include <string>
 
+#include "cli/cast_crossings.h"
 #include "cli/commands.h"
 #include "cli/input.h"
 #include "registry/registry.h"
@@ -24,6 +26,7 @@ struct CastOptions {
   int threads = 0;
   double tmin = 0, tmax = std::numeric_limits<double>::infinity();
   bool verbose = false;
+  bool touches = false;  ///< --query crossings: print the touches too
 };
 
 std::string format_hit(const CastHit& h) {
@@ -32,6 +35,12 @@ std::string format_hit(const CastHit& h) {
 }
 
 int run_cast(const CastOptions& opt) {
+  if (opt.query == "crossings")
+    return run_cast_crossings({opt.scene, opt.rays, opt.tmin, opt.tmax, opt.touches, opt.verbose, opt.threads});
+  if (opt.touches) {
+    fmt::print(stderr, "rayproof cast: --touches goes with --query crossings\n");
+    return 2;
+  }
   const auto loaded = load_scene_for_cli("cast", opt.scene, opt.method, opt.builder, opt.verbose);
   if (!loaded) return 2;
   Input in = open_input(opt.rays);
@@ -93,8 +102,8 @@ Run add_cast(CLI::App& app) {
   sub->add_option("rays", opt->rays, "Ray file (ox oy oz dx dy dz per line), or - for standard input")->required();
   sub->add_option("--method,-m", opt->method, "Method (compiled: float, double, cramer-*, watertight*; or any registry method)")
       ->capture_default_str();
-  sub->add_option("--query,-q", opt->query, "closest, any or all")
-      ->check(CLI::IsMember({"closest", "any", "all"}))
+  sub->add_option("--query,-q", opt->query, "closest, any, all or crossings (a mesh's crossings, each once, with direction)")
+      ->check(CLI::IsMember({"closest", "any", "all", "crossings"}))
       ->capture_default_str();
   sub->add_option("--builder", opt->builder, "BVH builder: sah or median")
       ->check(CLI::IsMember({"sah", "median"}))
@@ -102,6 +111,7 @@ Run add_cast(CLI::App& app) {
   sub->add_option("--threads,-j", opt->threads, "Threads (0: all)")->capture_default_str();
   sub->add_option("--tmin", opt->tmin, "Smallest t counted")->capture_default_str();
   sub->add_option("--tmax", opt->tmax, "Largest t counted");
+  sub->add_flag("--touches", opt->touches, "With --query crossings: also the touches (silhouette edges, vertices, faces along the ray)");
   sub->add_flag("--verbose,-v", opt->verbose, "Say on stderr what was loaded and which reader read it");
   return [opt] { return run_cast(*opt); };
 }

@@ -76,6 +76,11 @@ int run_fuzz_merge(const FuzzCliOptions& o) {
 
 
 int run_fuzz_cli(const FuzzCliOptions& o) {
+  if (o.mesh && o.crossings) return run_crossings_fuzz_cli(o);
+  if (o.crossings) {
+    fmt::print(stderr, "rayproof fuzz: --crossings goes with --mesh\n");
+    return 2;
+  }
   if (o.mesh) return run_mesh_fuzz_cli(o);
   verify::FuzzOptions opt;
   if (!o.shard.empty()) {
@@ -207,6 +212,9 @@ Run add_fuzz(CLI::App& app) {
   sub->add_flag("--mesh", o->mesh,
                 "Mesh mode: random closed meshes; leak rays at every vertex and edge midpoint and the parity of "
                 "random rays' crossings (--cases counts meshes, --jobs threads per query batch)");
+  sub->add_flag("--crossings", o->crossings,
+                "With --mesh: fuzz the crossings query instead (every crossing once: net count against the exact "
+                "winding number, on rays aimed at every vertex and edge midpoint and random rays)");
   return [o, merge] { return merge->parsed() ? run_fuzz_merge(*o) : run_fuzz_cli(*o); };
 }
 

@@ -46,6 +46,7 @@ struct FuzzCliOptions {
   int jobs = 1;
   std::string out = "fuzz-findings";
   bool mesh = false;
+  bool crossings = false;  ///< with mesh: fuzz ClosedMesh::ray_crossings instead (fuzz_crossings.cpp)
   std::string shard;    ///< K/N
   std::string summary;  ///< write the summary as JSON here
   UserKernelOptions user;
@@ -70,5 +71,7 @@ int run_mesh_check(const CheckCliOptions& o, const Method& kernel);
 int run_caster_check(const CheckCliOptions& o);
 int run_mesh_fuzz_cli(const FuzzCliOptions& o);
 int run_spawn_mesh(const SpawnOptions& opt);
+/// fuzz --mesh --crossings (fuzz_crossings.cpp).
+int run_crossings_fuzz_cli(const FuzzCliOptions& o);
 
 }  // namespace rayproof::cli

@@ -41,6 +41,11 @@ void add_commands(CLI::App& app, Commands& out) {
     Run run = add_bench_contains(*bench);
     out.insert(out.begin(), {bench->get_subcommand("contains"), std::move(run)});
   }
+  {  // `bench crossings`, likewise before bench itself
+    CLI::App* bench = app.get_subcommands({}).back();
+    Run run = add_bench_crossings(*bench);
+    out.insert(out.begin(), {bench->get_subcommand("crossings"), std::move(run)});
+  }
   add(add_advise(app));
   add(add_contains(app));
 }

@@ -21,6 +21,8 @@
 ///   the parity ray with edges and vertices are decided by Simulation of Simplicity: no retry, no
 ///   epsilon. Zero-area triangles are never crossed and are not surface.
 /// - A point with a NaN or infinite coordinate is Side::invalid.
+/// - ray_crossings(ray): every crossing of a ray once, with its direction, and the touches apart, exact
+///   (any mesh; docs/contains.md, "Crossings").
 /// - Threads: queries are const and may run concurrently; the batch calls run on a TBB arena of
 ///   `threads` threads (0: TBB's default).
 /// Link rayproof::scene_certified (its exact fallback for inputs outside the expansions' exponent
@@ -32,6 +34,7 @@
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <vector>
 
 #include "rayproof/float_util.h"
 #include "rayproof/scene/mesh_caster.h"
@@ -65,6 +68,45 @@ struct SegmentHit {
   /// The first contact's parameter along p + t (q - p), t in [0, 1], within a few ulps (0 when p is
   /// on the surface). Two contacts whose t are that close may be ordered either way.
   double t = kNaN<double>;
+};
+
+/// Which way a crossing passes the surface: `in` against the triangle's normal (d . n < 0, into the
+/// solid of an outward-facing mesh), `out` along it (d . n > 0).
+enum class CrossingDirection : std::uint8_t { in = 0, out = 1 };
+[[nodiscard]] const char* to_string(CrossingDirection d);
+
+/// A point where a ray passes from one side of the surface to the other, counted once however
+/// many triangles meet there (a shared edge, a vertex's fan).
+struct Crossing {
+  /// Within one ulp of the exact t of the contact; correctly rounded where contacts lie within a
+  /// few ulps of each other, so the listed t never decrease.
+  double t = kNaN<double>;
+  std::uint32_t triangle = MeshHit::kNoTriangle;  ///< a triangle the perturbed ray crosses there
+  CrossingDirection direction = CrossingDirection::in;
+};
+
+/// A contact of a ray with the surface that is not a crossing: a point where the surface does not
+/// pass from one side to the other (contact edge or vertex: a silhouette; interior: coincident
+/// triangles of opposite orientation), or a triangle whose plane holds the ray (contact coplanar:
+/// the ray lies along it from t to t2).
+struct Touch {
+  double t = kNaN<double>, t2 = kNaN<double>;  ///< t2: the end of a coplanar range (else t2 = t)
+  std::uint32_t triangle = MeshHit::kNoTriangle;
+  Contact contact = Contact::miss;
+};
+
+/// Every crossing of one ray in exact t order, and its touches (docs/contains.md, "Crossings").
+struct RayCrossings {
+  bool valid = false;  ///< false for a ray with a NaN or infinite component or d = 0, or tmin > tmax (or NaN)
+  std::vector<Crossing> crossings;
+  std::vector<Touch> touches;
+  /// (number in) - (number out): on a closed oriented mesh, the winding number at the far end of
+  /// the range minus that at its start.
+  [[nodiscard]] int net() const {
+    int n = 0;
+    for (const Crossing& c : crossings) n += c.direction == CrossingDirection::in ? 1 : -1;
+    return n;
+  }
 };
 
 class ClosedMesh {
@@ -106,6 +148,19 @@ class ClosedMesh {
   void contains(std::span<const Vec3<double>> points, std::span<Side> out, int threads = 0) const;
   /// The same on packed x y z doubles `stride` bytes apart (the Python binding's arrays).
   void contains(const double* xyz, std::size_t n, std::size_t stride, std::uint8_t* out, int threads = 0) const;
+
+  /// Every point where the ray crosses the surface with tmin <= t <= tmax, once each, in exact t
+  /// order, with its direction; and apart from them the touches. Exact: each triangle is crossed or
+  /// not as by the ray moved sideways by an infinitesimal (o + eps e_x + eps^2 e_y + eps^3 e_z), and
+  /// the triangles met at one exact point (equal exact t) form one contact whose net count decides:
+  /// +k (-k): k crossings in (out), 0: a touch. Any mesh (open, a soup): triangles as given.
+  [[nodiscard]] RayCrossings ray_crossings(const Ray<double>& ray, TRange range = {}) const;
+  /// ray_crossings() into `out`, reusing its vectors' storage.
+  void ray_crossings_into(const Ray<double>& ray, TRange range, RayCrossings& out) const;
+  /// ray_crossings() of every ray into `out` (same size; MeshInputError otherwise; its vectors' storage
+  /// is reused).
+  void ray_crossings(std::span<const Ray<double>> rays, std::span<RayCrossings> out, TRange range = {},
+                 int threads = 0) const;
 
   /// Whether the closed segment p->q meets the surface, and where first.
   [[nodiscard]] SegmentHit segment(const Vec3<double>& p, const Vec3<double>& q) const;

@@ -1,0 +1,461 @@
+// ClosedMesh::ray_crossings: every point where a ray passes through the surface, once, with its
+// direction, and the touches apart (docs/contains.md, "Crossings").
+//
+// Candidates: the BVH along the ray (conservative traversal), each triangle classified by the
+// certified filter (rayproof/certified_triangle.h; its exact fallback where it cannot decide):
+// the exact contact class and t within one ulp. An interior contact is a crossing of that
+// triangle. An edge or vertex contact is decided by Simulation of Simplicity: the ray's origin
+// moved to o + eps e_x + eps^2 e_y + eps^3 e_z (eps -> 0+) changes the edge function
+// E_ab(o) = d . ((a - o) x (b - o)) into E_ab(o) + delta . ((a - b) x d), so an edge function that
+// is exactly 0 takes the sign of the first nonzero component of (a - b) x d (never all zero unless
+// the edge is parallel to d, and then the triangle is parallel to the ray and never crossed). The
+// perturbed ray crosses the triangle iff its three edge functions have the sign of d . n. Contacts
+// at the same exact t (the same point of the ray) are one contact: their net count of perturbed
+// crossings (+1 in, -1 out each) is the crossing (or, 0, a touch). Equal rounded t do not say equal
+// exact t, nor the reverse: contacts whose t lie within two ulps are ordered and grouped by their
+// exact t in GMP rationals, and their t is then the exact t correctly rounded (MPFR), so the listed
+// t never decrease.
+#include <gmpxx.h>
+#include <mpfr.h>
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "rayproof/certified/intersect.h"
+#include "rayproof/certified_expansion.h"
+#include "scene/contains_state.h"
+
+namespace rayproof {
+
+const char* to_string(CrossingDirection d) { return d == CrossingDirection::in ? "in" : "out"; }
+
+namespace {
+
+int sgn(const mpq_class& x) {
+  const int s = mpq_sgn(x.get_mpq_t());
+  return s > 0 ? 1 : (s < 0 ? -1 : 0);
+}
+
+struct Q3 {
+  mpq_class x, y, z;
+};
+Q3 q3(const Vec3<double>& p) { return {mpq_class(p.x), mpq_class(p.y), mpq_class(p.z)}; }
+Q3 sub(const Q3& a, const Q3& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+Q3 cross(const Q3& a, const Q3& b) {
+  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
+}
+mpq_class dot(const Q3& a, const Q3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+
+/// The exact t = ((p0 - o) . n) / (d . n) (d . n != 0).
+mpq_class exact_t(const Ray<double>& r, const std::array<Vec3<double>, 3>& p) {
+  const Q3 p0 = q3(p[0]);
+  const Q3 n = cross(sub(q3(p[1]), p0), sub(q3(p[2]), p0));
+  return mpq_class(dot(sub(p0, q3(r.o)), n) / dot(q3(r.d), n));
+}
+
+/// x rounded to the nearest double (ties to even).
+double round_nearest(const mpq_class& x) {
+  mpfr_t r;
+  mpfr_init2(r, 53);
+  mpfr_set_q(r, x.get_mpq_t(), MPFR_RNDN);
+  const double d = mpfr_get_d(r, MPFR_RNDN);
+  mpfr_clear(r);
+  return d;
+}
+
+/// Sign of d . n, n = (p1 - p0) x (p2 - p0): in double when the error bound allows (every rounding
+/// counted: gamma_7 of the permanent, well inside 2^-49 of it), else in GMP.
+int sign_dn(const Vec3<double>& d, const std::array<Vec3<double>, 3>& p) {
+  const Vec3<double> e1 = p[1] - p[0], e2 = p[2] - p[0];
+  const double dn = d.x * (e1.y * e2.z - e1.z * e2.y) + d.y * (e1.z * e2.x - e1.x * e2.z) + d.z * (e1.x * e2.y - e1.y * e2.x);
+  const double perm = std::fabs(d.x) * (std::fabs(e1.y * e2.z) + std::fabs(e1.z * e2.y)) +
+                      std::fabs(d.y) * (std::fabs(e1.z * e2.x) + std::fabs(e1.x * e2.z)) +
+                      std::fabs(d.z) * (std::fabs(e1.x * e2.y) + std::fabs(e1.y * e2.x));
+  if (perm > 0x1p-900 && perm < 0x1p1000 && std::fabs(dn) > 0x1p-49 * perm) return dn > 0 ? 1 : -1;
+  const Q3 q0 = q3(p[0]);
+  return sgn(dot(q3(d), cross(sub(q3(p[1]), q0), sub(q3(p[2]), q0))));
+}
+
+/// Where an edge or vertex contact is: the vertex, or the edge's two ends in coordinate order
+/// (contacts at the same vertex or on the same edge, as coordinates, are at the same point).
+struct Where {
+  int kind = 0;  ///< 0 unknown (interior), 1 edge, 2 vertex
+  Vec3<double> a{0, 0, 0}, b{0, 0, 0};
+  bool operator==(const Where&) const = default;
+};
+bool less_xyz(const Vec3<double>& p, const Vec3<double>& q) {
+  return p.x != q.x ? p.x < q.x : (p.y != q.y ? p.y < q.y : p.z < q.z);
+}
+
+/// An edge or vertex contact: d . n's sign, whether the perturbed ray crosses the triangle, and
+/// where the contact is.
+struct Decided {
+  int sdn = 0;
+  bool crossed = false;
+  bool met = false;  ///< no edge function of the sign opposite to d . n: the closed triangle is met
+  Where where;
+};
+
+/// From the exact signs of u_i (the edge function of edge (p_{i+1}, p_{i+2}); their sum is d . n)
+/// and, where u_i = 0, of the perturbation's coefficients g_i = (p_{i+1} - p_{i+2}) x d.
+Decided finish(const std::array<Vec3<double>, 3>& p, const int (&s)[3], const int (&gs)[3], int sdn) {
+  Decided out;
+  out.sdn = sdn;
+  int zeros = 0;
+  bool crossed = sdn != 0;
+  for (int i = 0; i < 3; ++i) {
+    zeros += s[i] == 0;
+    crossed = crossed && (s[i] ? s[i] : gs[i]) == sdn;
+  }
+  out.crossed = crossed;
+  out.met = sdn != 0 && s[0] != -sdn && s[1] != -sdn && s[2] != -sdn;
+  if (zeros == 1) {
+    const int i = s[0] == 0 ? 0 : (s[1] == 0 ? 1 : 2);
+    Vec3<double> a = p[(i + 1) % 3], b = p[(i + 2) % 3];
+    if (less_xyz(b, a)) std::swap(a, b);
+    out.where = {1, a, b};
+  } else if (zeros == 2) {
+    const int m = 3 - (s[0] == 0 ? 0 : 1) - (s[2] == 0 ? 2 : 1);  // the vertex on both zero edges
+    out.where = {2, p[m], p[m]};
+  }
+  return out;
+}
+
+/// The first nonzero sign of (x, y, z).
+template <class F>
+int first_sign(F&& sign_of) {
+  for (int k = 0; k < 3; ++k)
+    if (const int v = sign_of(k)) return v;
+  return 0;
+}
+
+Decided decide_gmp(const Ray<double>& r, const std::array<Vec3<double>, 3>& p) {
+  const Q3 o = q3(r.o), d = q3(r.d);
+  const Q3 P[3] = {q3(p[0]), q3(p[1]), q3(p[2])};
+  const Q3 A[3] = {sub(P[0], o), sub(P[1], o), sub(P[2], o)};
+  int s[3], gs[3] = {0, 0, 0};
+  mpq_class den = 0;
+  for (int i = 0; i < 3; ++i) {
+    const int j = (i + 1) % 3, k = (i + 2) % 3;
+    const mpq_class u = dot(d, cross(A[j], A[k]));
+    den += u;
+    s[i] = sgn(u);
+    if (s[i] == 0) {
+      const Q3 g = cross(sub(P[j], P[k]), d);  // the perturbation's coefficients: eps, eps^2, eps^3
+      gs[i] = first_sign([&](int c) { return sgn(c == 0 ? g.x : (c == 1 ? g.y : g.z)); });
+    }
+  }
+  return finish(p, s, gs, sgn(den));
+}
+
+/// The exact sign of the sum of n doubles (Shewchuk's GROW-EXPANSION on a local array; n <= 24, no
+/// overflow: callers' terms are exact products of inputs in the exponent window).
+int sign_of_sum(const double* x, int n) {
+  double c[32];
+  int m = 0;
+  for (int i = 0; i < n; ++i) {
+    double q = x[i];
+    int k = 0;
+    for (int j = 0; j < m; ++j) {
+      const TwoTerm<double> t = two_sum(q, c[j]);
+      q = t.hi;
+      if (t.lo != 0) c[k++] = t.lo;
+    }
+    if (q != 0) c[k++] = q;
+    m = k;
+  }
+  return m == 0 ? 0 : (c[m - 1] > 0 ? 1 : -1);
+}
+
+/// The exact sign of u = d . (B x C) when B = a - o and C = b - o are exact in double (often so when
+/// a ray is aimed along an axis at a vertex): every product two_prod'ed into at most 24 terms.
+/// Returns 2 when a difference is not exact.
+int u_sign_exact_small(const Vec3<double>& d, const Vec3<double>& o, const Vec3<double>& a, const Vec3<double>& b) {
+  const double A[3] = {a.x, a.y, a.z}, O[3] = {o.x, o.y, o.z}, Bv[3] = {b.x, b.y, b.z}, D[3] = {d.x, d.y, d.z};
+  double B[3], C[3];
+  for (int c = 0; c < 3; ++c) {
+    const TwoTerm<double> x = two_sum(A[c], -O[c]), y = two_sum(Bv[c], -O[c]);
+    if (x.lo != 0 || y.lo != 0) return 2;
+    B[c] = x.hi, C[c] = y.hi;
+  }
+  double terms[24];
+  int n = 0;
+  for (int c = 0; c < 3; ++c) {
+    if (D[c] == 0) continue;
+    const int j = (c + 1) % 3, k = (c + 2) % 3;
+    const TwoTerm<double> p = two_prod(B[j], C[k]), q = two_prod(B[k], C[j]);
+    for (const double v : {p.hi, p.lo, -q.hi, -q.lo}) {
+      if (v == 0) continue;
+      const TwoTerm<double> w = two_prod(D[c], v);
+      terms[n++] = w.hi;
+      if (w.lo != 0) terms[n++] = w.lo;
+    }
+  }
+  return sign_of_sum(terms, n);
+}
+
+double norm_inf(const Vec3<double>& v) { return std::max({std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)}); }
+
+/// The same with a double filter first: u = (d x B) . C with B = a - o, C = b - o rounded, and the
+/// bound of the certified filter's first stage for that expression (certified_triangle.h:
+/// 2^-49 |d|_1 |B|_inf |C|_inf plus 2^-1000 (|C|_inf + 1) for underflow); g_c with the bound
+/// 2^-49 (|e_j d_k| + |e_k d_j|) + 2^-1000 (e = a - b rounded: gamma_3 of the permanent, with room).
+/// What a bound leaves undecided (mostly the exact zeros of an edge or vertex contact) goes to the
+/// expansions, exact for inputs in the exponent window of a degree-3 polynomial; outside it, GMP.
+Decided decide_perturbed(const Ray<double>& r, const std::array<Vec3<double>, 3>& p) {
+  using certified::ExpVec3;
+  const Vec3<double>&o = r.o, &d = r.d, &p0 = p[0], &p1 = p[1], &p2 = p[2];
+  if (!certified::in_range<-200, 200>(o.x, o.y, o.z, d.x, d.y, d.z, p0.x, p0.y, p0.z, p1.x, p1.y, p1.z, p2.x, p2.y,
+                                      p2.z))
+    return decide_gmp(r, p);
+  const double d1 = std::fabs(d.x) + std::fabs(d.y) + std::fabs(d.z);
+  const bool filter = d1 >= 0x1p-960;
+  int s[3], gs[3] = {0, 0, 0};
+  for (int i = 0; i < 3; ++i) {
+    const int j = (i + 1) % 3, k = (i + 2) % 3;
+    const Vec3<double> B = p[j] - o, C = p[k] - o;
+    const double u = dot(cross(d, B), C);
+    const double mc = norm_inf(C), eu = 0x1p-49 * d1 * norm_inf(B) * mc + 0x1p-1000 * (mc + 1);
+    if (filter && eu < 0x1p1000 && std::fabs(u) > eu) {
+      s[i] = u > 0 ? 1 : -1;
+      continue;
+    }
+    if (const int small = u_sign_exact_small(d, o, p[j], p[k]); small != 2) {
+      s[i] = small;
+    } else {
+      const certified::Expansion ux =
+          dot(certified::exact3(d), cross(certified::diff3(p[j], o), certified::diff3(p[k], o)));
+      if (ux.bad) return decide_gmp(r, p);
+      s[i] = ux.sign();
+    }
+    if (s[i] != 0) continue;
+    const Vec3<double> e = p[j] - p[k], gv = cross(e, d);
+    const double eg[3] = {0x1p-49 * (std::fabs(e.y * d.z) + std::fabs(e.z * d.y)) + 0x1p-1000,
+                          0x1p-49 * (std::fabs(e.z * d.x) + std::fabs(e.x * d.z)) + 0x1p-1000,
+                          0x1p-49 * (std::fabs(e.x * d.y) + std::fabs(e.y * d.x)) + 0x1p-1000};
+    const double gd[3] = {gv.x, gv.y, gv.z};
+    bool done = false;
+    for (int c = 0; c < 3 && !done; ++c) {
+      if (std::fabs(gd[c]) > eg[c] && eg[c] < 0x1p1000) {
+        gs[i] = gd[c] > 0 ? 1 : -1;
+        done = true;
+      } else {
+        const ExpVec3 g = cross(certified::diff3(p[j], p[k]), certified::exact3(d));
+        if (certified::any_bad(g)) return decide_gmp(r, p);
+        const int v = (c == 0 ? g.x : (c == 1 ? g.y : g.z)).sign();
+        if (v) gs[i] = v, done = true;  // else this component is exactly 0: the next one decides
+      }
+    }
+  }
+  return finish(p, s, gs, sign_dn(d, p));
+}
+
+/// The certified filter's answer for one triangle, and for a vertex contact the perturbed decision
+/// made on the way. Where the filter's first stage cannot decide, a contact at a vertex (two edge
+/// functions exactly 0, decided as above) gets its t from the vertex itself: the ray passes exactly
+/// through v, so t = (v_c - o_c) / d_c on the axis c of the largest |d_c|, evaluated as q + (r +
+/// lo) / d_c with v_c - o_c = hi + lo exactly (two_sum), q = hi / d_c rounded and r = hi - q d_c
+/// exactly (fma): the correction is below an ulp of q and carries a relative error near 2^-52, so
+/// t is within 0.5 ulp and a little, inside the filter's one ulp. Everything else (edges, parallel
+/// and coplanar rays, degenerate triangles, t near underflow) goes to the filter's later stages.
+struct Classified {
+  Hit<double> h;
+  bool decided = false;
+  Decided dd;
+};
+Classified classify(const Ray<double>& ray, const std::array<Vec3<double>, 3>& p) {
+  Classified out;
+  const Triangle<double> tri{p[0], p[1], p[2]};
+  auto next = [&]() -> std::optional<Hit<double>> {
+    const Decided dd = decide_perturbed(ray, p);
+    if (dd.sdn != 0 && !dd.met) return Hit<double>{Contact::miss};
+    if (dd.sdn != 0 && dd.where.kind == 2) {
+      const double D[3] = {ray.d.x, ray.d.y, ray.d.z}, O[3] = {ray.o.x, ray.o.y, ray.o.z};
+      const double V[3] = {dd.where.a.x, dd.where.a.y, dd.where.a.z};
+      int c = 0;
+      for (int k = 1; k < 3; ++k)
+        if (std::fabs(D[k]) > std::fabs(D[c])) c = k;
+      const TwoTerm<double> diff = two_sum(V[c], -O[c]);
+      double t = 0;
+      if (diff.hi != 0) {
+        const double q = diff.hi / D[c];
+        const double r = std::fma(-q, D[c], diff.hi);
+        t = q + (r + diff.lo) / D[c];
+        if (!(std::fabs(q) >= 0x1p-900 && std::fabs(q) <= 0x1p900 && std::fabs(D[c]) >= 0x1p-900)) t = kNaN<double>;
+      }
+      if (t == t) {
+        out.decided = true;
+        out.dd = dd;
+        return Hit<double>{t < 0 ? Contact::behind : Contact::vertex, t};
+      }
+    }
+    return certified::detail::triangle_rest(ray, tri);
+  };
+  if (const auto f = certified::detail::triangle_fast(ray, tri, next)) {
+    out.h = *f;
+  } else {
+    out.decided = false;
+    const TriangleHit<double> x = certified::intersect(ray, tri);
+    out.h = {x.contact, x.t, x.t2};
+  }
+  return out;
+}
+
+struct Candidate {
+  double t;
+  std::uint32_t triangle;
+  std::uint32_t slot;
+  Contact contact;
+  int net;  ///< +1 crossed in, -1 crossed out, 0 not crossed by the perturbed ray
+  Where where;
+};
+
+/// Two ulps above x (the rounded t of two contacts at the same exact t differ by at most that).
+double up2(double x) {
+  const double inf = std::numeric_limits<double>::infinity();
+  return std::nextafter(std::nextafter(x, inf), inf);
+}
+double down2(double x) {
+  const double inf = std::numeric_limits<double>::infinity();
+  return std::nextafter(std::nextafter(x, -inf), -inf);
+}
+
+}  // namespace
+
+namespace {
+
+/// The contacts of one group [b, g) of `order` (indices into cand), at t: a crossing (or, net 0, a touch).
+void emit_group(const std::vector<Candidate>& cand, const std::size_t* order, std::size_t b, std::size_t g, double t,
+                TRange range, RayCrossings& out) {
+  int net = 0;
+  for (std::size_t k = b; k < g; ++k) net += cand[order[k]].net;
+  // The reported triangle: the lowest-numbered one crossed in the net's direction, or (a touch)
+  // the lowest-numbered one met.
+  const Candidate* rep = nullptr;
+  Contact worst = Contact::interior;
+  for (std::size_t k = b; k < g; ++k) {
+    const Candidate& c = cand[order[k]];
+    if (c.contact == Contact::vertex || (c.contact == Contact::edge && worst == Contact::interior)) worst = c.contact;
+    const bool fits = net == 0 || (net > 0 ? c.net > 0 : c.net < 0);
+    if (fits && (!rep || c.triangle < rep->triangle)) rep = &c;
+  }
+  if (!(t >= range.tmin && t <= range.tmax)) return;
+  if (net == 0) {
+    out.touches.push_back({t, t, rep->triangle, worst});
+  } else {
+    const CrossingDirection dir = net > 0 ? CrossingDirection::in : CrossingDirection::out;
+    for (int m = 0; m < std::abs(net); ++m) out.crossings.push_back({t, rep->triangle, dir});
+  }
+}
+
+/// Per thread: the candidates of the current ray and the scratch of its runs (no allocation per ray
+/// once grown).
+struct Scratch {
+  std::vector<Candidate> cand;
+  std::vector<std::size_t> order;
+  std::vector<mpq_class> exact;
+};
+
+}  // namespace
+
+void ClosedMesh::ray_crossings_into(const Ray<double>& ray, TRange range, RayCrossings& out) const {
+  out.crossings.clear();
+  out.touches.clear();
+  out.valid = false;
+  if (!ray.valid() || !(range.tmin <= range.tmax)) return;
+  out.valid = true;
+  const auto& s = *s_;
+  if (s.triangles.empty()) return;
+  thread_local Scratch scratch;
+  std::vector<Candidate>& cand = scratch.cand;
+  std::vector<std::size_t>& order = scratch.order;
+  std::vector<mpq_class>& exact = scratch.exact;
+  cand.clear();
+  const scene::LeafPrim* leaves = s.accel->leaf_prims().data();
+  const std::array<Vec3<double>, 3>* slots = s.slots.data();
+  const double lo = down2(range.tmin), hi = up2(range.tmax);
+  s.accel->traverse_slots(ray, lo, hi, BvhTraversal::conservative, BvhQuery::all, [&](std::uint32_t j) {
+    const scene::LeafPrim& lp = leaves[j];
+    if (lp.id == scene::PrimHit::kNoPrim) return false;
+    const Classified cl = classify(ray, slots[j]);
+    const Hit<double>& h = cl.h;
+    switch (h.contact) {
+      case Contact::interior:
+        if (h.t >= lo && h.t <= hi) cand.push_back({h.t, lp.id, j, h.contact, -sign_dn(ray.d, slots[j]), {}});
+        break;
+      case Contact::edge:
+      case Contact::vertex:
+        if (h.t >= lo && h.t <= hi) {
+          const Decided dd = cl.decided ? cl.dd : decide_perturbed(ray, slots[j]);
+          cand.push_back({h.t, lp.id, j, h.contact, dd.crossed ? -dd.sdn : 0, dd.where});
+        }
+        break;
+      case Contact::coplanar:
+        if (h.t <= range.tmax && h.t2 >= range.tmin)  // NaN (no range on the triangle) fails both
+          out.touches.push_back({std::max(h.t, range.tmin), std::min(h.t2, range.tmax), lp.id, Contact::coplanar});
+        break;
+      default:
+        break;
+    }
+    return false;
+  });
+  std::sort(cand.begin(), cand.end(),
+            [](const Candidate& a, const Candidate& b) { return a.t != b.t ? a.t < b.t : a.triangle < b.triangle; });
+  // Runs whose rounded t chain within two ulps: one group when every member is at the same vertex
+  // or on the same edge (as coordinates: the same point); else ordered and grouped by exact t.
+  for (std::size_t i = 0; i < cand.size();) {
+    std::size_t e = i + 1;
+    while (e < cand.size() && cand[e].t <= up2(cand[e - 1].t)) ++e;
+    order.clear();
+    for (std::size_t k = i; k < e; ++k) order.push_back(k);
+    bool one_point = cand[i].where.kind != 0;
+    for (std::size_t k = i + 1; k < e && one_point; ++k) one_point = cand[k].where == cand[i].where;
+    if (e - i == 1 || one_point) {
+      // One point: every member's t is within one ulp of its exact t; the least is taken (the runs
+      // around are more than two ulps away, so the order stays).
+      emit_group(cand, order.data(), 0, e - i, cand[i].t, range, out);
+    } else {
+      exact.clear();
+      for (std::size_t k = i; k < e; ++k) exact.push_back(exact_t(ray, slots[cand[k].slot]));
+      std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return exact[a - i] < exact[b - i]; });
+      for (std::size_t b = 0; b < order.size();) {
+        std::size_t g = b + 1;
+        while (g < order.size() && exact[order[g] - i] == exact[order[b] - i]) ++g;
+        // The exact t correctly rounded: monotone in the exact t, so the listed t never decrease.
+        emit_group(cand, order.data(), b, g, round_nearest(exact[order[b] - i]), range, out);
+        b = g;
+      }
+    }
+    i = e;
+  }
+  std::stable_sort(out.touches.begin(), out.touches.end(), [](const Touch& a, const Touch& b) {
+    return a.t != b.t ? a.t < b.t : a.triangle < b.triangle;
+  });
+}
+
+RayCrossings ClosedMesh::ray_crossings(const Ray<double>& ray, TRange range) const {
+  RayCrossings out;
+  ray_crossings_into(ray, range, out);
+  return out;
+}
+
+void ClosedMesh::ray_crossings(std::span<const Ray<double>> rays, std::span<RayCrossings> out, TRange range,
+                           int threads) const {
+  if (rays.size() != out.size())
+    throw MeshInputError("ClosedMesh::ray_crossings: " + std::to_string(out.size()) + " results for " +
+                         std::to_string(rays.size()) + " rays");
+  auto body = [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i < r.end(); ++i) ray_crossings_into(rays[i], range, out[i]);
+  };
+  if (threads == 1 || rays.size() < 256) return body(tbb::blocked_range<std::size_t>(0, rays.size()));
+  tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
+  arena.execute([&] { tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rays.size(), 64), body); });
+}
+
+}  // namespace rayproof
