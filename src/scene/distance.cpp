@@ -1,0 +1,304 @@
+// ClosedMesh's closest-point queries (rayproof/scene/distance.h, docs/distance.md).
+//
+// A best-first search over the distance tree in double ball arithmetic: every feature of a visited
+// triangle (its face, edges and vertices) gets the squared distance from p to the feature's affine
+// hull as an interval that surely holds the exact value, and whether p's projection surely falls
+// on the feature (then the value is a squared distance to a point of the triangle: an upper bound
+// of the answer), surely not (the feature is dropped: another one is nearer), or maybe. The
+// answer's squared distance D* is the least value over the features that apply, so it is at most
+// U, the least upper end of the sure ones; the features whose lower end is <= U are the only ones
+// that can attain D*. When these are all the same geometric feature (one vertex, one edge or one
+// face: the same bits in every triangle that shares it) its triangles are exactly tied and the
+// lowest index wins; otherwise the exact stage compares their triangles in rationals. The
+// distance is the square root of the winner's interval, kept when the rounding is decided for
+// every value in it, else recomputed in double-double, else in rationals.
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <cstring>
+#include <vector>
+
+#include "rayproof/scene/distance.h"
+#include "scene/contains_state.h"
+#include "scene/distance_filter.h"
+#include "scene/distance_tree.h"
+
+namespace rayproof {
+
+const char* to_string(DistanceStage s) {
+  switch (s) {
+    case DistanceStage::filter: return "filter";
+    case DistanceStage::rounding: return "rounding";
+    case DistanceStage::selection: return "selection";
+    case DistanceStage::extreme: return "extreme";
+    case DistanceStage::none: return "none";
+  }
+  return "?";
+}
+
+namespace detail {
+namespace {
+
+using namespace dist;
+
+struct Cand {
+  double lo, hi;
+  std::uint32_t slot;
+  Kind kind;
+  std::uint8_t k;
+  bool sure;
+};
+
+/// Lower bound of the squared distance from p to a box (rounded down).
+inline double box_lb(const DistanceNode& n, const Vec3<double>& p) {
+  double s = 0;
+  for (int k = 0; k < 3; ++k) {
+    const double g = std::max({n.lo[k] - p[k], p[k] - n.hi[k], 0.0});
+    s += g * g;
+  }
+  return std::max(0.0, s * (1 - 0x1p-49) - 0x1p-1070);
+}
+
+struct Search {
+  const DistanceTree& t;
+  const Vec3<double>& p;
+  std::vector<Cand>& c;
+  double U = kInf;
+  bool extreme = false;
+
+  void push(double lo, double hi, std::uint32_t slot, Kind kind, int k, bool sure) {
+    if (!(lo <= hi) || std::isnan(lo)) {  // NaN: over- or underflow in the filter
+      extreme = true;
+      return;
+    }
+    if (sure) {
+      if (!(hi < kInf)) extreme = true;
+      U = std::min(U, hi);
+    }
+    if (lo <= U) c.push_back({lo, hi, slot, kind, std::uint8_t(k), sure});
+  }
+
+  void triangle(std::uint32_t slot) {
+    const auto& tri = t.tris[slot];
+    double lo, hi;
+    // Vertices: always on the triangle.
+    for (int k = 0; k < 3; ++k) {
+      const BV<BD> w = difv<BD>(p, tri[k]);
+      interval(dot(w, w), lo, hi);
+      push(lo, hi, slot, kVertex, k, true);
+    }
+    // Face: p's projection inside when the three edge functions are positive.
+    if (!t.degenerate[slot]) {
+      const BV<BD> ab = difv<BD>(tri[1], tri[0]), ac = difv<BD>(tri[2], tri[0]), ap = difv<BD>(p, tri[0]);
+      const BV<BD> n = cross(ab, ac);
+      const BV<BD> bc = difv<BD>(tri[2], tri[1]), bp = difv<BD>(p, tri[1]), ca = difv<BD>(tri[0], tri[2]),
+                   cp = difv<BD>(p, tri[2]);
+      const BD s2 = dot(n, cross(ab, ap)), s0 = dot(n, cross(bc, bp)), s1 = dot(n, cross(ca, cp));
+      const bool no = negative(s0) || negative(s1) || negative(s2);
+      if (!no) {
+        const BD h = dot(n, ap);
+        interval(div(mul(h, h), dot(n, n)), lo, hi);
+        const bool sure = positive(s0) && positive(s1) && positive(s2);
+        push(lo, hi, slot, kFace, 0, sure);
+        if (sure) return;  // the face's projection is the triangle's closest point: edges are farther
+      }
+    }
+    // Edges: the projection on the line within the segment when both end functions are positive.
+    for (int k = 0; k < 3; ++k) {
+      Vec3<double> u, v;
+      bool sw;
+      canonical_edge(tri, k, u, v, sw);
+      const BV<BD> d = difv<BD>(v, u), w = difv<BD>(p, u);
+      const BD t1 = dot(d, w), t2 = dot(d, difv<BD>(v, p));
+      if (negative(t1) || negative(t2)) continue;  // the nearer endpoint is the edge's closest point
+      const BV<BD> cr = cross(d, w);
+      interval(div(dot(cr, cr), dot(d, d)), lo, hi);
+      push(lo, hi, slot, kEdge, k, positive(t1) && positive(t2));
+    }
+  }
+
+  void run() {
+    struct Entry {
+      std::uint32_t node;
+      double lb;
+    };
+    Entry stack[128];
+    int top = 0;
+    stack[top++] = {0, box_lb(t.nodes[0], p)};
+    while (top) {
+      const Entry e = stack[--top];
+      if (e.lb > U) continue;
+      const DistanceNode& n = t.nodes[e.node];
+      if (n.count) {
+        for (std::uint32_t s = n.index; s < n.index + n.count; ++s) triangle(s);
+        if (extreme) return;
+        continue;
+      }
+      const double l0 = box_lb(t.nodes[n.index], p), l1 = box_lb(t.nodes[n.index + 1], p);
+      if (top + 2 > 128) {  // a degenerate tree deeper than the stack: finish exactly
+        extreme = true;
+        return;
+      }
+      // The nearer child on top.
+      if (l0 <= l1) {
+        if (l1 <= U) stack[top++] = {n.index + 1, l1};
+        if (l0 <= U) stack[top++] = {n.index, l0};
+      } else {
+        if (l0 <= U) stack[top++] = {n.index, l0};
+        if (l1 <= U) stack[top++] = {n.index + 1, l1};
+      }
+    }
+  }
+};
+
+bool same_feature(const DistanceTree& t, const Cand& a, const Cand& b) {
+  if (a.kind != b.kind) return false;
+  if (a.kind == kFace) return a.slot == b.slot;
+  if (a.kind == kVertex) return t.tris[a.slot][a.k] == t.tris[b.slot][b.k];
+  Vec3<double> u0, v0, u1, v1;
+  bool s;
+  canonical_edge(t.tris[a.slot], a.k, u0, v0, s);
+  canonical_edge(t.tris[b.slot], b.k, u1, v1, s);
+  return u0 == u1 && v0 == v1;
+}
+
+/// The closest point and barycentrics of the winning feature, in double.
+void fill_point(const DistanceTree& t, const Vec3<double>& p, const Cand& w, ClosestPoint& r) {
+  const auto& tri = t.tris[w.slot];
+  std::array<double, 3> b{0, 0, 0};
+  if (w.kind == kVertex) {
+    b[w.k] = 1;
+  } else if (w.kind == kEdge) {
+    Vec3<double> u, v;
+    bool sw;
+    canonical_edge(tri, w.k, u, v, sw);
+    const Vec3<double> d = v - u;
+    const double s = std::clamp(dot(d, p - u) / dot(d, d), 0.0, 1.0);
+    b[w.k] = sw ? s : 1 - s;
+    b[(w.k + 1) % 3] = sw ? 1 - s : s;
+  } else {
+    const Vec3<double> n = cross(tri[1] - tri[0], tri[2] - tri[0]);
+    double s[3];
+    for (int k = 0; k < 3; ++k) s[k] = std::max(0.0, dot(n, cross(tri[(k + 2) % 3] - tri[(k + 1) % 3], p - tri[(k + 1) % 3])));
+    // s[k] is the weight of vertex k: the signed area opposite it.
+    const double sum = s[0] + s[1] + s[2];
+    for (int k = 0; k < 3; ++k) b[k] = sum > 0 ? s[k] / sum : 1.0 / 3;
+  }
+  r.barycentric = b;
+  r.point = {b[0] * tri[0].x + b[1] * tri[1].x + b[2] * tri[2].x, b[0] * tri[0].y + b[1] * tri[1].y + b[2] * tri[2].y,
+             b[0] * tri[0].z + b[1] * tri[1].z + b[2] * tri[2].z};
+  if (w.kind == kVertex) r.point = tri[w.k];
+}
+
+ClosestPoint query(const DistanceTree& t, const Vec3<double>& p) {
+  ClosestPoint r;
+  if (!(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z))) return r;
+  if (t.nodes.empty()) {
+    r.distance = kInf;
+    return r;
+  }
+  thread_local std::vector<Cand> cands;
+  cands.clear();
+  Search s{t, p, cands};
+  s.run();
+  if (s.extreme || !(s.U < kInf)) {
+    r = exact_search(t, p);
+    r.stage = DistanceStage::extreme;
+    return r;
+  }
+  // The features that can attain the least value.
+  const Cand* first = nullptr;
+  bool ambiguous = false;
+  std::uint32_t best_id = 0xffffffffu;
+  const Cand* best = nullptr;
+  for (const Cand& c : cands) {
+    if (c.lo > s.U) continue;
+    if (!c.sure) ambiguous = true;
+    if (!first) first = &c;
+    else if (!same_feature(t, *first, c)) ambiguous = true;
+    if (t.ids[c.slot] < best_id) best_id = t.ids[c.slot], best = &c;
+  }
+  if (ambiguous) {
+    thread_local std::vector<std::uint32_t> slots;
+    slots.clear();
+    for (const Cand& c : cands)
+      if (c.lo <= s.U) slots.push_back(c.slot);
+    std::sort(slots.begin(), slots.end());
+    slots.erase(std::unique(slots.begin(), slots.end()), slots.end());
+    r = exact_select(t, p, slots.data(), slots.size());
+    r.stage = DistanceStage::selection;
+    return r;
+  }
+  r.triangle = best_id;
+  fill_point(t, p, *best, r);
+  r.stage = DistanceStage::filter;
+  if (best->hi == 0) {
+    r.distance = 0;
+    return r;
+  }
+  // The rounding: the double interval, then double-double, then rationals.
+  const double mid = (best->lo + best->hi) * 0.5;
+  const BD bd{mid, (best->hi - best->lo) * 0.5 * kUp + mid * 0x1p-52};
+  if (round_sqrt_ball(bd.x, bd.r, r.distance)) return r;
+  const BQ bq = feature_value<BQ>(t.tris[best->slot], p, best->kind, best->k);
+  if (bq.r < kInf && round_sqrt_ball(bq.x, bq.r, r.distance)) return r;
+  r.distance = exact_distance(t, p, best->slot);
+  r.stage = DistanceStage::rounding;
+  return r;
+}
+
+}  // namespace
+}  // namespace detail
+
+namespace {
+const detail::DistanceTree& tree(const detail::ContainsState& s) {
+  std::call_once(s.distance_once, [&] {
+    s.distance = std::make_shared<const detail::DistanceTree>(detail::build_distance_tree(s.vertices, s.triangles));
+  });
+  return *s.distance;
+}
+}  // namespace
+
+ClosestPoint ClosedMesh::closest_point(const Vec3<double>& p, bool with_side) const {
+  ClosestPoint r = detail::query(tree(*s_), p);
+  if (with_side && r.distance == r.distance) r.side = r.distance == 0 ? Side::surface : contains(p);
+  return r;
+}
+
+double ClosedMesh::distance(const Vec3<double>& p) const { return detail::query(tree(*s_), p).distance; }
+
+double ClosedMesh::signed_distance(const Vec3<double>& p) const { return closest_point(p, true).signed_distance(); }
+
+void ClosedMesh::closest_points(std::span<const Vec3<double>> points, std::span<ClosestPoint> out, bool with_side,
+                                int threads) const {
+  if (points.size() != out.size())
+    throw MeshInputError("ClosedMesh::closest_points: " + std::to_string(out.size()) + " results for " +
+                         std::to_string(points.size()) + " points");
+  closest_points(reinterpret_cast<const double*>(points.data()), points.size(), sizeof(Vec3<double>), out.data(),
+                 with_side, threads);
+}
+
+void ClosedMesh::closest_points(const double* xyz, std::size_t n, std::size_t stride, ClosestPoint* out, bool with_side,
+                                int threads) const {
+  if (n == 0) return;
+  if (!xyz || !out) throw MeshInputError("ClosedMesh::closest_points: null pointer with a count of " + std::to_string(n));
+  if (stride < 3 * sizeof(double) || stride % sizeof(double))
+    throw MeshInputError("ClosedMesh::closest_points: stride of " + std::to_string(stride) +
+                         " bytes (need a multiple of 8, at least 24)");
+  (void)tree(*s_);
+  const auto* base = reinterpret_cast<const std::byte*>(xyz);
+  auto body = [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i < r.end(); ++i) {
+      Vec3<double> p;
+      std::memcpy(&p, base + i * stride, sizeof p);
+      out[i] = closest_point(p, with_side);
+    }
+  };
+  if (threads == 1 || n < 1024) return body(tbb::blocked_range<std::size_t>(0, n));
+  tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
+  arena.execute([&] { tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 256), body); });
+}
+
+}  // namespace rayproof

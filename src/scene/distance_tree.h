@@ -1,0 +1,41 @@
+#pragma once
+/// The closest-point tree of a ClosedMesh (internal to rayproof_scene_certified): a binary BVH
+/// with double boxes (exact bounds of the vertices) over the triangles, stored in leaf order, and
+/// the exact stage's helpers (distance_exact.cpp).
+#include <array>
+#include <cstdint>
+#include <vector>
+
+#include "rayproof/scene/distance.h"
+#include "rayproof/vec3.h"
+
+namespace rayproof::detail {
+
+struct DistanceNode {
+  double lo[3], hi[3];
+  std::uint32_t index = 0;  ///< inner: first child (the second follows); leaf: first slot
+  std::uint32_t count = 0;  ///< 0: inner node; else the leaf's triangles
+};
+
+struct DistanceTree {
+  std::vector<DistanceNode> nodes;                   ///< nodes[0] is the root (none for no triangles)
+  std::vector<std::array<Vec3<double>, 3>> tris;     ///< triangles in leaf order
+  std::vector<std::uint32_t> ids;                    ///< slot -> triangle index (file order)
+  std::vector<std::uint8_t> degenerate;              ///< slot -> zero area, exactly (collinear vertices)
+};
+
+[[nodiscard]] DistanceTree build_distance_tree(const std::vector<Vec3<double>>& v,
+                                               const std::vector<std::array<std::uint32_t, 3>>& tris);
+
+/// The exact stage (distance_exact.cpp, GMP). The exact distance from p to one slot's triangle,
+/// correctly rounded.
+[[nodiscard]] double exact_distance(const DistanceTree& t, const Vec3<double>& p, std::uint32_t slot);
+/// Among `slots`, the triangle nearest p exactly (ties: lowest id) and its result (distance
+/// correctly rounded, point, barycentrics).
+[[nodiscard]] ClosestPoint exact_select(const DistanceTree& t, const Vec3<double>& p, const std::uint32_t* slots,
+                                        std::size_t n);
+/// The exact search over the whole tree (box bounds in rationals): for inputs the filter cannot
+/// handle (over- or underflow).
+[[nodiscard]] ClosestPoint exact_search(const DistanceTree& t, const Vec3<double>& p);
+
+}  // namespace rayproof::detail
