@@ -28,5 +28,7 @@ Run add_advise(CLI::App& app);
 Run add_contains(CLI::App& app);
 /// `rayproof bench contains`: registered on the bench subcommand; main runs it before bench.
 Run add_bench_contains(CLI::App& bench);
+/// `rayproof distance`: closest points and distances (rayproof/scene/distance.h).
+Run add_distance(CLI::App& app);
 
 }  // namespace rayproof::cli

@@ -43,6 +43,7 @@ void add_commands(CLI::App& app, Commands& out) {
   }
   add(add_advise(app));
   add(add_contains(app));
+  add(add_distance(app));
 }
 
 int rayproof_main(int argc, char** argv) {
