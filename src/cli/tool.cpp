@@ -41,6 +41,11 @@ void add_commands(CLI::App& app, Commands& out) {
     Run run = add_bench_contains(*bench);
     out.insert(out.begin(), {bench->get_subcommand("contains"), std::move(run)});
   }
+  {  // `bench distance`, the same way
+    CLI::App* bench = app.get_subcommand("bench");
+    Run run = add_bench_distance(*bench);
+    out.insert(out.begin(), {bench->get_subcommand("distance"), std::move(run)});
+  }
   add(add_advise(app));
   add(add_contains(app));
   add(add_distance(app));

@@ -18,6 +18,8 @@
 
 #include <algorithm>
 #include <cstring>
+#include <cstdio>
+#include <cstdlib>
 #include <vector>
 
 #include "rayproof/scene/distance.h"
@@ -245,6 +247,8 @@ ClosestPoint query(const DistanceTree& t, const Vec3<double>& p) {
   const BQ bq = feature_value<BQ>(t.tris[best->slot], p, best->kind, best->k);
   if (bq.r < kInf && round_sqrt_ball(bq.x, bq.r, r.distance)) return r;
   r.distance = exact_distance(t, p, best->slot);
+  if (std::getenv("RP_DEBUG"))
+    std::fprintf(stderr, "kind %d lo %a hi %a bq %a %a r %a dist %a\n", int(best->kind), best->lo, best->hi, bq.x.hi, bq.x.lo, bq.r, r.distance);
   r.stage = DistanceStage::rounding;
   return r;
 }

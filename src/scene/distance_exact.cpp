@@ -9,6 +9,7 @@
 #include <limits>
 #include <vector>
 
+#include "scene/contains_exact.h"
 #include "scene/distance_tree.h"
 
 namespace rayproof::detail {
@@ -40,6 +41,7 @@ void segment(const QV& p, const QV& a, const QV& b, Q& d2, Q& t) {
   d2 = dot(d, d);
 }
 
+}  // namespace
 Exact exact_triangle(const Vec3<double>& pd, const std::array<Vec3<double>, 3>& t, bool degenerate) {
   const QV p = qv(pd), a = qv(t[0]), b = qv(t[1]), c = qv(t[2]);
   Exact r;
@@ -90,6 +92,7 @@ Exact exact_triangle(const Vec3<double>& pd, const std::array<Vec3<double>, 3>& 
   return finish(1 - v - w, v, w);
 }
 
+namespace {
 double to_double(const Q& q) {
   // mpq_get_d truncates; through MPFR to the nearest (and the exponent range of MPFR).
   mpfr_t x;
@@ -208,3 +211,28 @@ double exact_distance(const DistanceTree& t, const Vec3<double>& p, std::uint32_
 }
 
 }  // namespace rayproof::detail
+
+namespace rayproof {
+
+namespace {
+bool finite(const Vec3<double>& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
+bool zero_area(const std::array<Vec3<double>, 3>& t) {
+  using scene::detail::orient2d_exact;
+  const auto& [a, b, c] = t;
+  return orient2d_exact(a.x, a.y, b.x, b.y, c.x, c.y) == 0 && orient2d_exact(a.y, a.z, b.y, b.z, c.y, c.z) == 0 &&
+         orient2d_exact(a.z, a.x, b.z, b.x, c.z, c.x) == 0;
+}
+}  // namespace
+
+double exact_triangle_distance(const Vec3<double>& p, const std::array<Vec3<double>, 3>& t) {
+  if (!finite(p) || !finite(t[0]) || !finite(t[1]) || !finite(t[2])) return std::numeric_limits<double>::quiet_NaN();
+  return detail::round_sqrt(detail::exact_triangle(p, t, zero_area(t)).d2);
+}
+
+int compare_triangle_distances(const Vec3<double>& p, const std::array<Vec3<double>, 3>& t1,
+                               const std::array<Vec3<double>, 3>& t2) {
+  const int c = cmp(detail::exact_triangle(p, t1, zero_area(t1)).d2, detail::exact_triangle(p, t2, zero_area(t2)).d2);
+  return c < 0 ? -1 : (c > 0 ? 1 : 0);
+}
+
+}  // namespace rayproof

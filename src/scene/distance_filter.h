@@ -158,23 +158,28 @@ bool round_sqrt_ball(const V& x, double r, double& out) {
   if constexpr (std::is_same_v<V, DD>) xh = x.hi, xl = x.lo;
   else xh = x, xl = 0;
   if (!(xh >= 0x1p-900 && xh <= 0x1p+1000 && r < xh * 0x1p-20)) return false;
-  const double r0 = std::sqrt(xh);
-  const double u = std::nextafter(r0, kInf) - r0, ud = r0 - std::nextafter(r0, 0.0);
-  const double P = r0 * r0, e = std::fma(r0, r0, -P);
-  {  // m+^2 - (x + r) > 0, m+ = r0 + u / 2
-    const double t[6] = {P - xh, e, -xl, r0 * u, u * u * 0.25, -r};
-    double s = 0, a = 0;
-    for (double v : t) s += v, a += std::abs(v);
-    if (!(s > a * 0x1p-50)) return false;
+  // sqrt(xh) or a neighbour (the low part of a double-double moves the root by a fraction of an ulp).
+  const double c0 = std::sqrt(xh);
+  for (const double r0 : {c0, std::nextafter(c0, kInf), std::nextafter(c0, 0.0)}) {
+    const double u = std::nextafter(r0, kInf) - r0, ud = r0 - std::nextafter(r0, 0.0);
+    const double P = r0 * r0, e = std::fma(r0, r0, -P);
+    // Each sum of six terms is within 6 * 2^-53 of the sum of their magnitudes: below 2^-50 of it.
+    {  // m+^2 - (x + r) > 0, m+ = r0 + u / 2
+      const double t[6] = {P - xh, e, -xl, r0 * u, u * u * 0.25, -r};
+      double s = 0, a = 0;
+      for (double v : t) s += v, a += std::abs(v);
+      if (!(s > a * 0x1p-50)) continue;
+    }
+    {  // (x - r) - m-^2 > 0, m- = r0 - ud / 2
+      const double t[6] = {xh - P, xl, -e, r0 * ud, -ud * ud * 0.25, -r};
+      double s = 0, a = 0;
+      for (double v : t) s += v, a += std::abs(v);
+      if (!(s > a * 0x1p-50)) continue;
+    }
+    out = r0;
+    return true;
   }
-  {  // (x - r) - m-^2 > 0, m- = r0 - ud / 2
-    const double t[6] = {xh - P, xl, -e, r0 * ud, -ud * ud * 0.25, -r};
-    double s = 0, a = 0;
-    for (double v : t) s += v, a += std::abs(v);
-    if (!(s > a * 0x1p-50)) return false;
-  }
-  out = r0;
-  return true;
+  return false;
 }
 
 }  // namespace rayproof::detail::dist

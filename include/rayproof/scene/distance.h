@@ -56,4 +56,11 @@ struct ClosestPoint {
   }
 };
 
+/// The exact distance from p to one closed triangle (zero area: its edges), correctly rounded;
+/// NaN for a point or vertex with a NaN or infinite coordinate. For measuring others against exact.
+[[nodiscard]] double exact_triangle_distance(const Vec3<double>& p, const std::array<Vec3<double>, 3>& t);
+/// The sign of D(p, t1) - D(p, t2), D the exact squared distances (rationals): -1, 0 or +1.
+[[nodiscard]] int compare_triangle_distances(const Vec3<double>& p, const std::array<Vec3<double>, 3>& t1,
+                                             const std::array<Vec3<double>, 3>& t2);
+
 }  // namespace rayproof
