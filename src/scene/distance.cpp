@@ -18,8 +18,6 @@
 
 #include <algorithm>
 #include <cstring>
-#include <cstdio>
-#include <cstdlib>
 #include <vector>
 
 #include "rayproof/scene/distance.h"
@@ -84,6 +82,16 @@ struct Search {
 
   void triangle(std::uint32_t slot) {
     const auto& tri = t.tris[slot];
+    {  // The triangle's box first: most triangles of a visited leaf end here.
+      double s = 0;
+      for (int k = 0; k < 3; ++k) {
+        const double a = tri[0][k], b = tri[1][k], c = tri[2][k];
+        const double lo = std::min({a, b, c}), hi = std::max({a, b, c});
+        const double g = std::max({lo - p[k], p[k] - hi, 0.0});
+        s += g * g;
+      }
+      if (s * (1 - 0x1p-49) - 0x1p-1070 > U) return;
+    }
     double lo, hi;
     // Vertices: always on the triangle.
     for (int k = 0; k < 3; ++k) {
@@ -247,8 +255,6 @@ ClosestPoint query(const DistanceTree& t, const Vec3<double>& p) {
   const BQ bq = feature_value<BQ>(t.tris[best->slot], p, best->kind, best->k);
   if (bq.r < kInf && round_sqrt_ball(bq.x, bq.r, r.distance)) return r;
   r.distance = exact_distance(t, p, best->slot);
-  if (std::getenv("RP_DEBUG"))
-    std::fprintf(stderr, "kind %d lo %a hi %a bq %a %a r %a dist %a\n", int(best->kind), best->lo, best->hi, bq.x.hi, bq.x.lo, bq.r, r.distance);
   r.stage = DistanceStage::rounding;
   return r;
 }
