@@ -93,25 +93,33 @@ struct Search {
       if (s * (1 - 0x1p-49) - 0x1p-1070 > U) return;
     }
     double lo, hi;
+    // The face's plane: its distance is a lower bound of the triangle's (most visited triangles end
+    // here once U is tight); then the face when p projects inside it.
+    const bool flat = t.degenerate[slot] != 0;
+    BV<BD> ab, ac, ap, n;
+    BD h;
+    if (!flat) {
+      ab = difv<BD>(tri[1], tri[0]), ac = difv<BD>(tri[2], tri[0]), ap = difv<BD>(p, tri[0]);
+      n = cross(ab, ac);
+      h = dot(n, ap);
+      interval(div(mul(h, h), dot(n, n)), lo, hi);
+      if (lo > U) return;
+    }
+    double plo = lo, phi = hi;
     // Vertices: always on the triangle.
     for (int k = 0; k < 3; ++k) {
       const BV<BD> w = difv<BD>(p, tri[k]);
       interval(dot(w, w), lo, hi);
       push(lo, hi, slot, kVertex, k, true);
     }
-    // Face: p's projection inside when the three edge functions are positive.
-    if (!t.degenerate[slot]) {
-      const BV<BD> ab = difv<BD>(tri[1], tri[0]), ac = difv<BD>(tri[2], tri[0]), ap = difv<BD>(p, tri[0]);
-      const BV<BD> n = cross(ab, ac);
+    if (!flat) {
       const BV<BD> bc = difv<BD>(tri[2], tri[1]), bp = difv<BD>(p, tri[1]), ca = difv<BD>(tri[0], tri[2]),
                    cp = difv<BD>(p, tri[2]);
       const BD s2 = dot(n, cross(ab, ap)), s0 = dot(n, cross(bc, bp)), s1 = dot(n, cross(ca, cp));
       const bool no = negative(s0) || negative(s1) || negative(s2);
       if (!no) {
-        const BD h = dot(n, ap);
-        interval(div(mul(h, h), dot(n, n)), lo, hi);
         const bool sure = positive(s0) && positive(s1) && positive(s2);
-        push(lo, hi, slot, kFace, 0, sure);
+        push(plo, phi, slot, kFace, 0, sure);
         if (sure) return;  // the face's projection is the triangle's closest point: edges are farther
       }
     }
@@ -163,6 +171,71 @@ struct Search {
   }
 };
 
+/// A rigorous upper bound of the squared distance from p to a triangle, in plain double: the
+/// distance to a point q of the triangle (weights found by the Voronoi regions in double, clamped
+/// so that they are surely nonnegative and sum to at most 1) plus a bound on the rounding of q.
+double upper_bound(const std::array<Vec3<double>, 3>& t, const Vec3<double>& p) {
+  const Vec3<double> a = t[0], ab = t[1] - t[0], ac = t[2] - t[0], ap = p - a;
+  const double d1 = dot(ab, ap), d2 = dot(ac, ap);
+  const Vec3<double> bp = p - t[1], cp = p - t[2];
+  const double d3 = dot(ab, bp), d4 = dot(ac, bp), d5 = dot(ab, cp), d6 = dot(ac, cp);
+  double v = 0, w = 0;
+  if (d1 <= 0 && d2 <= 0) v = 0, w = 0;
+  else if (d3 >= 0 && d4 <= d3) v = 1, w = 0;
+  else if (d6 >= 0 && d5 <= d6) v = 0, w = 1;
+  else {
+    const double vc = d1 * d4 - d3 * d2, vb = d5 * d2 - d1 * d6, va = d3 * d6 - d5 * d4;
+    if (vc <= 0 && d1 >= 0 && d3 <= 0) v = d1 / (d1 - d3);
+    else if (vb <= 0 && d2 >= 0 && d6 <= 0) w = d2 / (d2 - d6);
+    else if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) w = (d4 - d3) / ((d4 - d3) + (d5 - d6)), v = 1 - w;
+    else v = vb / (va + vb + vc), w = vc / (va + vb + vc);
+  }
+  if (!(v >= 0)) v = 0;  // NaN too
+  if (!(w >= 0)) w = 0;
+  if (const double sum = v + w; sum > 1 - 0x1p-50) v *= (1 - 0x1p-49) / sum, w *= (1 - 0x1p-49) / sum;
+  // q = a + v ab + w ac exactly is on the triangle; its double evaluation is within delta of it.
+  double e2 = 0, delta = 0;
+  for (int k = 0; k < 3; ++k) {
+    const double q = a[k] + v * ab[k] + w * ac[k];
+    delta += (std::abs(a[k]) + v * std::abs(ab[k]) + w * std::abs(ac[k])) * 0x1p-50;
+    const double d = p[k] - q;
+    e2 += d * d;
+  }
+  const double r = std::sqrt(e2) * (1 + 0x1p-50) + delta * (1 + 0x1p-50);
+  return r * r * (1 + 0x1p-50);
+}
+
+/// A best-first pass in plain double for a tight upper bound on the answer's squared distance.
+double first_bound(const DistanceTree& t, const Vec3<double>& p) {
+  struct Entry {
+    std::uint32_t node;
+    double lb;
+  };
+  Entry stack[128];
+  int top = 0;
+  double U = kInf;
+  stack[top++] = {0, box_lb(t.nodes[0], p)};
+  while (top) {
+    const Entry e = stack[--top];
+    if (e.lb > U) continue;
+    const DistanceNode& n = t.nodes[e.node];
+    if (n.count) {
+      for (std::uint32_t s = n.index; s < n.index + n.count; ++s) U = std::min(U, upper_bound(t.tris[s], p));
+      continue;
+    }
+    if (top + 2 > 128) break;
+    const double l0 = box_lb(t.nodes[n.index], p), l1 = box_lb(t.nodes[n.index + 1], p);
+    if (l0 <= l1) {
+      if (l1 <= U) stack[top++] = {n.index + 1, l1};
+      if (l0 <= U) stack[top++] = {n.index, l0};
+    } else {
+      if (l0 <= U) stack[top++] = {n.index, l0};
+      if (l1 <= U) stack[top++] = {n.index + 1, l1};
+    }
+  }
+  return U;
+}
+
 bool same_feature(const DistanceTree& t, const Cand& a, const Cand& b) {
   if (a.kind != b.kind) return false;
   if (a.kind == kFace) return a.slot == b.slot;
@@ -212,6 +285,8 @@ ClosestPoint query(const DistanceTree& t, const Vec3<double>& p) {
   thread_local std::vector<Cand> cands;
   cands.clear();
   Search s{t, p, cands};
+  s.U = first_bound(t, p);
+  if (!(s.U < kInf)) s.U = kInf;  // NaN from overflow: the ball pass decides (or goes exact)
   s.run();
   if (s.extreme || !(s.U < kInf)) {
     r = exact_search(t, p);
@@ -229,6 +304,11 @@ ClosestPoint query(const DistanceTree& t, const Vec3<double>& p) {
     if (!first) first = &c;
     else if (!same_feature(t, *first, c)) ambiguous = true;
     if (t.ids[c.slot] < best_id) best_id = t.ids[c.slot], best = &c;
+  }
+  if (!first) {  // no feature within the bound: cannot happen when the bounds hold; decided exactly
+    r = exact_search(t, p);
+    r.stage = DistanceStage::extreme;
+    return r;
   }
   if (ambiguous) {
     thread_local std::vector<std::uint32_t> slots;

@@ -1,54 +1,17 @@
-// The closest-point tree: a binary BVH over the triangles with exact double boxes, split at the
-// median of the centroids along the longest axis, leaves of up to four triangles.
+// The closest-point tree: the SAH binary BVH of rayproof/bvh_build.h over the triangles (leaves of
+// up to four), with exact double boxes.
 #include <algorithm>
-#include <numeric>
+#include <limits>
+#include <stdexcept>
 
+#include "rayproof/bvh_build.h"
 #include "scene/contains_exact.h"
 #include "scene/distance_tree.h"
 
 namespace rayproof::detail {
 
 namespace {
-
 constexpr std::uint32_t kLeaf = 4;
-
-struct Builder {
-  const std::vector<std::array<Vec3<double>, 3>>& tri;
-  std::vector<Vec3<double>> centroid;
-  std::vector<std::uint32_t> order;
-  std::vector<DistanceNode>& nodes;
-
-  void bounds(DistanceNode& n, std::uint32_t b, std::uint32_t e) const {
-    for (int k = 0; k < 3; ++k) n.lo[k] = std::numeric_limits<double>::infinity(), n.hi[k] = -n.lo[k];
-    for (std::uint32_t i = b; i < e; ++i)
-      for (const Vec3<double>& v : tri[order[i]])
-        for (int k = 0; k < 3; ++k) n.lo[k] = std::min(n.lo[k], v[k]), n.hi[k] = std::max(n.hi[k], v[k]);
-  }
-  void build(std::uint32_t node, std::uint32_t b, std::uint32_t e) {
-    bounds(nodes[node], b, e);
-    if (e - b <= kLeaf) {
-      nodes[node].index = b, nodes[node].count = e - b;
-      return;
-    }
-    double clo[3], chi[3];
-    for (int k = 0; k < 3; ++k) clo[k] = std::numeric_limits<double>::infinity(), chi[k] = -clo[k];
-    for (std::uint32_t i = b; i < e; ++i)
-      for (int k = 0; k < 3; ++k) clo[k] = std::min(clo[k], centroid[order[i]][k]), chi[k] = std::max(chi[k], centroid[order[i]][k]);
-    int axis = 0;
-    for (int k = 1; k < 3; ++k)
-      if (chi[k] - clo[k] > chi[axis] - clo[axis]) axis = k;
-    const std::uint32_t mid = b + (e - b) / 2;
-    std::nth_element(order.begin() + b, order.begin() + mid, order.begin() + e,
-                     [&](std::uint32_t x, std::uint32_t y) { return centroid[x][axis] < centroid[y][axis]; });
-    const auto first = std::uint32_t(nodes.size());
-    nodes.emplace_back();
-    nodes.emplace_back();
-    nodes[node].index = first, nodes[node].count = 0;
-    build(first, b, mid);
-    build(first + 1, mid, e);
-  }
-};
-
 }  // namespace
 
 DistanceTree build_distance_tree(const std::vector<Vec3<double>>& v, const std::vector<std::array<std::uint32_t, 3>>& tris) {
@@ -56,19 +19,36 @@ DistanceTree build_distance_tree(const std::vector<Vec3<double>>& v, const std::
   const auto n = std::uint32_t(tris.size());
   if (n == 0) return t;
   std::vector<std::array<Vec3<double>, 3>> tri(n);
-  std::vector<Vec3<double>> centroid(n);
+  std::vector<BvhBox> boxes(n);
   for (std::uint32_t i = 0; i < n; ++i) {
     tri[i] = {v[tris[i][0]], v[tris[i][1]], v[tris[i][2]]};
-    // The centroid only orders the split; a third of each coordinate avoids overflow.
-    centroid[i] = tri[i][0] / 3.0 + tri[i][1] / 3.0 + tri[i][2] / 3.0;
+    for (const auto& p : tri[i]) boxes[i].extend(p);
   }
-  Builder b{tri, std::move(centroid), std::vector<std::uint32_t>(n), t.nodes};
-  std::iota(b.order.begin(), b.order.end(), 0u);
-  t.nodes.reserve(2 * (n / kLeaf + 1));
-  t.nodes.emplace_back();
-  b.build(0, 0, n);
+  // The topology of the SAH binary tree (float boxes, rounded outwards: only its shape is used);
+  // the boxes are recomputed in double, exactly, bottom-up.
+  BvhBuildOptions opt;
+  opt.builder = BvhBuilder::sah;
+  opt.max_leaf = kLeaf;
+  opt.leaf_group = 1;
+  const Bvh bvh = build_bvh(boxes, {}, opt);
+  t.nodes.resize(bvh.nodes.size());
+  for (std::size_t i = 0; i < bvh.nodes.size(); ++i) t.nodes[i].index = bvh.nodes[i].index, t.nodes[i].count = bvh.nodes[i].count;
+  std::vector<std::uint32_t> order = bvh.prim_ids;
+  for (std::size_t i = bvh.nodes.size(); i-- > 0;) {  // children follow their parents
+    DistanceNode& nd = t.nodes[i];
+    for (int k = 0; k < 3; ++k) nd.lo[k] = std::numeric_limits<double>::infinity(), nd.hi[k] = -nd.lo[k];
+    if (nd.count) {
+      for (std::uint32_t s = nd.index; s < nd.index + nd.count; ++s)
+        for (const Vec3<double>& p : tri[order[s]])
+          for (int k = 0; k < 3; ++k) nd.lo[k] = std::min(nd.lo[k], p[k]), nd.hi[k] = std::max(nd.hi[k], p[k]);
+    } else {
+      if (nd.index <= i) throw std::logic_error("distance tree: a child before its parent");
+      for (std::uint32_t c : {nd.index, nd.index + 1})
+        for (int k = 0; k < 3; ++k) nd.lo[k] = std::min(nd.lo[k], t.nodes[c].lo[k]), nd.hi[k] = std::max(nd.hi[k], t.nodes[c].hi[k]);
+    }
+  }
   t.tris.resize(n);
-  t.ids = b.order;
+  t.ids = std::move(order);
   t.degenerate.resize(n);
   for (std::uint32_t s = 0; s < n; ++s) {
     t.tris[s] = tri[t.ids[s]];
