@@ -140,6 +140,9 @@ void check(const Shape& s, const ClosedMesh& m, const Vec3<double>& p, const cha
   EXPECT_EQ(m.distance(p), r.distance);
   if (r.triangle < s.t.size()) {  // the closest point and barycentrics: on the triangle, near p's distance
     const auto& t = s.t[r.triangle];
+    // The weights are ill-conditioned on slivers: checked on triangles with some area.
+    const Vec3<double> e1 = s.v[t[1]] - s.v[t[0]], e2 = s.v[t[2]] - s.v[t[0]];
+    const bool fat = rayproof::length(rayproof::cross(e1, e2)) > 1e-3 * std::max(rayproof::dot(e1, e1), rayproof::dot(e2, e2));
     const double sum = r.barycentric[0] + r.barycentric[1] + r.barycentric[2];
     EXPECT_NEAR(sum, 1.0, 1e-12);
     for (double w : r.barycentric) EXPECT_GE(w, -1e-12);
@@ -149,8 +152,9 @@ void check(const Shape& s, const ClosedMesh& m, const Vec3<double>& p, const cha
     const double scale = std::max({std::abs(q.x), std::abs(q.y), std::abs(q.z), std::abs(p.x), std::abs(p.y), std::abs(p.z)});
     // Lengths with the scale divided out (no overflow near 2^1000).
     const double f = scale > 0 ? std::exp2(-std::ilogb(scale)) : 1.0;
-    EXPECT_NEAR(rayproof::length((qb - q) * f), 0.0, 1e-12 * scale * f);
-    EXPECT_NEAR(rayproof::length((p - q) * f), r.distance * f, 1e-12 * std::max(scale, r.distance) * f);
+    if (fat) EXPECT_NEAR(rayproof::length((qb - q) * f), 0.0, 1e-12 * scale * f);
+    EXPECT_NEAR(rayproof::length((p - q) * f), r.distance * f, 1e-12 * std::max(scale, r.distance) * f)
+        << "stage " << rayproof::to_string(r.stage) << " weights " << r.barycentric[0] << " " << r.barycentric[1] << " " << r.barycentric[2];
   }
 }
 
@@ -282,6 +286,57 @@ TEST(Distance, InvalidPointsAndBatch) {
   }
   std::vector<ClosestPoint> short_out(3);
   EXPECT_THROW(m.closest_points(pts, short_out), rayproof::MeshInputError);
+}
+
+TEST(Distance, RoundingTiesToEvenAndDuplicateTriangles) {
+  // p - a = (1 + k 2^-53, 0, 0) exactly: the distance is a midpoint between doubles for odd k.
+  for (double k : {1.0, 3.0, 5.0, 2.0}) {
+    Shape s;
+    s.v = {{-k * 0x1p-53, 0, 0}, {-1, 1, 0.5}, {-1, -1, -0.5}};
+    s.t = {{0, 1, 2}};
+    const ClosedMesh m = make(s);
+    check(s, m, {1, 0, 0}, "midpoint");
+    const double want = k == 1 ? 1.0 : k == 3 ? 1 + 0x1p-51 : k == 5 ? 1 + 0x1p-51 : 1 + 0x1p-52;
+    EXPECT_EQ(m.distance({1, 0, 0}), want) << k;
+  }
+  // The same triangle twice and a coplanar overlapping one: exact ties across different faces.
+  Shape s;
+  s.v = {{0, 0, 0}, {4, 0, 0}, {0, 4, 0}, {0, 0, 0}, {4, 0, 0}, {0, 4, 0}, {1, 1, 0}, {3, -1, 0}, {-1, 3, 0}};
+  s.t = {{3, 4, 5}, {0, 1, 2}, {6, 7, 8}};
+  const ClosedMesh m = make(s);
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> u(-1, 5);
+  for (int i = 0; i < 200; ++i) check(s, m, {u(rng), u(rng), u(rng)}, "duplicates");
+  for (double z : {0.0, 0.25, -3.0}) check(s, m, {1, 1, z}, "duplicates");
+}
+
+TEST(Distance, SliversAndNearlyCollinearTriangles) {
+  std::mt19937_64 rng(31);
+  std::uniform_real_distribution<double> u(-2, 2), tiny(-1e-12, 1e-12);
+  for (int mesh = 0; mesh < 20; ++mesh) {
+    Shape s;
+    for (int i = 0; i < 6; ++i) {
+      const Vec3<double> a{u(rng), u(rng), u(rng)}, b{u(rng), u(rng), u(rng)};
+      const double t = std::uniform_real_distribution<double>(0, 1)(rng);
+      const auto base = std::uint32_t(s.v.size());
+      s.v.push_back(a), s.v.push_back(b);
+      s.v.push_back({a.x + t * (b.x - a.x) + tiny(rng), a.y + t * (b.y - a.y) + tiny(rng), a.z + t * (b.z - a.z)});
+      s.t.push_back({base, base + 1, base + 2});
+    }
+    const ClosedMesh m = make(s);
+    for (int i = 0; i < 50; ++i) check(s, m, {u(rng), u(rng), u(rng)}, "sliver");
+    for (const auto& v : s.v) check(s, m, {v.x + tiny(rng), v.y, v.z}, "sliver vertex");
+  }
+}
+
+TEST(Distance, PublicExactHelpers) {
+  const std::array<Vec3<double>, 3> t{Vec3<double>{0, 0, 0}, {2, 0, 0}, {0, 2, 0}}, u{Vec3<double>{0, 0, 1}, {2, 0, 1}, {0, 2, 1}};
+  EXPECT_EQ(rayproof::exact_triangle_distance({1, 1, 3}, t), 3.0);
+  EXPECT_EQ(rayproof::exact_triangle_distance({3, 3, 0}, t), std::sqrt(8.0));
+  EXPECT_EQ(rayproof::compare_triangle_distances({1, 1, 3}, t, u), 1);
+  EXPECT_EQ(rayproof::compare_triangle_distances({1, 1, -3}, t, u), -1);
+  EXPECT_EQ(rayproof::compare_triangle_distances({1, 1, 0.5}, t, u), 0);
+  EXPECT_TRUE(std::isnan(rayproof::exact_triangle_distance({std::nan(""), 0, 0}, t)));
 }
 
 }  // namespace

@@ -273,6 +273,11 @@ void fill_point(const DistanceTree& t, const Vec3<double>& p, const Cand& w, Clo
   r.point = {b[0] * tri[0].x + b[1] * tri[1].x + b[2] * tri[2].x, b[0] * tri[0].y + b[1] * tri[1].y + b[2] * tri[2].y,
              b[0] * tri[0].z + b[1] * tri[1].z + b[2] * tri[2].z};
   if (w.kind == kVertex) r.point = tri[w.k];
+  if (w.kind == kFace) {  // the projection on the plane: accurate where the weights are not (slivers)
+    const Vec3<double> n = cross(tri[1] - tri[0], tri[2] - tri[0]);
+    const double nn = dot(n, n);
+    if (nn > 0 && std::isfinite(nn)) r.point = p - n * (dot(n, p - tri[0]) / nn);
+  }
 }
 
 ClosestPoint query(const DistanceTree& t, const Vec3<double>& p) {
@@ -334,7 +339,7 @@ ClosestPoint query(const DistanceTree& t, const Vec3<double>& p) {
   if (round_sqrt_ball(bd.x, bd.r, r.distance)) return r;
   const BQ bq = feature_value<BQ>(t.tris[best->slot], p, best->kind, best->k);
   if (bq.r < kInf && round_sqrt_ball(bq.x, bq.r, r.distance)) return r;
-  r.distance = exact_distance(t, p, best->slot);
+  r = exact_select(t, p, &best->slot, 1);  // the distance, point and weights from the rationals
   r.stage = DistanceStage::rounding;
   return r;
 }

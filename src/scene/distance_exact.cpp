@@ -205,10 +205,6 @@ ClosestPoint exact_search(const DistanceTree& t, const Vec3<double>& pd) {
   return result(t, best, be);
 }
 
-/// The exact squared distance to one slot's triangle, correctly rounded to its square root.
-double exact_distance(const DistanceTree& t, const Vec3<double>& p, std::uint32_t slot) {
-  return round_sqrt(exact_triangle(p, t.tris[slot], t.degenerate[slot]).d2);
-}
 
 }  // namespace rayproof::detail
 

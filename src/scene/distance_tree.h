@@ -27,9 +27,6 @@ struct DistanceTree {
 [[nodiscard]] DistanceTree build_distance_tree(const std::vector<Vec3<double>>& v,
                                                const std::vector<std::array<std::uint32_t, 3>>& tris);
 
-/// The exact stage (distance_exact.cpp, GMP). The exact distance from p to one slot's triangle,
-/// correctly rounded.
-[[nodiscard]] double exact_distance(const DistanceTree& t, const Vec3<double>& p, std::uint32_t slot);
 /// Among `slots`, the triangle nearest p exactly (ties: lowest id) and its result (distance
 /// correctly rounded, point, barycentrics).
 [[nodiscard]] ClosestPoint exact_select(const DistanceTree& t, const Vec3<double>& p, const std::uint32_t* slots,
