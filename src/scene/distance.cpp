@@ -55,7 +55,7 @@ struct Cand {
 inline double box_lb(const DistanceNode& n, const Vec3<double>& p) {
   double s = 0;
   for (int k = 0; k < 3; ++k) {
-    const double g = std::max({n.lo[k] - p[k], p[k] - n.hi[k], 0.0});
+    const double g = std::max({double(n.lo[k]) - p[k], p[k] - double(n.hi[k]), 0.0});
     s += g * g;
   }
   return std::max(0.0, s * (1 - 0x1p-49) - 0x1p-1070);
@@ -205,8 +205,14 @@ double upper_bound(const std::array<Vec3<double>, 3>& t, const Vec3<double>& p) 
   return r * r * (1 + 0x1p-50);
 }
 
-/// A best-first pass in plain double for a tight upper bound on the answer's squared distance.
-double first_bound(const DistanceTree& t, const Vec3<double>& p) {
+/// A best-first pass in plain double for a tight upper bound on the answer's squared distance. The
+/// leaves it visits, with their box bounds, go to `leaves`: every leaf whose bound is <= the final
+/// bound is among them (the bound only decreases), so the exact pass reads them instead of the tree.
+struct Leaf {
+  std::uint32_t node;
+  double lb;
+};
+double first_bound(const DistanceTree& t, const Vec3<double>& p, std::vector<Leaf>& leaves, bool& complete) {
   struct Entry {
     std::uint32_t node;
     double lb;
@@ -220,10 +226,14 @@ double first_bound(const DistanceTree& t, const Vec3<double>& p) {
     if (e.lb > U) continue;
     const DistanceNode& n = t.nodes[e.node];
     if (n.count) {
+      leaves.push_back({e.node, e.lb});
       for (std::uint32_t s = n.index; s < n.index + n.count; ++s) U = std::min(U, upper_bound(t.tris[s], p));
       continue;
     }
-    if (top + 2 > 128) break;
+    if (top + 2 > 128) {
+      complete = false;
+      break;
+    }
     const double l0 = box_lb(t.nodes[n.index], p), l1 = box_lb(t.nodes[n.index + 1], p);
     if (l0 <= l1) {
       if (l1 <= U) stack[top++] = {n.index + 1, l1};
@@ -290,9 +300,23 @@ ClosestPoint query(const DistanceTree& t, const Vec3<double>& p) {
   thread_local std::vector<Cand> cands;
   cands.clear();
   Search s{t, p, cands};
-  s.U = first_bound(t, p);
+  thread_local std::vector<Leaf> leaves;
+  leaves.clear();
+  bool complete = true;
+  s.U = first_bound(t, p, leaves, complete);
   if (!(s.U < kInf)) s.U = kInf;  // NaN from overflow: the ball pass decides (or goes exact)
-  s.run();
+  if (complete && s.U < kInf) {
+    // The leaves within the bound, nearest first.
+    std::sort(leaves.begin(), leaves.end(), [](const Leaf& a, const Leaf& b) { return a.lb < b.lb; });
+    for (const Leaf& l : leaves) {
+      if (l.lb > s.U) break;
+      const DistanceNode& n = t.nodes[l.node];
+      for (std::uint32_t k = n.index; k < n.index + n.count; ++k) s.triangle(k);
+      if (s.extreme) break;
+    }
+  } else {
+    s.run();
+  }
   if (s.extreme || !(s.U < kInf)) {
     r = exact_search(t, p);
     r.stage = DistanceStage::extreme;

@@ -31,22 +31,27 @@ DistanceTree build_distance_tree(const std::vector<Vec3<double>>& v, const std::
   opt.max_leaf = kLeaf;
   opt.leaf_group = 1;
   const Bvh bvh = build_bvh(boxes, {}, opt);
-  t.nodes.resize(bvh.nodes.size());
-  for (std::size_t i = 0; i < bvh.nodes.size(); ++i) t.nodes[i].index = bvh.nodes[i].index, t.nodes[i].count = bvh.nodes[i].count;
+  const std::size_t nn = bvh.nodes.size();
+  t.nodes.resize(nn);
+  std::vector<std::array<double, 6>> box(nn);  // exact double bounds: lo xyz, hi xyz
+  for (std::size_t i = 0; i < nn; ++i) t.nodes[i].index = bvh.nodes[i].index, t.nodes[i].count = bvh.nodes[i].count;
   std::vector<std::uint32_t> order = bvh.prim_ids;
-  for (std::size_t i = bvh.nodes.size(); i-- > 0;) {  // children follow their parents
-    DistanceNode& nd = t.nodes[i];
-    for (int k = 0; k < 3; ++k) nd.lo[k] = std::numeric_limits<double>::infinity(), nd.hi[k] = -nd.lo[k];
+  for (std::size_t i = nn; i-- > 0;) {  // children follow their parents
+    const DistanceNode& nd = t.nodes[i];
+    auto& b = box[i];
+    for (int k = 0; k < 3; ++k) b[k] = std::numeric_limits<double>::infinity(), b[k + 3] = -b[k];
     if (nd.count) {
       for (std::uint32_t s = nd.index; s < nd.index + nd.count; ++s)
         for (const Vec3<double>& p : tri[order[s]])
-          for (int k = 0; k < 3; ++k) nd.lo[k] = std::min(nd.lo[k], p[k]), nd.hi[k] = std::max(nd.hi[k], p[k]);
+          for (int k = 0; k < 3; ++k) b[k] = std::min(b[k], p[k]), b[k + 3] = std::max(b[k + 3], p[k]);
     } else {
       if (nd.index <= i) throw std::logic_error("distance tree: a child before its parent");
       for (std::uint32_t c : {nd.index, nd.index + 1})
-        for (int k = 0; k < 3; ++k) nd.lo[k] = std::min(nd.lo[k], t.nodes[c].lo[k]), nd.hi[k] = std::max(nd.hi[k], t.nodes[c].hi[k]);
+        for (int k = 0; k < 3; ++k) b[k] = std::min(b[k], box[c][k]), b[k + 3] = std::max(b[k + 3], box[c][k + 3]);
     }
   }
+  for (std::size_t i = 0; i < nn; ++i)
+    for (int k = 0; k < 3; ++k) t.nodes[i].lo[k] = bvh_float_down(box[i][k]), t.nodes[i].hi[k] = bvh_float_up(box[i][k + 3]);
   t.tris.resize(n);
   t.ids = std::move(order);
   t.degenerate.resize(n);

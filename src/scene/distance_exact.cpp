@@ -186,8 +186,10 @@ ClosestPoint exact_search(const DistanceTree& t, const Vec3<double>& pd) {
       const Q pc[3] = {p.x, p.y, p.z};
       for (int k = 0; k < 3; ++k) {
         Q g = 0;
-        if (pc[k] < nd.lo[k]) g = Q(nd.lo[k]) - pc[k];
-        else if (pc[k] > nd.hi[k]) g = pc[k] - Q(nd.hi[k]);
+        const double lo = nd.lo[k], hi = nd.hi[k];  // +-inf beyond the float range: no gap on that side
+        const double x = k == 0 ? pd.x : (k == 1 ? pd.y : pd.z);
+        if (x < lo && std::isfinite(lo)) g = Q(lo) - pc[k];
+        else if (x > hi && std::isfinite(hi)) g = pc[k] - Q(hi);
         lb += g * g;
       }
       if (lb > be.d2) continue;

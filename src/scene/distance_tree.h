@@ -6,19 +6,22 @@
 #include <cstdint>
 #include <vector>
 
+#include "rayproof/bvh.h"
 #include "rayproof/scene/distance.h"
 #include "rayproof/vec3.h"
 
 namespace rayproof::detail {
 
-struct DistanceNode {
-  double lo[3], hi[3];
+/// 32 bytes: the two children of a node share a cache line. The bounds are the exact double
+/// bounds of the triangles rounded outwards to float (beyond the float range: +-inf).
+struct alignas(32) DistanceNode {
+  float lo[3], hi[3];
   std::uint32_t index = 0;  ///< inner: first child (the second follows); leaf: first slot
   std::uint32_t count = 0;  ///< 0: inner node; else the leaf's triangles
 };
 
 struct DistanceTree {
-  std::vector<DistanceNode> nodes;                   ///< nodes[0] is the root (none for no triangles)
+  std::vector<DistanceNode, AlignedAllocator<DistanceNode, 64>> nodes;                   ///< nodes[0] is the root (none for no triangles)
   std::vector<std::array<Vec3<double>, 3>> tris;     ///< triangles in leaf order
   std::vector<std::uint32_t> ids;                    ///< slot -> triangle index (file order)
   std::vector<std::uint8_t> degenerate;              ///< slot -> zero area, exactly (collinear vertices)
