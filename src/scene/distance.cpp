@@ -201,7 +201,8 @@ double upper_bound(const std::array<Vec3<double>, 3>& t, const Vec3<double>& p) 
     const double d = p[k] - q;
     e2 += d * d;
   }
-  const double r = std::sqrt(e2) * (1 + 0x1p-50) + delta * (1 + 0x1p-50);
+  // 2^-520: above any underflow of the squares (it only loosens the bound below 2^-1000).
+  const double r = std::sqrt(e2) * (1 + 0x1p-50) + delta * (1 + 0x1p-50) + 0x1p-520;
   return r * r * (1 + 0x1p-50);
 }
 
