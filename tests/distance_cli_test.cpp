@@ -1,5 +1,5 @@
 // rayproof distance: the lines and JSON on a cube (distances, sides and tied triangles known by
-// symmetry), --signed, and clear errors (missing file, bad line, mesh without triangles).
+// symmetry), --signed, clear errors (missing file, bad line, mesh without triangles), fuzz --distance.
 #include <gtest/gtest.h>
 
 #include <string>
@@ -56,6 +56,17 @@ TEST(DistanceCli, ClearErrors) {
   r = run_rayproof("distance " + empty.string() + " -", "1 1 1\n");
   EXPECT_EQ(r.status, 2);
   EXPECT_NE(r.err.find("no triangles"), std::string::npos) << r.err;
+}
+
+TEST(DistanceCli, FuzzDistance) {
+  // A short campaign: counts printed, no finding, exit 0; wrong options refused.
+  auto r = run_rayproof("fuzz --distance --cases 40 --seed 2");
+  ASSERT_EQ(r.status, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("wrong triangle  wrong distance  wrong side"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("      40      960               0               0           0"), std::string::npos) << r.out;
+  r = run_rayproof("fuzz --distance --cases 2 --methods float");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("--distance takes"), std::string::npos) << r.err;
 }
 
 }  // namespace

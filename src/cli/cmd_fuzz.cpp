@@ -77,6 +77,7 @@ int run_fuzz_merge(const FuzzCliOptions& o) {
 
 int run_fuzz_cli(const FuzzCliOptions& o) {
   if (o.mesh) return run_mesh_fuzz_cli(o);
+  if (o.distance) return run_distance_fuzz_cli(o);
   verify::FuzzOptions opt;
   if (!o.shard.empty()) {
     const auto k = parse_shard(o.shard);
@@ -207,6 +208,9 @@ Run add_fuzz(CLI::App& app) {
   sub->add_flag("--mesh", o->mesh,
                 "Mesh mode: random closed meshes; leak rays at every vertex and edge midpoint and the parity of "
                 "random rays' crossings (--cases counts meshes, --jobs threads per query batch)");
+  sub->add_flag("--distance", o->distance,
+                "Distance mode: random small meshes (ties, zero-area triangles, scales up to 2^+-1000) and points on "
+                "and around them; closest points against a brute force in rationals (--cases counts meshes)");
   return [o, merge] { return merge->parsed() ? run_fuzz_merge(*o) : run_fuzz_cli(*o); };
 }
 

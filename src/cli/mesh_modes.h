@@ -41,6 +41,7 @@ struct FuzzCliOptions {
   int jobs = 1;
   std::string out = "fuzz-findings";
   bool mesh = false;
+  bool distance = false;  ///< fuzz --distance (fuzz_distance.cpp)
   std::string shard;    ///< K/N
   std::string summary;  ///< write the summary as JSON here
   UserKernelOptions user;
@@ -63,6 +64,8 @@ struct SpawnOptions {
 /// The mesh modes (check_mesh.cpp, fuzz_mesh.cpp, spawn_mesh_cli.cpp).
 int run_mesh_check(const CheckCliOptions& o, const Method& kernel);
 int run_mesh_fuzz_cli(const FuzzCliOptions& o);
+/// fuzz --distance: closest points against a brute force in rationals (verify/distance_fuzz.h).
+int run_distance_fuzz_cli(const FuzzCliOptions& o);
 int run_spawn_mesh(const SpawnOptions& opt);
 
 }  // namespace rayproof::cli
