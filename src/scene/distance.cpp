@@ -61,6 +61,18 @@ inline double box_lb(const DistanceNode& n, const Vec3<double>& p) {
   return std::max(0.0, s * (1 - 0x1p-49) - 0x1p-1070);
 }
 
+/// Lower bound of the squared distance from p to a triangle's box (rounded down).
+inline double triangle_box_lb(const std::array<Vec3<double>, 3>& tri, const Vec3<double>& p) {
+  double s = 0;
+  for (int k = 0; k < 3; ++k) {
+    const double a = tri[0][k], b = tri[1][k], c = tri[2][k];
+    const double lo = std::min({a, b, c}), hi = std::max({a, b, c});
+    const double g = std::max({lo - p[k], p[k] - hi, 0.0});
+    s += g * g;
+  }
+  return std::max(0.0, s * (1 - 0x1p-49) - 0x1p-1070);
+}
+
 struct Search {
   const DistanceTree& t;
   const Vec3<double>& p;
@@ -82,16 +94,7 @@ struct Search {
 
   void triangle(std::uint32_t slot) {
     const auto& tri = t.tris[slot];
-    {  // The triangle's box first: most triangles of a visited leaf end here.
-      double s = 0;
-      for (int k = 0; k < 3; ++k) {
-        const double a = tri[0][k], b = tri[1][k], c = tri[2][k];
-        const double lo = std::min({a, b, c}), hi = std::max({a, b, c});
-        const double g = std::max({lo - p[k], p[k] - hi, 0.0});
-        s += g * g;
-      }
-      if (s * (1 - 0x1p-49) - 0x1p-1070 > U) return;
-    }
+    if (triangle_box_lb(tri, p) > U) return;  // the triangle's box first: most end here
     double lo, hi;
     // The face's plane: its distance is a lower bound of the triangle's (most visited triangles end
     // here once U is tight); then the face when p projects inside it.
@@ -105,14 +108,8 @@ struct Search {
       interval(div(mul(h, h), dot(n, n)), lo, hi);
       if (lo > U) return;
     }
-    double plo = lo, phi = hi;
-    // Vertices: always on the triangle.
-    for (int k = 0; k < 3; ++k) {
-      const BV<BD> w = difv<BD>(p, tri[k]);
-      interval(dot(w, w), lo, hi);
-      push(lo, hi, slot, kVertex, k, true);
-    }
-    if (!flat) {
+    const double plo = lo, phi = hi;
+    if (!flat) {  // the face first: when p surely projects inside it, the other features are farther
       const BV<BD> bc = difv<BD>(tri[2], tri[1]), bp = difv<BD>(p, tri[1]), ca = difv<BD>(tri[0], tri[2]),
                    cp = difv<BD>(p, tri[2]);
       const BD s2 = dot(n, cross(ab, ap)), s0 = dot(n, cross(bc, bp)), s1 = dot(n, cross(ca, cp));
@@ -120,8 +117,14 @@ struct Search {
       if (!no) {
         const bool sure = positive(s0) && positive(s1) && positive(s2);
         push(plo, phi, slot, kFace, 0, sure);
-        if (sure) return;  // the face's projection is the triangle's closest point: edges are farther
+        if (sure) return;
       }
+    }
+    // Vertices: always on the triangle.
+    for (int k = 0; k < 3; ++k) {
+      const BV<BD> w = difv<BD>(p, tri[k]);
+      interval(dot(w, w), lo, hi);
+      push(lo, hi, slot, kVertex, k, true);
     }
     // Edges: the projection on the line within the segment when both end functions are positive.
     for (int k = 0; k < 3; ++k) {
@@ -228,7 +231,8 @@ double first_bound(const DistanceTree& t, const Vec3<double>& p, std::vector<Lea
     const DistanceNode& n = t.nodes[e.node];
     if (n.count) {
       leaves.push_back({e.node, e.lb});
-      for (std::uint32_t s = n.index; s < n.index + n.count; ++s) U = std::min(U, upper_bound(t.tris[s], p));
+      for (std::uint32_t s = n.index; s < n.index + n.count; ++s)
+        if (triangle_box_lb(t.tris[s], p) <= U) U = std::min(U, upper_bound(t.tris[s], p));
       continue;
     }
     if (top + 2 > 128) {
