@@ -13,7 +13,7 @@
 /// - point, barycentric: the closest point on that triangle and its barycentric weights of the
 ///   triangle's vertices 0, 1, 2 (summing to 1 up to rounding), computed in double from the exactly
 ///   chosen feature (face, edge or vertex), or rounded from the exact rationals when the exact stage
-///   ran: within a few ulps, not exact.
+///   ran: within a few ulps of the coordinates, not exact (the weights lose digits on slivers).
 /// - side: ClosedMesh::contains(p) (exact), when asked for; Side::surface exactly when distance is 0.
 /// - A point with a NaN or infinite coordinate: distance NaN, triangle kNoTriangle, side invalid.
 ///   A mesh without triangles: distance +inf, triangle kNoTriangle, side outside.
