@@ -69,4 +69,19 @@ TEST(DistanceCli, FuzzDistance) {
   EXPECT_NE(r.err.find("--distance takes"), std::string::npos) << r.err;
 }
 
+TEST(DistanceCli, BenchDistanceOnACube) {
+  // The table per point set, rayproof with no wrong triangle and no distance off, the stage tally.
+  const auto mesh = write_file("cube.off", cube_off());
+  const auto r = run_rayproof("bench distance " + mesh.string() + " --points 300 --repeat 1");
+  ASSERT_EQ(r.status, 0) << r.out << r.err;
+  EXPECT_NE(r.out.find("uniform in the box grown by 20%: 300 points"), std::string::npos) << r.out;
+  EXPECT_NE(r.out.find("near the surface (within 1e-3 of the diagonal): 300 points"), std::string::npos) << r.out;
+  const auto row = r.out.find("  rayproof   ");
+  ASSERT_NE(row, std::string::npos) << r.out;
+  const std::string line = r.out.substr(row, r.out.find('\n', row) - row);
+  EXPECT_NE(line.find("1.00x         0          0         0"), std::string::npos) << line;
+  EXPECT_NE(r.out.find("reference check on 300 points: 0 differ"), std::string::npos) << r.out;
+  EXPECT_EQ(run_rayproof("bench distance " + mesh.string() + " --points 0").status, 2);
+}
+
 }  // namespace
