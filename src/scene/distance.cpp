@@ -18,6 +18,7 @@
 
 #include <algorithm>
 #include <cstring>
+#include <limits>
 #include <vector>
 
 #include "rayproof/scene/distance.h"
@@ -295,6 +296,27 @@ void fill_point(const DistanceTree& t, const Vec3<double>& p, const Cand& w, Clo
   }
 }
 
+/// The query on the tree's scaled copy, when p and the answer scale exactly (false otherwise).
+ClosestPoint query(const DistanceTree& t, const Vec3<double>& p);
+bool query_scaled(const DistanceTree& t, const Vec3<double>& p, ClosestPoint& r) {
+  if (!t.scaled) return false;
+  const int e = t.scale_exp;
+  const Vec3<double> q{std::ldexp(p.x, -e), std::ldexp(p.y, -e), std::ldexp(p.z, -e)};
+  auto exact_down = [&](double c, double d) {
+    return std::ldexp(d, e) == c && (d == 0 || std::abs(d) >= std::numeric_limits<double>::min());
+  };
+  if (!(exact_down(p.x, q.x) && exact_down(p.y, q.y) && exact_down(p.z, q.z))) return false;
+  ClosestPoint rs = query(*t.scaled, q);
+  const double d = std::ldexp(rs.distance, e);
+  // Correct rounding survives the scaling when both distances are normal doubles.
+  if (!(rs.distance == 0 || (rs.distance >= std::numeric_limits<double>::min() && d >= std::numeric_limits<double>::min() && d < kInf)))
+    return false;
+  rs.distance = d;
+  rs.point = {std::ldexp(rs.point.x, e), std::ldexp(rs.point.y, e), std::ldexp(rs.point.z, e)};
+  r = rs;
+  return true;
+}
+
 ClosestPoint query(const DistanceTree& t, const Vec3<double>& p) {
   ClosestPoint r;
   if (!(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z))) return r;
@@ -309,6 +331,13 @@ ClosestPoint query(const DistanceTree& t, const Vec3<double>& p) {
   leaves.clear();
   bool complete = true;
   s.U = first_bound(t, p, leaves, complete);
+  // Squares beyond the double range (over- or underflow): the scaled copy, if there is one.
+  if (!(s.U >= 0x1p-900 && s.U <= 0x1p+900) && t.scaled) {
+    if (query_scaled(t, p, r)) return r;
+    // The scaled query reused this thread's buffers: the first pass again.
+    cands.clear(), leaves.clear(), complete = true;
+    s.U = first_bound(t, p, leaves, complete);
+  }
   if (!(s.U < kInf)) s.U = kInf;  // NaN from overflow: the ball pass decides (or goes exact)
   if (complete && s.U < kInf) {
     // The leaves within the bound, nearest first.
@@ -322,6 +351,7 @@ ClosestPoint query(const DistanceTree& t, const Vec3<double>& p) {
   } else {
     s.run();
   }
+  if ((s.extreme || !(s.U < kInf)) && query_scaled(t, p, r)) return r;  // (the buffers are not read after)
   if (s.extreme || !(s.U < kInf)) {
     r = exact_search(t, p);
     r.stage = DistanceStage::extreme;

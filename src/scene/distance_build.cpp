@@ -1,6 +1,7 @@
 // The closest-point tree: the SAH binary BVH of rayproof/bvh_build.h over the triangles (leaves of
 // up to four), with exact double boxes.
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <stdexcept>
 
@@ -61,6 +62,25 @@ DistanceTree build_distance_tree(const std::vector<Vec3<double>>& v, const std::
     using scene::detail::orient2d_exact;
     t.degenerate[s] = orient2d_exact(a.x, a.y, bb.x, bb.y, c.x, c.y) == 0 && orient2d_exact(a.y, a.z, bb.y, bb.z, c.y, c.z) == 0 &&
                       orient2d_exact(a.z, a.x, bb.z, bb.x, c.z, c.x) == 0;
+  }
+  // A copy scaled by a power of two towards 1, when every used coordinate scales exactly.
+  double big = 0;
+  for (const auto& f : tris)
+    for (auto i : f) big = std::max({big, std::abs(v[i].x), std::abs(v[i].y), std::abs(v[i].z)});
+  const int e = big > 0 ? std::ilogb(big) : 0;
+  if (std::abs(e) > 200) {
+    std::vector<Vec3<double>> sv(v.size());
+    bool exact = true;
+    for (std::size_t i = 0; i < v.size(); ++i)
+      for (int k = 0; k < 3; ++k) {
+        const double c = v[i][k], d = std::ldexp(c, -e);
+        if (std::ldexp(d, e) != c || (d != 0 && std::abs(d) < std::numeric_limits<double>::min())) exact = false;
+        sv[i][k] = d;
+      }
+    if (exact) {
+      t.scaled = std::make_shared<const DistanceTree>(build_distance_tree(sv, tris));
+      t.scale_exp = e;
+    }
   }
   return t;
 }

@@ -4,6 +4,7 @@
 /// the exact stage's helpers (distance_exact.cpp).
 #include <array>
 #include <cstdint>
+#include <memory>
 #include <vector>
 
 #include "rayproof/bvh.h"
@@ -25,6 +26,11 @@ struct DistanceTree {
   std::vector<std::array<Vec3<double>, 3>> tris;     ///< triangles in leaf order
   std::vector<std::uint32_t> ids;                    ///< slot -> triangle index (file order)
   std::vector<std::uint8_t> degenerate;              ///< slot -> zero area, exactly (collinear vertices)
+  /// For meshes far from scale 1 (largest coordinate beyond 2^+-200): the same tree over the
+  /// vertices times 2^-scale_exp, when that scaling is exact for every vertex (no subnormal); the
+  /// query goes there when the double filter over- or underflows and the point scales exactly.
+  std::shared_ptr<const DistanceTree> scaled;
+  int scale_exp = 0;
 };
 
 [[nodiscard]] DistanceTree build_distance_tree(const std::vector<Vec3<double>>& v,
