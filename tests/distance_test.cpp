@@ -241,6 +241,8 @@ TEST(Distance, ScaledByTwoToThePlusMinus600) {
     }
     check(s, m, Vec3<double>{1, 1, 1} * f, "scaled centre");
     check(s, m, s.v[3], "scaled vertex");
+    // A coordinate the scaling would make subnormal: the exact search instead of the scaled tree.
+    if (f > 1) check(s, m, {0x1p-1000, f * 1.5, f * 3}, "unscalable point");
   }
 }
 
