@@ -12,6 +12,7 @@
 
 #include "bindings.h"
 #include "rayproof/scene/contains.h"
+#include "rayproof/scene/distance.h"
 #include "rayproof/scene/mesh_caster.h"
 
 namespace rayproof::python {
@@ -124,6 +125,54 @@ class PyMesh {
       py::gil_scoped_release unlocked;
       cm.contains(xyz, n, 3 * sizeof(double), o, threads);
     }
+    return out;
+  }
+
+  /// distance() / signed_distance() / closest_points(): ClosedMesh::closest_points over the points
+  /// (float64 C-contiguous (n, 3) read in place), the GIL released (docs/distance.md).
+  std::vector<ClosestPoint> nearest(py::handle points, bool with_side, int threads) {
+    const Rows p = rows_of(points, "points", 3, true);
+    const std::size_t n = p.broadcast ? 1 : p.rows;
+    const ClosedMesh& cm = closed("automatic");
+    std::vector<ClosestPoint> r(n);
+    const double* xyz = p.data.data();
+    {
+      py::gil_scoped_release unlocked;
+      cm.closest_points(xyz, n, 3 * sizeof(double), r.data(), with_side, threads);
+    }
+    return r;
+  }
+  py::array_t<double> distance(py::handle points, int threads) {
+    const std::vector<ClosestPoint> r = nearest(points, false, threads);
+    py::array_t<double> out(static_cast<py::ssize_t>(r.size()));
+    for (std::size_t i = 0; i < r.size(); ++i) out.mutable_data()[i] = r[i].distance;
+    return out;
+  }
+  py::array_t<double> signed_distance(py::handle points, int threads) {
+    const std::vector<ClosestPoint> r = nearest(points, true, threads);
+    py::array_t<double> out(static_cast<py::ssize_t>(r.size()));
+    for (std::size_t i = 0; i < r.size(); ++i) out.mutable_data()[i] = r[i].signed_distance();
+    return out;
+  }
+  py::dict closest_points(py::handle points, bool side, int threads) {
+    const std::vector<ClosestPoint> r = nearest(points, side, threads);
+    const auto n = static_cast<py::ssize_t>(r.size());
+    py::array_t<double> pts({n, py::ssize_t(3)}), bary({n, py::ssize_t(3)}), dist(n);
+    py::array_t<std::int64_t> tri(n);
+    py::array_t<std::uint8_t> sides(n);
+    for (py::ssize_t i = 0; i < n; ++i) {
+      const ClosestPoint& c = r[static_cast<std::size_t>(i)];
+      double* q = pts.mutable_data(i, 0);
+      q[0] = c.point.x, q[1] = c.point.y, q[2] = c.point.z;
+      double* b = bary.mutable_data(i, 0);
+      b[0] = c.barycentric[0], b[1] = c.barycentric[1], b[2] = c.barycentric[2];
+      dist.mutable_data()[i] = c.distance;
+      tri.mutable_data()[i] = c.triangle == ClosestPoint::kNoTriangle ? -1 : std::int64_t(c.triangle);
+      sides.mutable_data()[i] = static_cast<std::uint8_t>(c.side);
+    }
+    py::dict out;
+    out["points"] = pts, out["triangles"] = tri, out["barycentric"] = bary, out["distance"] = dist;
+    if (side) out["side"] = sides;
     return out;
   }
 
@@ -402,6 +451,16 @@ A ray with a NaN or infinite component or a zero direction has no crossing (clos
            "ValueError naming an open edge on a mesh that is not closed) or 'winding' (inside where the "
            "generalized winding number > 1/2; exactly 1/2 is outside). The rule used: Mesh.rule. float64 "
            "C-contiguous points are read in place; the GIL is released. docs/contains.md.")
+      .def("distance", &PyMesh::distance, "points"_a, "threads"_a = 0,
+           "Distance from each point ((n, 3) or (3,)) to the mesh: float64, the exact distance correctly "
+           "rounded; NaN for a point with a NaN or infinite coordinate. The GIL is released. docs/distance.md.")
+      .def("signed_distance", &PyMesh::signed_distance, "points"_a, "threads"_a = 0,
+           "The distance with the side's sign (Mesh.contains, exact): negative inside, 0 on the surface, "
+           "positive outside, NaN for invalid points. The GIL is released.")
+      .def("closest_points", &PyMesh::closest_points, "points"_a, "side"_a = false, "threads"_a = 0,
+           "A dict: 'points' (n, 3) the closest points, 'triangles' (int64, a nearest triangle, the lowest index "
+           "among exact ties; -1 for invalid points), 'barycentric' (n, 3) weights of that triangle's vertices, "
+           "'distance'; with side=True 'side' (uint8 codes as contains). The GIL is released.")
       .def("winding", &PyMesh::winding, "points"_a, "tolerance"_a = 1e-6, "with_bound"_a = false, "threads"_a = 0,
            "Winding number at each point. On a closed oriented mesh (and with_bound False): the exact integer "
            "(int32; -2**31 on the surface). On any other mesh, or with with_bound: a tuple (w, bound) of float64 "

@@ -18,6 +18,7 @@
 
 #include "cli/commands.h"
 #include "cli/input.h"
+#include "cli/point_lines.h"
 #include "io/case_file.h"
 #include "mesh/mesh.h"
 #include "rayproof/scene/contains.h"
@@ -32,6 +33,8 @@ struct ContainsOptions {
   int threads = 0;
   double tolerance = 1e-6;
 };
+
+}  // namespace
 
 /// Reads lines of `want` numbers; on error returns false with "PATH:LINE: what" in `error`.
 bool read_numbers(std::istream& in, const std::string& path, int want, std::vector<double>& out, std::string& error) {
@@ -71,6 +74,8 @@ bool read_numbers(std::istream& in, const std::string& path, int want, std::vect
   }
   return true;
 }
+
+namespace {
 
 ContainsRule parse_rule(const std::string& r) {
   if (r == "nonzero") return ContainsRule::nonzero;

@@ -82,6 +82,7 @@ int run_fuzz_cli(const FuzzCliOptions& o) {
     return 2;
   }
   if (o.mesh) return run_mesh_fuzz_cli(o);
+  if (o.distance) return run_distance_fuzz_cli(o);
   verify::FuzzOptions opt;
   if (!o.shard.empty()) {
     const auto k = parse_shard(o.shard);
@@ -215,6 +216,9 @@ Run add_fuzz(CLI::App& app) {
   sub->add_flag("--crossings", o->crossings,
                 "With --mesh: fuzz the crossings query instead (every crossing once: net count against the exact "
                 "winding number, on rays aimed at every vertex and edge midpoint and random rays)");
+  sub->add_flag("--distance", o->distance,
+                "Distance mode: random small meshes (ties, zero-area triangles, scales up to 2^+-1000) and points on "
+                "and around them; closest points against a brute force in rationals (--cases counts meshes)");
   return [o, merge] { return merge->parsed() ? run_fuzz_merge(*o) : run_fuzz_cli(*o); };
 }
 

@@ -30,5 +30,9 @@ Run add_contains(CLI::App& app);
 Run add_bench_contains(CLI::App& bench);
 /// `rayproof bench crossings`: registered on the bench subcommand; main runs it before bench.
 Run add_bench_crossings(CLI::App& bench);
+/// `rayproof distance`: closest points and distances (rayproof/scene/distance.h).
+Run add_distance(CLI::App& app);
+/// `rayproof bench distance`: registered on the bench subcommand; main runs it before bench.
+Run add_bench_distance(CLI::App& bench);
 
 }  // namespace rayproof::cli

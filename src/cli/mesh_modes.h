@@ -47,6 +47,7 @@ struct FuzzCliOptions {
   std::string out = "fuzz-findings";
   bool mesh = false;
   bool crossings = false;  ///< with mesh: fuzz ClosedMesh::ray_crossings instead (fuzz_crossings.cpp)
+  bool distance = false;  ///< fuzz --distance (fuzz_distance.cpp)
   std::string shard;    ///< K/N
   std::string summary;  ///< write the summary as JSON here
   UserKernelOptions user;
@@ -70,6 +71,8 @@ struct SpawnOptions {
 int run_mesh_check(const CheckCliOptions& o, const Method& kernel);
 int run_caster_check(const CheckCliOptions& o);
 int run_mesh_fuzz_cli(const FuzzCliOptions& o);
+/// fuzz --distance: closest points against a brute force in rationals (verify/distance_fuzz.h).
+int run_distance_fuzz_cli(const FuzzCliOptions& o);
 int run_spawn_mesh(const SpawnOptions& opt);
 /// fuzz --mesh --crossings (fuzz_crossings.cpp).
 int run_crossings_fuzz_cli(const FuzzCliOptions& o);

@@ -36,18 +36,18 @@ void add_commands(CLI::App& app, Commands& out) {
   add(add_cast(app));
   add(add_render(app));
   add(add_bench(app));
-  {  // `bench contains` before bench itself: the loop runs the first parsed command
-    CLI::App* bench = app.get_subcommands({}).back();
-    Run run = add_bench_contains(*bench);
-    out.insert(out.begin(), {bench->get_subcommand("contains"), std::move(run)});
-  }
-  {  // `bench crossings`, likewise before bench itself
-    CLI::App* bench = app.get_subcommands({}).back();
-    Run run = add_bench_crossings(*bench);
-    out.insert(out.begin(), {bench->get_subcommand("crossings"), std::move(run)});
+  {  // the bench subcommands before bench itself: the loop runs the first parsed command
+    using AddSub = Run (*)(CLI::App&);
+    CLI::App* bench = app.get_subcommand("bench");
+    for (const auto& [name, add_sub] : {std::pair<const char*, AddSub>{"contains", &add_bench_contains},
+                                        {"crossings", &add_bench_crossings}, {"distance", &add_bench_distance}}) {
+      Run run = add_sub(*bench);
+      out.insert(out.begin(), {bench->get_subcommand(name), std::move(run)});
+    }
   }
   add(add_advise(app));
   add(add_contains(app));
+  add(add_distance(app));
 }
 
 int rayproof_main(int argc, char** argv) {

@@ -3,6 +3,7 @@
 /// vertices and triangles, the closure report, the bounding box and the BVH over the copies.
 #include <array>
 #include <memory>
+#include <mutex>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -13,6 +14,8 @@
 #include "scene/winding_tree.h"
 
 namespace rayproof::detail {
+
+struct DistanceTree;  // scene/distance_tree.h
 
 /// Edges of nonzero length after welding equal vertices: used an odd number of times (open), or
 /// an even number but not as often in each direction (misoriented). Examples: welded vertex
@@ -38,6 +41,9 @@ struct ContainsState {
   /// (its exact integer winding number) and a tree over the caps alone.
   std::unique_ptr<ContainsState> capped;
   std::unique_ptr<WindingTree> caps;
+  /// The closest-point tree (distance.cpp), built by the first distance query.
+  mutable std::once_flag distance_once;
+  mutable std::shared_ptr<const DistanceTree> distance;
 };
 
 /// The side of p through the perturbed ray: the winding number (nonzero rule) and crossing count.

@@ -108,6 +108,7 @@ struct RayCrossings {
     return n;
   }
 };
+struct ClosestPoint;  // rayproof/scene/distance.h
 
 class ClosedMesh {
  public:
@@ -164,6 +165,20 @@ class ClosedMesh {
 
   /// Whether the closed segment p->q meets the surface, and where first.
   [[nodiscard]] SegmentHit segment(const Vec3<double>& p, const Vec3<double>& q) const;
+
+  /// Closest point, nearest triangle, distance and (with_side) side of p: rayproof/scene/distance.h
+  /// (include it for ClosestPoint), docs/distance.md.
+  [[nodiscard]] ClosestPoint closest_point(const Vec3<double>& p, bool with_side = true) const;
+  /// closest_point() of every point into `out` (same size; MeshInputError otherwise).
+  void closest_points(std::span<const Vec3<double>> points, std::span<ClosestPoint> out, bool with_side = true,
+                      int threads = 0) const;
+  /// The same on packed x y z doubles `stride` bytes apart.
+  void closest_points(const double* xyz, std::size_t n, std::size_t stride, ClosestPoint* out, bool with_side = true,
+                      int threads = 0) const;
+  /// The distance alone (correctly rounded; NaN for an invalid point).
+  [[nodiscard]] double distance(const Vec3<double>& p) const;
+  /// The distance with the side's sign: negative inside, 0 on the surface, NaN for an invalid point.
+  [[nodiscard]] double signed_distance(const Vec3<double>& p) const;
 
  private:
   struct State;

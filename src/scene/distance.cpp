@@ -1,0 +1,458 @@
+// ClosedMesh's closest-point queries (rayproof/scene/distance.h, docs/distance.md).
+//
+// A best-first search over the distance tree in double ball arithmetic: every feature of a visited
+// triangle (its face, edges and vertices) gets the squared distance from p to the feature's affine
+// hull as an interval that surely holds the exact value, and whether p's projection surely falls
+// on the feature (then the value is a squared distance to a point of the triangle: an upper bound
+// of the answer), surely not (the feature is dropped: another one is nearer), or maybe. The
+// answer's squared distance D* is the least value over the features that apply, so it is at most
+// U, the least upper end of the sure ones; the features whose lower end is <= U are the only ones
+// that can attain D*. When these are all the same geometric feature (one vertex, one edge or one
+// face: the same bits in every triangle that shares it) its triangles are exactly tied and the
+// lowest index wins; otherwise the exact stage compares their triangles in rationals. The
+// distance is the square root of the winner's interval, kept when the rounding is decided for
+// every value in it, else recomputed in double-double, else in rationals.
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <cstring>
+#include <limits>
+#include <vector>
+
+#include "rayproof/scene/distance.h"
+#include "scene/contains_state.h"
+#include "scene/distance_filter.h"
+#include "scene/distance_tree.h"
+
+namespace rayproof {
+
+const char* to_string(DistanceStage s) {
+  switch (s) {
+    case DistanceStage::filter: return "filter";
+    case DistanceStage::rounding: return "rounding";
+    case DistanceStage::selection: return "selection";
+    case DistanceStage::extreme: return "extreme";
+    case DistanceStage::none: return "none";
+  }
+  return "?";
+}
+
+namespace detail {
+namespace {
+
+using namespace dist;
+
+struct Cand {
+  double lo, hi;
+  std::uint32_t slot;
+  Kind kind;
+  std::uint8_t k;
+  bool sure;
+};
+
+/// Lower bound of the squared distance from p to a box (rounded down).
+inline double box_lb(const DistanceNode& n, const Vec3<double>& p) {
+  double s = 0;
+  for (int k = 0; k < 3; ++k) {
+    const double g = std::max({double(n.lo[k]) - p[k], p[k] - double(n.hi[k]), 0.0});
+    s += g * g;
+  }
+  return std::max(0.0, s * (1 - 0x1p-49) - 0x1p-1070);
+}
+
+/// Lower bound of the squared distance from p to a triangle's box (rounded down).
+inline double triangle_box_lb(const std::array<Vec3<double>, 3>& tri, const Vec3<double>& p) {
+  double s = 0;
+  for (int k = 0; k < 3; ++k) {
+    const double a = tri[0][k], b = tri[1][k], c = tri[2][k];
+    const double lo = std::min({a, b, c}), hi = std::max({a, b, c});
+    const double g = std::max({lo - p[k], p[k] - hi, 0.0});
+    s += g * g;
+  }
+  return std::max(0.0, s * (1 - 0x1p-49) - 0x1p-1070);
+}
+
+struct Search {
+  const DistanceTree& t;
+  const Vec3<double>& p;
+  std::vector<Cand>& c;
+  double U = kInf;
+  bool extreme = false;
+
+  void push(double lo, double hi, std::uint32_t slot, Kind kind, int k, bool sure) {
+    if (!(lo <= hi) || std::isnan(lo)) {  // NaN: over- or underflow in the filter
+      extreme = true;
+      return;
+    }
+    if (sure) {
+      if (!(hi < kInf)) extreme = true;
+      U = std::min(U, hi);
+    }
+    if (lo <= U) c.push_back({lo, hi, slot, kind, std::uint8_t(k), sure});
+  }
+
+  void triangle(std::uint32_t slot) {
+    const auto& tri = t.tris[slot];
+    if (triangle_box_lb(tri, p) > U) return;  // the triangle's box first: most end here
+    double lo, hi;
+    // The face's plane: its distance is a lower bound of the triangle's (most visited triangles end
+    // here once U is tight); then the face when p projects inside it.
+    const bool flat = t.degenerate[slot] != 0;
+    BV<BD> ab, ac, ap, n;
+    BD h;
+    if (!flat) {
+      ab = difv<BD>(tri[1], tri[0]), ac = difv<BD>(tri[2], tri[0]), ap = difv<BD>(p, tri[0]);
+      n = cross(ab, ac);
+      h = dot(n, ap);
+      interval(div(mul(h, h), dot(n, n)), lo, hi);
+      if (lo > U) return;
+    }
+    const double plo = lo, phi = hi;
+    if (!flat) {  // the face first: when p surely projects inside it, the other features are farther
+      const BV<BD> bc = difv<BD>(tri[2], tri[1]), bp = difv<BD>(p, tri[1]), ca = difv<BD>(tri[0], tri[2]),
+                   cp = difv<BD>(p, tri[2]);
+      const BD s2 = dot(n, cross(ab, ap)), s0 = dot(n, cross(bc, bp)), s1 = dot(n, cross(ca, cp));
+      const bool no = negative(s0) || negative(s1) || negative(s2);
+      if (!no) {
+        const bool sure = positive(s0) && positive(s1) && positive(s2);
+        push(plo, phi, slot, kFace, 0, sure);
+        if (sure) return;
+      }
+    }
+    // Vertices: always on the triangle.
+    for (int k = 0; k < 3; ++k) {
+      const BV<BD> w = difv<BD>(p, tri[k]);
+      interval(dot(w, w), lo, hi);
+      push(lo, hi, slot, kVertex, k, true);
+    }
+    // Edges: the projection on the line within the segment when both end functions are positive.
+    for (int k = 0; k < 3; ++k) {
+      Vec3<double> u, v;
+      bool sw;
+      canonical_edge(tri, k, u, v, sw);
+      const BV<BD> d = difv<BD>(v, u), w = difv<BD>(p, u);
+      const BD t1 = dot(d, w), t2 = dot(d, difv<BD>(v, p));
+      if (negative(t1) || negative(t2)) continue;  // the nearer endpoint is the edge's closest point
+      const BV<BD> cr = cross(d, w);
+      interval(div(dot(cr, cr), dot(d, d)), lo, hi);
+      push(lo, hi, slot, kEdge, k, positive(t1) && positive(t2));
+    }
+  }
+
+  void run() {
+    struct Entry {
+      std::uint32_t node;
+      double lb;
+    };
+    Entry stack[128];
+    int top = 0;
+    stack[top++] = {0, box_lb(t.nodes[0], p)};
+    while (top) {
+      const Entry e = stack[--top];
+      if (e.lb > U) continue;
+      const DistanceNode& n = t.nodes[e.node];
+      if (n.count) {
+        for (std::uint32_t s = n.index; s < n.index + n.count; ++s) triangle(s);
+        if (extreme) return;
+        continue;
+      }
+      const double l0 = box_lb(t.nodes[n.index], p), l1 = box_lb(t.nodes[n.index + 1], p);
+      if (top + 2 > 128) {  // a degenerate tree deeper than the stack: finish exactly
+        extreme = true;
+        return;
+      }
+      // The nearer child on top.
+      if (l0 <= l1) {
+        if (l1 <= U) stack[top++] = {n.index + 1, l1};
+        if (l0 <= U) stack[top++] = {n.index, l0};
+      } else {
+        if (l0 <= U) stack[top++] = {n.index, l0};
+        if (l1 <= U) stack[top++] = {n.index + 1, l1};
+      }
+    }
+  }
+};
+
+/// A rigorous upper bound of the squared distance from p to a triangle, in plain double: the
+/// distance to a point q of the triangle (weights found by the Voronoi regions in double, clamped
+/// so that they are surely nonnegative and sum to at most 1) plus a bound on the rounding of q.
+double upper_bound(const std::array<Vec3<double>, 3>& t, const Vec3<double>& p) {
+  const Vec3<double> a = t[0], ab = t[1] - t[0], ac = t[2] - t[0], ap = p - a;
+  const double d1 = dot(ab, ap), d2 = dot(ac, ap);
+  const Vec3<double> bp = p - t[1], cp = p - t[2];
+  const double d3 = dot(ab, bp), d4 = dot(ac, bp), d5 = dot(ab, cp), d6 = dot(ac, cp);
+  double v = 0, w = 0;
+  if (d1 <= 0 && d2 <= 0) v = 0, w = 0;
+  else if (d3 >= 0 && d4 <= d3) v = 1, w = 0;
+  else if (d6 >= 0 && d5 <= d6) v = 0, w = 1;
+  else {
+    const double vc = d1 * d4 - d3 * d2, vb = d5 * d2 - d1 * d6, va = d3 * d6 - d5 * d4;
+    if (vc <= 0 && d1 >= 0 && d3 <= 0) v = d1 / (d1 - d3);
+    else if (vb <= 0 && d2 >= 0 && d6 <= 0) w = d2 / (d2 - d6);
+    else if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) w = (d4 - d3) / ((d4 - d3) + (d5 - d6)), v = 1 - w;
+    else v = vb / (va + vb + vc), w = vc / (va + vb + vc);
+  }
+  if (!(v >= 0)) v = 0;  // NaN too
+  if (!(w >= 0)) w = 0;
+  if (const double sum = v + w; sum > 1 - 0x1p-50) v *= (1 - 0x1p-49) / sum, w *= (1 - 0x1p-49) / sum;
+  // q = a + v ab + w ac exactly is on the triangle; its double evaluation is within delta of it.
+  double e2 = 0, delta = 0;
+  for (int k = 0; k < 3; ++k) {
+    const double q = a[k] + v * ab[k] + w * ac[k];
+    delta += (std::abs(a[k]) + v * std::abs(ab[k]) + w * std::abs(ac[k])) * 0x1p-50;
+    const double d = p[k] - q;
+    e2 += d * d;
+  }
+  // 2^-520: above any underflow of the squares (it only loosens the bound below 2^-1000).
+  const double r = std::sqrt(e2) * (1 + 0x1p-50) + delta * (1 + 0x1p-50) + 0x1p-520;
+  return r * r * (1 + 0x1p-50);
+}
+
+/// A best-first pass in plain double for a tight upper bound on the answer's squared distance. The
+/// leaves it visits, with their box bounds, go to `leaves`: every leaf whose bound is <= the final
+/// bound is among them (the bound only decreases), so the exact pass reads them instead of the tree.
+struct Leaf {
+  std::uint32_t node;
+  double lb;
+};
+double first_bound(const DistanceTree& t, const Vec3<double>& p, std::vector<Leaf>& leaves, bool& complete) {
+  struct Entry {
+    std::uint32_t node;
+    double lb;
+  };
+  Entry stack[128];
+  int top = 0;
+  double U = kInf;
+  stack[top++] = {0, box_lb(t.nodes[0], p)};
+  while (top) {
+    const Entry e = stack[--top];
+    if (e.lb > U) continue;
+    const DistanceNode& n = t.nodes[e.node];
+    if (n.count) {
+      leaves.push_back({e.node, e.lb});
+      for (std::uint32_t s = n.index; s < n.index + n.count; ++s)
+        if (triangle_box_lb(t.tris[s], p) <= U) U = std::min(U, upper_bound(t.tris[s], p));
+      continue;
+    }
+    if (top + 2 > 128) {
+      complete = false;
+      break;
+    }
+    const double l0 = box_lb(t.nodes[n.index], p), l1 = box_lb(t.nodes[n.index + 1], p);
+    if (l0 <= l1) {
+      if (l1 <= U) stack[top++] = {n.index + 1, l1};
+      if (l0 <= U) stack[top++] = {n.index, l0};
+    } else {
+      if (l0 <= U) stack[top++] = {n.index, l0};
+      if (l1 <= U) stack[top++] = {n.index + 1, l1};
+    }
+  }
+  return U;
+}
+
+bool same_feature(const DistanceTree& t, const Cand& a, const Cand& b) {
+  if (a.kind != b.kind) return false;
+  if (a.kind == kFace) return a.slot == b.slot;
+  if (a.kind == kVertex) return t.tris[a.slot][a.k] == t.tris[b.slot][b.k];
+  Vec3<double> u0, v0, u1, v1;
+  bool s;
+  canonical_edge(t.tris[a.slot], a.k, u0, v0, s);
+  canonical_edge(t.tris[b.slot], b.k, u1, v1, s);
+  return u0 == u1 && v0 == v1;
+}
+
+/// The closest point and barycentrics of the winning feature, in double.
+void fill_point(const DistanceTree& t, const Vec3<double>& p, const Cand& w, ClosestPoint& r) {
+  const auto& tri = t.tris[w.slot];
+  std::array<double, 3> b{0, 0, 0};
+  if (w.kind == kVertex) {
+    b[w.k] = 1;
+  } else if (w.kind == kEdge) {
+    Vec3<double> u, v;
+    bool sw;
+    canonical_edge(tri, w.k, u, v, sw);
+    const Vec3<double> d = v - u;
+    const double s = std::clamp(dot(d, p - u) / dot(d, d), 0.0, 1.0);
+    b[w.k] = sw ? s : 1 - s;
+    b[(w.k + 1) % 3] = sw ? 1 - s : s;
+  } else {
+    const Vec3<double> n = cross(tri[1] - tri[0], tri[2] - tri[0]);
+    double s[3];
+    for (int k = 0; k < 3; ++k) s[k] = std::max(0.0, dot(n, cross(tri[(k + 2) % 3] - tri[(k + 1) % 3], p - tri[(k + 1) % 3])));
+    // s[k] is the weight of vertex k: the signed area opposite it.
+    const double sum = s[0] + s[1] + s[2];
+    for (int k = 0; k < 3; ++k) b[k] = sum > 0 ? s[k] / sum : 1.0 / 3;
+  }
+  r.barycentric = b;
+  r.point = {b[0] * tri[0].x + b[1] * tri[1].x + b[2] * tri[2].x, b[0] * tri[0].y + b[1] * tri[1].y + b[2] * tri[2].y,
+             b[0] * tri[0].z + b[1] * tri[1].z + b[2] * tri[2].z};
+  if (w.kind == kVertex) r.point = tri[w.k];
+  if (w.kind == kFace) {  // the projection on the plane: accurate where the weights are not (slivers)
+    const Vec3<double> n = cross(tri[1] - tri[0], tri[2] - tri[0]);
+    const double nn = dot(n, n);
+    if (nn > 0 && std::isfinite(nn)) r.point = p - n * (dot(n, p - tri[0]) / nn);
+  }
+}
+
+/// The query on the tree's scaled copy, when p and the answer scale exactly (false otherwise).
+ClosestPoint query(const DistanceTree& t, const Vec3<double>& p);
+bool query_scaled(const DistanceTree& t, const Vec3<double>& p, ClosestPoint& r) {
+  if (!t.scaled) return false;
+  const int e = t.scale_exp;
+  const Vec3<double> q{std::ldexp(p.x, -e), std::ldexp(p.y, -e), std::ldexp(p.z, -e)};
+  auto exact_down = [&](double c, double d) {
+    return std::ldexp(d, e) == c && (d == 0 || std::abs(d) >= std::numeric_limits<double>::min());
+  };
+  if (!(exact_down(p.x, q.x) && exact_down(p.y, q.y) && exact_down(p.z, q.z))) return false;
+  ClosestPoint rs = query(*t.scaled, q);
+  const double d = std::ldexp(rs.distance, e);
+  // Correct rounding survives the scaling when both distances are normal doubles.
+  if (!(rs.distance == 0 || (rs.distance >= std::numeric_limits<double>::min() && d >= std::numeric_limits<double>::min() && d < kInf)))
+    return false;
+  rs.distance = d;
+  rs.point = {std::ldexp(rs.point.x, e), std::ldexp(rs.point.y, e), std::ldexp(rs.point.z, e)};
+  r = rs;
+  return true;
+}
+
+ClosestPoint query(const DistanceTree& t, const Vec3<double>& p) {
+  ClosestPoint r;
+  if (!(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z))) return r;
+  if (t.nodes.empty()) {
+    r.distance = kInf;
+    return r;
+  }
+  thread_local std::vector<Cand> cands;
+  cands.clear();
+  Search s{t, p, cands};
+  thread_local std::vector<Leaf> leaves;
+  leaves.clear();
+  bool complete = true;
+  s.U = first_bound(t, p, leaves, complete);
+  // Squares beyond the double range (over- or underflow): the scaled copy, if there is one.
+  if (!(s.U >= 0x1p-900 && s.U <= 0x1p+900) && t.scaled) {
+    if (query_scaled(t, p, r)) return r;
+    // The scaled query reused this thread's buffers: the first pass again.
+    cands.clear(), leaves.clear(), complete = true;
+    s.U = first_bound(t, p, leaves, complete);
+  }
+  if (!(s.U < kInf)) s.U = kInf;  // NaN from overflow: the ball pass decides (or goes exact)
+  if (complete && s.U < kInf) {
+    // The leaves within the bound, nearest first.
+    std::sort(leaves.begin(), leaves.end(), [](const Leaf& a, const Leaf& b) { return a.lb < b.lb; });
+    for (const Leaf& l : leaves) {
+      if (l.lb > s.U) break;
+      const DistanceNode& n = t.nodes[l.node];
+      for (std::uint32_t k = n.index; k < n.index + n.count; ++k) s.triangle(k);
+      if (s.extreme) break;
+    }
+  } else {
+    s.run();
+  }
+  if ((s.extreme || !(s.U < kInf)) && query_scaled(t, p, r)) return r;  // (the buffers are not read after)
+  if (s.extreme || !(s.U < kInf)) {
+    r = exact_search(t, p);
+    r.stage = DistanceStage::extreme;
+    return r;
+  }
+  // The features that can attain the least value.
+  const Cand* first = nullptr;
+  bool ambiguous = false;
+  std::uint32_t best_id = 0xffffffffu;
+  const Cand* best = nullptr;
+  for (const Cand& c : cands) {
+    if (c.lo > s.U) continue;
+    if (!c.sure) ambiguous = true;
+    if (!first) first = &c;
+    else if (!same_feature(t, *first, c)) ambiguous = true;
+    if (t.ids[c.slot] < best_id) best_id = t.ids[c.slot], best = &c;
+  }
+  if (!first) {  // no feature within the bound: cannot happen when the bounds hold; decided exactly
+    r = exact_search(t, p);
+    r.stage = DistanceStage::extreme;
+    return r;
+  }
+  if (ambiguous) {
+    thread_local std::vector<std::uint32_t> slots;
+    slots.clear();
+    for (const Cand& c : cands)
+      if (c.lo <= s.U) slots.push_back(c.slot);
+    std::sort(slots.begin(), slots.end());
+    slots.erase(std::unique(slots.begin(), slots.end()), slots.end());
+    r = exact_select(t, p, slots.data(), slots.size());
+    r.stage = DistanceStage::selection;
+    return r;
+  }
+  r.triangle = best_id;
+  fill_point(t, p, *best, r);
+  r.stage = DistanceStage::filter;
+  if (best->hi == 0) {
+    r.distance = 0;
+    return r;
+  }
+  // The rounding: the double interval, then double-double, then rationals.
+  const double mid = (best->lo + best->hi) * 0.5;
+  const BD bd{mid, (best->hi - best->lo) * 0.5 * kUp + mid * 0x1p-52};
+  if (round_sqrt_ball(bd.x, bd.r, r.distance)) return r;
+  const BQ bq = feature_value<BQ>(t.tris[best->slot], p, best->kind, best->k);
+  if (bq.r < kInf && round_sqrt_ball(bq.x, bq.r, r.distance)) return r;
+  r = exact_select(t, p, &best->slot, 1);  // the distance, point and weights from the rationals
+  r.stage = DistanceStage::rounding;
+  return r;
+}
+
+}  // namespace
+}  // namespace detail
+
+namespace {
+const detail::DistanceTree& tree(const detail::ContainsState& s) {
+  std::call_once(s.distance_once, [&] {
+    s.distance = std::make_shared<const detail::DistanceTree>(detail::build_distance_tree(s.vertices, s.triangles));
+  });
+  return *s.distance;
+}
+}  // namespace
+
+ClosestPoint ClosedMesh::closest_point(const Vec3<double>& p, bool with_side) const {
+  ClosestPoint r = detail::query(tree(*s_), p);
+  if (with_side && r.distance == r.distance) r.side = r.distance == 0 ? Side::surface : contains(p);
+  return r;
+}
+
+double ClosedMesh::distance(const Vec3<double>& p) const { return detail::query(tree(*s_), p).distance; }
+
+double ClosedMesh::signed_distance(const Vec3<double>& p) const { return closest_point(p, true).signed_distance(); }
+
+void ClosedMesh::closest_points(std::span<const Vec3<double>> points, std::span<ClosestPoint> out, bool with_side,
+                                int threads) const {
+  if (points.size() != out.size())
+    throw MeshInputError("ClosedMesh::closest_points: " + std::to_string(out.size()) + " results for " +
+                         std::to_string(points.size()) + " points");
+  closest_points(reinterpret_cast<const double*>(points.data()), points.size(), sizeof(Vec3<double>), out.data(),
+                 with_side, threads);
+}
+
+void ClosedMesh::closest_points(const double* xyz, std::size_t n, std::size_t stride, ClosestPoint* out, bool with_side,
+                                int threads) const {
+  if (n == 0) return;
+  if (!xyz || !out) throw MeshInputError("ClosedMesh::closest_points: null pointer with a count of " + std::to_string(n));
+  if (stride < 3 * sizeof(double) || stride % sizeof(double))
+    throw MeshInputError("ClosedMesh::closest_points: stride of " + std::to_string(stride) +
+                         " bytes (need a multiple of 8, at least 24)");
+  (void)tree(*s_);
+  const auto* base = reinterpret_cast<const std::byte*>(xyz);
+  auto body = [&](const tbb::blocked_range<std::size_t>& r) {
+    for (std::size_t i = r.begin(); i < r.end(); ++i) {
+      Vec3<double> p;
+      std::memcpy(&p, base + i * stride, sizeof p);
+      out[i] = closest_point(p, with_side);
+    }
+  };
+  if (threads == 1 || n < 1024) return body(tbb::blocked_range<std::size_t>(0, n));
+  tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
+  arena.execute([&] { tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 256), body); });
+}
+
+}  // namespace rayproof

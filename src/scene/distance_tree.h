@@ -1,0 +1,47 @@
+#pragma once
+/// The closest-point tree of a ClosedMesh (internal to rayproof_scene_certified): a binary BVH
+/// with double boxes (exact bounds of the vertices) over the triangles, stored in leaf order, and
+/// the exact stage's helpers (distance_exact.cpp).
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <vector>
+
+#include "rayproof/bvh.h"
+#include "rayproof/scene/distance.h"
+#include "rayproof/vec3.h"
+
+namespace rayproof::detail {
+
+/// 32 bytes: the two children of a node share a cache line. The bounds are the exact double
+/// bounds of the triangles rounded outwards to float (beyond the float range: +-inf).
+struct alignas(32) DistanceNode {
+  float lo[3], hi[3];
+  std::uint32_t index = 0;  ///< inner: first child (the second follows); leaf: first slot
+  std::uint32_t count = 0;  ///< 0: inner node; else the leaf's triangles
+};
+
+struct DistanceTree {
+  std::vector<DistanceNode, AlignedAllocator<DistanceNode, 64>> nodes;                   ///< nodes[0] is the root (none for no triangles)
+  std::vector<std::array<Vec3<double>, 3>> tris;     ///< triangles in leaf order
+  std::vector<std::uint32_t> ids;                    ///< slot -> triangle index (file order)
+  std::vector<std::uint8_t> degenerate;              ///< slot -> zero area, exactly (collinear vertices)
+  /// For meshes far from scale 1 (largest coordinate beyond 2^+-200): the same tree over the
+  /// vertices times 2^-scale_exp, when that scaling is exact for every vertex (no subnormal); the
+  /// query goes there when the double filter over- or underflows and the point scales exactly.
+  std::shared_ptr<const DistanceTree> scaled;
+  int scale_exp = 0;
+};
+
+[[nodiscard]] DistanceTree build_distance_tree(const std::vector<Vec3<double>>& v,
+                                               const std::vector<std::array<std::uint32_t, 3>>& tris);
+
+/// Among `slots`, the triangle nearest p exactly (ties: lowest id) and its result (distance
+/// correctly rounded, point, barycentrics).
+[[nodiscard]] ClosestPoint exact_select(const DistanceTree& t, const Vec3<double>& p, const std::uint32_t* slots,
+                                        std::size_t n);
+/// The exact search over the whole tree (box bounds in rationals): for inputs the filter cannot
+/// handle (over- or underflow).
+[[nodiscard]] ClosestPoint exact_search(const DistanceTree& t, const Vec3<double>& p);
+
+}  // namespace rayproof::detail
