@@ -1,0 +1,130 @@
+// The measuring half of `rayproof bench distance` (distance_bench.h).
+#include "scene/compare/distance_bench.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include "scene/compare/distance_compare.h"
+
+namespace rayproof::scene::compare {
+
+namespace {
+
+double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
+
+double ulps(double x, double ref) {
+  if (x == ref) return 0;
+  if (!std::isfinite(x) || !std::isfinite(ref)) return std::numeric_limits<double>::infinity();
+  const double u = std::nextafter(ref, std::numeric_limits<double>::infinity()) - ref;
+  return std::abs(x - ref) / u;
+}
+
+}  // namespace
+
+std::vector<DistanceMethod> distance_methods(const mesh::Mesh& m, const ClosedMesh& cm, std::vector<std::string>& notes) {
+  std::vector<DistanceMethod> ms;
+  const ClosedMesh* c = &cm;
+  ms.push_back({"rayproof", [c](std::span<const Vec3<double>> p, std::span<std::uint32_t> t, std::span<double> d) {
+                  thread_local std::vector<ClosestPoint> r;
+                  r.resize(p.size());
+                  c->closest_points(p, r, false, 1);
+                  for (std::size_t i = 0; i < p.size(); ++i) t[i] = r[i].triangle, d[i] = r[i].distance;
+                }});
+  ms.push_back({"rayproof+side", [c](std::span<const Vec3<double>> p, std::span<std::uint32_t> t, std::span<double> d) {
+                  thread_local std::vector<ClosestPoint> r;
+                  r.resize(p.size());
+                  c->closest_points(p, r, true, 1);
+                  for (std::size_t i = 0; i < p.size(); ++i) t[i] = r[i].triangle, d[i] = r[i].distance;
+                }});
+  for (auto& comp : make_distance_competitors(m.vertices, m.triangles)) {
+    if (comp.run) ms.push_back({comp.name, comp.run});
+    else notes.push_back(comp.name + ": " + comp.note);
+  }
+  return ms;
+}
+
+DistancePointSets distance_point_sets(const mesh::Mesh& m, std::size_t n, std::mt19937_64& rng) {
+  Vec3<double> lo = m.vertices[m.triangles[0][0]], hi = lo;
+  for (const auto& t : m.triangles)
+    for (auto v : t) {
+      const auto& p = m.vertices[v];
+      lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
+      hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+    }
+  const Vec3<double> ext = hi - lo;
+  const double diag = length(ext);
+  std::uniform_real_distribution<double> u01(0, 1), off(-1e-3, 1e-3);
+  DistancePointSets s;
+  s.uniform.resize(n), s.near.resize(n);
+  auto& uni = s.uniform;
+  auto& near = s.near;
+  for (auto& p : uni)
+    p = {lo.x - 0.1 * ext.x + 1.2 * ext.x * u01(rng), lo.y - 0.1 * ext.y + 1.2 * ext.y * u01(rng),
+         lo.z - 0.1 * ext.z + 1.2 * ext.z * u01(rng)};
+  for (auto& p : near) {
+    const auto& t = m.triangles[rng() % m.triangles.size()];
+    double a = u01(rng), b = u01(rng);
+    if (a + b > 1) a = 1 - a, b = 1 - b;
+    const Vec3<double> &A = m.vertices[t[0]], &B = m.vertices[t[1]], &C = m.vertices[t[2]];
+    const Vec3<double> nrm = cross(B - A, C - A);
+    const double len = length(nrm);
+    const Vec3<double> q = A * (1 - a - b) + B * a + C * b;
+    p = len > 0 ? q + nrm * (off(rng) * diag / len) : q;
+  }
+  return s;
+}
+
+DistanceSetResult time_distance_set(const mesh::Mesh& m, const ClosedMesh& cm, std::vector<DistanceMethod>& ms,
+                                    const std::vector<Vec3<double>>& pts, int repeat) {
+  for (auto& mt : ms) mt.rates.clear(), mt.tri.assign(pts.size(), 0), mt.dist.assign(pts.size(), 0);
+  for (int r = 0; r < repeat; ++r)
+    for (auto& mt : ms) {
+      const double t0 = now();
+      mt.run(pts, mt.tri, mt.dist);
+      mt.rates.push_back(double(pts.size()) / (now() - t0) * 1e-6);
+    }
+  // The exact reference: per point, the nearest of the methods' triangles (exact comparisons where
+  // they differ) and its exact distance, correctly rounded.
+  auto tri = [&](std::uint32_t t) {
+    return std::array<Vec3<double>, 3>{m.vertices[m.triangles[t][0]], m.vertices[m.triangles[t][1]], m.vertices[m.triangles[t][2]]};
+  };
+  const std::size_t n = pts.size(), k = ms.size();
+  std::vector<std::uint32_t> best(n);
+  std::vector<double> ref(n);
+  DistanceSetResult res;
+  res.points = n;
+  auto& wrong = res.wrong;
+  auto& off = res.off;
+  auto& max_ulps = res.max_ulps;
+  wrong.assign(k, 0), off.assign(k, 0), max_ulps.assign(k, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    std::uint32_t b = ms[0].tri[i];
+    bool differ = false;
+    for (std::size_t j = 1; j < k; ++j)
+      if (ms[j].tri[i] != b && ms[j].tri[i] < m.triangles.size()) {
+        differ = true;
+        if (compare_triangle_distances(pts[i], tri(ms[j].tri[i]), tri(b)) < 0) b = ms[j].tri[i];
+      }
+    best[i] = b;
+    ref[i] = differ ? exact_triangle_distance(pts[i], tri(b)) : ms[0].dist[i];
+    for (std::size_t j = 0; j < k; ++j) {
+      const std::uint32_t t = ms[j].tri[i];
+      if (t != b && (t >= m.triangles.size() || compare_triangle_distances(pts[i], tri(t), tri(b)) > 0)) ++wrong[j];
+      const double u = ulps(ms[j].dist[i], ref[i]);
+      if (u > 0) ++off[j], max_ulps[j] = std::max(max_ulps[j], u);
+    }
+  }
+  // rayproof's own distances were taken as the reference where every method agreed on the
+  // triangle: check a sample of them against the exact distance of that triangle.
+  res.sample = std::min<std::size_t>(n, 2000);
+  for (std::size_t i = 0; i < res.sample; ++i) res.sample_bad += exact_triangle_distance(pts[i], tri(best[i])) != ref[i];
+  // How often the exact stage ran.
+  std::vector<ClosestPoint> cps(n);
+  cm.closest_points(pts, cps, false, 1);
+  for (const auto& r : cps) ++res.stages[std::size_t(r.stage)];
+  return res;
+}
+
+}  // namespace rayproof::scene::compare
