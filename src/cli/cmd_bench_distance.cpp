@@ -34,7 +34,7 @@ namespace {
 using Pts = std::vector<Vec3<double>>;
 using Runner = std::function<void(std::span<const Vec3<double>>, std::span<std::uint32_t>, std::span<double>)>;
 
-struct Options {
+struct BenchDistanceOptions {
   std::vector<std::string> meshes;
   std::size_t points = 200000;
   int repeat = 3;
@@ -119,7 +119,7 @@ void bench_set(const std::string& title, const mesh::Mesh& m, const ClosedMesh& 
              sample_bad);
 }
 
-int run_bench_distance(Options opt) {
+int run_bench_distance(BenchDistanceOptions opt) {
   const char* me = "rayproof bench distance";
   if (opt.meshes.empty()) {
     const std::string dir = RAYPROOF_BENCH_MESH_DIR;
@@ -214,7 +214,7 @@ int run_bench_distance(Options opt) {
 }  // namespace
 
 Run add_bench_distance(CLI::App& bench) {
-  auto opt = std::make_shared<Options>();
+  auto opt = std::make_shared<BenchDistanceOptions>();
   auto* sub = bench.add_subcommand("distance", "Closest point and distance beside CGAL AABB_tree (Epick) and Embree "
                                                "rtcPointQuery, one thread, against exact");
   sub->add_option("meshes", opt->meshes, "Meshes (default: bunny00, armadillo, refined_elephant where extracted)");
