@@ -147,12 +147,12 @@ Soup random_mesh(std::mt19937_64& rng, WindingMeshKind kind) {
   return s;
 }
 
-/// Point k of a mesh: by k % 6 random in the box grown by 10%, a vertex, an edge midpoint, a point
-/// on a face, a one-ulp neighbour of a vertex, a far point.
+/// Point k of a mesh: by k % 7 random in the box grown by 10%, a vertex, an edge midpoint, a point
+/// on a face, a one-ulp neighbour of a vertex, a far point, a one-ulp neighbour of an edge midpoint.
 Vec3<double> random_point(std::mt19937_64& rng, const Soup& s, int k, const Vec3<double>& lo, const Vec3<double>& hi) {
   const Tri& f = s.t[pick(rng, s.t.size())];
   const Vec3<double> size = hi - lo;
-  switch (k % 6) {
+  switch (k % 7) {
     case 0: return {lo.x + size.x * (1.2 * u01(rng) - 0.1), lo.y + size.y * (1.2 * u01(rng) - 0.1), lo.z + size.z * (1.2 * u01(rng) - 0.1)};
     case 1: return s.v[f[pick(rng, 3)]];
     case 2: {
@@ -165,8 +165,11 @@ Vec3<double> random_point(std::mt19937_64& rng, const Soup& s, int k, const Vec3
       if (a + b > 1) a = 1 - a, b = 1 - b;
       return s.v[f[0]] * (1 - a - b) + s.v[f[1]] * a + s.v[f[2]] * b;
     }
-    case 4: {
-      Vec3<double> p = s.v[f[pick(rng, 3)]];
+    case 4:
+    case 6: {
+      // k % 7 == 6: beside an edge's midpoint (a hole's rim, a crack), else beside a vertex.
+      const std::size_t e = pick(rng, 3);
+      Vec3<double> p = k % 7 == 6 ? (s.v[f[e]] + s.v[f[(e + 1) % 3]]) * 0.5 : s.v[f[e]];
       const int moved = 1 + int(rng() % 7);  // which coordinates move: a nonempty subset
       for (int a = 0; a < 3; ++a)
         if (moved >> a & 1) coord(p, a) = rng() % 2 ? next_up(coord(p, a)) : next_down(coord(p, a));
@@ -255,7 +258,7 @@ WindingFuzzResult run_winding_fuzz(const WindingFuzzOptions& opt) {
     }
     Vec3<double> lo, hi;
     bounds(s.v, lo, hi);
-    for (int k = 0; k < 24; ++k) {
+    for (int k = 0; k < 28; ++k) {
       const Vec3<double> p = random_point(rng, s, k, lo, hi);
       ++res.points;
       const WindingValue ref = winding_brute_force_mpfr(s.v, s.t, p, opt.bits);

@@ -7,8 +7,8 @@
 /// side duplicated and moved a little (cracks: edges that do not match), with random triangles
 /// flipped, with a second copy shifted over the first (self-overlapping), and soups of random
 /// triangles; all scaled by a power of two up to 2^+-300.
-/// Points: random in the bounding box, vertices, edge midpoints, points on faces, one-ulp
-/// neighbours of vertices, far points.
+/// Points (28 a mesh): random in the bounding box, vertices, edge midpoints, points on faces, one-ulp
+/// neighbours of vertices and of edge midpoints (holes' rims, cracks), far points.
 /// Each point checks, on a ClosedMesh built with ContainsRule::winding:
 ///  (a) winding_value(p)'s interval [w - bound, w + bound] meets the reference's;
 ///  (b) contains(p) is the reference's side (inside where w > 1/2) wherever the reference keeps
