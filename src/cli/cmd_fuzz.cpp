@@ -76,6 +76,7 @@ int run_fuzz_merge(const FuzzCliOptions& o) {
 
 
 int run_fuzz_cli(const FuzzCliOptions& o) {
+  if (o.winding) return run_winding_fuzz_cli(o);
   if (o.mesh && o.crossings) return run_crossings_fuzz_cli(o);
   if (o.crossings) {
     fmt::print(stderr, "rayproof fuzz: --crossings goes with --mesh\n");
@@ -219,6 +220,10 @@ Run add_fuzz(CLI::App& app) {
   sub->add_flag("--distance", o->distance,
                 "Distance mode: random small meshes (ties, zero-area triangles, scales up to 2^+-1000) and points on "
                 "and around them; closest points against a brute force in rationals (--cases counts meshes)");
+  sub->add_flag("--winding", o->winding,
+                "Winding mode (also as --mesh --winding): random open, cracked, holed, flipped, self-overlapping and "
+                "closed meshes and soups (scales up to 2^+-300); generalized winding numbers and the winding rule of "
+                "contains against a brute force in MPFR (--cases counts meshes)");
   return [o, merge] { return merge->parsed() ? run_fuzz_merge(*o) : run_fuzz_cli(*o); };
 }
 

@@ -48,6 +48,7 @@ struct FuzzCliOptions {
   bool mesh = false;
   bool crossings = false;  ///< with mesh: fuzz ClosedMesh::ray_crossings instead (fuzz_crossings.cpp)
   bool distance = false;  ///< fuzz --distance (fuzz_distance.cpp)
+  bool winding = false;  ///< fuzz --winding (fuzz_winding.cpp)
   std::string shard;    ///< K/N
   std::string summary;  ///< write the summary as JSON here
   UserKernelOptions user;
@@ -76,5 +77,7 @@ int run_distance_fuzz_cli(const FuzzCliOptions& o);
 int run_spawn_mesh(const SpawnOptions& opt);
 /// fuzz --mesh --crossings (fuzz_crossings.cpp).
 int run_crossings_fuzz_cli(const FuzzCliOptions& o);
+/// fuzz --winding (fuzz_winding.cpp).
+int run_winding_fuzz_cli(const FuzzCliOptions& o);
 
 }  // namespace rayproof::cli

@@ -248,6 +248,14 @@ inline FarTerm far_term(const Node& nd, const Vec3<double>& p, double qmax) {
   const double rx = nd.c[0] - p.x, ry = nd.c[1] - p.y, rz = nd.c[2] - p.z;
   const double d2 = rx * rx + ry * ry + rz * rz;
   const double rr = nd.r * kUp;
+  // The analysis of section 2 counts relative rounding only: the moments (area r), their products
+  // with R (up to area r d^2) and the bound's terms (area q^2 / d^2) must neither underflow nor
+  // overflow. With r and d in [2^-100, 2^100] and area >= 2^-250 (area <= 2^34 r^2 for any node)
+  // every such value stays within [2^-900, 2^500], and a child's moments that underflowed err by
+  // less than 2^-1000 against its parent's 816u area r. Outside that window (meshes near 2^+-300,
+  // points very far away, nodes of nearly degenerate triangles) the node is opened instead: its
+  // triangles are evaluated directly, with the exponent window of section 1 and the exact stage.
+  if (!(rr >= 0x1p-100 && d2 >= 0x1p-200 && d2 <= 0x1p200 && nd.area >= 0x1p-250)) return {};
   // Admissible: r_up <= qmax d_down (squared: d2 has relative error below 3u + the differences').
   if (!(d2 > 0 && rr * rr <= qmax * qmax * d2 * kDown)) return {};
   const double d = std::sqrt(d2);
