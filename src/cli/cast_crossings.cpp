@@ -1,5 +1,6 @@
 // rayproof cast MESH RAYS --query crossings: load the mesh as a ClosedMesh (any mesh: open ones
 // and soups too), read the rays, print each ray's crossings (and touches).
+#include "cli/mesh_input.h"
 #include "cli/cast_crossings.h"
 
 #include <fmt/core.h>
@@ -18,25 +19,10 @@ namespace rayproof::cli {
 
 int run_cast_crossings(const CastCrossingsArgs& a) {
   const char* me = "rayproof cast";
-  mesh::Mesh m;
-  try {
-    m = mesh::read_mesh(a.mesh);
-  } catch (const mesh::MeshError& e) {
-    fmt::print(stderr, "{}: {}\n", me, e.what());
-    return 2;
-  }
-  if (m.triangles.empty()) {
-    fmt::print(stderr, "{}: {}: the mesh has no triangles (--query crossings needs a triangle mesh file)\n", me, a.mesh);
-    return 2;
-  }
-  std::unique_ptr<ClosedMesh> cm;
-  try {
-    cm = std::make_unique<ClosedMesh>(VertexArray(&m.vertices[0].x, m.vertices.size()),
-                                      IndexArray{m.triangles.front().data(), m.triangles.size()});
-  } catch (const std::invalid_argument& e) {
-    fmt::print(stderr, "{}: {}: {}\n", me, a.mesh, e.what());
-    return 2;
-  }
+  auto loaded = read_closed_mesh(me, a.mesh);
+  if (!loaded) return 2;
+  const mesh::Mesh& m = loaded->mesh;
+  const std::unique_ptr<ClosedMesh>& cm = loaded->closed;
   if (a.verbose) fmt::print(stderr, "{}: {}: {} triangles, {}\n", me, a.mesh, m.triangles.size(), cm->closed() ? "closed" : "not closed");
   if (!(a.tmin <= a.tmax)) {
     fmt::print(stderr, "{}: --tmin {} is not <= --tmax {}\n", me, a.tmin, a.tmax);

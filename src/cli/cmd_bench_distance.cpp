@@ -22,6 +22,7 @@
 #include <string>
 #include <vector>
 
+#include "cli/mesh_input.h"
 #include "cli/commands.h"
 #include "mesh/mesh.h"
 #include "rayproof/scene/distance.h"
@@ -82,25 +83,10 @@ int run_bench_distance(BenchDistanceOptions opt) {
   fmt::print("rayproof bench distance: one thread, {} points per set, {} timed runs per method (interleaved)\n", opt.points,
              opt.repeat);
   for (const auto& path : opt.meshes) {
-    mesh::Mesh m;
-    try {
-      m = mesh::read_mesh(path);
-    } catch (const mesh::MeshError& e) {
-      fmt::print(stderr, "{}: {}\n", me, e.what());
-      return 2;
-    }
-    if (m.triangles.empty()) {
-      fmt::print(stderr, "{}: {}: the mesh has no triangles\n", me, path);
-      return 2;
-    }
-    std::unique_ptr<ClosedMesh> cm;
-    try {
-      cm = std::make_unique<ClosedMesh>(VertexArray(&m.vertices[0].x, m.vertices.size()),
-                                        IndexArray{m.triangles.front().data(), m.triangles.size()});
-    } catch (const std::invalid_argument& e) {
-      fmt::print(stderr, "{}: {}: {}\n", me, path, e.what());
-      return 2;
-    }
+    auto loaded = read_closed_mesh(me, path);
+    if (!loaded) return 2;
+    const mesh::Mesh& m = loaded->mesh;
+    const std::unique_ptr<ClosedMesh>& cm = loaded->closed;
     const double t0 = now();
     (void)cm->distance(m.vertices[m.triangles[0][0]]);  // builds the distance tree
     const double build = now() - t0;

@@ -16,6 +16,7 @@
 #include <string>
 #include <vector>
 
+#include "cli/mesh_input.h"
 #include "cli/commands.h"
 #include "cli/input.h"
 #include "cli/point_lines.h"
@@ -95,25 +96,10 @@ std::string rule_text(const ClosedMesh& m) {
 
 int run_contains(const ContainsOptions& opt) {
   const char* me = "rayproof contains";
-  mesh::Mesh m;
-  try {
-    m = mesh::read_mesh(opt.mesh);
-  } catch (const mesh::MeshError& e) {
-    fmt::print(stderr, "{}: {}\n", me, e.what());
-    return 2;
-  }
-  if (m.triangles.empty()) {
-    fmt::print(stderr, "{}: {}: the mesh has no triangles\n", me, opt.mesh);
-    return 2;
-  }
-  std::unique_ptr<ClosedMesh> cm;
-  try {
-    cm = std::make_unique<ClosedMesh>(VertexArray(&m.vertices[0].x, m.vertices.size()),
-                                      IndexArray{m.triangles.front().data(), m.triangles.size()}, parse_rule(opt.rule));
-  } catch (const std::invalid_argument& e) {  // MeshNotClosedError, MeshInputError
-    fmt::print(stderr, "{}: {}: {}\n", me, opt.mesh, e.what());
-    return 2;
-  }
+  auto loaded = read_closed_mesh(me, opt.mesh, parse_rule(opt.rule));
+  if (!loaded) return 2;
+  const mesh::Mesh& m = loaded->mesh;
+  const std::unique_ptr<ClosedMesh>& cm = loaded->closed;
   // --winding: the exact integer on a closed oriented mesh (unless the winding rule was asked for),
   // else the generalized winding number with its bound.
   const bool integer_winding = cm->closed() && cm->oriented() && cm->rule() != ContainsRule::winding;

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "cli/mesh_input.h"
 #include "cli/commands.h"
 #include "cli/input.h"
 #include "cli/point_lines.h"
@@ -32,25 +33,10 @@ struct DistanceOptions {
 
 int run_distance(const DistanceOptions& opt) {
   const char* me = "rayproof distance";
-  mesh::Mesh m;
-  try {
-    m = mesh::read_mesh(opt.mesh);
-  } catch (const mesh::MeshError& e) {
-    fmt::print(stderr, "{}: {}\n", me, e.what());
-    return 2;
-  }
-  if (m.triangles.empty()) {
-    fmt::print(stderr, "{}: {}: the mesh has no triangles\n", me, opt.mesh);
-    return 2;
-  }
-  std::unique_ptr<ClosedMesh> cm;
-  try {
-    cm = std::make_unique<ClosedMesh>(VertexArray(&m.vertices[0].x, m.vertices.size()),
-                                      IndexArray{m.triangles.front().data(), m.triangles.size()});
-  } catch (const std::invalid_argument& e) {
-    fmt::print(stderr, "{}: {}: {}\n", me, opt.mesh, e.what());
-    return 2;
-  }
+  auto loaded = read_closed_mesh(me, opt.mesh);
+  if (!loaded) return 2;
+  const mesh::Mesh& m = loaded->mesh;
+  const std::unique_ptr<ClosedMesh>& cm = loaded->closed;
   Input in = open_input(opt.points);
   if (!in.stream) {
     fmt::print(stderr, "{}: {}\n", me, in.error);

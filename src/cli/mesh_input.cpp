@@ -1,0 +1,32 @@
+#include "cli/mesh_input.h"
+
+#include <fmt/core.h>
+
+#include <stdexcept>
+
+namespace rayproof::cli {
+
+std::optional<MeshInput> read_closed_mesh(const char* me, const std::string& path, ContainsRule rule) {
+  MeshInput in;
+  try {
+    in.mesh = mesh::read_mesh(path);
+  } catch (const mesh::MeshError& e) {
+    fmt::print(stderr, "{}: {}\n", me, e.what());
+    return std::nullopt;
+  }
+  const mesh::Mesh& m = in.mesh;
+  if (m.triangles.empty()) {
+    fmt::print(stderr, "{}: {}: the mesh has no triangles\n", me, path);
+    return std::nullopt;
+  }
+  try {
+    in.closed = std::make_unique<ClosedMesh>(VertexArray(&m.vertices[0].x, m.vertices.size()),
+                                             IndexArray{m.triangles.front().data(), m.triangles.size()}, rule);
+  } catch (const std::invalid_argument& e) {  // MeshNotClosedError, MeshInputError
+    fmt::print(stderr, "{}: {}: {}\n", me, path, e.what());
+    return std::nullopt;
+  }
+  return in;
+}
+
+}  // namespace rayproof::cli
