@@ -11,7 +11,7 @@
 #include "scene/compare/contains_compare.h"
 
 #ifdef RAYPROOF_HAVE_EMBREE
-#include <embree3/rtcore.h>
+#include "scene/compare/embree_mesh.h"
 #endif
 
 namespace rayproof::scene::compare {
@@ -51,15 +51,6 @@ ContainsCompetitor make_cgal(const std::vector<Vec3<double>>& v, const std::vect
 }
 
 #ifdef RAYPROOF_HAVE_EMBREE
-struct EmbreeHeld {
-  RTCDevice device = nullptr;
-  RTCScene scene = nullptr;
-  ~EmbreeHeld() {
-    if (scene) rtcReleaseScene(scene);
-    if (device) rtcReleaseDevice(device);
-  }
-};
-
 /// The intersect context with the hits counted: distinct (geometry, primitive) pairs of one ray.
 struct CountContext {
   RTCIntersectContext base;
@@ -82,19 +73,7 @@ void count_hits(const RTCFilterFunctionNArguments* args) {
 }
 
 ContainsCompetitor make_embree(const std::vector<Vec3<double>>& v, const std::vector<std::array<std::uint32_t, 3>>& t) {
-  auto e = std::make_shared<EmbreeHeld>();
-  e->device = rtcNewDevice("threads=1");
-  e->scene = rtcNewScene(e->device);
-  rtcSetSceneFlags(e->scene, RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
-  RTCGeometry g = rtcNewGeometry(e->device, RTC_GEOMETRY_TYPE_TRIANGLE);
-  auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), v.size()));
-  for (std::size_t i = 0; i < v.size(); ++i) vb[3 * i] = float(v[i].x), vb[3 * i + 1] = float(v[i].y), vb[3 * i + 2] = float(v[i].z);
-  auto* ib = static_cast<unsigned*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), t.size()));
-  for (std::size_t i = 0; i < t.size(); ++i) ib[3 * i] = t[i][0], ib[3 * i + 1] = t[i][1], ib[3 * i + 2] = t[i][2];
-  rtcCommitGeometry(g);
-  rtcAttachGeometry(e->scene, g);
-  rtcReleaseGeometry(g);
-  rtcCommitScene(e->scene);
+  auto e = make_embree_mesh(v, t, RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
   ContainsCompetitor c{"embree-parity", "", nullptr};
   c.run = [e](std::span<const Vec3<double>> pts, std::span<std::uint8_t> out) {
     for (std::size_t i = 0; i < pts.size(); ++i) {
