@@ -127,7 +127,7 @@ TEST(Bvh8, ConservativeVisitsBoxesTouchedAtACornerByNonFloatOrigins) {
     const double s = r % 10 == 7 ? 0x1p-80 : 1.0;  // tiny d: the double path, t scaled by 2^80
     const Ray<double> ray{corner - d * T, d * s};
     if (ray.o + d * T != corner) continue;  // o not exact: no exact touch
-    for (double tmin : {0.0, T / s})
+    for (double tmin : {0.0, T / s, -T / s})
       for (double tmax0 : {T / s, 1e300}) {
         ++total;
         bool seen = false, seen_closest = false;
@@ -145,6 +145,48 @@ TEST(Bvh8, ConservativeVisitsBoxesTouchedAtACornerByNonFloatOrigins) {
   }
   EXPECT_GT(total, 9000);
   EXPECT_EQ(missed, 0);
+}
+
+TEST(BvhWide, ConservativeVisitsBoxesTouchedAtACornerAtEveryDistance) {
+  // The origin is (0, 0, 0), a float: its bounds give the node test no slack, so only the directed
+  // reciprocals (make_bvh4_ray) keep a box touched at one corner from being culled by the float
+  // distances' own roundings. d = corner 2^-k exactly, so the exact segment touches the corner at
+  // t = 2^k; k spans tiny and huge distances. Both widths, full nodes; all hits and closest hit
+  // pruned at the touch must visit the primitive. (Without the 1 -/+ 2^-22 of the reciprocals this
+  // test misses hundreds of corners.)
+  const Soup soup = random_soup(3000, 21);
+  const Bvh bin = build_bvh(soup.boxes, soup.centers, {BvhBuilder::sah, 4});
+  const Bvh4 w4 = collapse_bvh4(Bvh(bin), soup.boxes);
+  const Bvh8 w8 = cpu_has_avx2() ? collapse_bvh8(Bvh(bin), soup.boxes) : Bvh8{};
+  std::mt19937 rng(22);
+  int missed4 = 0, missed8 = 0, total = 0;
+  for (int r = 0; r < 6000; ++r) {
+    const std::uint32_t p = rng() % soup.tris.size();
+    const BvhBox& b = soup.boxes[p];
+    const Vec3<double> corner{double(rng() & 1 ? b.hi[0] : b.lo[0]), double(rng() & 1 ? b.hi[1] : b.lo[1]),
+                              double(rng() & 1 ? b.hi[2] : b.lo[2])};
+    if (is_zero(corner)) continue;
+    const int k = int(rng() % 121) - 60;  // t = 2^k, from 2^-60 to 2^60 (d within the float path's range)
+    const Ray<double> ray{{0, 0, 0}, corner * std::ldexp(1.0, -k)};
+    const double T = std::ldexp(1.0, k);
+    for (double tmax0 : {T, 1e300}) {
+      ++total;
+      auto visits = [&](const auto& tree, BvhQuery q) {
+        bool seen = false;
+        double tm = q == BvhQuery::closest ? T : tmax0;
+        wide_traverse(tree, ray, 0.0, tm, BvhTraversal::conservative, q, [&](std::uint32_t i) {
+          seen |= i == p;
+          return false;
+        });
+        return seen;
+      };
+      missed4 += !visits(w4, BvhQuery::all) + !visits(w4, BvhQuery::closest);
+      if (cpu_has_avx2()) missed8 += !visits(w8, BvhQuery::all) + !visits(w8, BvhQuery::closest);
+    }
+  }
+  EXPECT_GT(total, 11000);
+  EXPECT_EQ(missed4, 0);
+  EXPECT_EQ(missed8, 0);
 }
 
 TEST(Bvh8, LeafRangesAreWholeLeavesAndAnyStops) {

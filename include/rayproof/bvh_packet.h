@@ -7,15 +7,15 @@
 ///
 /// Box test. Every ray is prepared by make_bvh4_ray (bvh_wide.h), exactly as the single-ray path
 /// prepares it, and its per-axis floats are transposed into lanes. The single-ray test computes,
-/// per axis, near = (plane_near - o_near) * inv and far = (plane_far - o_far) * inv, where the near
+/// per axis, near = (plane_near - o_near) * inv_near and far = (plane_far - o_far) * inv_far, where the near
 /// plane is lo when 1/d >= 0 (and hi when 1/d < 0, -0 included), o_near >= o and o_far <= o (for
 /// 1/d >= 0; mirrored otherwise). Hence the lo plane is always paired with the origin bound
-/// make_bvh4_ray gives the lo plane (o_near when 1/d >= 0, o_far otherwise), and the hi plane
-/// with the other one. Here each lane computes (lo - o_lo) * inv and (hi - o_hi) * inv with those
-/// per-ray floats and picks near and far by the ray's sign bit (a blend: a selection, no
-/// arithmetic), then does the max / min, the widening by 1 -/+ 8u and 2^-120, the clamp to the
-/// ray's float tmin / tmax and the ordered comparison of bvh8_test, in the same order with the same
-/// operands (no FMA: the target is "avx2" without "fma"). When all live rays share the sign of 1/d
+/// make_bvh4_ray gives the lo plane (o_near and inv_near when 1/d >= 0, o_far and inv_far
+/// otherwise), and the hi plane with the other ones. Here each lane computes (lo - o_lo) * inv_lo
+/// and (hi - o_hi) * inv_hi with those per-ray floats and picks near and far by the ray's sign bit
+/// (a blend: a selection, no arithmetic), then does the max / min from the ray's float tmin / tmax
+/// and the ordered comparison of bvh8_test, in the same order with the same operands (no FMA: the
+/// target is "avx2" without "fma"). When all live rays share the sign of 1/d
 /// on every axis (most camera tiles), the planes are loaded as near / far directly and no blend is
 /// needed: the same differences and products of the same floats. Every lane therefore computes bit for bit
 /// what the single-ray test computes for that ray and that box, and the conservative guarantee of
@@ -46,12 +46,13 @@ inline constexpr int kPacketWidth = 8;
 
 namespace detail {
 
-/// Eight rays transposed: per axis the origin bound paired with the lo and with the hi planes, the
-/// float reciprocal, and the sign mask (all ones: 1/d < 0, the near plane is hi).
+/// Eight rays transposed: per axis the origin bound and the reciprocal paired with the lo and with
+/// the hi planes, and the sign mask (all ones: 1/d < 0, the near plane is hi).
 struct Packet8RayF {
   alignas(32) float o_lo[3][8];
   alignas(32) float o_hi[3][8];
-  alignas(32) float inv[3][8];
+  alignas(32) float inv_lo[3][8];
+  alignas(32) float inv_hi[3][8];
   alignas(32) std::int32_t neg[3][8];
   alignas(32) float tmin[8];
 };
@@ -63,7 +64,9 @@ inline void packet_set_lane(Packet8RayF& p, int lane, const Bvh4RayF& r) {
     const float on = _mm_cvtss_f32(r.o_near[k]), of = _mm_cvtss_f32(r.o_far[k]);
     p.o_lo[k][lane] = neg ? of : on;
     p.o_hi[k][lane] = neg ? on : of;
-    p.inv[k][lane] = _mm_cvtss_f32(r.inv[k]);
+    const float in = _mm_cvtss_f32(r.inv_near[k]), inf_ = _mm_cvtss_f32(r.inv_far[k]);
+    p.inv_lo[k][lane] = neg ? inf_ : in;
+    p.inv_hi[k][lane] = neg ? in : inf_;
     p.neg[k][lane] = neg ? -1 : 0;
   }
   p.tmin[lane] = r.tmin;
@@ -76,8 +79,8 @@ inline void packet_set_lane(Packet8RayF& p, int lane, const Bvh4RayF& r) {
 /// instead of computing both and blending; each lane still computes the same difference and
 /// product of the same floats.
 struct Packet8Regs {
-  __m256 o_lo[3], o_hi[3], inv[3], neg[3], tmin;
-  __m256 o_near[3], o_far[3];
+  __m256 o_lo[3], o_hi[3], inv_lo[3], inv_hi[3], neg[3], tmin;
+  __m256 o_near[3], o_far[3], inv_near[3], inv_far[3];
   int near_off[3], far_off[3];
   bool uniform = false;
 };
@@ -86,12 +89,14 @@ struct Packet8Regs {
   Packet8Regs r;
   r.uniform = true;
   for (int k = 0; k < 3; ++k) {
-    r.o_lo[k] = _mm256_load_ps(p.o_lo[k]), r.o_hi[k] = _mm256_load_ps(p.o_hi[k]), r.inv[k] = _mm256_load_ps(p.inv[k]);
+    r.o_lo[k] = _mm256_load_ps(p.o_lo[k]), r.o_hi[k] = _mm256_load_ps(p.o_hi[k]);
+    r.inv_lo[k] = _mm256_load_ps(p.inv_lo[k]), r.inv_hi[k] = _mm256_load_ps(p.inv_hi[k]);
     r.neg[k] = _mm256_castsi256_ps(_mm256_load_si256(reinterpret_cast<const __m256i*>(p.neg[k])));
     const unsigned negs = unsigned(_mm256_movemask_ps(r.neg[k])) & live;
     const bool neg = negs != 0;
     r.uniform = r.uniform && (negs == 0 || negs == live);
     r.o_near[k] = neg ? r.o_hi[k] : r.o_lo[k], r.o_far[k] = neg ? r.o_lo[k] : r.o_hi[k];
+    r.inv_near[k] = neg ? r.inv_hi[k] : r.inv_lo[k], r.inv_far[k] = neg ? r.inv_lo[k] : r.inv_hi[k];
     r.near_off[k] = neg ? 24 + 8 * k : 8 * k, r.far_off[k] = neg ? 8 * k : 24 + 8 * k;
   }
   r.tmin = _mm256_load_ps(p.tmin);
@@ -105,24 +110,22 @@ struct Packet8Regs {
 template <bool Conservative, bool Uniform>
 [[gnu::target("avx2"), gnu::always_inline]] inline int packet8_child_test(const float* planes, int c, const Packet8Regs& r,
                                                                         __m256 tmax, __m256& t_enter) {
-  const __m256 ninf = _mm256_set1_ps(-std::numeric_limits<float>::infinity());
-  const __m256 pinf = _mm256_set1_ps(std::numeric_limits<float>::infinity());
-  __m256 t0 = Conservative ? ninf : r.tmin, t1 = Conservative ? pinf : tmax;
+  __m256 t0 = r.tmin, t1 = tmax;
   const float* f = planes + c;
   for (int k = 0; k < 3; ++k) {
     __m256 near, far;
     if constexpr (Uniform) {
-      near = _mm256_mul_ps(_mm256_sub_ps(_mm256_broadcast_ss(f + r.near_off[k]), r.o_near[k]), r.inv[k]);
-      far = _mm256_mul_ps(_mm256_sub_ps(_mm256_broadcast_ss(f + r.far_off[k]), r.o_far[k]), r.inv[k]);
+      near = _mm256_mul_ps(_mm256_sub_ps(_mm256_broadcast_ss(f + r.near_off[k]), r.o_near[k]), r.inv_near[k]);
+      far = _mm256_mul_ps(_mm256_sub_ps(_mm256_broadcast_ss(f + r.far_off[k]), r.o_far[k]), r.inv_far[k]);
     } else {
-      const __m256 tlo = _mm256_mul_ps(_mm256_sub_ps(_mm256_broadcast_ss(f + 8 * k), r.o_lo[k]), r.inv[k]);
-      const __m256 thi = _mm256_mul_ps(_mm256_sub_ps(_mm256_broadcast_ss(f + 24 + 8 * k), r.o_hi[k]), r.inv[k]);
+      const __m256 tlo = _mm256_mul_ps(_mm256_sub_ps(_mm256_broadcast_ss(f + 8 * k), r.o_lo[k]), r.inv_lo[k]);
+      const __m256 thi = _mm256_mul_ps(_mm256_sub_ps(_mm256_broadcast_ss(f + 24 + 8 * k), r.o_hi[k]), r.inv_hi[k]);
       near = _mm256_blendv_ps(tlo, thi, r.neg[k]), far = _mm256_blendv_ps(thi, tlo, r.neg[k]);
     }
     t0 = _mm256_max_ps(near, t0);  // NaN near: t0, as in bvh8_test
     t1 = _mm256_min_ps(far, t1);
   }
-  return bvh8_slab_finish<Conservative>(t0, t1, r.tmin, tmax, t_enter);
+  return bvh8_slab_finish(t0, t1, t_enter);
 }
 
 /// The lanes of `mask` whose entry distance is within their tmax (ordered: false for NaN).

@@ -16,14 +16,14 @@
 ///
 /// Box tests. The ray is given in double; the traversal runs in float when the ray is within range:
 ///  - standard: the slab test on the float-rounded ray (what a float kernel intersects).
-///  - conservative (Ize, "Robust BVH Ray Traversal", JCGT 2013): every box the exact double segment
-///    [tmin, tmax] touches passes. Per axis the origin is replaced by a float bound on the side that
-///    lowers the near distance and raises the far one (a float >= o for the near plane when 1/d > 0,
-///    <= o when 1/d < 0, and the reverse for the far plane; see make_bvh4_ray), so the rounded
-///    distances bound the exact ones before any arithmetic error; the float distance then carries four roundings
-///    (difference, double reciprocal, float rounding of it, product): near is scaled towards -inf
-///    and far towards +inf by 2 gamma(4) (float) and moved by an absolute 2^-120 for underflow.
-///    tmin is rounded down and tmax up to float.
+///  - conservative (after Ize, "Robust BVH Ray Traversal", JCGT 2013): every box the exact double
+///    segment [tmin, tmax] touches passes (for tmin >= 0; a ray with tmin < 0 takes the double test).
+///    Per axis the origin is replaced by a float bound on the side that lowers the near distance
+///    and raises the far one (see make_bvh4_ray), and the reciprocal by two directed floats: one
+///    toward zero for the near plane, one away from zero for the far plane, each scaled by 1 -/+ 2^-23
+///    so that it also covers the rounding of the plane difference. Then every node costs what the
+///    plain slab test costs (difference, product, max / min, one comparison): the rounding is folded
+///    into the per-ray constants. The proof is at make_bvh4_ray.
 ///    NaN distances (an axis with d = 0 and the origin on a slab plane: 0 * inf) are skipped, as in
 ///    bvh_traverse.h: `_mm_max_ps(x, t0)` returns t0 when x is NaN.
 ///  - Rays out of the float path's range (|o| > 2^64, or a nonzero |d| outside [2^-64, 2^64]) are
@@ -242,20 +242,62 @@ namespace detail {
 
 /// A ray prepared for the SSE box test of four children.
 struct Bvh4RayF {
-  __m128 o_near[3], o_far[3], inv[3];
+  __m128 o_near[3], o_far[3];
+  __m128 inv_near[3], inv_far[3];  ///< the reciprocal for the near / far plane (equal unless conservative)
   int near_off[3], far_off[3];  ///< float offsets of the near / far planes of axis k in the node
   float tmin;
 };
 
 inline float round_down_f(double x) { return bvh_float_down(x); }
 inline float round_up_f(double x) { return bvh_float_up(x); }
+/// Float bounds of a query's tmax and tmin without a branch (the directed roundings above compare
+/// and branch, and a closest-hit query lowers tmax at data-dependent points, so that branch is
+/// mispredicted about half the time). For x >= 0 (and +inf): x (1 + 2^-23) + 2^-149 in double
+/// (exact but for 2^-53 relative), then rounded to the nearest float: in the normal range the
+/// rounding loses at most 2^-24 relative, less than the 2^-23 added; below 2^-126 it loses at most
+/// 2^-150, less than the 2^-149 added; above the float range it gives +inf. So the float is >= x.
+/// Mirrored, x (1 - 2^-23) - 2^-149 gives a float <= x (for x = 0: -2^-149). NaN stays NaN.
+/// A negative x (an empty range: tmax < tmin) may get a float above it in float_below and below
+/// it in float_above; the box tests then only reject more, and there is nothing to find.
+inline float float_above(double x) { return static_cast<float>(x * (1.0 + 0x1p-23) + 0x1p-149); }
+inline float float_below(double x) { return static_cast<float>(x * (1.0 - 0x1p-23) - 0x1p-149); }
 
 /// Prepares the float box test of the double ray; false when the ray is out of the float path's
-/// range (see the header comment: NaN, |o| > 2^64, or a nonzero |d| outside [2^-64, 2^64]).
-/// Conservative: the origin bounds are o -/+ (|o| 2^-23 + 2^-148) computed in double, then rounded
-/// to the nearest float. That float is <= o (resp. >= o): the offset is at least one float ulp of o
-/// (ulp(o) <= |o| 2^-23 for normal floats, 2^-149 below them), and rounding to nearest moves by at
-/// most half an ulp; the double operations' own roundings (2^-53 relative) are far inside that.
+/// range (see the header comment: NaN, |o| > 2^64, or a nonzero |d| outside [2^-64, 2^64]) and,
+/// when conservative, when tmin < 0 (or NaN).
+///
+/// Conservative: origins. The origin bounds are o -/+ (|o| 2^-23 + 2^-148) computed in double,
+/// then rounded to the nearest float. That float is <= o (resp. >= o): the offset is at least one
+/// float ulp of o (ulp(o) <= |o| 2^-23 for normal floats, 2^-149 below them), and rounding to
+/// nearest moves by at most half an ulp; the double operations' own roundings (2^-53 relative) are
+/// far inside that. For 1/d >= 0 the near plane (lo) is paired with o_n >= o and the far plane (hi)
+/// with o_f <= o; mirrored for 1/d < 0 (d = -0 included).
+///
+/// Conservative: directed reciprocals. With r = 1/d in double (relative error <= 2^-53),
+/// inv_near = r (1 - 2^-22) and inv_far = r (1 + 2^-22), each product in double (2^-53 more) then
+/// rounded to the nearest float (2^-24 more: |r| is within [2^-64, 2^64], the normal range; r = +-inf
+/// stays). No directed rounding is needed (it would compare and branch per ray): the factor 2^-22
+/// covers the rounding to nearest. So, with u = 2^-24,
+///   |inv_near| (1 + u) <= (1/|d|) (1 - 2^-22)(1 + 2^-53)^2 (1 + 2^-24)^2 < 1/|d|,
+///   |inv_far| (1 - u)  >= (1/|d|) (1 + 2^-22)(1 - 2^-53)^2 (1 - 2^-24)^2 > 1/|d|.
+/// Proof that a box the exact segment touches passes (tmin >= 0). Per axis the node test computes
+/// near = fl(P), P = fl(plane_n - o_n) inv_near, and far = fl(Q), Q = fl(plane_f - o_f) inv_far
+/// (one rounded difference, exact below 2^-126, relative error <= u and sign kept; then the real
+/// product P or Q, rounded once). Let E = (plane_n - o)/d and F = (plane_f - o)/d be the exact
+/// entry and exit of the slab. For d > 0 (the other sign mirrors it):
+///  - if fl(lo - o_n) >= 0: P <= (lo - o_n)(1 + u) inv_near <= (lo - o)(1 + u) inv_near <= E;
+///    if fl(lo - o_n) < 0: P < 0 <= tmin, so P cannot raise max(near, tmin) above max(E, tmin);
+///  - a box is touched only if F >= tmin >= 0, so hi - o >= 0 and, with o_f <= o,
+///    Q >= (hi - o_f)(1 - u) inv_far >= (hi - o)(1 - u) inv_far >= F.
+/// Hence, as reals, every near term (P's and the float tmin, a lower bound: float_below) is <= every far term
+/// (Q's and the float tmax, an upper bound: float_above) whenever max(E, tmin) <= min(F, tmax). Rounding to
+/// nearest is monotonic (overflow to inf included), so fl(P) <= fl(Q), fl(P) <= tmax_f and
+/// tmin_f <= fl(Q) hold too: max over the near terms <= min over the far terms, and the box
+/// passes. No widening, no clamp and no absolute term are left in the node test.
+/// d = 0 on an axis: both reciprocals are +-inf; the products are +-inf (the slab excludes or
+/// contains the whole line, as for the exact ray, since o_n >= o >= o_f) or NaN when the rounded
+/// origin lies on the plane, which the max / min skip (the axis bounds nothing: conservative).
+/// Standard: both reciprocals are r rounded to nearest, the origins o rounded to nearest.
 [[gnu::always_inline]] inline bool make_bvh4_ray(const Ray<double>& r, bool conservative, double tmin, Bvh4RayF& out) {
   const __m128d sign = _mm_set1_pd(-0.0);
   const __m128d oxy = _mm_loadu_pd(&r.o.x), oz = _mm_load_sd(&r.o.z);
@@ -269,67 +311,58 @@ inline float round_up_f(double x) { return bvh_float_up(x); }
     return _mm_and_pd(_mm_cmple_pd(ao, hi), _mm_or_pd(_mm_cmpeq_pd(ad, zero), _mm_and_pd(_mm_cmpge_pd(ad, lo), _mm_cmple_pd(ad, hi))));
   };
   if ((_mm_movemask_pd(ok(aoxy, adxy)) & 3) != 3 || (_mm_movemask_pd(ok(aoz, adz)) & 1) != 1) return false;
+  if (conservative && !(tmin >= 0)) return false;
   const __m128d one = _mm_set1_pd(1.0);
-  const __m128 inv = _mm_movelh_ps(_mm_cvtpd_ps(_mm_div_pd(one, dxy)), _mm_cvtpd_ps(_mm_div_sd(one, dz)));
+  const __m128d rxy = _mm_div_pd(one, dxy), rz = _mm_div_sd(one, dz);
+  __m128 inv_near, inv_far;
   __m128 o_lo, o_hi;
   if (conservative) {
+    const __m128d shrink = _mm_set1_pd(1.0 - 0x1p-22), grow = _mm_set1_pd(1.0 + 0x1p-22);
+    inv_near = _mm_movelh_ps(_mm_cvtpd_ps(_mm_mul_pd(rxy, shrink)), _mm_cvtpd_ps(_mm_mul_sd(rz, shrink)));
+    inv_far = _mm_movelh_ps(_mm_cvtpd_ps(_mm_mul_pd(rxy, grow)), _mm_cvtpd_ps(_mm_mul_sd(rz, grow)));
     const __m128d ulp = _mm_set1_pd(0x1p-23), tiny = _mm_set1_pd(0x1p-148);
     const __m128d exy = _mm_add_pd(_mm_mul_pd(aoxy, ulp), tiny), ez = _mm_add_pd(_mm_mul_pd(aoz, ulp), tiny);
     o_lo = _mm_movelh_ps(_mm_cvtpd_ps(_mm_sub_pd(oxy, exy)), _mm_cvtpd_ps(_mm_sub_pd(oz, ez)));
     o_hi = _mm_movelh_ps(_mm_cvtpd_ps(_mm_add_pd(oxy, exy)), _mm_cvtpd_ps(_mm_add_pd(oz, ez)));
   } else {
+    inv_near = inv_far = _mm_movelh_ps(_mm_cvtpd_ps(rxy), _mm_cvtpd_ps(rz));
     o_lo = o_hi = _mm_movelh_ps(_mm_cvtpd_ps(oxy), _mm_cvtpd_ps(oz));
   }
   // 1/d < 0 (d < 0 or d = -0): the near plane is hi, and the near distance wants the lower origin.
-  const __m128 neg = _mm_cmplt_ps(inv, _mm_setzero_ps());
+  const __m128 neg = _mm_cmplt_ps(inv_near, _mm_setzero_ps());
   const __m128 o_near = _mm_or_ps(_mm_and_ps(neg, o_lo), _mm_andnot_ps(neg, o_hi));
   const __m128 o_far = _mm_or_ps(_mm_and_ps(neg, o_hi), _mm_andnot_ps(neg, o_lo));
   const int negs = _mm_movemask_ps(neg);
   out.o_near[0] = _mm_shuffle_ps(o_near, o_near, 0x00), out.o_far[0] = _mm_shuffle_ps(o_far, o_far, 0x00);
   out.o_near[1] = _mm_shuffle_ps(o_near, o_near, 0x55), out.o_far[1] = _mm_shuffle_ps(o_far, o_far, 0x55);
   out.o_near[2] = _mm_shuffle_ps(o_near, o_near, 0xaa), out.o_far[2] = _mm_shuffle_ps(o_far, o_far, 0xaa);
-  out.inv[0] = _mm_shuffle_ps(inv, inv, 0x00), out.inv[1] = _mm_shuffle_ps(inv, inv, 0x55), out.inv[2] = _mm_shuffle_ps(inv, inv, 0xaa);
+  out.inv_near[0] = _mm_shuffle_ps(inv_near, inv_near, 0x00), out.inv_far[0] = _mm_shuffle_ps(inv_far, inv_far, 0x00);
+  out.inv_near[1] = _mm_shuffle_ps(inv_near, inv_near, 0x55), out.inv_far[1] = _mm_shuffle_ps(inv_far, inv_far, 0x55);
+  out.inv_near[2] = _mm_shuffle_ps(inv_near, inv_near, 0xaa), out.inv_far[2] = _mm_shuffle_ps(inv_far, inv_far, 0xaa);
   for (int k = 0; k < 3; ++k) {
     // Within an axis: lo[k] at float offset 4k, hi[k] at 12 + 4k.
     const bool n = negs >> k & 1;
     out.near_off[k] = n ? 12 + 4 * k : 4 * k;
     out.far_off[k] = n ? 4 * k : 12 + 4 * k;
   }
-  out.tmin = conservative ? round_down_f(tmin) : static_cast<float>(tmin);
+  out.tmin = conservative ? float_below(tmin) : static_cast<float>(tmin);
   return true;
 }
 
-/// Hit mask of the four children of `n` and their entry distances.
-/// Conservative widening is applied once to the largest near and the smallest far distance: the
-/// widening w(x) = x * (x < 0 ? 1 + 8u : 1 - 8u) - 2^-120 (and its mirror for far) is monotonic
-/// in float (rounded products by a positive constant and a rounded subtraction of a constant are
-/// monotonic), so w(max_k near_k) = max_k w(near_k): the same result as widening every axis.
+/// Hit mask of the four children of `n` and their entry distances: the slab test with the ray's
+/// per-plane reciprocals (conservative by make_bvh4_ray's constants alone, proof there).
 /// `plane(off, k)` gives the four children's planes at float offset `off` (near_off / far_off) of
 /// axis k: loaded from a full node, decoded from a quantized one (BvhWideQNode); the math after it
 /// is the same for both.
 template <bool Conservative, class Planes>
 [[gnu::always_inline]] inline int bvh4_slab_test(const Planes& plane, int valid, const Bvh4RayF& r, __m128 tmin, __m128 tmax,
                                                  __m128& t_enter) {
-  const __m128 ninf = _mm_set1_ps(-std::numeric_limits<float>::infinity());
-  const __m128 pinf = _mm_set1_ps(std::numeric_limits<float>::infinity());
-  __m128 t0 = Conservative ? ninf : tmin, t1 = Conservative ? pinf : tmax;
+  __m128 t0 = tmin, t1 = tmax;
   for (int k = 0; k < 3; ++k) {
-    const __m128 near = _mm_mul_ps(_mm_sub_ps(plane(r.near_off[k], k), r.o_near[k]), r.inv[k]);
-    const __m128 far = _mm_mul_ps(_mm_sub_ps(plane(r.far_off[k], k), r.o_far[k]), r.inv[k]);
+    const __m128 near = _mm_mul_ps(_mm_sub_ps(plane(r.near_off[k], k), r.o_near[k]), r.inv_near[k]);
+    const __m128 far = _mm_mul_ps(_mm_sub_ps(plane(r.far_off[k], k), r.o_far[k]), r.inv_far[k]);
     t0 = _mm_max_ps(near, t0);  // NaN near: t0 (the axis bounds nothing)
     t1 = _mm_min_ps(far, t1);   // NaN far: t1
-  }
-  if constexpr (Conservative) {
-    // 1 -/+ 2 gamma(4) (float): 1 - 8u and 1 + 8u, both exact in float (u = 2^-24); the
-    // distance's own error is at most gamma(4) ~ 4u and the scaling product's rounding u more.
-    // Finite stays finite, inf stays inf (no inf - inf).
-    const __m128 shrink = _mm_set1_ps(1.0f - 0x1p-21f), grow = _mm_set1_ps(1.0f + 0x1p-21f);
-    const __m128 tiny = _mm_set1_ps(0x1p-120f);
-    const __m128 t0_neg = _mm_cmplt_ps(t0, _mm_setzero_ps()), t1_neg = _mm_cmplt_ps(t1, _mm_setzero_ps());
-    t0 = _mm_sub_ps(_mm_mul_ps(t0, _mm_or_ps(_mm_and_ps(t0_neg, grow), _mm_andnot_ps(t0_neg, shrink))), tiny);
-    t1 = _mm_add_ps(_mm_mul_ps(t1, _mm_or_ps(_mm_and_ps(t1_neg, shrink), _mm_andnot_ps(t1_neg, grow))), tiny);
-    t0 = _mm_max_ps(t0, tmin);
-    t1 = _mm_min_ps(t1, tmax);
   }
   t_enter = t0;
   return _mm_movemask_ps(_mm_cmple_ps(t0, t1)) & valid;
@@ -433,10 +466,10 @@ void wide_traverse_double(const Tree& bvh, const Ray<double>& ray, double tmin, 
   wide_traverse_loop<Tree, double, Query>(bvh, test, [&] { return tmax; }, leaf);
 }
 
-/// tmax in float for the float box tests: rounded up when conservative.
+/// tmax in float for the float box tests: an upper bound (float_above) when conservative.
 template <bool Conservative>
 [[gnu::always_inline]] inline float wide_tmax_float(double tmax) {
-  return Conservative ? round_up_f(tmax) : static_cast<float>(tmax);
+  return Conservative ? float_above(tmax) : static_cast<float>(tmax);
 }
 
 template <bool Conservative>

@@ -15,29 +15,13 @@
 ///
 /// Box tests. The ray is prepared by make_bvh4_ray (bvh_wide.h) and its per-axis floats broadcast
 /// to eight lanes; the test then does in each lane exactly the float operations bvh4_test does in
-/// each of its four (subtraction, product, max / min, widening, comparison; no FMA: the target is
-/// "avx2" without "fma", so nothing is contracted). The conservative guarantee is therefore the
-/// four-wide one, restated here:
-///  - Per axis k with 1/d_k > 0 the near plane is lo, and its distance is computed from a float
-///    o_near >= o_k (the exact origin), the far one from a float o_far <= o_k (mirrored for 1/d_k < 0,
-///    including d_k = -0). So before any rounding (lo - o_near) / d_k <= (lo - o_k) / d_k and
-///    (hi - o_far) / d_k >= (hi - o_k) / d_k: the exact slab interval of the double ray lies inside the
-///    interval of these origins.
-///  - The float distance then carries at most four roundings (the difference, the double reciprocal,
-///    its rounding to float, the product): |computed - exact| <= gamma(4) |exact| (gamma(n) =
-///    n u / (1 - n u), u = 2^-24), plus underflow, bounded absolutely by far less than 2^-120 for
-///    the distances that matter (|d| <= 2^64, boxes and origins <= 2^64 after the range check).
-///  - The largest near distance is scaled by 1 - 8u (when >= 0) or 1 + 8u (when < 0) and lowered by
-///    2^-120; the smallest far distance scaled by 1 + 8u / 1 - 8u and raised by 2^-120 (the constants
-///    1 -/+ 8u are exact floats). What must be covered is gamma(4) ~ 4u + 16u^2 of the distance
-///    plus the rounding of the scaling product itself (u), about 5u + O(u^2) < 8u; the absolute
-///    2^-120 covers underflow, as in bvh_wide.h. The widening is monotonic in float, so
-///    widening max_k near_k equals max_k of the widened distances.
-///  - tmin is rounded down and tmax up to float; a box passes when widened near <= widened far.
-///    Hence every box the exact double segment [tmin, tmax] touches (even at one point) passes.
-///  - An axis with d_k = 0 and the origin on a slab plane gives 0 * inf = NaN: vmaxps / vminps return
-///    their second operand (the running bound) when either is NaN, so that axis bounds nothing, as
-///    the origin lies in the closed slab; the comparison is ordered (false for NaN).
+/// each of its four (subtraction, product with the near or far reciprocal, max / min, comparison;
+/// no FMA: the target is "avx2" without "fma", so nothing is contracted). The conservative
+/// guarantee is therefore the four-wide one (proof at make_bvh4_ray): per-ray origin bounds and
+/// directed reciprocals make every box the exact double segment [tmin, tmax] touches pass (even at
+/// one point), with nothing added per node. An axis with d_k = 0 and the origin on a slab plane
+/// gives 0 * inf = NaN: vmaxps / vminps return their second operand (the running bound) when either
+/// is NaN, so that axis bounds nothing; the comparison is ordered (false for NaN).
 ///  - Rays out of the float path's range (NaN, |o| > 2^64, or a nonzero |d| outside [2^-64, 2^64])
 ///    are traversed with the scalar double box test of bvh_traverse.h (BvhRay::enter) on the same
 ///    nodes, widened by 2 gamma(3) in double.
@@ -117,7 +101,7 @@ namespace detail {
 
 /// The ray of make_bvh4_ray broadcast to eight lanes; plane offsets in the eight-wide node.
 struct Bvh8RayF {
-  __m256 o_near[3], o_far[3], inv[3];
+  __m256 o_near[3], o_far[3], inv_near[3], inv_far[3];
   int near_off[3], far_off[3];
 };
 
@@ -125,7 +109,8 @@ struct Bvh8RayF {
   for (int k = 0; k < 3; ++k) {
     r.o_near[k] = _mm256_broadcastss_ps(r4.o_near[k]);
     r.o_far[k] = _mm256_broadcastss_ps(r4.o_far[k]);
-    r.inv[k] = _mm256_broadcastss_ps(r4.inv[k]);
+    r.inv_near[k] = _mm256_broadcastss_ps(r4.inv_near[k]);
+    r.inv_far[k] = _mm256_broadcastss_ps(r4.inv_far[k]);
     // Four-wide offsets are 4k (lo) and 12 + 4k (hi); eight-wide 8k and 24 + 8k.
     r.near_off[k] = 2 * r4.near_off[k], r.far_off[k] = 2 * r4.far_off[k];
   }
@@ -134,22 +119,10 @@ struct Bvh8RayF {
 /// Hit mask of eight children and their entry distances: bvh4_slab_test in eight lanes.
 /// `plane(off, k)` gives the eight planes at float offset `off` of axis k (loaded from a full node,
 /// decoded from a quantized one: BvhWideQNode, bvh_wide_quantized.h); the math after it is the same for both.
-/// The end of the eight-lane slab test, from the largest near t0 and the smallest far t1 of each
-/// lane: for the conservative test the widening of the header comment, then the clamp to [tmin,
-/// tmax]; the entry distances and the lanes whose interval is not empty (ordered: false for NaN).
-/// Shared by bvh8_slab_test and the packet test of bvh_packet.h.
-template <bool Conservative>
-[[gnu::target("avx2"), gnu::always_inline]] inline int bvh8_slab_finish(__m256 t0, __m256 t1, __m256 tmin, __m256 tmax,
-                                                                        __m256& t_enter) {
-  if constexpr (Conservative) {
-    const __m256 shrink = _mm256_set1_ps(1.0f - 0x1p-21f), grow = _mm256_set1_ps(1.0f + 0x1p-21f);
-    const __m256 tiny = _mm256_set1_ps(0x1p-120f), zero = _mm256_setzero_ps();
-    const __m256 t0_neg = _mm256_cmp_ps(t0, zero, _CMP_LT_OQ), t1_neg = _mm256_cmp_ps(t1, zero, _CMP_LT_OQ);
-    t0 = _mm256_sub_ps(_mm256_mul_ps(t0, _mm256_blendv_ps(shrink, grow, t0_neg)), tiny);
-    t1 = _mm256_add_ps(_mm256_mul_ps(t1, _mm256_blendv_ps(grow, shrink, t1_neg)), tiny);
-    t0 = _mm256_max_ps(t0, tmin);
-    t1 = _mm256_min_ps(t1, tmax);
-  }
+/// bvh8_slab_finish is the end of the eight-lane slab test, from the largest near t0 and the
+/// smallest far t1 of each lane (tmin and tmax already in them): the entry distances and the lanes
+/// whose interval is not empty (ordered: false for NaN). Shared with the packet test of bvh_packet.h.
+[[gnu::target("avx2"), gnu::always_inline]] inline int bvh8_slab_finish(__m256 t0, __m256 t1, __m256& t_enter) {
   t_enter = t0;
   return _mm256_movemask_ps(_mm256_cmp_ps(t0, t1, _CMP_LE_OQ));
 }
@@ -157,16 +130,14 @@ template <bool Conservative>
 template <bool Conservative, class Planes>
 [[gnu::target("avx2"), gnu::always_inline]] inline int bvh8_slab_test(const Planes& plane, int valid, const Bvh8RayF& r,
                                                                       __m256 tmin, __m256 tmax, __m256& t_enter) {
-  const __m256 ninf = _mm256_set1_ps(-std::numeric_limits<float>::infinity());
-  const __m256 pinf = _mm256_set1_ps(std::numeric_limits<float>::infinity());
-  __m256 t0 = Conservative ? ninf : tmin, t1 = Conservative ? pinf : tmax;
+  __m256 t0 = tmin, t1 = tmax;
   for (int k = 0; k < 3; ++k) {
-    const __m256 near = _mm256_mul_ps(_mm256_sub_ps(plane(r.near_off[k], k), r.o_near[k]), r.inv[k]);
-    const __m256 far = _mm256_mul_ps(_mm256_sub_ps(plane(r.far_off[k], k), r.o_far[k]), r.inv[k]);
+    const __m256 near = _mm256_mul_ps(_mm256_sub_ps(plane(r.near_off[k], k), r.o_near[k]), r.inv_near[k]);
+    const __m256 far = _mm256_mul_ps(_mm256_sub_ps(plane(r.far_off[k], k), r.o_far[k]), r.inv_far[k]);
     t0 = _mm256_max_ps(near, t0);  // NaN near: t0 (the axis bounds nothing)
     t1 = _mm256_min_ps(far, t1);   // NaN far: t1
   }
-  return bvh8_slab_finish<Conservative>(t0, t1, tmin, tmax, t_enter) & valid;
+  return bvh8_slab_finish(t0, t1, t_enter) & valid;
 }
 
 /// A full node's planes: loaded.

@@ -98,7 +98,6 @@ int run_contains(const ContainsOptions& opt) {
   const char* me = "rayproof contains";
   auto loaded = read_closed_mesh(me, opt.mesh, parse_rule(opt.rule));
   if (!loaded) return 2;
-  const mesh::Mesh& m = loaded->mesh;
   const std::unique_ptr<ClosedMesh>& cm = loaded->closed;
   // --winding: the exact integer on a closed oriented mesh (unless the winding rule was asked for),
   // else the generalized winding number with its bound.
