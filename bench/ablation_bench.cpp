@@ -7,7 +7,8 @@
 /// is faster than Embree); the table shows the median and range over the rounds, and whether the
 /// two trees answered alike (closest: the primitive; any: hit or not). RAYPROOF_SIMD and
 /// RAYPROOF_BVH_NODES apply to both Accels.
-/// Run: ablation_bench [mesh.off | generated[:N]] [rounds] [rays] [method]
+/// Run: ablation_bench [mesh.off | generated[:N]] [rounds] [rays] [method] [primary | random | miss] [collapse | lazy]
+/// (an empty method or ray set: all of them).
 /// (default: generated 2^20 triangles, 5 rounds, 40000 rays per set, robust, certified and float).
 #include <algorithm>
 #include <cstdio>
@@ -37,12 +38,24 @@ int main(int argc, char** argv) {
   const int rounds = argc > 2 ? std::max(1, std::atoi(argv[2])) : 5;
   const int nrays = argc > 3 ? std::max(1, std::atoi(argv[3])) : 40000;
   const std::string only = argc > 4 ? argv[4] : "";
+  const std::string only_set = argc > 5 ? argv[5] : "";
+  // The step measured: `collapse` (greedy against SAH-optimal: two Accels) or `lazy` (robust's
+  // leaf set-up in prepare() against at the first leaf: one Accel, the switch set per block).
+  const std::string step_name = argc > 6 ? argv[6] : "collapse";
+  if (step_name != "collapse" && step_name != "lazy")
+    return std::fprintf(stderr, "ablation_bench: step '%s': expected collapse or lazy\n", step_name.c_str()), 2;
+  const bool collapse_step = step_name == "collapse";
+  const char* label[2] = {collapse_step ? "greedy" : "eager", collapse_step ? "sah" : "lazy"};
   Scene s;
   if (mesh.rfind("generated", 0) == 0) add_mesh(s, bumpy_sphere(mesh.size() > 10 ? std::size_t(std::atoll(mesh.c_str() + 10)) : std::size_t(1) << 20));
   else s = load_scene(mesh);
   BvhBuildOptions og{BvhBuilder::sah, 4}, os{BvhBuilder::sah, 4};
   og.collapse = BvhCollapse::greedy, os.collapse = BvhCollapse::sah;
   const Accel greedy(s, og), sah(s, os);
+  const Accel* accel[2] = {collapse_step ? &greedy : &sah, &sah};
+  auto select = [&](int which) {
+    if (!collapse_step) scene::detail::set_lazy_leaf_setup(which == 1);
+  };
   if (!compare::have_embree()) return std::fprintf(stderr, "ablation_bench: built without Embree\n"), 1;
   std::vector<compare::Competitor> comps = compare::make_competitors(s, "embree,embree-robust", 1);
   const compare::Competitor& embree = comps.at(0);
@@ -54,15 +67,18 @@ int main(int argc, char** argv) {
   const bench::BenchRays bench_rays = bench::make_bench_rays(s.bounds(), nrays);
   const auto& primary = bench_rays.primary;
   const auto& random = bench_rays.random;
-  std::printf("%-10s %-8s %-8s %-13s %22s %22s %22s %s\n", "method", "rays", "query", "reference", "greedy: ratio [range]",
-              "sah: ratio [range]", "sah/greedy speed", "answers");
+  const std::string h0 = std::string(label[0]) + ": ratio [range]", h1 = std::string(label[1]) + ": ratio [range]",
+                    h2 = std::string(label[1]) + "/" + label[0] + " speed";
+  std::printf("%-10s %-8s %-8s %-13s %22s %22s %22s %s\n", "method", "rays", "query", "reference", h0.c_str(), h1.c_str(),
+              h2.c_str(), "answers");
   for (const char* mname : {"robust", "certified", "float"}) {
     if (!only.empty() && only != mname) continue;
     const SceneMethod m = find_scene_method(mname, registry::all_methods());
     const bool is_float = std::string(mname) == "float";
     const compare::Competitor& ref = is_float ? embree : embree_r;
-    for (const char* set : {"primary", "random"}) {
-      const auto& rays = std::string(set) == "primary" ? primary : random;
+    for (const char* set : {"primary", "random", "miss"}) {
+      if (!only_set.empty() && only_set != set) continue;
+      const auto& rays = std::string(set) == "primary" ? primary : std::string(set) == "random" ? random : bench_rays.miss;
       // certified's exact stages are slow: a quarter of the rays.
       const std::size_t n = std::string(mname) == "certified" ? std::max<std::size_t>(1, rays.size() / 4) : rays.size();
       for (const char* query : {"closest", "any"}) {
@@ -85,7 +101,8 @@ int main(int argc, char** argv) {
                 else ref.any(span, std::span(out.data(), e - b0), 1);
                 sink_value = sink_value + out[0];
               } else {
-                const Accel& a = which ? sah : greedy;
+                select(which);
+                const Accel& a = *accel[which];
                 for (std::size_t i = b0; i < e; ++i) ans[which].push_back(closest ? a.closest(rays[i], m).prim : a.any(rays[i], m));
               }
               t[which] += bench::thread_seconds() - t0;
@@ -106,7 +123,7 @@ int main(int argc, char** argv) {
     }
   }
   std::printf("ratio: the reference's time over ours (above 1: faster than it), median [range] over %d rounds; "
-              "sah/greedy speed: greedy's time over sah's\n",
-              rounds);
+              "%s/%s speed: %s's time over %s's\n",
+              rounds, label[1], label[0], label[0], label[1]);
   return 0;
 }

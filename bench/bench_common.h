@@ -1,6 +1,7 @@
 #pragma once
-// What the traversal benchmarks share: the two ray sets (primary rays from an eye outside the
-// scene's bounds into them, and random rays between two points inside; the same seed gives the same
+// What the traversal benchmarks share: the ray sets (primary rays from an eye outside the
+// scene's bounds into them, random rays between two points inside, and rays from the eye away from
+// the bounds; the same seed gives the same
 // rays in every benchmark, so their numbers compare) and the clock (this thread's CPU time).
 #include <time.h>
 
@@ -22,6 +23,9 @@ inline double thread_seconds() {
 
 struct BenchRays {
   std::vector<Ray<double>> primary, random;
+  /// Rays from the primary rays' eye pointing away from the bounds: they miss the root box, so
+  /// they time a query's fixed cost per ray (set-up, root test, the return).
+  std::vector<Ray<double>> miss;
 };
 
 inline BenchRays make_bench_rays(const BvhBox& b, int nrays, unsigned seed = 9) {
@@ -40,6 +44,7 @@ inline BenchRays make_bench_rays(const BvhBox& b, int nrays, unsigned seed = 9) 
     r.primary.push_back({eye, in_box() - eye});
     const Vec3<double> o = in_box();
     r.random.push_back({o, in_box() - o});
+    r.miss.push_back({eye, eye - in_box()});
   }
   return r;
 }

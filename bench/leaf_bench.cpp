@@ -102,7 +102,7 @@ int main(int argc, char** argv) {
       std::uint64_t s = 0;
       Crossing c[2];
       for (int r = 0; r < kRays; ++r) {
-        kernel.prepare(rays[r]);
+        kernel.prepare(rays[r]), kernel.leaf_ready();
         for (int j = 0; j < kGroups * kLanes; ++j) s += kernel.triangle_crossings(tris[r * kGroups * kLanes + j], c);
       }
       return s;
@@ -115,7 +115,7 @@ int main(int argc, char** argv) {
                       std::uint64_t s = 0;
                       RobustLanes out;
                       for (int r = 0; r < kRays; ++r) {
-                        k.prepare(rays[r]);
+                        k.prepare(rays[r]), k.leaf_ready();
                         for (int g = 0; g < kGroups; ++g) {
                           robust_group_avx2(k.lane_ray, groups[r * kGroups + g], 0xf, out);
                           s += unsigned(__builtin_popcount(out.hit)) + out.special;
@@ -128,7 +128,7 @@ int main(int argc, char** argv) {
                     std::uint64_t s = 0;
                     Crossing c[2];
                     for (int r = 0; r < kRays; ++r) {
-                      k.prepare(rays[r]);
+                      k.prepare(rays[r]), k.leaf_ready(), finish_lane_ray(k.lane_ray);  // the screen's constants
                       for (int g = 0; g < kGroups; ++g) {
                         const unsigned rest = 0xf & ~robust_group_float_misses(k.lane_ray, groups[r * kGroups + g], 0xf);
                         for (unsigned b = rest; b; b &= b - 1)
@@ -143,7 +143,7 @@ int main(int argc, char** argv) {
                       std::uint64_t s = 0;
                       RobustLanes out;
                       for (int r = 0; r < kRays; ++r) {
-                        k.prepare(rays[r]);
+                        k.prepare(rays[r]), k.leaf_ready(), finish_lane_ray(k.lane_ray);
                         for (int g = 0; g < kGroups; ++g) {
                           const TriGroup& G = groups[r * kGroups + g];
                           robust_group_avx2(k.lane_ray, G, 0xf & ~robust_group_float_misses(k.lane_ray, G, 0xf), out);
@@ -192,7 +192,7 @@ int main(int argc, char** argv) {
                     std::uint64_t s = 0;
                     Crossing c[2];
                     for (int r = 0; r < kRays; ++r) {
-                      k.prepare(rays[r]);
+                      k.prepare(rays[r]), k.leaf_ready();
                       for (int g = 0; g < kGroups; ++g) {
                         const unsigned m = mt_group_survivors(k.ray, groups[r * kGroups + g], 0xf);
                         for (unsigned b = m; b; b &= b - 1)

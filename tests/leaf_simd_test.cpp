@@ -119,7 +119,7 @@ TEST(LeafSimd, RobustLanesMatchTheScalarKernelBitForBit) {
   int hits = 0, special = 0, dead = 0, edges = 0;
   for (int r = 0; r < 10000; ++r) {
     const Ray<double> ray = f.ray(r);
-    k.prepare(ray);
+    k.prepare(ray), k.leaf_ready();
     ASSERT_TRUE(k.ray_ok);
     Triangle<float> t[kLanes];
     const int n = 1 + int(f.rng() % kLanes);  // padded groups too
@@ -199,7 +199,7 @@ TEST(LeafSimd, RobustLeafKernelsKeepTheFarVertexContact) {
   const Triangle<float> tri{{-4.0745362639427185e-10f, 2.9103830456733704e-10f, 5.820766091346741e-11f},
                             {4.0745362639427185e-10f, 0.0f, 0.0f},
                             {0.0f, -2.3283064365386963e-10f, -1.1641532182693481e-10f}};
-  k.prepare(ray);
+  k.prepare(ray), k.leaf_ready();
   ASSERT_TRUE(k.ray_ok);
   Crossing c[2];
   ASSERT_EQ(k.triangle_crossings(tri, c), 1);
@@ -240,7 +240,7 @@ TEST(LeafSimd, RobustFloatScreenDecidesOnlyTheScalarKernelsMisses) {
       ray = f.ray(r / 2);
       for (int i = 0; i < n; ++i) t[i] = f.triangle(r / 2, ray);
     }
-    k.prepare(ray);
+    k.prepare(ray), k.leaf_ready(), finish_lane_ray(k.lane_ray);  // the screen's constants, whatever the path
     if (!k.ray_ok) continue;
     const TriGroup g = make_group(t, n);
     unsigned live = 0;
@@ -295,13 +295,13 @@ TEST(LeafSimd, RobustFloatScreenIsOffForRaysOutOfItsRange) {
   const Triangle<float> t[1] = {{{5, 0, 1}, {6, 0, 1}, {5, 1, 1}}};  // missed by the rays below
   const TriGroup g = make_group(t, 1);
   for (double s : {0x1p-22, 0x1p-20, 1.0, 0x1p20, 0x1p22}) {
-    k.prepare({{0, 0, 0}, {0, 0, s}});
+    k.prepare({{0, 0, 0}, {0, 0, s}}), k.leaf_ready(), finish_lane_ray(k.lane_ray);
     const bool in_range = s >= 0x1p-20 && s <= 0x1p20;
     EXPECT_EQ(robust_group_float_misses(k.lane_ray, g, 1), in_range ? 1u : 0u) << s;
   }
   // A vertex offset beyond 2^39 / D: undecided.
   const Triangle<float> far[1] = {{{0x1p40f, 0, 1}, {0x1p40f + 0x1p20f, 0, 1}, {0x1p40f, 0x1p20f, 1}}};
-  k.prepare({{0, 0, 0}, {0, 0, 1}});
+  k.prepare({{0, 0, 0}, {0, 0, 1}}), k.leaf_ready(), finish_lane_ray(k.lane_ray);
   EXPECT_EQ(robust_group_float_misses(k.lane_ray, make_group(far, 1), 1), 0u);
 }
 
@@ -411,7 +411,7 @@ TEST(LeafSimd, FloatScreenLanesMatchTheScalarScreen) {
   int survivors = 0, screened = 0;
   for (int r = 0; r < 10000; ++r) {
     const Ray<double> ray = f.ray(r);
-    k.prepare(ray);
+    k.prepare(ray), k.leaf_ready();
     Triangle<float> t[kLanes];
     const int n = 1 + int(f.rng() % kLanes);
     for (int i = 0; i < n; ++i) t[i] = f.triangle(r, ray);

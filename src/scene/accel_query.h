@@ -136,6 +136,7 @@ bool group_leaf(const K& k, const L_& L, std::uint32_t first, std::uint32_t coun
     RobustLanes lanes;
     lanes.hit = 0;
     if constexpr (kRobust) {
+      k.leaf_ready();
       if (!k.ray_ok) {
         finish = 0;  // the scalar kernel's `invalid`: no triangle crossing
       } else if (L.simd == LeafSimd::avx2) {

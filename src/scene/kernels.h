@@ -124,26 +124,42 @@ struct CompiledKernel {
   std::optional<WatertightRay<T>> wr{};
   Ray<double> ray_d{};
 
-  bool ray_ok = false;                                ///< robust: the float ray is valid
-  std::optional<WatertightRay<float, double>> wr_robust{};  ///< robust: the front door's per-ray part
-  RobustLaneRay lane_ray{};  ///< robust, certified: the per-ray part for the group kernels (leaf_simd.h)
+  // robust: the leaf kernels' per-ray part, made at the first leaf the ray reaches (leaf_ready()),
+  // not in prepare(): a ray that reaches no leaf (it misses the root box, or passes between the
+  // leaves' boxes) does not pay for it. The values are the same whenever they are made.
+  mutable bool ray_ok = false;                                ///< robust: the float ray is valid
+  mutable std::optional<WatertightRay<float, double>> wr_robust{};  ///< robust: the front door's per-ray part
+  mutable RobustLaneRay lane_ray{};  ///< robust, certified: the per-ray part for the group kernels (leaf_simd.h)
+  mutable bool leaf_part_made = true;
 
   void prepare(const Ray<double>& r) {
     ray = {r.o.template cast<T>(), r.d.template cast<T>()};
     ray_d = r;
     if constexpr (A == TriAlgo::watertight) wr.emplace(ray);
     if constexpr (A == TriAlgo::robust) {
+      leaf_part_made = false;
+      if (!lazy_leaf_setup()) leaf_ready();
+    }
+    if constexpr (A == TriAlgo::certified) {
+      if (certified_screen()) certified_lane_ray(r, lane_ray);  // (off by default: leaf_simd.h)
+    }
+  }
+  /// robust: makes the leaf kernels' per-ray part if not made yet for this ray (every leaf path
+  /// calls it before reading ray_ok, wr_robust or lane_ray).
+  void leaf_ready() const {
+    if constexpr (A == TriAlgo::robust) {
+      if (leaf_part_made) return;
+      leaf_part_made = true;
       ray_ok = ray.valid();
       if (ray_ok) {
         wr_robust.emplace(ray);
         for (int k = 0; k < 3; ++k) lane_ray.o[k] = wr_robust->o[k], lane_ray.d[k] = wr_robust->d[k];
         lane_ray.kx = wr_robust->kx, lane_ray.ky = wr_robust->ky, lane_ray.kz = wr_robust->kz;
         lane_ray.edge_k_double = wr_robust->edge_k;
-        finish_lane_ray(lane_ray);
+        // The float screen's constants: only its users need them (the SSE path; AVX2 when its
+        // screen is switched on). robust_group_avx2 reads o, d, the axes and edge_k_double only.
+        if (leaf_simd() != LeafSimd::avx2 || robust_screen_avx2()) finish_lane_ray(lane_ray);
       }
-    }
-    if constexpr (A == TriAlgo::certified) {
-      if (certified_screen()) certified_lane_ray(r, lane_ray);  // (off by default: leaf_simd.h)
     }
   }
   /// The ray the kernel intersects, in double (a float kernel's float-rounded ray): the one the
@@ -224,6 +240,7 @@ int CompiledKernel<T, A>::triangle_crossings(const Triangle<T>& t, Crossing out[
         // same operations on the same values, so the same result (tests/scene_test.cpp checks it
         // against the registry method crossing by crossing, on leak rays too). No step is skipped:
         // an earlier prepared-ray *miss screen* (the watertight test alone first) leaked.
+        leaf_ready();
         if (!ray_ok || !triangle_finite(t)) return 0;  // invalid
         const Vec3<double> p0 = t.p0.template cast<double>(), p1 = t.p1.template cast<double>(),
                            p2 = t.p2.template cast<double>();

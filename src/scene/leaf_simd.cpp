@@ -365,6 +365,12 @@ std::atomic<bool> screen_certified{false};
 void set_certified_screen(bool on) { screen_certified.store(on, std::memory_order_relaxed); }
 bool certified_screen() { return screen_certified.load(std::memory_order_relaxed); }
 
+namespace {
+std::atomic<bool> lazy_setup{true};
+}  // namespace
+void set_lazy_leaf_setup(bool on) { lazy_setup.store(on, std::memory_order_relaxed); }
+bool lazy_leaf_setup() { return lazy_setup.load(std::memory_order_relaxed); }
+
 // mt_surely_no_crossing (kernels.h) in four float lanes; a lane survives unless the scalar screen
 // would return true: det != 0 and (!(b1 >= 0) or !(b2 >= 0 and 1 - b1 - b2 >= 0) or t' < 0).
 unsigned mt_group_survivors(const Ray<float>& ray, const TriGroup& g, unsigned live) {

@@ -150,6 +150,10 @@ void set_robust_screen_avx2(bool on);
 /// slower with it on both paths (leaf_bench, bunny00 and refined_elephant). For benchmarks and tests.
 void set_certified_screen(bool on);
 [[nodiscard]] bool certified_screen();
+/// Whether robust makes its leaf kernels' per-ray part at the first leaf a ray reaches (default on)
+/// or in prepare(), for every ray (off: as before; for the ablation bench).
+void set_lazy_leaf_setup(bool on);
+[[nodiscard]] bool lazy_leaf_setup();
 
 /// One group's robust results, lane by lane: `hit` lanes have a crossing (class, t, b1, b2 as the
 /// scalar kernel computes them); `special` lanes need the scalar front door (d . n = 0).
