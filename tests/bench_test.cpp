@@ -222,18 +222,18 @@ TEST(BenchText, IsaLinesForEachSide) {
   BenchIsa isa;
   EXPECT_EQ(isa_lines(isa), "");  // no scene ran
   isa.nodes = "avx2-8wide", isa.leaves = "avx2", isa.cpu = {{"avx2", true}, {"fma", true}, {"avx512f", true}};
-  EXPECT_EQ(isa_lines(isa), "isa: rayproof avx2-8wide nodes, avx2 leaves (cpu: avx2 fma avx512f)\n");
+  EXPECT_EQ(isa_lines(isa), "isa: rayproof nodes avx2-8wide, leaves avx2 (cpu: avx2 fma avx512f)\n");
   isa.nodes = "sse-4wide", isa.leaves = "sse", isa.cpu = {{"avx2", false}, {"fma", true}, {"avx512f", false}};
-  EXPECT_EQ(isa_lines(isa), "isa: rayproof sse-4wide nodes, sse leaves (cpu: fma, no avx2 avx512f)\n");
+  EXPECT_EQ(isa_lines(isa), "isa: rayproof nodes sse-4wide, leaves sse (cpu: fma, no avx2 avx512f)\n");
   isa.cpu = {{"avx2", false}};
-  EXPECT_EQ(isa_lines(isa), "isa: rayproof sse-4wide nodes, sse leaves (cpu: no avx2)\n");
+  EXPECT_EQ(isa_lines(isa), "isa: rayproof nodes sse-4wide, leaves sse (cpu: no avx2)\n");
   isa.cpu = {{"avx2", true}, {"fma", true}, {"avx512f", true}};
   isa.nodes = "avx2-8wide", isa.leaves = "avx2";
   isa.competitors = {{"embree", "avx512", "avx512::K1", "how"},
                      {"cgal-epick", "", "", ""},  // reports none: left out
                      {"embree-avx2", "avx2", "avx2::K1", "how"}};
   EXPECT_EQ(isa_lines(isa),
-            "isa: rayproof avx2-8wide nodes, avx2 leaves (cpu: avx2 fma avx512f)\n"
+            "isa: rayproof nodes avx2-8wide, leaves avx2 (cpu: avx2 fma avx512f)\n"
             "isa: embree avx512, embree-avx2 avx2 (how: embree avx512::K1, embree-avx2 avx2::K1)\n");
   const auto j = nlohmann::json::parse(bench_json({}, {}, &isa));
   ASSERT_EQ(j.size(), 1u);

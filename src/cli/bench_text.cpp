@@ -120,7 +120,7 @@ std::string isa_lines(const BenchIsa& isa) {
   }
   std::string cpu = have;
   if (!lack.empty()) cpu += (cpu.empty() ? "no " : ", no ") + lack;
-  std::string out = fmt::format("isa: rayproof {} nodes, {} leaves (cpu: {})\n", isa.nodes, isa.leaves, cpu);
+  std::string out = fmt::format("isa: rayproof nodes {}, leaves {} (cpu: {})\n", isa.nodes, isa.leaves, cpu);
   std::string sides;
   std::vector<std::pair<std::string, std::string>> hows;  // how it is known, then the kernels it named
   for (const auto& c : isa.competitors) {

@@ -70,7 +70,7 @@ struct BenchIsa {
   std::vector<Side> competitors;
 };
 
-/// "isa: rayproof <nodes> nodes, <leaves> leaves (cpu: avx2 fma, no avx512f)\n" and, when
+/// "isa: rayproof nodes <nodes>, leaves <leaves> (cpu: avx2 fma, no avx512f)\n" and, when
 /// competitors report theirs, "isa: embree avx512, embree-avx2 avx2 (<how>: embree
 /// <kernel>, embree-avx2 <kernel>)\n" (one parenthesis per way of knowing). Empty without ours.
 [[nodiscard]] std::string isa_lines(const BenchIsa& isa);

@@ -197,9 +197,10 @@ Competitor make_embree(const Scene& s, bool robust, int build_threads, const std
     std::string others;
     for (const auto& x : k.kernels)
       if (x.isa != one->isa) others += (others.empty() ? "" : ", ") + x.name;
-    c.isa_how = "Embree's verbose=3 report of the kernels it selects (rtcIntersect1's named; " +
-                (others.empty() ? std::string("its packet kernels in the same ISA") : "also " + others) +
-                "), on a one-triangle scene with the same device configuration and scene flags";
+    c.isa_how = "Embree's verbose=3 report of the kernels it selects on a one-triangle scene with the same device "
+                "configuration and scene flags, " +
+                (others.empty() ? std::string("its packet kernels in the ISA of") : "its packet kernels " + others + " beside") +
+                " the rtcIntersect1 kernels named here";
   }
   const Scene* sp = &s;
   c.build_seconds = [sp, robust, max_isa](int threads) {
