@@ -55,6 +55,9 @@ TEST(BenchCompetitors, NamesAreCheckedWithTheListInTheMessage) {
   EXPECT_THROW((void)compare::make_competitors(s, "cgal-epick,embre"), std::invalid_argument);
 }
 
+// On rays in general position. Rays aimed exactly at vertices and edges are another matter: there
+// the default (Moeller) kernels of the two ISAs part in a few rays (bench's leak rays on bunny00:
+// 11,172 misses capped at avx2, 11,148 with avx512), so this test keeps away from them.
 TEST(BenchCompetitors, EmbreeOnAnAvx2DeviceAnswersAsTheDefaultDevice) {
   if (!compare::have_embree()) GTEST_SKIP() << "built without Embree";
   Scene s;
