@@ -182,6 +182,71 @@ TEST(BenchJson, RatesKeepEveryDigitSoPrintedRatiosRecompute) {
   }
 }
 
+TEST(BenchText, Avx2RatioLinesFromKnownRates) {
+  // embree-avx2 beside embree on two paths, embree-robust-avx2 beside embree-robust on one; a
+  // packet16 row without an avx2 twin and an avx2 row without a default twin give nothing.
+  std::vector<BenchRow> rows;
+  auto row = [&](const char* mesh, const char* method, const char* rays, const char* query, const char* path, double mrays) {
+    BenchRow r;
+    r.mesh = mesh, r.method = method, r.rays = rays, r.query = query, r.path = path, r.n = 100, r.mrays = mrays;
+    rows.push_back(r);
+  };
+  row("bunny00.off", "embree", "primary", "closest", "single", 16.5963);
+  row("bunny00.off", "embree", "primary", "closest", "packet8", 22.6781);
+  row("bunny00.off", "embree", "primary", "closest", "packet16", 24.925);
+  row("bunny00.off", "embree-robust", "random", "any", "single", 6.291);
+  row("bunny00.off", "embree-avx2", "primary", "closest", "single", 15.3214);
+  row("bunny00.off", "embree-avx2", "primary", "closest", "packet8", 23.0);
+  row("bunny00.off", "embree-robust-avx2", "random", "any", "single", 5.0334);
+  row("other.off", "embree-avx2", "primary", "closest", "single", 3.0);  // no embree row on other.off
+  const std::string text = avx2_ratio_lines(rows);
+  // 15.321 / 16.596 = 0.9232 and 23.000 / 22.678 = 1.0142, 5.033 / 6.291 = 0.8000: the printed rates' ratios.
+  EXPECT_EQ(text,
+            "bunny00.off primary closest: embree-avx2 / embree 15.321 / 16.596 = 0.92 (single), 23.000 / 22.678 = 1.01 (packet8)\n"
+            "bunny00.off random any: embree-robust-avx2 / embree-robust 5.033 / 6.291 = 0.80 (single)\n");
+  // The ratio is of the rates as printed (slow rates, a sanitizer build's): 0.0144 / 0.0166 prints
+  // 0.014 / 0.017 = 0.82, not the unprinted 0.87.
+  rows = {};
+  row("m", "embree", "random", "closest", "single", 0.0166);
+  row("m", "embree-avx2", "random", "closest", "single", 0.0144);
+  EXPECT_EQ(avx2_ratio_lines(rows), "m random closest: embree-avx2 / embree 0.014 / 0.017 = 0.82 (single)\n");
+  // A default rate printed as 0.000: no ratio.
+  rows[0].mrays = 0.0004;
+  EXPECT_EQ(avx2_ratio_lines(rows), "m random closest: embree-avx2 / embree 0.014 / 0.000 = - (single)\n");
+  // No avx2 rows: nothing.
+  rows.pop_back();
+  EXPECT_EQ(avx2_ratio_lines(rows), "");
+}
+
+TEST(BenchText, IsaLinesForEachSide) {
+  BenchIsa isa;
+  EXPECT_EQ(isa_lines(isa), "");  // no scene ran
+  isa.nodes = "avx2-8wide", isa.leaves = "avx2", isa.cpu = {{"avx2", true}, {"fma", true}, {"avx512f", true}};
+  EXPECT_EQ(isa_lines(isa), "isa: rayproof nodes avx2-8wide, leaves avx2 (cpu: avx2 fma avx512f)\n");
+  isa.nodes = "sse-4wide", isa.leaves = "sse", isa.cpu = {{"avx2", false}, {"fma", true}, {"avx512f", false}};
+  EXPECT_EQ(isa_lines(isa), "isa: rayproof nodes sse-4wide, leaves sse (cpu: fma, no avx2 avx512f)\n");
+  isa.cpu = {{"avx2", false}};
+  EXPECT_EQ(isa_lines(isa), "isa: rayproof nodes sse-4wide, leaves sse (cpu: no avx2)\n");
+  isa.cpu = {{"avx2", true}, {"fma", true}, {"avx512f", true}};
+  isa.nodes = "avx2-8wide", isa.leaves = "avx2";
+  isa.competitors = {{"embree", "avx512", "avx512::K1", "how"},
+                     {"cgal-epick", "", "", ""},  // reports none: left out
+                     {"embree-avx2", "avx2", "avx2::K1", "how"}};
+  EXPECT_EQ(isa_lines(isa),
+            "isa: rayproof nodes avx2-8wide, leaves avx2 (cpu: avx2 fma avx512f)\n"
+            "isa: embree avx512, embree-avx2 avx2 (how: embree avx512::K1, embree-avx2 avx2::K1)\n");
+  const auto j = nlohmann::json::parse(bench_json({}, {}, &isa));
+  ASSERT_EQ(j.size(), 1u);
+  EXPECT_EQ(j[0]["isa"]["rayproof"]["nodes"], "avx2-8wide");
+  EXPECT_EQ(j[0]["isa"]["rayproof"]["leaves"], "avx2");
+  EXPECT_EQ(j[0]["isa"]["rayproof"]["cpu"]["avx512f"], true);
+  ASSERT_EQ(j[0]["isa"]["competitors"].size(), 2u);
+  EXPECT_EQ(j[0]["isa"]["competitors"][1]["name"], "embree-avx2");
+  EXPECT_EQ(j[0]["isa"]["competitors"][1]["isa"], "avx2");
+  EXPECT_EQ(j[0]["isa"]["competitors"][1]["kernel"], "avx2::K1");
+  EXPECT_EQ(j[0]["isa"]["competitors"][1]["how"], "how");
+}
+
 namespace {
 /// An octahedron, closed, as OFF.
 std::string octahedron_off() {
@@ -202,9 +267,15 @@ TEST(BenchCli, JsonRowsForBothQueriesAndTargetsFromThePrintedNumbers) {
   ASSERT_TRUE(j.is_array());
   std::map<std::string, nlohmann::json> row;  // method/rays/query, then /path for packet rows
   std::vector<nlohmann::json> targets;
+  nlohmann::json isa;
   for (const auto& x : j) {
     if (x.contains("target")) {
       targets.push_back(x);
+      continue;
+    }
+    if (x.contains("isa")) {
+      EXPECT_TRUE(isa.is_null()) << "two isa objects";
+      isa = x["isa"];
       continue;
     }
     for (const char* f : {"method", "rays", "query", "path", "mesh", "ray_count", "threads", "mrays_per_s", "build_s",
@@ -269,6 +340,14 @@ TEST(BenchCli, JsonRowsForBothQueriesAndTargetsFromThePrintedNumbers) {
   if (embree) {
     EXPECT_TRUE(row.count("embree-robust/primary/any/packet8"));
   }
+  // Which instruction set each side ran: ours always, Embree's as it reports them.
+  ASSERT_TRUE(isa.is_object()) << r.out;
+  EXPECT_TRUE(isa["rayproof"]["nodes"] == "avx2-8wide" || isa["rayproof"]["nodes"] == "sse-4wide") << isa;
+  EXPECT_TRUE(isa["rayproof"]["cpu"].contains("avx2"));
+  std::set<std::string> reported;
+  for (const auto& c : isa["competitors"]) reported.insert(c["name"].get<std::string>());
+  const std::set<std::string> expected = embree ? std::set<std::string>{"embree", "embree-robust"} : std::set<std::string>{};
+  EXPECT_EQ(reported, expected) << isa;
   // Targets: every verdict agrees with its printed value and goal.
   std::set<std::string> kinds;
   for (const auto& t : targets) {
@@ -311,12 +390,48 @@ TEST(BenchCli, TextTablesAndBadOptions) {
                               " --threads 1 --repeat 1 --rays 100 --leak-rays 20 --width 8 --height 8"
                               " --methods robust --competitors none");
   ASSERT_EQ(r.status, 0) << r.err;
-  for (const char* s :
-       {"Mrays/s 1t", "BVH build", "Targets: speed against Embree", "robust leaks", "robust bytes per triangle"})
+  for (const char* s : {"Mrays/s 1t", "BVH build", "Targets: speed against Embree", "robust leaks",
+                        "robust bytes per triangle", "\nisa: rayproof "})
     EXPECT_NE(r.out.find(s), std::string::npos) << s;
+  // No competitor: no competitor's isa line, no avx2 ratios.
+  EXPECT_EQ(r.out.find("isa: embree"), std::string::npos) << r.out;
+  EXPECT_EQ(r.out.find("max_isa=avx2"), std::string::npos) << r.out;
   // One thread: no speed-up measured, no speed-up target.
   EXPECT_EQ(r.out.find("2 threads / 1 thread"), std::string::npos);
   EXPECT_NE(run_rayproof("bench " + mesh.string() + " --repeat 0").status, 0);
   EXPECT_NE(run_rayproof("bench " + mesh.string() + " --threads -1").status, 0);
   EXPECT_NE(run_rayproof("bench " + mesh.string() + " --width 0").status, 0);
+}
+
+TEST(BenchCli, EmbreeCappedAtAvx2BesideItsDefaultDevice) {
+  const auto mesh = write_file("bench_octahedron3.off", octahedron_off());
+  // An unknown name is an error before anything runs, naming the names it takes.
+  const auto bad = run_rayproof("bench " + mesh.string() + " --competitors embree,embree-avx512 --repeat 1");
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_NE(bad.err.find("unknown competitor 'embree-avx512'"), std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find("embree-robust-avx2"), std::string::npos) << bad.err;
+  EXPECT_EQ(bad.out, "");
+  const auto r = run_rayproof("bench " + mesh.string() +
+                              " --threads 1 --repeat 1 --rays 100 --leak-rays 20 --width 8 --height 8"
+                              " --methods robust --competitors embree,embree-robust,embree-avx2,embree-robust-avx2");
+  ASSERT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.out.find("\nisa: rayproof "), std::string::npos) << r.out;
+  const bool embree = r.out.find(" embree-avx2 ") != std::string::npos;
+  if (!embree) {
+    EXPECT_EQ(r.out.find("isa: embree"), std::string::npos) << r.out;  // built without Embree
+    return;
+  }
+  // Embree's line names every Embree competitor with its ISA, the capped ones at most avx2.
+  const std::size_t at = r.out.find("\nisa: embree ");
+  ASSERT_NE(at, std::string::npos) << r.out;
+  const std::string line = r.out.substr(at + 1, r.out.find('\n', at + 1) - at - 1);
+  for (const char* s : {"embree-avx2 avx2", "embree-robust-avx2 avx2", "verbose=3"})
+    EXPECT_NE(line.find(s), std::string::npos) << s << " in " << line;
+  // One ratio line per ray set, query and pair, with the rates the table printed.
+  for (const char* pair : {"embree-avx2 / embree ", "embree-robust-avx2 / embree-robust "})
+    for (const char* rq : {"primary closest", "primary any", "random closest", "random any"}) {
+      const std::string head = std::string("bench_octahedron3.off ") + rq + ": " + pair;
+      EXPECT_NE(r.out.find(head), std::string::npos) << head << "\n" << r.out;
+    }
+  EXPECT_NE(r.out.find("(packet8)"), std::string::npos) << r.out;
 }

@@ -2,6 +2,7 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <map>
@@ -110,6 +111,60 @@ std::vector<BenchTarget> bench_targets(const std::vector<BenchRow>& rows, const 
   return out;
 }
 
+std::string isa_lines(const BenchIsa& isa) {
+  if (isa.nodes.empty()) return "";
+  std::string have, lack;
+  for (const auto& [feature, present] : isa.cpu) {
+    std::string& list = present ? have : lack;
+    list += (list.empty() ? "" : " ") + feature;
+  }
+  std::string cpu = have;
+  if (!lack.empty()) cpu += (cpu.empty() ? "no " : ", no ") + lack;
+  std::string out = fmt::format("isa: rayproof nodes {}, leaves {} (cpu: {})\n", isa.nodes, isa.leaves, cpu);
+  std::string sides;
+  std::vector<std::pair<std::string, std::string>> hows;  // how it is known, then the kernels it named
+  for (const auto& c : isa.competitors) {
+    if (c.isa.empty()) continue;
+    sides += fmt::format("{}{} {}", sides.empty() ? "" : ", ", c.name, c.isa);
+    auto it = std::find_if(hows.begin(), hows.end(), [&](const auto& h) { return h.first == c.how; });
+    if (it == hows.end()) it = hows.insert(hows.end(), {c.how, ""});
+    if (!c.kernel.empty()) it->second += fmt::format("{}{} {}", it->second.empty() ? "" : ", ", c.name, c.kernel);
+  }
+  if (sides.empty()) return out;
+  for (const auto& [how, kernels] : hows)
+    if (!how.empty() || !kernels.empty())
+      sides += " (" + how + (how.empty() || kernels.empty() ? "" : ": ") + kernels + ")";
+  return out + "isa: " + sides + "\n";
+}
+
+std::string avx2_ratio_lines(const std::vector<BenchRow>& rows) {
+  const auto idx = index_rows(rows);
+  const std::string suffix = "-avx2";
+  // One line per mesh, rays, query and avx2 competitor, in the rows' order; paths within it.
+  std::vector<std::tuple<std::string, std::string, std::string, std::string>> order;  // mesh, rays, query, method
+  std::map<std::tuple<std::string, std::string, std::string, std::string>, std::string> parts;
+  for (const auto& r : rows) {
+    if (r.method.size() <= suffix.size() || r.method.compare(r.method.size() - suffix.size(), suffix.size(), suffix) != 0 ||
+        r.method.rfind("embree", 0) != 0)
+      continue;
+    const std::string base = r.method.substr(0, r.method.size() - suffix.size());
+    const auto b = idx.find({r.mesh, base, r.rays, r.query, r.path});
+    if (b == idx.end()) continue;
+    // The rates as the table prints them, and the ratio of those printed numbers.
+    const std::string a_txt = fixed(r.mrays, 3), b_txt = fixed(b->second->mrays, 3);
+    const double a = std::strtod(a_txt.c_str(), nullptr), d = std::strtod(b_txt.c_str(), nullptr);
+    const std::string ratio = d > 0 ? fixed(a / d, 2) : "-";
+    const std::tuple<std::string, std::string, std::string, std::string> key{r.mesh, r.rays, r.query, r.method};
+    auto [it, fresh] = parts.try_emplace(key, fmt::format("{} {} {}: {} / {} ", r.mesh, r.rays, r.query, r.method, base));
+    if (fresh) order.push_back(key);
+    else it->second += ", ";
+    it->second += fmt::format("{} / {} = {} ({})", a_txt, b_txt, ratio, r.path);
+  }
+  std::string out;
+  for (const auto& k : order) out += parts[k] + "\n";
+  return out;
+}
+
 std::string bench_table(const std::vector<BenchRow>& rows) {
   const auto idx = index_rows(rows);
   // B/tri read: what the method's queries read (nodes, leaf groups or records, vertices); held: all
@@ -146,7 +201,7 @@ std::string targets_table(const std::vector<BenchTarget>& targets) {
   return t;
 }
 
-std::string bench_json(const std::vector<BenchRow>& rows, const std::vector<BenchTarget>& targets) {
+std::string bench_json(const std::vector<BenchRow>& rows, const std::vector<BenchTarget>& targets, const BenchIsa* isa) {
   const auto idx = index_rows(rows);
   std::vector<std::string> items;
   for (const auto& r : rows) {
@@ -169,6 +224,18 @@ std::string bench_json(const std::vector<BenchRow>& rows, const std::vector<Benc
                                 json_string(t.what), json_string(t.mesh), t.rays.empty() ? "null" : json_string(t.rays),
                                 t.query.empty() ? "null" : json_string(t.query), t.value, t.goal, t.met ? "true" : "false",
                                 json_string(t.verdict)));
+  if (isa && !isa->nodes.empty()) {
+    std::string cpu, sides;
+    for (const auto& [feature, present] : isa->cpu)
+      cpu += fmt::format("{}{}: {}", cpu.empty() ? "" : ", ", json_string(feature), present ? "true" : "false");
+    for (const auto& c : isa->competitors)
+      if (!c.isa.empty())
+        sides += fmt::format("{}{{\"name\": {}, \"isa\": {}, \"kernel\": {}, \"how\": {}}}", sides.empty() ? "" : ", ",
+                             json_string(c.name), json_string(c.isa), json_string(c.kernel), json_string(c.how));
+    items.push_back(fmt::format("{{\"isa\": {{\"rayproof\": {{\"nodes\": {}, \"leaves\": {}, \"cpu\": {{{}}}}}, "
+                                "\"competitors\": [{}]}}}}",
+                                json_string(isa->nodes), json_string(isa->leaves), cpu, sides));
+  }
   std::string out = "[\n";
   for (std::size_t i = 0; i < items.size(); ++i) out += "  " + items[i] + (i + 1 < items.size() ? ",\n" : "\n");
   return out + "]\n";

@@ -4,6 +4,7 @@
 /// every verdict is decided on the number as printed beside it.
 #include <cstdint>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace rayproof::cli {
@@ -58,13 +59,39 @@ struct BenchTarget {
 [[nodiscard]] std::vector<BenchTarget> bench_targets(const std::vector<BenchRow>& rows,
                                                      const std::vector<BenchBuild>& builds);
 
+/// Which instruction set each side ran: ours (scene::compare::our_isa) and each competitor that
+/// reports one (scene::compare::Competitor::isa; Embree's as Embree itself reports it).
+struct BenchIsa {
+  std::string nodes, leaves;                      ///< ours: "avx2-8wide" / "sse-4wide"; "avx2", "sse", ...
+  std::vector<std::pair<std::string, bool>> cpu;  ///< CPU features and whether it has each
+  struct Side {
+    std::string name, isa, kernel, how;  ///< a competitor, its ISA, the kernel named, how it is known
+  };
+  std::vector<Side> competitors;
+};
+
+/// "isa: rayproof nodes <nodes>, leaves <leaves> (cpu: avx2 fma, no avx512f)\n" and, when
+/// competitors report theirs, "isa: embree avx512, embree-avx2 avx2 (<how>: embree
+/// <kernel>, embree-avx2 <kernel>)\n" (one parenthesis per way of knowing). Empty without ours.
+[[nodiscard]] std::string isa_lines(const BenchIsa& isa);
+
+/// For every Embree competitor on a max_isa=avx2 device ("embree-avx2", "embree-robust-avx2")
+/// beside its default-device twin ("embree", "embree-robust"), one line per mesh, ray set and query:
+/// "bunny00.off primary closest: embree-avx2 / embree 15.321 / 16.596 = 0.92 (single), ..." over
+/// the paths both have, the rates (Mrays/s, one thread) as bench_table prints them and the ratio
+/// of those printed rates. Empty when no such pair has rows.
+[[nodiscard]] std::string avx2_ratio_lines(const std::vector<BenchRow>& rows);
+
 /// The throughput table: one row per mesh, method, ray set, query and path, with the ratio to
 /// embree-robust on the same mesh, rays, query and path (one thread each).
 [[nodiscard]] std::string bench_table(const std::vector<BenchRow>& rows);
 [[nodiscard]] std::string build_table(const std::vector<BenchBuild>& builds);
 [[nodiscard]] std::string targets_table(const std::vector<BenchTarget>& targets);
 /// A JSON array: the rows (fields of the earlier bench plus query, path, mesh and the scaling),
-/// then one object per target ("target", "mesh", "rays", "query", "value", "goal", "met", "verdict").
-[[nodiscard]] std::string bench_json(const std::vector<BenchRow>& rows, const std::vector<BenchTarget>& targets);
+/// then one object per target ("target", "mesh", "rays", "query", "value", "goal", "met", "verdict"),
+/// then, with `isa`, one object {"isa": {"rayproof": {"nodes", "leaves", "cpu": {feature: bool}},
+/// "competitors": [{"name", "isa", "kernel", "how"}]}}.
+[[nodiscard]] std::string bench_json(const std::vector<BenchRow>& rows, const std::vector<BenchTarget>& targets,
+                                     const BenchIsa* isa = nullptr);
 
 }  // namespace rayproof::cli

@@ -5,10 +5,11 @@
 /// call, bvh_packet.h; Embree: rtcIntersect8 and, where native, rtcIntersect16, and the occluded
 /// calls) on the same rays in 4x2 pixel tiles, the ratio of each to Embree robust, bytes per triangle,
 /// leaks (rays from inside a closed mesh towards every vertex and edge midpoint that find no hit),
-/// BVH build times at one and N threads beside Embree's, and the targets with a verdict each
-/// (bench_text.h). Without SCENE: bunny00 and refined_elephant (CGAL's demo meshes, where
-/// the build extracted them) and a generated closed mesh of >= 1M triangles ('generated': that
-/// one alone).
+/// BVH build times at one and N threads beside Embree's, which instruction set each side ran, and
+/// the targets with a verdict each (bench_text.h). On request (--competitors) Embree's two scenes
+/// also on a device capped at max_isa=avx2, with their rates against the default device's. Without
+/// SCENE: bunny00 and refined_elephant (CGAL's demo meshes, where the build extracted them) and a
+/// generated closed mesh of >= 1M triangles ('generated': that one alone).
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
 
@@ -21,6 +22,7 @@
 #include <optional>
 #include <map>
 #include <random>
+#include <stdexcept>
 #include <thread>
 
 #include "cli/bench_text.h"
@@ -29,6 +31,7 @@
 #include "scene/scene_caster.h"
 #include "cli/scene_input.h"
 #include "scene/compare/competitors.h"
+#include "scene/compare/isa.h"
 #include "scene/watertight.h"
 
 namespace rayproof::cli {
@@ -103,7 +106,7 @@ std::vector<std::string> default_meshes() {
 /// Runs every method and competitor on one scene: rows (one thread, and `threads` for the speed-up
 /// when above 1) and builds (ours and Embree's at one thread and at `threads`).
 int bench_scene(const BenchOptions& opt, const std::string& path, int threads, std::vector<BenchRow>& rows,
-                std::vector<BenchBuild>& builds, std::vector<std::string>& notes) {
+                std::vector<BenchBuild>& builds, std::vector<std::string>& notes, BenchIsa& isa) {
   std::unique_ptr<scene::Scene> sc;
   std::string mesh_name;
   try {
@@ -130,6 +133,10 @@ int bench_scene(const BenchOptions& opt, const std::string& path, int threads, s
   std::optional<scene::Accel> accel_a;
   build_arena.execute([&] { accel_a.emplace(s, BvhBuildOptions{BvhBuilder::sah, 4}); });
   const scene::Accel& accel = *accel_a;
+  if (isa.nodes.empty()) {
+    const scene::compare::OurIsa ours = scene::compare::our_isa(accel);
+    isa.nodes = ours.nodes, isa.leaves = ours.leaves, isa.cpu = ours.cpu;
+  }
   // Ray sets: primary rays of the default view, random rays inside the bounds, leak rays.
   const scene::Camera cam = s.camera ? *s.camera : scene::default_camera(s, opt.width, opt.height);
   std::map<std::string, std::vector<Ray<double>>> sets;
@@ -255,6 +262,9 @@ int bench_scene(const BenchOptions& opt, const std::string& path, int threads, s
   }
   double embree_build[2] = {-1, -1};
   for (auto& c : scene::compare::make_competitors(s, opt.competitors, threads)) {
+    if (!c.isa.empty() && std::none_of(isa.competitors.begin(), isa.competitors.end(),
+                                       [&](const BenchIsa::Side& x) { return x.name == c.name; }))
+      isa.competitors.push_back({c.name, c.isa, c.kernel, c.isa_how});
     BenchRow row;
     row.mesh = mesh_name, row.method = c.name, row.build_s = c.build_s, row.bytes = row.bytes_held = c.bytes_per_tri;
     measure(row, c.max_rays, c.threaded, [&](const std::vector<Ray<double>>& rays, bool closest, int t) {
@@ -288,7 +298,9 @@ int bench_scene(const BenchOptions& opt, const std::string& path, int threads, s
     }
     for (const auto& note : c.packet_notes)
       if (std::find(notes.begin(), notes.end(), c.name + ": " + note) == notes.end()) notes.push_back(c.name + ": " + note);
-    if (c.build_seconds && c.name.rfind("embree", 0) == 0)
+    // Embree's build beside ours: its default device (the -avx2 ones build with the same builder;
+    // timing them too would only lengthen the run).
+    if (c.build_seconds && c.name.rfind("embree", 0) == 0 && c.max_isa.empty())
       for (std::size_t k = 0; k < counts.size(); ++k) {
         // The build's own clock (its device is created before it starts), the least of `repeat`,
         // in an arena of that many threads (Embree's TBB tasks run in the caller's arena).
@@ -322,16 +334,23 @@ int run_bench(const BenchOptions& opt) {
   std::vector<BenchRow> rows;
   std::vector<BenchBuild> builds;
   std::vector<std::string> notes;  // packet widths a competitor does not offer, and why
+  BenchIsa isa;
+  try {
+    scene::compare::check_competitor_names(opt.competitors);  // before any timing
+  } catch (const std::invalid_argument& e) {
+    fmt::print(stderr, "rayproof bench: {}\n", e.what());
+    return 2;
+  }
   // "generated": the generated mesh alone (an empty path below).
   const std::vector<std::string> paths = opt.scene.empty()           ? default_meshes()
                                          : opt.scene == "generated" ? std::vector<std::string>{std::string()}
                                                                     : std::vector<std::string>{opt.scene};
   for (const std::string& path : paths)
-    if (const int rc = bench_scene(opt, path, threads, rows, builds, notes)) return rc;
+    if (const int rc = bench_scene(opt, path, threads, rows, builds, notes, isa)) return rc;
   const std::vector<BenchTarget> targets = bench_targets(rows, builds);
   if (opt.json) {
     for (const auto& n : notes) fmt::print(stderr, "rayproof bench: {}\n", n);
-    fmt::print("{}", bench_json(rows, targets));
+    fmt::print("{}", bench_json(rows, targets, &isa));
     return 0;
   }
   fmt::print("Mrays/s on one thread; speed-up: the same on {} threads over one. Path single: one ray at a time (primary "
@@ -342,6 +361,11 @@ int run_bench(const BenchOptions& opt) {
              "held: all that its structures hold.\n{}",
              threads, bench_table(rows));
   for (const auto& n : notes) fmt::print("{}\n", n);
+  fmt::print("\n{}", isa_lines(isa));
+  if (const std::string avx2 = avx2_ratio_lines(rows); !avx2.empty())
+    fmt::print("Embree on a device with max_isa=avx2 against its default device: Mrays/s on one thread, as in the table, "
+               "and their ratio, per path.\n{}",
+               avx2);
   fmt::print("\n");
   fmt::print("BVH build (SAH, bounds included), best of {}; Embree: the faster of its default and robust builds.\n{}\n",
              std::max(1, opt.repeat), build_table(builds));
@@ -372,7 +396,9 @@ Run add_bench(CLI::App& app) {
   sub->add_option("--repeat", opt->repeat, "Time each ray set and build this many times, report the fastest")
       ->capture_default_str()->check(CLI::Range(1, 1000));
   sub->add_option("--methods", opt->methods, "Comma-separated methods")->capture_default_str();
-  sub->add_option("--competitors", opt->competitors, "Comma-separated competitors to run (none: no competitor)")
+  sub->add_option("--competitors", opt->competitors,
+                  "Comma-separated competitors to run, of embree, embree-robust, embree-avx2, embree-robust-avx2 (Embree's "
+                  "two on a device with max_isa=avx2), cgal-epick, cgal-epeck (none: no competitor)")
       ->capture_default_str();
   return [opt] { return run_bench(*opt); };
 }

@@ -1,6 +1,7 @@
 #pragma once
 /// Other ray tracers on the same scene and rays, for `rayproof bench`: Embree 3 (rtcIntersect1,
-/// default and RTC_SCENE_FLAG_ROBUST, and its 8- and 16-ray packets; when built with Embree) and CGAL's AABB_tree
+/// default and RTC_SCENE_FLAG_ROBUST, and its 8- and 16-ray packets, each on a default device and on
+/// one capped at max_isa=avx2; when built with Embree) and CGAL's AABB_tree
 /// first_intersection (Epick; Epeck, exact constructions, on a subset). Triangles only. CGAL and
 /// Embree stay inside this target; callers see only rays in, hit flags out.
 #include <cstdint>
@@ -39,11 +40,25 @@ struct Competitor {
   };
   std::vector<Packets> packets;
   std::vector<std::string> packet_notes;  ///< a packet width not offered, and why
+  /// Embree: the device's max_isa setting ("avx2" for the -avx2 competitors; empty: Embree's default,
+  /// the best the CPU and the library allow).
+  std::string max_isa;
+  /// The instruction set its single-ray kernel runs ("avx512", "avx2", ...; empty: not reported),
+  /// the kernel it names, and how that is known. Embree: see embree_selected_kernels.
+  std::string isa, kernel, isa_how;
 };
 
+/// Every competitor name make_competitors takes, in its order.
+[[nodiscard]] const std::vector<std::string>& competitor_names();
+/// Throws std::invalid_argument naming the first name of the comma-separated `names` that is not
+/// a competitor (empty names and "none" are allowed), and the names it takes.
+void check_competitor_names(const std::string& names);
+
 [[nodiscard]] bool have_embree();
-/// Embree default and robust, then CGAL Epick and Epeck (each built on construction), those of
-/// them named in the comma-separated `names`. Embree builds on `build_threads` threads (0: all).
+/// Embree default and robust, the same two on a device with max_isa=avx2, then CGAL Epick and Epeck
+/// (each built on construction), those of them named in the comma-separated `names` (checked by
+/// check_competitor_names; Embree's are skipped when built without it). Embree builds on
+/// `build_threads` threads (0: all).
 [[nodiscard]] std::vector<Competitor> make_competitors(const Scene& s,
                                                        const std::string& names = "embree,embree-robust,cgal-epick,cgal-epeck",
                                                        int build_threads = 0);

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "scene/compare/competitors.h"
+#include "scene/compare/isa.h"
 
 #ifdef RAYPROOF_HAVE_EMBREE
 #include <embree3/rtcore.h>
@@ -34,11 +35,16 @@ struct EmbreeScene {
   }
 };
 
-/// Embree's device on `threads` threads (0: all).
-RTCDevice new_device(int threads) {
-  const std::string config = threads > 0 ? "threads=" + std::to_string(threads) : std::string();
-  return rtcNewDevice(config.empty() ? nullptr : config.c_str());
+/// Embree's device configuration: `threads` threads (0: all), instruction sets up to `max_isa`
+/// (empty: the best the CPU and the library have).
+std::string device_config(int threads, const std::string& max_isa) {
+  std::string config;
+  if (threads > 0) config.append("threads=").append(std::to_string(threads));
+  if (!max_isa.empty()) config.append(config.empty() ? "" : ",").append("max_isa=").append(max_isa);
+  return config;
 }
+
+RTCDevice new_device(const std::string& config) { return rtcNewDevice(config.empty() ? nullptr : config.c_str()); }
 
 /// The scene of s's triangles on device e->device (vertices rounded to float, as Embree takes them).
 void build_scene(EmbreeScene& e, const Scene& s, bool robust) {
@@ -79,8 +85,9 @@ void set_lane(RayW& p, int i, const Ray<double>& r) {
   p.mask[i] = ~0u, p.id[i] = 0, p.flags[i] = 0;
 }
 
-std::string fmt_not_native(const char* calls, int width) {
-  return std::string(calls) + ": not available (this Embree device does not run " + std::to_string(width) +
+std::string fmt_not_native(const char* calls, int width, const std::string& max_isa) {
+  const std::string device = max_isa.empty() ? "this Embree device" : "this Embree device, max_isa=" + max_isa + ",";
+  return std::string(calls) + ": not available (" + device + " does not run " + std::to_string(width) +
          "-ray packets natively on this CPU)";
 }
 
@@ -93,13 +100,14 @@ void over_threads(std::size_t n, int threads, Body&& body) {
 }
 }  // namespace
 
-Competitor make_embree(const Scene& s, bool robust, int build_threads) {
+Competitor make_embree(const Scene& s, bool robust, int build_threads, const std::string& max_isa) {
   auto e = std::make_shared<EmbreeScene>();
-  e->device = new_device(build_threads);
+  e->device = new_device(device_config(build_threads, max_isa));
   const auto start = std::chrono::steady_clock::now();
   build_scene(*e, s, robust);
   Competitor c;
-  c.name = robust ? "embree-robust" : "embree";
+  c.name = std::string(robust ? "embree-robust" : "embree") + (max_isa.empty() ? "" : "-" + max_isa);
+  c.max_isa = max_isa;
   c.build_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   c.bytes_per_tri = -1;
   c.closest = [e](std::span<const Ray<double>> rays, std::span<std::uint8_t> out, int threads) {
@@ -129,7 +137,7 @@ Competitor make_embree(const Scene& s, bool robust, int build_threads) {
   // Packets: 8 and 16 rays, where the device runs that width natively.
   auto add_packets = [&]<int W, class RayHitW, class RayW>(RTCDeviceProperty native, const char* calls, void (*isect)(const int*, RTCScene, RTCIntersectContext*, RayHitW*), void (*occl)(const int*, RTCScene, RTCIntersectContext*, RayW*)) {
     if (!rtcGetDeviceProperty(e->device, native)) {
-      c.packet_notes.push_back(fmt_not_native(calls, W));
+      c.packet_notes.push_back(fmt_not_native(calls, W, max_isa));
       return;
     }
     Competitor::Packets p;
@@ -181,10 +189,23 @@ Competitor make_embree(const Scene& s, bool robust, int build_threads) {
                                                         rtcIntersect8, rtcOccluded8);
   add_packets.template operator()<16, RTCRayHit16, RTCRay16>(RTC_DEVICE_PROPERTY_NATIVE_RAY16_SUPPORTED,
                                                            "rtcIntersect16/rtcOccluded16", rtcIntersect16, rtcOccluded16);
+  // The kernels Embree selects on this configuration (Embree 3 has no device property for it).
+  const EmbreeKernels k = embree_selected_kernels(device_config(build_threads, max_isa), robust);
+  if (const EmbreeKernel* one = k.find("1")) {
+    c.isa = one->isa, c.kernel = one->name;
+    // The packet rows run Embree's other kernels: say whether they are in the same ISA.
+    std::string others;
+    for (const auto& x : k.kernels)
+      if (x.isa != one->isa) others += (others.empty() ? "" : ", ") + x.name;
+    c.isa_how = "Embree's verbose=3 report of the kernels it selects on a one-triangle scene with the same device "
+                "configuration and scene flags, " +
+                (others.empty() ? std::string("its packet kernels in the ISA of") : "its packet kernels " + others + " beside") +
+                " the rtcIntersect1 kernels named here";
+  }
   const Scene* sp = &s;
-  c.build_seconds = [sp, robust](int threads) {
+  c.build_seconds = [sp, robust, max_isa](int threads) {
     EmbreeScene again;
-    again.device = new_device(threads);
+    again.device = new_device(device_config(threads, max_isa));
     const auto t0 = std::chrono::steady_clock::now();
     build_scene(again, *sp, robust);
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
