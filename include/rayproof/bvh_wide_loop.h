@@ -22,10 +22,14 @@ template <class Tree, class T, BvhQuery Query, class BoxTest, class TmaxNow, cla
   using Entry = WideEntry<T>;
   constexpr std::size_t kLocal = N == 4 ? 192 : 256;  // entries on the call stack; deeper trees use the heap
   Entry local[kLocal];
-  std::vector<Entry> heap;
   Entry* stack = local;
   const std::size_t need = (N - 1) * static_cast<std::size_t>(bvh.max_depth) + 8;
-  if (need > kLocal) heap.resize(need), stack = heap.data();
+  if (need > kLocal) [[unlikely]] {
+    // A per-thread buffer that only grows: no vector (and no destructor call) on every ray's path.
+    static thread_local std::vector<Entry> heap;
+    if (heap.size() < need) heap.resize(need);
+    stack = heap.data();
+  }
   int top = 0;
   const Node* nodes = bvh.nodes.data();
   T tmax_cur = tmax_now();
