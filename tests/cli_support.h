@@ -1,6 +1,7 @@
 #pragma once
 // Runs the rayproof binary in a shell and captures exit status, stdout and stderr.
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -22,10 +23,22 @@ inline std::string slurp(const std::filesystem::path& p) {
   return ss.str();
 }
 
+/// This process's scratch directory under the system's temporary directory, removed when the
+/// process exits (each test runs in its own process: without this, every run left its files).
 inline std::filesystem::path scratch_dir() {
-  auto d = std::filesystem::temp_directory_path() / ("rayproof_test_" + std::to_string(::getpid()));
-  std::filesystem::create_directories(d);
-  return d;
+  struct RemoveAtExit {
+    std::filesystem::path dir;
+    pid_t owner = ::getpid();
+    ~RemoveAtExit() {
+      if (::getpid() != owner) return;  // a forked child exiting leaves its parent's files alone
+      std::error_code ec;
+      std::filesystem::remove_all(dir, ec);
+    }
+  };
+  static const RemoveAtExit scratch{std::filesystem::temp_directory_path() /
+                                    ("rayproof_test_" + std::to_string(::getpid()))};
+  std::filesystem::create_directories(scratch.dir);
+  return scratch.dir;
 }
 
 inline std::filesystem::path write_file(const std::string& name, const std::string& text) {
