@@ -1,8 +1,7 @@
 /// One step of the traversal measured in one run: Accel with the greedy collapse and with the
 /// SAH-optimal one (BvhBuildOptions::collapse; step `collapse`), or robust's leaf set-up made for
 /// every ray against at the first leaf (detail::set_lazy_leaf_setup; step `lazy`, two Accels built
-/// alike), or float's survivors re-run through the scalar kernel against classed in the lanes
-/// (detail::set_mt_lanes; step `mtlanes`), beside Embree (default build: the reference of `float`) and Embree-robust (the
+/// alike), beside Embree (default build: the reference of `float`) and Embree-robust (the
 /// reference of `robust` and `certified`), on one thread,
 /// the four interleaved in blocks of 500 rays, taken through the batch entry on one thread as the
 /// reference takes them, in each of the six orders in turn, thread CPU
@@ -11,7 +10,7 @@
 /// is faster than Embree); the table shows the median and range over the rounds, and whether the
 /// two variants answered alike (closest: the primitive; any: hit or not). RAYPROOF_SIMD and
 /// RAYPROOF_BVH_NODES apply to both Accels.
-/// Run: ablation_bench [mesh.off | generated[:N]] [rounds] [rays] [method] [primary | random | miss] [collapse | lazy | mtlanes]
+/// Run: ablation_bench [mesh.off | generated[:N]] [rounds] [rays] [method] [primary | random | miss] [collapse | lazy]
 /// (an empty method or ray set: all of them).
 /// (default: generated 2^20 triangles, 5 rounds, 40000 rays per set, robust, certified and float).
 #include <algorithm>
@@ -46,12 +45,10 @@ int main(int argc, char** argv) {
   // The step measured: `collapse` (greedy against SAH-optimal: two Accels) or `lazy` (robust's
   // leaf set-up in prepare() against at the first leaf: one Accel, the switch set per block).
   const std::string step_name = argc > 6 ? argv[6] : "collapse";
-  // `mtlanes`: float's survivors re-run through the scalar kernel against classed in the lanes.
-  if (step_name != "collapse" && step_name != "lazy" && step_name != "mtlanes")
-    return std::fprintf(stderr, "ablation_bench: step '%s': expected collapse, lazy or mtlanes\n", step_name.c_str()), 2;
+  if (step_name != "collapse" && step_name != "lazy")
+    return std::fprintf(stderr, "ablation_bench: step '%s': expected collapse or lazy\n", step_name.c_str()), 2;
   const bool collapse_step = step_name == "collapse";
-  const char* label[2] = {collapse_step ? "greedy" : step_name == "lazy" ? "eager" : "rerun",
-                          collapse_step ? "sah" : step_name == "lazy" ? "lazy" : "lanes"};
+  const char* label[2] = {collapse_step ? "greedy" : "eager", collapse_step ? "sah" : "lazy"};
   Scene s;
   if (mesh.rfind("generated", 0) == 0) add_mesh(s, bumpy_sphere(mesh.size() > 10 ? std::size_t(std::atoll(mesh.c_str() + 10)) : std::size_t(1) << 20));
   else s = load_scene(mesh);
@@ -63,8 +60,7 @@ int main(int argc, char** argv) {
   const Accel twin(s, os);
   const Accel* accel[2] = {collapse_step ? &greedy : &twin, &sah};
   auto select = [&](int which) {
-    if (step_name == "lazy") scene::detail::set_lazy_leaf_setup(which == 1);
-    if (step_name == "mtlanes") scene::detail::set_mt_lanes(which == 1);
+    if (!collapse_step) scene::detail::set_lazy_leaf_setup(which == 1);
   };
   if (!compare::have_embree()) return std::fprintf(stderr, "ablation_bench: built without Embree\n"), 1;
   std::vector<compare::Competitor> comps = compare::make_competitors(s, "embree,embree-robust", 1);

@@ -504,52 +504,6 @@ void expect_same_queries(const Accel& a, const std::vector<Ray<double>>& rays, L
 
 }  // namespace
 
-TEST(LeafSimd, FloatLanesClassAsTheScalarKernelBitForBit) {
-  // mt_group_lanes against intersect_moller_trumbore lane by lane, on the family's rays and
-  // triangles (degenerate, coplanar, parallel, non-finite, huge, tiny, near the ray): a lane it
-  // decides has the scalar kernel's class, t, b1 and b2 bit for bit; a survivor it leaves goes to
-  // the scalar kernel; a non-survivor has no crossing. Lanes not allowed (dead, invalid ray) are
-  // never decided.
-  const Scene empty;
-  CompiledKernel<float, TriAlgo::moller_trumbore> k{empty, nullptr, 0};
-  Family f(31);
-  int decided = 0, left = 0;
-  auto same_float = [](float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; };
-  for (int r = 0; r < 20000; ++r) {
-    const Ray<double> ray = f.ray(r);
-    k.prepare(ray);
-    Triangle<float> t[kLanes];
-    const int n = 1 + int(f.rng() % kLanes);
-    for (int i = 0; i < n; ++i) t[i] = f.triangle(r, ray);
-    const TriGroup g = make_group(t, n);
-    unsigned tri = 0, dead = 0;
-    for (int i = 0; i < n; ++i) (g.tag[i] & kDeadLane ? dead : tri) |= 1u << i;
-    const unsigned direct = k.ray.valid() ? tri : 0u;
-    LaneHits out;
-    mt_group_lanes(k.ray, g, tri | dead, direct, out);
-    EXPECT_EQ(out.hit & ~direct, 0u);
-    EXPECT_EQ(out.hit & out.special, 0u);
-    for (int i = 0; i < n; ++i) {
-      const TriangleHit<float> h = intersect_moller_trumbore(k.ray, t[i]);
-      Crossing c[2];
-      const int nc = k.triangle_crossings(t[i], c);
-      if (out.hit >> i & 1) {
-        ++decided;
-        EXPECT_EQ(static_cast<Contact>(out.contact[i]), h.contact) << "ray " << r << " lane " << i;
-        EXPECT_TRUE(same_float(out.t[i], h.t) && same_float(out.b1[i], h.b1) && same_float(out.b2[i], h.b2))
-            << "ray " << r << " lane " << i << ": " << out.t[i] << " " << h.t;
-        EXPECT_EQ(nc, 1);
-      } else if (out.special >> i & 1) {
-        ++left;
-      } else {
-        EXPECT_EQ(nc, 0) << "ray " << r << " lane " << i << ": screened out but " << to_string(h.contact);
-      }
-    }
-  }
-  EXPECT_GT(decided, 2000);
-  EXPECT_GT(left, 100);
-}
-
 TEST(LeafSimd, QueriesThroughGroupsMatchSlotBySlotOnEveryPath) {
   // A closed mesh beside analytic primitives (their lanes go to the per-primitive kernels).
   Scene s = default_scene(1);

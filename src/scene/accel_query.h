@@ -154,11 +154,6 @@ bool group_leaf(const K& k, const L_& L, std::uint32_t first, std::uint32_t coun
       } else {
         finish = tri;  // dead lanes: the scalar kernel reports nothing for them either
       }
-    } else if (L.simd != LeafSimd::scalar && mt_lanes()) {
-      // Lanes decide what they can (finite, non-dead triangles and a valid float ray); the
-      // scalar kernel finishes the rest of the survivors.
-      mt_group_lanes(k.ray, g, tri | dead, k.ray.valid() ? tri : 0u, lanes);
-      finish = lanes.special;
     } else {
       finish = L.simd == LeafSimd::scalar ? tri | dead : mt_group_survivors(k.ray, g, tri | dead);
     }

@@ -373,16 +373,8 @@ bool lazy_leaf_setup() { return lazy_setup.load(std::memory_order_relaxed); }
 
 // mt_surely_no_crossing (kernels.h) in four float lanes; a lane survives unless the scalar screen
 // would return true: det != 0 and (!(b1 >= 0) or !(b2 >= 0 and 1 - b1 - b2 >= 0) or t' < 0).
-namespace {
-
-/// Möller–Trumbore in four float lanes, the scalar kernel's operations in its order (no FMA:
-/// -ffp-contract=off, separate SSE multiplies and adds), so every lane's det, b1, b2, t and b0 are
-/// bit for bit intersect_moller_trumbore's (and mt_surely_no_crossing's).
-struct MtLaneValues {
-  __m128 det, b1, b2, t, b0, normal_zero;
-};
-
-inline MtLaneValues mt_lane_values(const Ray<float>& ray, const TriGroup& g) {
+unsigned mt_group_survivors(const Ray<float>& ray, const TriGroup& g, unsigned live) {
+  if (!live) return 0;
   __m128 p0[3], e1[3], e2[3];
   for (int k = 0; k < 3; ++k) {
     p0[k] = _mm_load_ps(g.p[0][k]);
@@ -394,77 +386,24 @@ inline MtLaneValues mt_lane_values(const Ray<float>& ray, const TriGroup& g) {
   const __m128 s1x = _mm_sub_ps(_mm_mul_ps(dy, e2[2]), _mm_mul_ps(dz, e2[1]));
   const __m128 s1y = _mm_sub_ps(_mm_mul_ps(dz, e2[0]), _mm_mul_ps(dx, e2[2]));
   const __m128 s1z = _mm_sub_ps(_mm_mul_ps(dx, e2[1]), _mm_mul_ps(dy, e2[0]));
-  MtLaneValues v;
-  v.det = _mm_add_ps(_mm_add_ps(_mm_mul_ps(s1x, e1[0]), _mm_mul_ps(s1y, e1[1])), _mm_mul_ps(s1z, e1[2]));
-  const __m128 one = _mm_set1_ps(1.0f);
-  const __m128 inv = _mm_div_ps(one, v.det);
+  const __m128 det = _mm_add_ps(_mm_add_ps(_mm_mul_ps(s1x, e1[0]), _mm_mul_ps(s1y, e1[1])), _mm_mul_ps(s1z, e1[2]));
+  const __m128 zero = _mm_setzero_ps(), one = _mm_set1_ps(1.0f);
+  const __m128 inv = _mm_div_ps(one, det);
   // s = o - p0; b1 = dot(s1, s) * inv
   const __m128 sx = _mm_sub_ps(_mm_set1_ps(ray.o.x), p0[0]), sy = _mm_sub_ps(_mm_set1_ps(ray.o.y), p0[1]),
                sz = _mm_sub_ps(_mm_set1_ps(ray.o.z), p0[2]);
-  v.b1 = _mm_mul_ps(_mm_add_ps(_mm_add_ps(_mm_mul_ps(s1x, sx), _mm_mul_ps(s1y, sy)), _mm_mul_ps(s1z, sz)), inv);
-  // s2 = cross(s, e1); b2 = dot(s2, d) * inv; t = dot(s2, e2) * inv
+  const __m128 b1 = _mm_mul_ps(_mm_add_ps(_mm_add_ps(_mm_mul_ps(s1x, sx), _mm_mul_ps(s1y, sy)), _mm_mul_ps(s1z, sz)), inv);
+  // s2 = cross(s, e1); b2 = dot(s2, d) * inv; t' = dot(s2, e2) * inv
   const __m128 s2x = _mm_sub_ps(_mm_mul_ps(sy, e1[2]), _mm_mul_ps(sz, e1[1]));
   const __m128 s2y = _mm_sub_ps(_mm_mul_ps(sz, e1[0]), _mm_mul_ps(sx, e1[2]));
   const __m128 s2z = _mm_sub_ps(_mm_mul_ps(sx, e1[1]), _mm_mul_ps(sy, e1[0]));
-  v.b2 = _mm_mul_ps(_mm_add_ps(_mm_add_ps(_mm_mul_ps(s2x, dx), _mm_mul_ps(s2y, dy)), _mm_mul_ps(s2z, dz)), inv);
-  v.t = _mm_mul_ps(_mm_add_ps(_mm_add_ps(_mm_mul_ps(s2x, e2[0]), _mm_mul_ps(s2y, e2[1])), _mm_mul_ps(s2z, e2[2])), inv);
-  v.b0 = _mm_sub_ps(_mm_sub_ps(one, v.b1), v.b2);
-  // n = cross(e1, e2) in float: the scalar kernel's degenerate screen (is_zero(n)).
-  const __m128 zero = _mm_setzero_ps();
-  const __m128 nx = _mm_sub_ps(_mm_mul_ps(e1[1], e2[2]), _mm_mul_ps(e1[2], e2[1]));
-  const __m128 ny = _mm_sub_ps(_mm_mul_ps(e1[2], e2[0]), _mm_mul_ps(e1[0], e2[2]));
-  const __m128 nz = _mm_sub_ps(_mm_mul_ps(e1[0], e2[1]), _mm_mul_ps(e1[1], e2[0]));
-  v.normal_zero = _mm_and_ps(_mm_and_ps(_mm_cmpeq_ps(nx, zero), _mm_cmpeq_ps(ny, zero)), _mm_cmpeq_ps(nz, zero));
-  return v;
+  const __m128 b2 = _mm_mul_ps(_mm_add_ps(_mm_add_ps(_mm_mul_ps(s2x, dx), _mm_mul_ps(s2y, dy)), _mm_mul_ps(s2z, dz)), inv);
+  const __m128 tt = _mm_mul_ps(_mm_add_ps(_mm_add_ps(_mm_mul_ps(s2x, e2[0]), _mm_mul_ps(s2y, e2[1])), _mm_mul_ps(s2z, e2[2])), inv);
+  const __m128 b0 = _mm_sub_ps(_mm_sub_ps(one, b1), b2);
+  const __m128 inside = _mm_and_ps(_mm_and_ps(_mm_cmpge_ps(b1, zero), _mm_cmpge_ps(b2, zero)),
+                                   _mm_and_ps(_mm_cmpge_ps(b0, zero), _mm_cmpnlt_ps(tt, zero)));
+  const __m128 survive = _mm_or_ps(_mm_cmpeq_ps(det, zero), inside);
+  return unsigned(_mm_movemask_ps(survive)) & live;
 }
-
-/// The lanes that survive mt_surely_no_crossing: det = 0, or b1, b2, b0 >= 0 and t >= 0 or NaN.
-inline __m128 mt_survive(const MtLaneValues& v) {
-  const __m128 zero = _mm_setzero_ps();
-  const __m128 inside = _mm_and_ps(_mm_and_ps(_mm_cmpge_ps(v.b1, zero), _mm_cmpge_ps(v.b2, zero)),
-                                   _mm_and_ps(_mm_cmpge_ps(v.b0, zero), _mm_cmpnlt_ps(v.t, zero)));
-  return _mm_or_ps(_mm_cmpeq_ps(v.det, zero), inside);
-}
-
-}  // namespace
-
-unsigned mt_group_survivors(const Ray<float>& ray, const TriGroup& g, unsigned live) {
-  if (!live) return 0;
-  return unsigned(_mm_movemask_ps(mt_survive(mt_lane_values(ray, g)))) & live;
-}
-
-void mt_group_lanes(const Ray<float>& ray, const TriGroup& g, unsigned live, unsigned direct, LaneHits& out) {
-  out.hit = out.special = 0;
-  if (!live) return;
-  const MtLaneValues v = mt_lane_values(ray, g);
-  const unsigned survive = unsigned(_mm_movemask_ps(mt_survive(v))) & live;
-  if (!survive) return;
-  // A survivor the scalar kernel would class from these values alone: det != 0 and a float normal
-  // that is not zero, on a lane the caller allows (a finite triangle, a valid ray). There
-  // intersect_moller_trumbore returns classify_barycentric(t, b1, b2): b1, b2, b0 >= 0 hold for a
-  // survivor with det != 0, and t >= 0 or NaN, so the class is interior, edge or vertex by the
-  // zeros among b0, b1, b2 (the "behind" of a t < 0 is not a survivor).
-  const __m128 zero = _mm_setzero_ps();
-  const unsigned det_zero = unsigned(_mm_movemask_ps(_mm_cmpeq_ps(v.det, zero)));
-  const unsigned degenerate = unsigned(_mm_movemask_ps(v.normal_zero));
-  const unsigned lanes = survive & direct & ~det_zero & ~degenerate;
-  out.special = survive & ~lanes;
-  out.hit = lanes;
-  if (!lanes) return;
-  alignas(16) float t[kLanes], b0[kLanes], b1[kLanes], b2[kLanes];
-  _mm_store_ps(t, v.t), _mm_store_ps(b0, v.b0), _mm_store_ps(b1, v.b1), _mm_store_ps(b2, v.b2);
-  for (unsigned m = lanes; m; m &= m - 1) {
-    const int i = __builtin_ctz(m);
-    const int zeros = (b0[i] == 0.0f) + (b1[i] == 0.0f) + (b2[i] == 0.0f);
-    out.contact[i] = static_cast<std::uint8_t>(zeros == 0 ? Contact::interior : zeros == 1 ? Contact::edge : Contact::vertex);
-    out.t[i] = t[i], out.b1[i] = b1[i], out.b2[i] = b2[i];
-  }
-}
-
-namespace {
-std::atomic<bool> mt_lanes_on{true};
-}  // namespace
-void set_mt_lanes(bool on) { mt_lanes_on.store(on, std::memory_order_relaxed); }
-bool mt_lanes() { return mt_lanes_on.load(std::memory_order_relaxed); }
 
 }  // namespace rayproof::scene::detail

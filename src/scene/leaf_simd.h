@@ -155,16 +155,13 @@ void set_certified_screen(bool on);
 void set_lazy_leaf_setup(bool on);
 [[nodiscard]] bool lazy_leaf_setup();
 
-/// One group's results, lane by lane: `hit` lanes have a crossing (class, t, b1, b2 as the scalar
-/// kernel computes them); `special` lanes need the scalar kernel (robust: its front door for
-/// d . n = 0; float: det = 0, a zero float normal, or a lane not allowed to be decided here).
-struct LaneHits {
+/// One group's robust results, lane by lane: `hit` lanes have a crossing (class, t, b1, b2 as the
+/// scalar kernel computes them); `special` lanes need the scalar front door (d . n = 0).
+struct RobustLanes {
   unsigned hit = 0, special = 0;
   std::uint8_t contact[kLanes];
   float t[kLanes], b1[kLanes], b2[kLanes];
 };
-
-using RobustLanes = LaneHits;
 
 /// The AVX2 robust group kernel over the lanes in `live` (no pad, scalar or dead lanes).
 /// Only call when leaf_simd() == LeafSimd::avx2.
@@ -179,14 +176,5 @@ void robust_group_avx2(const RobustLaneRay& r, const TriGroup& g, unsigned live,
 /// Möller–Trumbore's miss screen in four float lanes (SSE): bit i set when lane i may cross (the
 /// scalar screen mt_surely_no_crossing is false); only lanes in `live` are considered.
 [[nodiscard]] unsigned mt_group_survivors(const Ray<float>& ray, const TriGroup& g, unsigned live);
-/// Möller–Trumbore in four float lanes (SSE) with the scalar kernel's class: the survivors of the
-/// screen among `live` that the lanes decide (`direct` lanes with det != 0 and a nonzero float
-/// normal) in out.hit with intersect_moller_trumbore's class, t, b1 and b2 bit for bit; the other
-/// survivors in out.special, for the scalar kernel. Non-survivors have no crossing.
-void mt_group_lanes(const Ray<float>& ray, const TriGroup& g, unsigned live, unsigned direct, LaneHits& out);
-/// Whether `float`'s leaves take their crossings from mt_group_lanes (default on) or re-run the
-/// scalar kernel on every survivor of mt_group_survivors (off: as before; for the ablation bench).
-void set_mt_lanes(bool on);
-[[nodiscard]] bool mt_lanes();
 
 }  // namespace rayproof::scene::detail
