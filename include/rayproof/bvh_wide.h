@@ -20,7 +20,7 @@
 ///    segment [tmin, tmax] touches passes (for tmin >= 0; a ray with tmin < 0 takes the double test).
 ///    Per axis the origin is replaced by a float bound on the side that lowers the near distance
 ///    and raises the far one (see make_bvh4_ray), and the reciprocal by two directed floats: one
-///    toward zero for the near plane, one away from zero for the far plane, each scaled by 1 -/+ 2^-23
+///    toward zero for the near plane, one away from zero for the far plane, each scaled by 1 -/+ 2^-22
 ///    so that it also covers the rounding of the plane difference. Then every node costs what the
 ///    plain slab test costs (difference, product, max / min, one comparison): the rounding is folded
 ///    into the per-ray constants. The proof is at make_bvh4_ray.
