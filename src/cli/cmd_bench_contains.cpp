@@ -164,11 +164,9 @@ int run_bench_contains(const Options& opt) {
     fmt::print("\n== {} ({} triangles, {}; contains below uses the parity rule, as CGAL does)\n", name, m.triangles.size(),
                cm->oriented() ? "oriented" : "closed, not oriented");
     std::vector<TimedMethod> ms = methods(m, *cm, !opt.no_epeck);
-    Vec3<double> lo = m.vertices[0], hi = lo;
-    for (const auto& p : m.vertices)
-      lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)}, hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+    const Vec3<double> ext = mesh::vertex_bounds(m, false).extent();
     const Pts random = scene::compare::box_points(m, opt.points, rng);
-    const Pts hard = scene::compare::hard_points(m, opt.hard_vertices, std::max({hi.x - lo.x, hi.y - lo.y, hi.z - lo.z}), rng);
+    const Pts hard = scene::compare::hard_points(m, opt.hard_vertices, std::max({ext.x, ext.y, ext.z}), rng);
     for (const Pts* set : {static_cast<const Pts*>(&random), &hard}) {
       // The reference: Epeck's answers (its run is the first, timed once).
       Codes truth;

@@ -14,6 +14,22 @@
 #include "mesh/reader_util.h"
 
 namespace rayproof::mesh {
+
+VertexBounds vertex_bounds(const Mesh& m, bool used_only) {
+  VertexBounds b{used_only ? m.vertices[m.triangles.at(0)[0]] : m.vertices.at(0), {}};
+  b.hi = b.lo;
+  auto add = [&](const Vec3<double>& p) {
+    b.lo = {std::min(b.lo.x, p.x), std::min(b.lo.y, p.y), std::min(b.lo.z, p.z)};
+    b.hi = {std::max(b.hi.x, p.x), std::max(b.hi.y, p.y), std::max(b.hi.z, p.z)};
+  };
+  if (used_only) {
+    for (const auto& t : m.triangles)
+      for (std::uint32_t v : t) add(m.vertices[v]);
+  } else {
+    for (const auto& p : m.vertices) add(p);
+  }
+  return b;
+}
 namespace detail {
 
 std::string quote(std::string_view tok) {

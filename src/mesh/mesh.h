@@ -21,6 +21,14 @@ struct Mesh {
   std::vector<std::array<std::uint32_t, 3>> triangles;  ///< indices into vertices
 };
 
+/// Axis-aligned bounds of a mesh's vertices: all of them, or (`used_only`) those the triangles
+/// index. Needs at least one such vertex (the caller checks the mesh is not empty).
+struct VertexBounds {
+  Vec3<double> lo, hi;
+  [[nodiscard]] Vec3<double> extent() const { return hi - lo; }
+};
+[[nodiscard]] VertexBounds vertex_bounds(const Mesh& m, bool used_only);
+
 /// Malformed input: "FILE:LINE: what", "FILE: byte N: what", or for glTF "FILE: WHERE: what"
 /// (WHERE a glTF object such as accessors[3]) and "FILE: glTF (tinygltf): what" (tinygltf's message).
 class MeshError : public std::runtime_error {

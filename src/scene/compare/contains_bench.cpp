@@ -98,9 +98,7 @@ std::vector<TimedMethod> contains_methods(const mesh::Mesh& m, const ClosedMesh&
 }
 
 Points box_points(const mesh::Mesh& m, std::size_t n, std::mt19937_64& rng) {
-  Vec3<double> lo = m.vertices[0], hi = lo;
-  for (const auto& p : m.vertices)
-    lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)}, hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
+  const auto [lo, hi] = mesh::vertex_bounds(m, false);
   std::uniform_real_distribution<double> u(0, 1);
   Points pts(n);
   for (auto& p : pts) p = {lo.x + u(rng) * (hi.x - lo.x), lo.y + u(rng) * (hi.y - lo.y), lo.z + u(rng) * (hi.z - lo.z)};

@@ -50,14 +50,8 @@ void tally_ray(const RayCrossings& r, const std::vector<EmbreeHit>& hits, double
 
 CrossingRaySets crossing_ray_sets(const mesh::Mesh& m, std::size_t n, std::mt19937_64& rng) {
   auto to_float = [](double x) { return double(static_cast<float>(x)); };
-  Vec3<double> lo = m.vertices[m.triangles[0][0]], hi = lo;
-  for (const auto& t : m.triangles)
-    for (auto k : t) {
-      const auto& p = m.vertices[k];
-      lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
-      hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
-    }
-  const Vec3<double> ext = hi - lo;
+  const mesh::VertexBounds b = mesh::vertex_bounds(m, true);
+  const Vec3<double> lo = b.lo, hi = b.hi, ext = b.extent();
   CrossingRaySets s;
   s.size = std::max({ext.x, ext.y, ext.z});
   std::uniform_real_distribution<double> u(0, 1);

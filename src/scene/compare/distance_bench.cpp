@@ -46,14 +46,8 @@ std::vector<DistanceMethod> distance_methods(const mesh::Mesh& m, const ClosedMe
 }
 
 DistancePointSets distance_point_sets(const mesh::Mesh& m, std::size_t n, std::mt19937_64& rng) {
-  Vec3<double> lo = m.vertices[m.triangles[0][0]], hi = lo;
-  for (const auto& t : m.triangles)
-    for (auto v : t) {
-      const auto& p = m.vertices[v];
-      lo = {std::min(lo.x, p.x), std::min(lo.y, p.y), std::min(lo.z, p.z)};
-      hi = {std::max(hi.x, p.x), std::max(hi.y, p.y), std::max(hi.z, p.z)};
-    }
-  const Vec3<double> ext = hi - lo;
+  const mesh::VertexBounds b = mesh::vertex_bounds(m, true);
+  const Vec3<double> lo = b.lo, ext = b.extent();
   const double diag = length(ext);
   std::uniform_real_distribution<double> u01(0, 1), off(-1e-3, 1e-3);
   DistancePointSets s;
