@@ -119,6 +119,14 @@ TEST(Ply, ErrorsNameTheLineOrByte) {
   EXPECT_EQ(error_of("ply\nformat ascii 1.0\nelement vertex 1\n", MeshFormat::ply),
             "m:3: unexpected end of file in the header (no 'end_header')");
   EXPECT_EQ(error_of("plx\n", MeshFormat::ply), "m:1: not a PLY file (first line must be 'ply')");
+  // An ASCII value outside its declared integer type is refused where it is read (a fuzzer's
+  // list count of 1.2e90 for a uchar used to reach a cast to an integer: undefined behaviour).
+  EXPECT_EQ(error_of(ply_header("ascii", 3, 1) + "0 0 0 0\n1 0 0 0\n0 1 0 0\n5e20 0 1 2\n", MeshFormat::ply),
+            "m:15: list count 5e+20 is outside the range of uchar");
+  EXPECT_EQ(error_of(ply_header("ascii", 3, 1) + "0 0 0 256\n1 0 0 0\n0 1 0 0\n3 0 1 2\n", MeshFormat::ply),
+            "m:12: property value 256 is outside the range of uchar");
+  EXPECT_EQ(error_of(ply_header("ascii", 3, 1) + "0 0 0 0\n1 0 0 0\n0 1 0 0\n3 0 1 -2147483649\n", MeshFormat::ply),
+            "m:15: list value -2147483649 is outside the range of int");
 }
 
 TEST(Stl, AsciiWeldsSharedVertices) {

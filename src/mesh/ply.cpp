@@ -4,6 +4,7 @@
 // the line (header, ASCII) or byte (binary), and a binary element count is checked against the
 // bytes left in the file before anything is reserved.
 #include <algorithm>
+#include <limits>
 #include <bit>
 #include <cmath>
 #include <cstdio>
@@ -54,6 +55,26 @@ std::string fmt_index(double v) {
   return b;
 }
 bool is_integer(Type t) { return t != Type::f32 && t != Type::f64; }
+/// The range of an integer type (for ASCII values, which a binary file cannot exceed); `name` for
+/// messages. Float types: the whole line.
+struct Range {
+  double lo, hi;
+  const char* name;
+};
+Range range_of(Type t) {
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  switch (t) {
+    case Type::i8: return {-128.0, 127.0, "char"};
+    case Type::u8: return {0.0, 255.0, "uchar"};
+    case Type::i16: return {-32768.0, 32767.0, "short"};
+    case Type::u16: return {0.0, 65535.0, "ushort"};
+    case Type::i32: return {-2147483648.0, 2147483647.0, "int"};
+    case Type::u32: return {0.0, 4294967295.0, "uint"};
+    case Type::f32: return {-inf, inf, "float"};
+    case Type::f64: break;
+  }
+  return {-inf, inf, "double"};
+}
 
 /// Reads binary values, tracking the byte offset for messages.
 struct BinaryReader {
@@ -145,13 +166,18 @@ Mesh read_ply(std::istream& in, const std::string& name) {
     const auto here = in.tellg();
     bin.offset = here < 0 ? 0 : static_cast<std::uint64_t>(here);
   }
-  auto value = [&](Type ty, const char* what) -> double {
-    if (format != 0) return bin.read(ty);
-    return tokens.need_double(what);
-  };
   auto fail_here = [&](const std::string& what) {
     if (format == 0) lines.fail(what);
     detail::fail_byte(name, bin.offset, what);
+  };
+  // An ASCII value of an integer type must lie in that type's range, as a binary one does: a count
+  // of 1e90 for a `uchar` is refused here rather than cast to an integer later.
+  auto value = [&](Type ty, const char* what) -> double {
+    if (format != 0) return bin.read(ty);
+    const double v = tokens.need_double(what);
+    const Range r = range_of(ty);
+    if (v < r.lo || v > r.hi) fail_here(std::string(what) + " " + fmt_index(v) + " is outside the range of " + r.name);
+    return v;
   };
   std::vector<std::uint32_t> idx;
   for (const auto& e : elems) {
