@@ -11,7 +11,9 @@
 /// (exact method) never drops a box whose exact entry equals that t.
 /// An axis with d_i = 0 and the origin on a slab plane gives 0 * inf = NaN: that axis bounds
 /// nothing (the origin lies in the closed slab), so NaN distances are skipped: the running
-/// max / min are written `x > t0 ? x : t0`, which keeps t0 when x is NaN.
+/// max / min are written `x > t0 ? x : t0`, which keeps t0 when x is NaN. With the origin off the
+/// slab the distances are +-inf, exact, and are not widened (inf - inf would be NaN, skipped, and
+/// the axis would then reject nothing: every box of the tree visited by an axis-aligned ray).
 /// Per ray, once: the reciprocal direction and its octant (which of lo / hi is the near plane per
 /// axis, from the sign bit of 1/d, so -0 picks hi). Per inner node: both children (one cache
 /// line), the nearer first; the stack holds (node, entry t), so closest hit drops popped nodes
@@ -54,7 +56,13 @@ struct BvhRay {
     for (int k = 0; k < 3; ++k) {
       T near = (T(f[near_at[k]]) - o[k]) * inv[k];
       T far = (T(f[far_at[k]]) - o[k]) * inv[k];
-      if constexpr (Widen) near -= pad * std::abs(near), far += pad * std::abs(far);
+      if constexpr (Widen) {
+        // An infinite distance (d_k = 0, the origin outside the slab) is exact and stays: widening
+        // it would give inf - inf = NaN, which the max / min skip, and the axis would reject no box.
+        const T nw = near - pad * std::abs(near), fw = far + pad * std::abs(far);
+        near = std::isinf(near) ? near : nw;
+        far = std::isinf(far) ? far : fw;
+      }
       t0 = near > t0 ? near : t0;  // NaN near / far: skipped
       t1 = far < t1 ? far : t1;
     }
