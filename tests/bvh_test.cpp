@@ -168,16 +168,17 @@ TEST(Bvh, AxisAlignedRaysVisitAsFewLeavesAsRandomRaysOnEveryPath) {
         long axis = 0, random = 0, worst_axis = 0;
         const int rays = 60;
         for (int r = 0; r < rays; ++r) {
+          // Both rays pass through p (a vertex, or a point in the soup) from 30 units away.
           const int k = r % 3;
-          Vec3<double> o{u(rng), u(rng), u(rng)};
-          if (r % 2) o = soup.tris[rng() % soup.tris.size()].p1;  // through a vertex
+          Vec3<double> p{u(rng), u(rng), u(rng)};
+          if (r % 2) p = soup.tris[rng() % soup.tris.size()].p1;
           Vec3<double> dir{0, 0, 0};
           dir[k] = r % 4 < 2 ? 1.0 : -1.0;
-          o[k] -= dir[k] * 30;  // start outside the soup, looking through it
-          const long a = visits({o * path.scale, dir});
+          const long a = visits({(p - dir * 30.0) * path.scale, dir});
           axis += a, worst_axis = std::max(worst_axis, a);
           Vec3<double> rd{d(rng), d(rng), d(rng)};
-          random += visits({o * path.scale, rd});
+          rd = rd / std::sqrt(dot(rd, rd));
+          random += visits({(p - rd * 30.0) * path.scale, rd});
         }
         SCOPED_TRACE(std::string(path.name) + (mode == BvhTraversal::conservative ? " conservative" : " standard") +
                      " tree " + std::to_string(tree));
