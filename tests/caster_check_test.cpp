@@ -8,6 +8,7 @@
 #include <limits>
 #include <random>
 #include <stdexcept>
+#include <type_traits>
 
 #include "rayproof/scene/mesh_caster.h"
 #include "rayproof/verify/caster_check.h"
@@ -19,7 +20,7 @@ namespace rayproof {
 namespace {
 
 using verify::CasterAnswer;
-using verify::CasterCheck;
+using verify::CasterTally;
 using verify::CasterMesh;
 using Tri = std::array<std::uint32_t, 3>;
 constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -151,9 +152,9 @@ struct CertifiedCaster {
 };
 
 /// The counts check_caster must report, tallied by brute force over every triangle.
-CasterCheck brute_tally(const OwnedMesh& m, const verify::CasterRays& rays, std::span<const CasterAnswer> answers,
+CasterTally brute_tally(const OwnedMesh& m, const verify::CasterRays& rays, std::span<const CasterAnswer> answers,
                         bool f32) {
-  CasterCheck c;
+  CasterTally c;
   auto note = [&](const char* kind, std::size_t ray) { c.reproducers.push_back({kind, ray, ""}); };
   for (std::size_t i = 0; i < rays.rays.size(); ++i) {
     const Ray<double>& r = rays.rays[i];
@@ -205,7 +206,7 @@ CasterCheck brute_tally(const OwnedMesh& m, const verify::CasterRays& rays, std:
   return c;
 }
 
-void expect_same_counts(const CasterCheck& got, const CasterCheck& want) {
+void expect_same_counts(const CasterTally& got, const CasterTally& want) {
   EXPECT_EQ(got.rays, want.rays);
   EXPECT_EQ(got.hits, want.hits);
   EXPECT_EQ(got.false_miss, want.false_miss);
@@ -241,7 +242,7 @@ verify::CasterCheckOptions small_options() {
 
 TEST(CasterCheck, ExactBruteForceCasterHasNoFinding) {
   for (const OwnedMesh& m : {cube(), star(3), hull(5)}) {
-    const CasterCheck c = verify::check_caster(exact_brute_caster(m), m.view(), small_options());
+    const CasterTally c = verify::check_caster(exact_brute_caster(m), m.view(), small_options());
     EXPECT_EQ(c.findings(), 0u) << m.name << "\n" << verify::summary_text(c);
     EXPECT_EQ(c.max_ulps, 0u) << m.name;
     EXPECT_GT(c.hits, c.rays / 4) << m.name;  // the ray sets do cross the mesh
@@ -261,7 +262,7 @@ TEST(CasterCheck, CertifiedCasterOnlyMisordersNearTies) {
     const CertifiedCaster caster(m);
     verify::CasterCheckOptions o = small_options();
     o.reproducers = 1000000;
-    const CasterCheck c = verify::check_caster(std::cref(caster), m.view(), o);
+    const CasterTally c = verify::check_caster(std::cref(caster), m.view(), o);
     EXPECT_EQ(c.findings(), c.wrong_triangle) << verify::summary_text(c);
     EXPECT_LE(c.max_ulps, 1u);
     const verify::CasterRays rays = verify::caster_rays(m.view(), o);
@@ -280,7 +281,7 @@ TEST(CasterCheck, StrictBarycentricFloatCasterIsCaughtWithReproducers) {
   const OwnedMesh m = star(7);
   verify::CasterCheckOptions o = small_options();
   o.precision = verify::CasterPrecision::float32;
-  const CasterCheck c = verify::check_caster(strict_float_caster(m), m.view(), o);
+  const CasterTally c = verify::check_caster(strict_float_caster(m), m.view(), o);
   EXPECT_GT(c.false_miss, 0u) << verify::summary_text(c);
   EXPECT_GT(c.findings(), 0u);
   bool leak_repro = false;
@@ -314,7 +315,7 @@ TEST(CasterCheck, GarbageAndThrowingCasterIsReportedAndTheRunGoesOn) {
   };
   verify::CasterCheckOptions o = small_options();
   o.batch = 1;
-  const CasterCheck c = verify::check_caster(bad, m.view(), o);
+  const CasterTally c = verify::check_caster(bad, m.view(), o);
   EXPECT_EQ(c.invalid_failures, c.invalid_rays);
   EXPECT_GT(c.invalid_rays, 0u);
   EXPECT_GT(c.garbage, 0u);
@@ -328,7 +329,7 @@ TEST(CasterCheck, GarbageAndThrowingCasterIsReportedAndTheRunGoesOn) {
   // The same rays with the answers of a caster that hits on every invalid ray.
   const verify::CasterRays rays = verify::caster_rays(m.view(), o);
   std::vector<CasterAnswer> answers(rays.rays.size(), CasterAnswer{0.5, 0});
-  const CasterCheck h = verify::CasterJudge(m.view()).judge(rays, answers, o);
+  const CasterTally h = verify::CasterJudge(m.view()).judge(rays, answers, o);
   EXPECT_EQ(h.invalid_hit, h.invalid_rays);
 }
 
@@ -354,8 +355,8 @@ TEST(CasterCheck, CountsEqualABruteForceExactTally) {
       else if (i % 3 == 1) answers[i].triangle = (answers[i].triangle + 1) % std::int64_t(m.f.size());
       else answers[i].t = -1;
     }
-    const CasterCheck got = verify::CasterJudge(m.view()).judge(rays, answers, o);
-    const CasterCheck want = brute_tally(m, rays, answers, k.f32);
+    const CasterTally got = verify::CasterJudge(m.view()).judge(rays, answers, o);
+    const CasterTally want = brute_tally(m, rays, answers, k.f32);
     SCOPED_TRACE(m.name);
     expect_same_counts(got, want);
     EXPECT_GT(got.false_miss + got.wrong_triangle + got.t_over_1ulp, 0u);
@@ -363,7 +364,7 @@ TEST(CasterCheck, CountsEqualABruteForceExactTally) {
     EXPECT_EQ(kept, got.findings());  // one reproducer per finding when the cap is high
     // And the exact answers themselves: nothing found, by both.
     verify::run_caster(exact_brute_caster(m), {}, rays.rays, 256, answers, error);
-    const CasterCheck none = verify::CasterJudge(m.view()).judge(rays, answers, o);
+    const CasterTally none = verify::CasterJudge(m.view()).judge(rays, answers, o);
     expect_same_counts(none, brute_tally(m, rays, answers, k.f32));
     EXPECT_EQ(none.findings(), 0u);
   }
@@ -379,13 +380,25 @@ TEST(CasterCheck, AnyHitAnswersAreJudged) {
     for (std::size_t i = 0; i < o.size(); ++i) out[i] = 0;
   };
   const verify::CasterCheckOptions o = small_options();
-  const CasterCheck right = verify::check_caster(std::cref(good), m.view(), o, any_right);
+  const CasterTally right = verify::check_caster(std::cref(good), m.view(), o, any_right);
   EXPECT_EQ(right.any_false_miss + right.any_false_hit, 0u) << verify::summary_text(right);
   EXPECT_EQ(right.any_rays, right.rays - right.invalid_rays);
-  const CasterCheck never = verify::check_caster(std::cref(good), m.view(), o, any_never);
+  const CasterTally never = verify::check_caster(std::cref(good), m.view(), o, any_never);
   EXPECT_EQ(never.any_false_miss + never.any_coplanar_miss, never.hits);
   EXPECT_GT(never.any_false_miss, 0u);
 }
+
+// CasterCheck, the tally's name before CasterTally, still names the same type for a release.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wdeprecated-declarations"
+TEST(CasterTally, TheOldNameCasterCheckStillCompiles) {
+  static_assert(std::is_same_v<verify::CasterCheck, verify::CasterTally>);
+  const OwnedMesh m = cube();
+  const verify::CasterCheck old = verify::check_caster(exact_brute_caster(m), m.view(), small_options());
+  EXPECT_GT(old.rays, 0u);
+  EXPECT_EQ(old.findings(), 0u) << verify::summary_text(old);
+}
+#pragma GCC diagnostic pop
 
 TEST(CasterCheck, BadInputIsRefused) {
   const OwnedMesh m = cube();

@@ -140,14 +140,14 @@ ExactContact exact_contact(const Ray<double>& r, const Triangle<double>& tri) {
 }
 
 struct Tally {
-  CasterCheck c;
+  CasterTally c;
   std::vector<std::size_t> set_rays, set_findings, set_false_miss;
   std::vector<CasterReproducer> reps;
 };
 
 }  // namespace
 
-std::size_t CasterCheck::findings() const {
+std::size_t CasterTally::findings() const {
   return false_miss + false_hit + wrong_triangle + t_over_1ulp + garbage + caster_failures + any_false_miss +
          any_false_hit + invalid_hit + invalid_failures;
 }
@@ -171,7 +171,7 @@ CasterJudge::~CasterJudge() = default;
 CasterJudge::CasterJudge(CasterJudge&&) noexcept = default;
 CasterJudge& CasterJudge::operator=(CasterJudge&&) noexcept = default;
 
-CasterCheck CasterJudge::judge(const CasterRays& rays, std::span<const CasterAnswer> answers,
+CasterTally CasterJudge::judge(const CasterRays& rays, std::span<const CasterAnswer> answers,
                                const CasterCheckOptions& opt) const {
   if (answers.size() != rays.rays.size() || rays.set.size() != rays.rays.size())
     throw std::invalid_argument(fmt::format("judge: {} answers for {} rays", answers.size(), rays.rays.size()));
@@ -181,7 +181,7 @@ CasterCheck CasterJudge::judge(const CasterRays& rays, std::span<const CasterAns
   const auto ntri = static_cast<std::int64_t>(s.tri.size());
 
   auto judge_range = [&](std::size_t begin, std::size_t end, Tally& T) {
-    CasterCheck& c = T.c;
+    CasterTally& c = T.c;
     T.set_rays.assign(nsets, 0);
     T.set_findings.assign(nsets, 0);
     T.set_false_miss.assign(nsets, 0);
@@ -377,12 +377,12 @@ CasterCheck CasterJudge::judge(const CasterRays& rays, std::span<const CasterAns
   if (opt.threads > 0) tbb::task_arena(opt.threads).execute(run);
   else run();
 
-  CasterCheck out;
+  CasterTally out;
   std::vector<std::size_t> set_rays(nsets, 0), set_findings(nsets, 0), set_false_miss(nsets, 0);
   std::vector<std::size_t> kept_per_kind;
   std::vector<std::string> kinds;
   for (Tally& p : parts) {
-    const CasterCheck& c = p.c;
+    const CasterTally& c = p.c;
     out.rays += c.rays, out.hits += c.hits, out.false_miss += c.false_miss, out.coplanar_miss += c.coplanar_miss;
     out.false_hit += c.false_hit, out.wrong_triangle += c.wrong_triangle, out.t_over_1ulp += c.t_over_1ulp;
     out.wrong_triangle_near += c.wrong_triangle_near;
@@ -448,18 +448,18 @@ void run_caster(const ClosestCaster& closest, const AnyCaster& any, std::span<co
   }
 }
 
-CasterCheck check_caster(const ClosestCaster& closest, const CasterMesh& mesh, const CasterCheckOptions& opt,
+CasterTally check_caster(const ClosestCaster& closest, const CasterMesh& mesh, const CasterCheckOptions& opt,
                          const AnyCaster& any) {
   const CasterRays rays = caster_rays(mesh, opt);
   std::vector<CasterAnswer> answers(rays.rays.size());
   std::string error;
   run_caster(closest, any, rays.rays, opt.batch, answers, error);
-  CasterCheck c = CasterJudge(mesh).judge(rays, answers, opt);
+  CasterTally c = CasterJudge(mesh).judge(rays, answers, opt);
   if (!error.empty()) c.notes.push_back("the caster threw: " + error);
   return c;
 }
 
-CasterCheck check_caster(const ClosestCaster& closest, const CasterMesh& mesh, std::span<const Ray<double>> user_rays,
+CasterTally check_caster(const ClosestCaster& closest, const CasterMesh& mesh, std::span<const Ray<double>> user_rays,
                          const CasterCheckOptions& opt, const AnyCaster& any) {
   CasterRays rays;
   rays.rays.assign(user_rays.begin(), user_rays.end());
@@ -468,12 +468,12 @@ CasterCheck check_caster(const ClosestCaster& closest, const CasterMesh& mesh, s
   std::vector<CasterAnswer> answers(rays.rays.size());
   std::string error;
   run_caster(closest, any, rays.rays, opt.batch, answers, error);
-  CasterCheck c = CasterJudge(mesh).judge(rays, answers, opt);
+  CasterTally c = CasterJudge(mesh).judge(rays, answers, opt);
   if (!error.empty()) c.notes.push_back("the caster threw: " + error);
   return c;
 }
 
-std::string summary_text(const CasterCheck& c) {
+std::string summary_text(const CasterTally& c) {
   std::string s;
   auto line = [&](const char* name, std::uint64_t v) { s += fmt::format("{:<18} {}\n", name, v); };
   line("rays", c.rays);

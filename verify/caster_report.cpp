@@ -46,24 +46,24 @@ std::string html_escape(const std::string& s) {
 
 struct Column {
   const char* name;
-  std::uint64_t (*get)(const CasterCheck&);
+  std::uint64_t (*get)(const CasterTally&);
 };
 
 const Column kColumns[] = {
-    {"rays", [](const CasterCheck& c) -> std::uint64_t { return c.rays; }},
-    {"hits", [](const CasterCheck& c) -> std::uint64_t { return c.hits; }},
-    {"false_miss", [](const CasterCheck& c) -> std::uint64_t { return c.false_miss; }},
-    {"coplanar_miss", [](const CasterCheck& c) -> std::uint64_t { return c.coplanar_miss; }},
-    {"false_hit", [](const CasterCheck& c) -> std::uint64_t { return c.false_hit; }},
-    {"wrong_triangle", [](const CasterCheck& c) -> std::uint64_t { return c.wrong_triangle; }},
-    {"of them within 1 ulp", [](const CasterCheck& c) -> std::uint64_t { return c.wrong_triangle_near; }},
-    {"t_over_1ulp", [](const CasterCheck& c) -> std::uint64_t { return c.t_over_1ulp; }},
-    {"max_ulps", [](const CasterCheck& c) -> std::uint64_t { return c.max_ulps; }},
-    {"garbage", [](const CasterCheck& c) -> std::uint64_t { return c.garbage; }},
-    {"caster_failures", [](const CasterCheck& c) -> std::uint64_t { return c.caster_failures; }},
-    {"invalid_hit", [](const CasterCheck& c) -> std::uint64_t { return c.invalid_hit; }},
-    {"invalid_failures", [](const CasterCheck& c) -> std::uint64_t { return c.invalid_failures; }},
-    {"findings", [](const CasterCheck& c) -> std::uint64_t { return c.findings(); }},
+    {"rays", [](const CasterTally& c) -> std::uint64_t { return c.rays; }},
+    {"hits", [](const CasterTally& c) -> std::uint64_t { return c.hits; }},
+    {"false_miss", [](const CasterTally& c) -> std::uint64_t { return c.false_miss; }},
+    {"coplanar_miss", [](const CasterTally& c) -> std::uint64_t { return c.coplanar_miss; }},
+    {"false_hit", [](const CasterTally& c) -> std::uint64_t { return c.false_hit; }},
+    {"wrong_triangle", [](const CasterTally& c) -> std::uint64_t { return c.wrong_triangle; }},
+    {"of them within 1 ulp", [](const CasterTally& c) -> std::uint64_t { return c.wrong_triangle_near; }},
+    {"t_over_1ulp", [](const CasterTally& c) -> std::uint64_t { return c.t_over_1ulp; }},
+    {"max_ulps", [](const CasterTally& c) -> std::uint64_t { return c.max_ulps; }},
+    {"garbage", [](const CasterTally& c) -> std::uint64_t { return c.garbage; }},
+    {"caster_failures", [](const CasterTally& c) -> std::uint64_t { return c.caster_failures; }},
+    {"invalid_hit", [](const CasterTally& c) -> std::uint64_t { return c.invalid_hit; }},
+    {"invalid_failures", [](const CasterTally& c) -> std::uint64_t { return c.invalid_failures; }},
+    {"findings", [](const CasterTally& c) -> std::uint64_t { return c.findings(); }},
 };
 
 }  // namespace
@@ -113,8 +113,8 @@ void write_caster_report(const std::string& dir, const std::vector<CasterReportR
     html += fmt::format("<tr{}><td>{}</td><td>{}</td>", is_builtin ? " class=\"builtin\"" : "",
                         html_escape(is_builtin ? r.caster : r.caster + " (" + r.command + ")"), html_escape(r.mesh));
     for (const Column& col : kColumns) {
-      md += fmt::format(" {} |", col.get(r.check));
-      html += fmt::format("<td>{}</td>", col.get(r.check));
+      md += fmt::format(" {} |", col.get(r.tally));
+      html += fmt::format("<td>{}</td>", col.get(r.tally));
     }
     md += "\n";
     html += "</tr>\n";
@@ -123,12 +123,12 @@ void write_caster_report(const std::string& dir, const std::vector<CasterReportR
   md += "\n## Reproducers and events\n";
   html += "<h2>Reproducers and events</h2>\n";
   for (const auto& r : rows) {
-    if (r.check.reproducers.empty() && r.events.empty() && r.check.notes.empty()) continue;
+    if (r.tally.reproducers.empty() && r.events.empty() && r.tally.notes.empty()) continue;
     md += fmt::format("\n### {} on {}\n\n```\n", r.caster, r.mesh);
     html += fmt::format("<h3>{} on {}</h3>\n<pre>", html_escape(r.caster), html_escape(r.mesh));
     for (const auto& e : r.events) md += "event: " + e + "\n", html += html_escape("event: " + e) + "\n";
-    for (const auto& n : r.check.notes) md += "note: " + n + "\n", html += html_escape("note: " + n) + "\n";
-    for (const auto& p : r.check.reproducers) md += p.line + "\n", html += html_escape(p.line) + "\n";
+    for (const auto& n : r.tally.notes) md += "note: " + n + "\n", html += html_escape("note: " + n) + "\n";
+    for (const auto& p : r.tally.reproducers) md += p.line + "\n", html += html_escape(p.line) + "\n";
     md += "```\n";
     html += "</pre>\n";
   }

@@ -50,7 +50,7 @@ py::array_t<T, py::array::c_style | py::array::forcecast> column(py::handle obj,
   return out;
 }
 
-py::dict result_dict(const verify::CasterCheck& c) {
+py::dict result_dict(const verify::CasterTally& c) {
   py::dict d;
   d["rays"] = c.rays;
   d["hits"] = c.hits;
@@ -180,7 +180,7 @@ py::dict check_caster(py::function fn, py::handle vertices, py::handle triangles
   std::string error;
   verify::run_caster(closest, any, ray_set.rays, opt.batch, answers, error);
   if (interrupt) throw std::move(*interrupt);
-  verify::CasterCheck c;
+  verify::CasterTally c;
   try {
     py::gil_scoped_release unlocked;
     c = verify::CasterJudge(mesh).judge(ray_set, answers, opt);

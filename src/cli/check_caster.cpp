@@ -112,7 +112,7 @@ int run_caster_check(const CheckCliOptions& o) {
     for (const auto& c : casters) {
       fmt::print(stderr, "[caster] {} on {}: {} rays\n", c.name, m.name, rays.rays.size());
       const verify::ExecCasterRun run = verify::run_exec_caster(c.command, cm, rays, eo);
-      verify::CasterCheck res = judge->judge(rays, run.answers, opt);
+      verify::CasterTally res = judge->judge(rays, run.answers, opt);
       any_finding = any_finding || res.findings() > 0;
       if (!o.out.empty())
         report_rows.push_back({c.name, c.command, m.name, m.mesh.triangles.size(), res, run.events});

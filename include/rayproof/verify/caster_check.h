@@ -5,8 +5,8 @@
 ///
 ///   auto mine = [&](std::span<const Vec3<double>> o, std::span<const Vec3<double>> d,
 ///                   std::span<double> t, std::span<std::int64_t> tri) { ... };  // miss: inf, -1
-///   const verify::CasterCheck c = verify::check_caster(mine, {vertices, triangles});
-///   if (c.findings()) for (const auto& r : c.reproducers) std::cout << r.line << '\n';
+///   const verify::CasterTally tally = verify::check_caster(mine, {vertices, triangles});
+///   if (tally.findings()) for (const auto& r : tally.reproducers) std::cout << r.line << '\n';
 ///
 /// The caster answers, for each ray o + t d, its closest crossing with the mesh: t and the
 /// triangle's number (its position in the triangle array), or t = inf and -1 for a miss. Optionally
@@ -112,7 +112,8 @@ struct CasterSetCounts {
   std::size_t rays = 0, findings = 0, false_miss = 0;
 };
 
-struct CasterCheck {
+/// What check_caster and CasterJudge::judge find: the counts, per ray set, with reproducers.
+struct CasterTally {
   std::size_t rays = 0, hits = 0;  ///< rays judged; rays with an exact crossing at t > 0
   std::size_t false_miss = 0, coplanar_miss = 0, false_hit = 0, wrong_triangle = 0, wrong_triangle_near = 0;
   std::size_t t_over_1ulp = 0;
@@ -127,6 +128,10 @@ struct CasterCheck {
   [[nodiscard]] std::size_t findings() const;
 };
 
+/// CasterTally's name in 0.1, kept for one release (to go after 0.2): the type holds a tally, it
+/// does not check anything.
+using CasterCheck [[deprecated("verify::CasterCheck is now verify::CasterTally")]] = CasterTally;
+
 /// The ray sets for a mesh (deterministic for the options).
 [[nodiscard]] CasterRays caster_rays(const CasterMesh& mesh, const CasterCheckOptions& opt = {});
 
@@ -138,7 +143,7 @@ class CasterJudge {
   CasterJudge(CasterJudge&&) noexcept;
   CasterJudge& operator=(CasterJudge&&) noexcept;
   /// Judges answers[i] to rays.rays[i] (sizes must match; std::invalid_argument otherwise).
-  [[nodiscard]] CasterCheck judge(const CasterRays& rays, std::span<const CasterAnswer> answers,
+  [[nodiscard]] CasterTally judge(const CasterRays& rays, std::span<const CasterAnswer> answers,
                                   const CasterCheckOptions& opt = {}) const;
 
  private:
@@ -147,10 +152,10 @@ class CasterJudge {
 };
 
 /// caster_rays, the caster called batch by batch (an exception fails that batch's rays), judge.
-[[nodiscard]] CasterCheck check_caster(const ClosestCaster& closest, const CasterMesh& mesh,
+[[nodiscard]] CasterTally check_caster(const ClosestCaster& closest, const CasterMesh& mesh,
                                        const CasterCheckOptions& opt = {}, const AnyCaster& any = {});
 /// The same on rays you give (the `set` of every ray "user").
-[[nodiscard]] CasterCheck check_caster(const ClosestCaster& closest, const CasterMesh& mesh,
+[[nodiscard]] CasterTally check_caster(const ClosestCaster& closest, const CasterMesh& mesh,
                                        std::span<const Ray<double>> rays, const CasterCheckOptions& opt = {},
                                        const AnyCaster& any = {});
 
@@ -160,6 +165,6 @@ void run_caster(const ClosestCaster& closest, const AnyCaster& any, std::span<co
                 std::size_t batch, std::span<CasterAnswer> out, std::string& error);
 
 /// The counts as text, one `name value` per line, then the reproducers.
-[[nodiscard]] std::string summary_text(const CasterCheck& c);
+[[nodiscard]] std::string summary_text(const CasterTally& c);
 
 }  // namespace rayproof::verify
