@@ -207,20 +207,8 @@ CasterTally brute_tally(const OwnedMesh& m, const verify::CasterRays& rays, std:
 }
 
 void expect_same_counts(const CasterTally& got, const CasterTally& want) {
-  EXPECT_EQ(got.rays, want.rays);
-  EXPECT_EQ(got.hits, want.hits);
-  EXPECT_EQ(got.false_miss, want.false_miss);
-  EXPECT_EQ(got.coplanar_miss, want.coplanar_miss);
-  EXPECT_EQ(got.false_hit, want.false_hit);
-  EXPECT_EQ(got.wrong_triangle, want.wrong_triangle);
-  EXPECT_EQ(got.wrong_triangle_near, want.wrong_triangle_near);
-  EXPECT_EQ(got.t_over_1ulp, want.t_over_1ulp);
-  EXPECT_EQ(got.max_ulps, want.max_ulps);
-  EXPECT_EQ(got.garbage, want.garbage);
-  EXPECT_EQ(got.caster_failures, want.caster_failures);
-  EXPECT_EQ(got.invalid_rays, want.invalid_rays);
-  EXPECT_EQ(got.invalid_hit, want.invalid_hit);
-  EXPECT_EQ(got.invalid_failures, want.invalid_failures);
+  for (const verify::CasterCounter& counter : verify::kCasterCounters)
+    EXPECT_EQ(count_of(got, counter), count_of(want, counter)) << counter.key;
   // Ray by ray, when every finding kept its reproducer.
   if (got.reproducers.size() != got.findings()) return;
   std::vector<std::pair<std::string, std::size_t>> g, w;
@@ -386,6 +374,86 @@ TEST(CasterCheck, AnyHitAnswersAreJudged) {
   const CasterTally never = verify::check_caster(std::cref(good), m.view(), o, any_never);
   EXPECT_EQ(never.any_false_miss + never.any_coplanar_miss, never.hits);
   EXPECT_GT(never.any_false_miss, 0u);
+}
+
+// The summary text is made from kCasterCounters: one `key value` line per counter (labels where
+// given), the occlusion counts only when occlusion was asked, `findings` last.
+TEST(CasterTally, SummaryTextHasOneLinePerCounter) {
+  CasterTally tally;
+  std::uint64_t next = 1;
+  for (const verify::CasterCounter& counter : verify::kCasterCounters)
+    if (counter.member) tally.*counter.member = next++;
+  tally.any_rays = 0;
+  tally.sets.push_back({"leak", 7, 3, 2});
+  tally.notes.push_back("a note");
+  tally.reproducers.push_back({"false-miss", 4, "false-miss set=leak ..."});
+  const std::uint64_t findings = tally.false_miss + tally.false_hit + tally.wrong_triangle + tally.t_over_1ulp +
+                                 tally.garbage + tally.caster_failures + tally.any_false_miss + tally.any_false_hit +
+                                 tally.invalid_hit + tally.invalid_failures;
+  EXPECT_EQ(tally.findings(), findings);
+  EXPECT_EQ(verify::summary_text(tally),
+            "rays               1\n"
+            "hits               2\n"
+            "false_miss         3\n"
+            "coplanar_miss      4\n"
+            "false_hit          5\n"
+            "wrong_triangle     6\n"
+            "  within_1ulp      7\n"
+            "t_over_1ulp        8\n"
+            "max_ulps           9\n"
+            "garbage            10\n"
+            "caster_failures    11\n"
+            "invalid_rays       16\n"
+            "invalid_hit        17\n"
+            "invalid_failures   18\n"
+            "findings           " + std::to_string(findings) + "\n"
+            "set leak       rays       7  findings       3  false_miss 2\n"
+            "note: a note\n"
+            "false-miss set=leak ...\n");
+  tally.any_rays = 12;
+  const std::string with_occlusion = verify::summary_text(tally);
+  EXPECT_NE(with_occlusion.find("caster_failures    11\n"
+                                "any_rays           12\n"
+                                "any_false_miss     13\n"
+                                "any_false_hit      14\n"
+                                "any_coplanar_miss  15\n"
+                                "invalid_rays       16\n"),
+            std::string::npos)
+      << with_occlusion;
+}
+
+// A judgement's tally merges its chunks counter by counter: on more rays than one chunk holds,
+// the counts equal the sums over the rays judged one set at a time (max_ulps: the largest).
+TEST(CasterTally, ChunksAndSetsAddUp) {
+  const OwnedMesh m = star(23);
+  verify::CasterCheckOptions o = small_options();
+  o.precision = verify::CasterPrecision::float32;
+  const verify::CasterRays rays = verify::caster_rays(m.view(), o);
+  ASSERT_GT(rays.rays.size(), 1024u);  // judged in several chunks (of 512 rays)
+  std::vector<CasterAnswer> answers(rays.rays.size());
+  std::string error;
+  verify::run_caster(strict_float_caster(m), {}, rays.rays, 256, answers, error);
+  const verify::CasterJudge judge(m.view());
+  const CasterTally whole = judge.judge(rays, answers, o);
+  verify::CasterCounts sum;
+  for (std::size_t set = 0; set < rays.names.size(); ++set) {
+    verify::CasterRays one;
+    one.names = rays.names;
+    std::vector<CasterAnswer> one_answers;
+    for (std::size_t i = 0; i < rays.rays.size(); ++i)
+      if (rays.set[i] == set) one.rays.push_back(rays.rays[i]), one.set.push_back(rays.set[i]), one_answers.push_back(answers[i]);
+    const CasterTally part = judge.judge(one, one_answers, o);
+    EXPECT_EQ(part.sets[set].rays, whole.sets[set].rays) << rays.names[set];
+    EXPECT_EQ(part.sets[set].findings, whole.sets[set].findings) << rays.names[set];
+    for (const verify::CasterCounter& counter : verify::kCasterCounters) {
+      if (!counter.member) continue;
+      std::uint64_t& total = sum.*counter.member;
+      total = counter.maximum ? std::max(total, part.*counter.member) : total + part.*counter.member;
+    }
+  }
+  for (const verify::CasterCounter& counter : verify::kCasterCounters)
+    EXPECT_EQ(count_of(whole, counter), count_of(sum, counter)) << counter.key;
+  EXPECT_GT(whole.false_miss, 0u);
 }
 
 // CasterCheck, the tally's name before CasterTally, still names the same type for a release.

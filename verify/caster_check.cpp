@@ -139,6 +139,16 @@ ExactContact exact_contact(const Ray<double>& r, const Triangle<double>& tri) {
   return {contact_of(x), x.contact};
 }
 
+/// Adds `part` into `total`, counter by counter (max_ulps: the larger).
+void add_counts(CasterCounts& total, const CasterCounts& part) {
+  for (const CasterCounter& counter : kCasterCounters) {
+    if (!counter.member) continue;
+    std::uint64_t& into = total.*counter.member;
+    const std::uint64_t from = part.*counter.member;
+    into = counter.maximum ? std::max(into, from) : into + from;
+  }
+}
+
 struct Tally {
   CasterTally c;
   std::vector<std::size_t> set_rays, set_findings, set_false_miss;
@@ -146,11 +156,6 @@ struct Tally {
 };
 
 }  // namespace
-
-std::size_t CasterTally::findings() const {
-  return false_miss + false_hit + wrong_triangle + t_over_1ulp + garbage + caster_failures + any_false_miss +
-         any_false_hit + invalid_hit + invalid_failures;
-}
 
 struct CasterJudge::State {
   std::vector<Vec3<double>> v;
@@ -382,15 +387,7 @@ CasterTally CasterJudge::judge(const CasterRays& rays, std::span<const CasterAns
   std::vector<std::size_t> kept_per_kind;
   std::vector<std::string> kinds;
   for (Tally& p : parts) {
-    const CasterTally& c = p.c;
-    out.rays += c.rays, out.hits += c.hits, out.false_miss += c.false_miss, out.coplanar_miss += c.coplanar_miss;
-    out.false_hit += c.false_hit, out.wrong_triangle += c.wrong_triangle, out.t_over_1ulp += c.t_over_1ulp;
-    out.wrong_triangle_near += c.wrong_triangle_near;
-    out.max_ulps = std::max(out.max_ulps, c.max_ulps);
-    out.garbage += c.garbage, out.caster_failures += c.caster_failures, out.any_rays += c.any_rays;
-    out.any_false_miss += c.any_false_miss, out.any_false_hit += c.any_false_hit;
-    out.any_coplanar_miss += c.any_coplanar_miss, out.invalid_rays += c.invalid_rays;
-    out.invalid_hit += c.invalid_hit, out.invalid_failures += c.invalid_failures;
+    add_counts(out, p.c);
     for (std::size_t k = 0; k < nsets && k < p.set_rays.size(); ++k)
       set_rays[k] += p.set_rays[k], set_findings[k] += p.set_findings[k], set_false_miss[k] += p.set_false_miss[k];
     for (CasterReproducer& r : p.reps) {
@@ -473,34 +470,16 @@ CasterTally check_caster(const ClosestCaster& closest, const CasterMesh& mesh, s
   return c;
 }
 
-std::string summary_text(const CasterTally& c) {
-  std::string s;
-  auto line = [&](const char* name, std::uint64_t v) { s += fmt::format("{:<18} {}\n", name, v); };
-  line("rays", c.rays);
-  line("hits", c.hits);
-  line("false_miss", c.false_miss);
-  line("coplanar_miss", c.coplanar_miss);
-  line("false_hit", c.false_hit);
-  line("wrong_triangle", c.wrong_triangle);
-  line("  within_1ulp", c.wrong_triangle_near);
-  line("t_over_1ulp", c.t_over_1ulp);
-  line("max_ulps", c.max_ulps);
-  line("garbage", c.garbage);
-  line("caster_failures", c.caster_failures);
-  if (c.any_rays) {
-    line("any_rays", c.any_rays);
-    line("any_false_miss", c.any_false_miss);
-    line("any_false_hit", c.any_false_hit);
-    line("any_coplanar_miss", c.any_coplanar_miss);
-  }
-  line("invalid_rays", c.invalid_rays);
-  line("invalid_hit", c.invalid_hit);
-  line("invalid_failures", c.invalid_failures);
-  line("findings", c.findings());
-  for (const auto& st : c.sets) s += fmt::format("set {:<10} rays {:>7}  findings {:>7}  false_miss {}\n", st.set, st.rays, st.findings, st.false_miss);
-  for (const auto& n : c.notes) s += "note: " + n + "\n";
-  for (const auto& r : c.reproducers) s += r.line + "\n";
-  return s;
+std::string summary_text(const CasterTally& tally) {
+  std::string text;
+  for (const CasterCounter& counter : kCasterCounters)
+    if (shown(tally, counter)) text += fmt::format("{:<18} {}\n", text_label(counter), count_of(tally, counter));
+  for (const auto& set : tally.sets)
+    text += fmt::format("set {:<10} rays {:>7}  findings {:>7}  false_miss {}\n", set.set, set.rays, set.findings,
+                        set.false_miss);
+  for (const auto& note : tally.notes) text += "note: " + note + "\n";
+  for (const auto& reproducer : tally.reproducers) text += reproducer.line + "\n";
+  return text;
 }
 
 }  // namespace rayproof::verify

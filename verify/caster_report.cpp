@@ -44,28 +44,6 @@ std::string html_escape(const std::string& s) {
   return o;
 }
 
-struct Column {
-  const char* name;
-  std::uint64_t (*get)(const CasterTally&);
-};
-
-const Column kColumns[] = {
-    {"rays", [](const CasterTally& c) -> std::uint64_t { return c.rays; }},
-    {"hits", [](const CasterTally& c) -> std::uint64_t { return c.hits; }},
-    {"false_miss", [](const CasterTally& c) -> std::uint64_t { return c.false_miss; }},
-    {"coplanar_miss", [](const CasterTally& c) -> std::uint64_t { return c.coplanar_miss; }},
-    {"false_hit", [](const CasterTally& c) -> std::uint64_t { return c.false_hit; }},
-    {"wrong_triangle", [](const CasterTally& c) -> std::uint64_t { return c.wrong_triangle; }},
-    {"of them within 1 ulp", [](const CasterTally& c) -> std::uint64_t { return c.wrong_triangle_near; }},
-    {"t_over_1ulp", [](const CasterTally& c) -> std::uint64_t { return c.t_over_1ulp; }},
-    {"max_ulps", [](const CasterTally& c) -> std::uint64_t { return c.max_ulps; }},
-    {"garbage", [](const CasterTally& c) -> std::uint64_t { return c.garbage; }},
-    {"caster_failures", [](const CasterTally& c) -> std::uint64_t { return c.caster_failures; }},
-    {"invalid_hit", [](const CasterTally& c) -> std::uint64_t { return c.invalid_hit; }},
-    {"invalid_failures", [](const CasterTally& c) -> std::uint64_t { return c.invalid_failures; }},
-    {"findings", [](const CasterTally& c) -> std::uint64_t { return c.findings(); }},
-};
-
 }  // namespace
 
 std::vector<CasterReportRow> builtin_caster_rows(const CasterMesh& mesh, const CasterRays& rays, const CasterJudge& judge,
@@ -100,10 +78,11 @@ void write_caster_report(const std::string& dir, const std::vector<CasterReportR
       "<h1>Casters under the exact test</h1>\n<p>" +
       html_escape(intro) + "</p>\n<table>\n<tr><th>caster</th><th>mesh</th>";
   std::string sep = "|---|---|";
-  for (const Column& col : kColumns) {
-    md += fmt::format(" {} |", col.name);
+  for (const CasterCounter& counter : kCasterCounters) {
+    if (!counter.report_column) continue;
+    md += fmt::format(" {} |", column_label(counter));
     sep += "---|";
-    html += fmt::format("<th>{}</th>", html_escape(col.name));
+    html += fmt::format("<th>{}</th>", html_escape(std::string(column_label(counter))));
   }
   md += "\n" + sep + "\n";
   html += "</tr>\n";
@@ -112,9 +91,10 @@ void write_caster_report(const std::string& dir, const std::vector<CasterReportR
     md += fmt::format("| {} | {} |", is_builtin ? r.caster : "**" + r.caster + "**", r.mesh);
     html += fmt::format("<tr{}><td>{}</td><td>{}</td>", is_builtin ? " class=\"builtin\"" : "",
                         html_escape(is_builtin ? r.caster : r.caster + " (" + r.command + ")"), html_escape(r.mesh));
-    for (const Column& col : kColumns) {
-      md += fmt::format(" {} |", col.get(r.tally));
-      html += fmt::format("<td>{}</td>", col.get(r.tally));
+    for (const CasterCounter& counter : kCasterCounters) {
+      if (!counter.report_column) continue;
+      md += fmt::format(" {} |", count_of(r.tally, counter));
+      html += fmt::format("<td>{}</td>", count_of(r.tally, counter));
     }
     md += "\n";
     html += "</tr>\n";

@@ -28,6 +28,22 @@ struct CasterMeshInput {
   mesh::Mesh mesh;
 };
 
+/// One caster's run on one mesh, as `--json` prints it: every count of the tally shown (by its
+/// key), per-set counts, events, reproducers and notes.
+nlohmann::json run_json(const NamedCaster& caster, const CasterMeshInput& mesh, const verify::CasterTally& tally,
+                        const verify::ExecCasterRun& run) {
+  nlohmann::json sets = nlohmann::json::object();
+  for (const auto& s : tally.sets) sets[s.set] = {{"rays", s.rays}, {"findings", s.findings}, {"false_miss", s.false_miss}};
+  nlohmann::json reproducers = nlohmann::json::array();
+  for (const auto& r : tally.reproducers) reproducers.push_back(r.line);
+  nlohmann::json out = {{"caster", caster.name}, {"command", caster.command}, {"mesh", mesh.name},
+                        {"triangles", mesh.mesh.triangles.size()}, {"sets", sets}, {"events", run.events},
+                        {"starts", run.starts}, {"reproducers", reproducers}, {"notes", tally.notes}};
+  for (const verify::CasterCounter& counter : verify::kCasterCounters)
+    if (verify::shown(tally, counter)) out[std::string(counter.key)] = verify::count_of(tally, counter);
+  return out;
+}
+
 }  // namespace
 
 int run_caster_check(const CheckCliOptions& o) {
@@ -112,36 +128,23 @@ int run_caster_check(const CheckCliOptions& o) {
     for (const auto& c : casters) {
       fmt::print(stderr, "[caster] {} on {}: {} rays\n", c.name, m.name, rays.rays.size());
       const verify::ExecCasterRun run = verify::run_exec_caster(c.command, cm, rays, eo);
-      verify::CasterTally res = judge->judge(rays, run.answers, opt);
-      any_finding = any_finding || res.findings() > 0;
+      const verify::CasterTally tally = judge->judge(rays, run.answers, opt);
+      any_finding = any_finding || tally.findings() > 0;
       if (!o.out.empty())
-        report_rows.push_back({c.name, c.command, m.name, m.mesh.triangles.size(), res, run.events});
+        report_rows.push_back({c.name, c.command, m.name, m.mesh.triangles.size(), tally, run.events});
       if (o.json) {
-        nlohmann::json sets = nlohmann::json::object();
-        for (const auto& s : res.sets) sets[s.set] = {{"rays", s.rays}, {"findings", s.findings}, {"false_miss", s.false_miss}};
-        nlohmann::json reps = nlohmann::json::array();
-        for (const auto& r : res.reproducers) reps.push_back(r.line);
-        jruns.push_back({{"caster", c.name}, {"command", c.command}, {"mesh", m.name},
-                         {"triangles", m.mesh.triangles.size()}, {"rays", res.rays}, {"hits", res.hits},
-                         {"false_miss", res.false_miss}, {"coplanar_miss", res.coplanar_miss},
-                         {"false_hit", res.false_hit}, {"wrong_triangle", res.wrong_triangle},
-                         {"wrong_triangle_within_1ulp", res.wrong_triangle_near},
-                         {"t_over_1ulp", res.t_over_1ulp}, {"max_ulps", res.max_ulps}, {"garbage", res.garbage},
-                         {"caster_failures", res.caster_failures}, {"invalid_rays", res.invalid_rays},
-                         {"invalid_hit", res.invalid_hit}, {"invalid_failures", res.invalid_failures},
-                         {"findings", res.findings()}, {"sets", sets}, {"events", run.events},
-                         {"starts", run.starts}, {"reproducers", reps}, {"notes", res.notes}});
+        jruns.push_back(run_json(c, m, tally, run));
         continue;
       }
       fmt::print("\ncaster '{}' ({}) on {} ({} triangles): {} rays, started {} time{}\n", c.name, c.command, m.name,
-                 m.mesh.triangles.size(), res.rays, run.starts, run.starts == 1 ? "" : "s");
-      fmt::print("{}", verify::summary_text(res));
+                 m.mesh.triangles.size(), tally.rays, run.starts, run.starts == 1 ? "" : "s");
+      fmt::print("{}", verify::summary_text(tally));
       for (const auto& e : run.events) fmt::print("event: {}\n", e);
-      if (res.findings() == 0)
+      if (tally.findings() == 0)
         fmt::print("caster '{}' answered all {} rays on {} as exact arithmetic does (t within 1 ulp)\n", c.name,
-                   res.rays, m.name);
+                   tally.rays, m.name);
       else
-        fmt::print("caster '{}' differs from exact on {} of {} rays on {}\n", c.name, res.findings(), res.rays, m.name);
+        fmt::print("caster '{}' differs from exact on {} of {} rays on {}\n", c.name, tally.findings(), tally.rays, m.name);
     }
   }
   if (!o.out.empty()) {
