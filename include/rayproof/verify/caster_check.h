@@ -270,7 +270,7 @@ class CasterJudge {
 
  private:
   struct State;
-  std::unique_ptr<State> s_;
+  std::unique_ptr<State> state_;
 };
 
 /// caster_rays, the caster called batch by batch (an exception fails that batch's rays), judge.
