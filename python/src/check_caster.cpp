@@ -176,15 +176,16 @@ py::dict check_caster(py::function fn, py::handle vertices, py::handle triangles
   return result_dict(tally);
 }
 
-/// The counters' keys, comma-separated, in lines of at most 100 characters (for the docstring).
-std::string count_keys() {
+/// The counters' keys, comma-separated, in lines of at most 100 characters, the first of them
+/// after `first_line_used` characters (for the docstring).
+std::string count_keys(std::size_t first_line_used) {
   std::string text;
-  std::size_t line = 0;
+  std::size_t line = first_line_used;
   for (const verify::CasterCounter& counter : verify::kCasterCounters) {
     const bool last = &counter == &verify::kCasterCounters[std::size(verify::kCasterCounters) - 1];
     const std::string word = std::string(counter.key) + (last ? "" : ",");
-    if (line > 0 && line + 1 + word.size() > 100) text += "\n", line = 0;
-    else if (line > 0) text += " ", ++line;
+    if (!text.empty() && line + 1 + word.size() > 100) text += "\n", line = 0;
+    else if (!text.empty()) text += " ", ++line;
     text += word, line += word.size();
   }
   return text;
@@ -203,7 +204,7 @@ precision ('double' or 'float') sets the ulps t errors are counted in. The rays:
 directions). An exception fn raises fails that batch's rays (counted in caster_failures, or
 invalid_failures on invalid rays), and the run goes on.
 
-Returns a dict of counts ()" + count_keys() + R"(),
+Returns a dict of counts ()" + count_keys(std::string_view("Returns a dict of counts (").size()) + R"(),
 per-set counts (`sets`), one-line `reproducers` and `notes`. docs/check.md explains each count.)";
   m.def("check_caster", &check_caster, py::arg("fn"), py::arg("vertices"), py::arg("triangles"), py::kw_only(),
         py::arg("any_fn") = py::none(), py::arg("precision") = "double", py::arg("random_rays") = 2000,
