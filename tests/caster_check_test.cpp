@@ -441,7 +441,11 @@ TEST(CasterTally, ChunksAndSetsAddUp) {
     one.names = rays.names;
     std::vector<CasterAnswer> one_answers;
     for (std::size_t i = 0; i < rays.rays.size(); ++i)
-      if (rays.set[i] == set) one.rays.push_back(rays.rays[i]), one.set.push_back(rays.set[i]), one_answers.push_back(answers[i]);
+      if (rays.set[i] == set) {
+        one.rays.push_back(rays.rays[i]);
+        one.set.push_back(rays.set[i]);
+        one_answers.push_back(answers[i]);
+      }
     const CasterTally part = judge.judge(one, one_answers, o);
     EXPECT_EQ(part.sets[set].rays, whole.sets[set].rays) << rays.names[set];
     EXPECT_EQ(part.sets[set].findings, whole.sets[set].findings) << rays.names[set];

@@ -505,9 +505,11 @@ CasterTally CasterJudge::judge(const CasterRays& rays, std::span<const CasterAns
   const std::size_t n = rays.rays.size(), chunk = 512;
   std::vector<ChunkTally> chunks((n + chunk - 1) / chunk);
   auto run = [&] {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chunks.size(), 1), [&](const tbb::blocked_range<std::size_t>& b) {
-      for (std::size_t k = b.begin(); k < b.end(); ++k) judge_chunk(in, k * chunk, std::min(n, (k + 1) * chunk), chunks[k]);
-    });
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chunks.size(), 1),
+                      [&](const tbb::blocked_range<std::size_t>& range) {
+                        for (std::size_t k = range.begin(); k < range.end(); ++k)
+                          judge_chunk(in, k * chunk, std::min(n, (k + 1) * chunk), chunks[k]);
+                      });
   };
   if (opt.threads > 0) tbb::task_arena(opt.threads).execute(run);
   else run();

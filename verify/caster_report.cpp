@@ -17,17 +17,18 @@ namespace {
 template <class Method>
 CasterReportRow builtin(const char* name, const CasterMesh& mesh, const CasterRays& rays, const CasterJudge& judge,
                         const CasterCheckOptions& opt) {
-  const MeshCaster<Method> c(VertexArray(&mesh.vertices[0].x, mesh.vertices.size()),
-                             IndexArray{mesh.triangles[0].data(), mesh.triangles.size()});
+  const MeshCaster<Method> caster(VertexArray(&mesh.vertices[0].x, mesh.vertices.size()),
+                                  IndexArray{mesh.triangles[0].data(), mesh.triangles.size()});
   std::vector<MeshHit> hits(rays.rays.size());
   const TRange range{std::numeric_limits<double>::denorm_min(), std::numeric_limits<double>::infinity()};
-  c.closest(rays.rays, {&range, 1}, hits, opt.threads);
+  caster.closest(rays.rays, {&range, 1}, hits, opt.threads);
   std::vector<CasterAnswer> answers(rays.rays.size());
   for (std::size_t i = 0; i < hits.size(); ++i) {
     answers[i].t = hits[i].hit() ? hits[i].t : std::numeric_limits<double>::infinity();
     answers[i].triangle = hits[i].hit() ? std::int64_t(hits[i].triangle) : -1;
   }
-  return {fmt::format("rayproof {}", name), "built-in", mesh.name, mesh.triangles.size(), judge.judge(rays, answers, opt), {}};
+  return {fmt::format("rayproof {}", name), "built-in", mesh.name, mesh.triangles.size(),
+          judge.judge(rays, answers, opt), {}};
 }
 
 std::string html_escape(const std::string& s) {

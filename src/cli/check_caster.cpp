@@ -104,56 +104,58 @@ int run_caster_check(const CheckCliOptions& o) {
     }
   }
 
-  verify::ExecCasterOptions eo;
-  eo.timeout_seconds = o.caster_timeout;
-  eo.batch = o.caster_batch;
+  verify::ExecCasterOptions exec_opt;
+  exec_opt.timeout_seconds = o.caster_timeout;
+  exec_opt.batch = o.caster_batch;
   bool any_finding = false;
-  nlohmann::json jruns = nlohmann::json::array();
+  nlohmann::json json_runs = nlohmann::json::array();
   std::vector<verify::CasterReportRow> report_rows;
   if (!o.json)
     fmt::print("rayproof check --caster: {} precision; crossings at t > 0 judged against rayproof's certified caster "
                "and exact per-triangle tests (docs/check.md)\n",
                o.caster_precision);
   for (const auto& m : meshes) {
-    const verify::CasterMesh cm{m.mesh.vertices, m.mesh.triangles, m.name};
+    const verify::CasterMesh caster_mesh{m.mesh.vertices, m.mesh.triangles, m.name};
     verify::CasterRays rays;
     std::optional<verify::CasterJudge> judge;
     try {
-      rays = verify::caster_rays(cm, opt);
-      judge.emplace(cm);
+      rays = verify::caster_rays(caster_mesh, opt);
+      judge.emplace(caster_mesh);
     } catch (const std::exception& e) {
       fmt::print(stderr, "rayproof check: {}: {}\n", m.name, e.what());
       return 2;
     }
-    for (const auto& c : casters) {
-      fmt::print(stderr, "[caster] {} on {}: {} rays\n", c.name, m.name, rays.rays.size());
-      const verify::ExecCasterRun run = verify::run_exec_caster(c.command, cm, rays, eo);
+    for (const auto& caster : casters) {
+      fmt::print(stderr, "[caster] {} on {}: {} rays\n", caster.name, m.name, rays.rays.size());
+      const verify::ExecCasterRun run = verify::run_exec_caster(caster.command, caster_mesh, rays, exec_opt);
       const verify::CasterTally tally = judge->judge(rays, run.answers, opt);
       any_finding = any_finding || tally.findings() > 0;
       if (!o.out.empty())
-        report_rows.push_back({c.name, c.command, m.name, m.mesh.triangles.size(), tally, run.events});
+        report_rows.push_back({caster.name, caster.command, m.name, m.mesh.triangles.size(), tally, run.events});
       if (o.json) {
-        jruns.push_back(run_json(c, m, tally, run));
+        json_runs.push_back(run_json(caster, m, tally, run));
         continue;
       }
-      fmt::print("\ncaster '{}' ({}) on {} ({} triangles): {} rays, started {} time{}\n", c.name, c.command, m.name,
-                 m.mesh.triangles.size(), tally.rays, run.starts, run.starts == 1 ? "" : "s");
+      fmt::print("\ncaster '{}' ({}) on {} ({} triangles): {} rays, started {} time{}\n", caster.name,
+                 caster.command, m.name, m.mesh.triangles.size(), tally.rays, run.starts, run.starts == 1 ? "" : "s");
       fmt::print("{}", verify::summary_text(tally));
       for (const auto& e : run.events) fmt::print("event: {}\n", e);
       if (tally.findings() == 0)
-        fmt::print("caster '{}' answered all {} rays on {} as exact arithmetic does (t within 1 ulp)\n", c.name,
+        fmt::print("caster '{}' answered all {} rays on {} as exact arithmetic does (t within 1 ulp)\n", caster.name,
                    tally.rays, m.name);
       else
-        fmt::print("caster '{}' differs from exact on {} of {} rays on {}\n", c.name, tally.findings(), tally.rays, m.name);
+        fmt::print("caster '{}' differs from exact on {} of {} rays on {}\n", caster.name, tally.findings(),
+                   tally.rays, m.name);
     }
   }
   if (!o.out.empty()) {
     // rayproof's own casters on the same rays, beside the casters under test.
     for (const auto& m : meshes) {
-      const verify::CasterMesh cm{m.mesh.vertices, m.mesh.triangles, m.name};
-      const verify::CasterRays rays = verify::caster_rays(cm, opt);
-      const verify::CasterJudge judge(cm);
-      for (auto& row : verify::builtin_caster_rows(cm, rays, judge, opt)) report_rows.push_back(std::move(row));
+      const verify::CasterMesh caster_mesh{m.mesh.vertices, m.mesh.triangles, m.name};
+      const verify::CasterRays rays = verify::caster_rays(caster_mesh, opt);
+      const verify::CasterJudge judge(caster_mesh);
+      for (auto& row : verify::builtin_caster_rows(caster_mesh, rays, judge, opt))
+        report_rows.push_back(std::move(row));
     }
     try {
       verify::write_caster_report(o.out, report_rows, o.caster_precision);
@@ -163,7 +165,7 @@ int run_caster_check(const CheckCliOptions& o) {
       return 2;
     }
   }
-  if (o.json) fmt::print("{}\n", nlohmann::json{{"casters", jruns}, {"findings", any_finding}}.dump(1));
+  if (o.json) fmt::print("{}\n", nlohmann::json{{"casters", json_runs}, {"findings", any_finding}}.dump(1));
   return any_finding ? 1 : 0;
 }
 

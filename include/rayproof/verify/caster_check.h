@@ -126,7 +126,9 @@ struct CasterCounter {
 
 inline constexpr CasterCounter kCasterCounters[] = {
     {.key = "rays", .member = &CasterCounts::rays, .meaning = "judged (every ray given)"},
-    {.key = "hits", .member = &CasterCounts::hits, .meaning = "any answer, where the ray has an exact crossing at t > 0"},
+    {.key = "hits",
+     .member = &CasterCounts::hits,
+     .meaning = "any answer, where the ray has an exact crossing at t > 0"},
     {.key = "false_miss",
      .member = &CasterCounts::false_miss,
      .finding = true,
