@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <iterator>
 #include <limits>
 #include <random>
 #include <stdexcept>
@@ -420,6 +422,22 @@ TEST(CasterTally, SummaryTextHasOneLinePerCounter) {
                                 "invalid_rays       16\n"),
             std::string::npos)
       << with_occlusion;
+}
+
+// docs/check.md explains every count by its key, and lists the findings `findings` adds up.
+TEST(CasterTally, EveryCounterIsInTheDocs) {
+  std::ifstream in(std::string(RAYPROOF_DATA_DIR) + "/../docs/check.md");
+  ASSERT_TRUE(in) << "docs/check.md";
+  const std::string docs((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const auto sum_at = docs.find("`findings` adds up the findings:");
+  ASSERT_NE(sum_at, std::string::npos);
+  const std::string sum = docs.substr(sum_at, docs.find(';', sum_at) - sum_at);
+  for (const verify::CasterCounter& counter : verify::kCasterCounters) {
+    const std::string key = "`" + std::string(counter.key) + "`";
+    EXPECT_NE(docs.find(key), std::string::npos) << key;
+    EXPECT_FALSE(counter.meaning.empty()) << key;
+    if (counter.member) EXPECT_EQ(sum.find(key) != std::string::npos, counter.finding) << key << " in: " << sum;
+  }
 }
 
 // A judgement's tally merges its chunks counter by counter: on more rays than one chunk holds,
