@@ -66,7 +66,7 @@ int main(int argc, char** argv) {
     std::size_t findings = 0;
     for (int r = 0; r < reps; ++r) {
       const double t0 = bench::thread_seconds();
-      const verify::CasterCheck c = judge.judge(rays, answers, opt);
+      const verify::CasterTally c = judge.judge(rays, answers, opt);
       s = std::min(s, bench::thread_seconds() - t0);
       findings = c.findings();
       if (std::getenv("CASTER_BENCH_SETS") && r == 0) fmt::print("{}", verify::summary_text(c).substr(0, 2000));

@@ -5,9 +5,12 @@
 
 #include <algorithm>
 #include <cmath>
+#include <fstream>
+#include <iterator>
 #include <limits>
 #include <random>
 #include <stdexcept>
+#include <type_traits>
 
 #include "rayproof/scene/mesh_caster.h"
 #include "rayproof/verify/caster_check.h"
@@ -19,7 +22,7 @@ namespace rayproof {
 namespace {
 
 using verify::CasterAnswer;
-using verify::CasterCheck;
+using verify::CasterTally;
 using verify::CasterMesh;
 using Tri = std::array<std::uint32_t, 3>;
 constexpr double kInf = std::numeric_limits<double>::infinity();
@@ -151,9 +154,9 @@ struct CertifiedCaster {
 };
 
 /// The counts check_caster must report, tallied by brute force over every triangle.
-CasterCheck brute_tally(const OwnedMesh& m, const verify::CasterRays& rays, std::span<const CasterAnswer> answers,
+CasterTally brute_tally(const OwnedMesh& m, const verify::CasterRays& rays, std::span<const CasterAnswer> answers,
                         bool f32) {
-  CasterCheck c;
+  CasterTally c;
   auto note = [&](const char* kind, std::size_t ray) { c.reproducers.push_back({kind, ray, ""}); };
   for (std::size_t i = 0; i < rays.rays.size(); ++i) {
     const Ray<double>& r = rays.rays[i];
@@ -205,21 +208,9 @@ CasterCheck brute_tally(const OwnedMesh& m, const verify::CasterRays& rays, std:
   return c;
 }
 
-void expect_same_counts(const CasterCheck& got, const CasterCheck& want) {
-  EXPECT_EQ(got.rays, want.rays);
-  EXPECT_EQ(got.hits, want.hits);
-  EXPECT_EQ(got.false_miss, want.false_miss);
-  EXPECT_EQ(got.coplanar_miss, want.coplanar_miss);
-  EXPECT_EQ(got.false_hit, want.false_hit);
-  EXPECT_EQ(got.wrong_triangle, want.wrong_triangle);
-  EXPECT_EQ(got.wrong_triangle_near, want.wrong_triangle_near);
-  EXPECT_EQ(got.t_over_1ulp, want.t_over_1ulp);
-  EXPECT_EQ(got.max_ulps, want.max_ulps);
-  EXPECT_EQ(got.garbage, want.garbage);
-  EXPECT_EQ(got.caster_failures, want.caster_failures);
-  EXPECT_EQ(got.invalid_rays, want.invalid_rays);
-  EXPECT_EQ(got.invalid_hit, want.invalid_hit);
-  EXPECT_EQ(got.invalid_failures, want.invalid_failures);
+void expect_same_counts(const CasterTally& got, const CasterTally& want) {
+  for (const verify::CasterCounter& counter : verify::kCasterCounters)
+    EXPECT_EQ(count_of(got, counter), count_of(want, counter)) << counter.key;
   // Ray by ray, when every finding kept its reproducer.
   if (got.reproducers.size() != got.findings()) return;
   std::vector<std::pair<std::string, std::size_t>> g, w;
@@ -241,7 +232,7 @@ verify::CasterCheckOptions small_options() {
 
 TEST(CasterCheck, ExactBruteForceCasterHasNoFinding) {
   for (const OwnedMesh& m : {cube(), star(3), hull(5)}) {
-    const CasterCheck c = verify::check_caster(exact_brute_caster(m), m.view(), small_options());
+    const CasterTally c = verify::check_caster(exact_brute_caster(m), m.view(), small_options());
     EXPECT_EQ(c.findings(), 0u) << m.name << "\n" << verify::summary_text(c);
     EXPECT_EQ(c.max_ulps, 0u) << m.name;
     EXPECT_GT(c.hits, c.rays / 4) << m.name;  // the ray sets do cross the mesh
@@ -261,7 +252,7 @@ TEST(CasterCheck, CertifiedCasterOnlyMisordersNearTies) {
     const CertifiedCaster caster(m);
     verify::CasterCheckOptions o = small_options();
     o.reproducers = 1000000;
-    const CasterCheck c = verify::check_caster(std::cref(caster), m.view(), o);
+    const CasterTally c = verify::check_caster(std::cref(caster), m.view(), o);
     EXPECT_EQ(c.findings(), c.wrong_triangle) << verify::summary_text(c);
     EXPECT_LE(c.max_ulps, 1u);
     const verify::CasterRays rays = verify::caster_rays(m.view(), o);
@@ -280,7 +271,7 @@ TEST(CasterCheck, StrictBarycentricFloatCasterIsCaughtWithReproducers) {
   const OwnedMesh m = star(7);
   verify::CasterCheckOptions o = small_options();
   o.precision = verify::CasterPrecision::float32;
-  const CasterCheck c = verify::check_caster(strict_float_caster(m), m.view(), o);
+  const CasterTally c = verify::check_caster(strict_float_caster(m), m.view(), o);
   EXPECT_GT(c.false_miss, 0u) << verify::summary_text(c);
   EXPECT_GT(c.findings(), 0u);
   bool leak_repro = false;
@@ -314,7 +305,7 @@ TEST(CasterCheck, GarbageAndThrowingCasterIsReportedAndTheRunGoesOn) {
   };
   verify::CasterCheckOptions o = small_options();
   o.batch = 1;
-  const CasterCheck c = verify::check_caster(bad, m.view(), o);
+  const CasterTally c = verify::check_caster(bad, m.view(), o);
   EXPECT_EQ(c.invalid_failures, c.invalid_rays);
   EXPECT_GT(c.invalid_rays, 0u);
   EXPECT_GT(c.garbage, 0u);
@@ -328,7 +319,7 @@ TEST(CasterCheck, GarbageAndThrowingCasterIsReportedAndTheRunGoesOn) {
   // The same rays with the answers of a caster that hits on every invalid ray.
   const verify::CasterRays rays = verify::caster_rays(m.view(), o);
   std::vector<CasterAnswer> answers(rays.rays.size(), CasterAnswer{0.5, 0});
-  const CasterCheck h = verify::CasterJudge(m.view()).judge(rays, answers, o);
+  const CasterTally h = verify::CasterJudge(m.view()).judge(rays, answers, o);
   EXPECT_EQ(h.invalid_hit, h.invalid_rays);
 }
 
@@ -354,8 +345,8 @@ TEST(CasterCheck, CountsEqualABruteForceExactTally) {
       else if (i % 3 == 1) answers[i].triangle = (answers[i].triangle + 1) % std::int64_t(m.f.size());
       else answers[i].t = -1;
     }
-    const CasterCheck got = verify::CasterJudge(m.view()).judge(rays, answers, o);
-    const CasterCheck want = brute_tally(m, rays, answers, k.f32);
+    const CasterTally got = verify::CasterJudge(m.view()).judge(rays, answers, o);
+    const CasterTally want = brute_tally(m, rays, answers, k.f32);
     SCOPED_TRACE(m.name);
     expect_same_counts(got, want);
     EXPECT_GT(got.false_miss + got.wrong_triangle + got.t_over_1ulp, 0u);
@@ -363,7 +354,7 @@ TEST(CasterCheck, CountsEqualABruteForceExactTally) {
     EXPECT_EQ(kept, got.findings());  // one reproducer per finding when the cap is high
     // And the exact answers themselves: nothing found, by both.
     verify::run_caster(exact_brute_caster(m), {}, rays.rays, 256, answers, error);
-    const CasterCheck none = verify::CasterJudge(m.view()).judge(rays, answers, o);
+    const CasterTally none = verify::CasterJudge(m.view()).judge(rays, answers, o);
     expect_same_counts(none, brute_tally(m, rays, answers, k.f32));
     EXPECT_EQ(none.findings(), 0u);
   }
@@ -379,13 +370,125 @@ TEST(CasterCheck, AnyHitAnswersAreJudged) {
     for (std::size_t i = 0; i < o.size(); ++i) out[i] = 0;
   };
   const verify::CasterCheckOptions o = small_options();
-  const CasterCheck right = verify::check_caster(std::cref(good), m.view(), o, any_right);
+  const CasterTally right = verify::check_caster(std::cref(good), m.view(), o, any_right);
   EXPECT_EQ(right.any_false_miss + right.any_false_hit, 0u) << verify::summary_text(right);
   EXPECT_EQ(right.any_rays, right.rays - right.invalid_rays);
-  const CasterCheck never = verify::check_caster(std::cref(good), m.view(), o, any_never);
+  const CasterTally never = verify::check_caster(std::cref(good), m.view(), o, any_never);
   EXPECT_EQ(never.any_false_miss + never.any_coplanar_miss, never.hits);
   EXPECT_GT(never.any_false_miss, 0u);
 }
+
+// The summary text is made from kCasterCounters: one `key value` line per counter (labels where
+// given), the occlusion counts only when occlusion was asked, `findings` last.
+TEST(CasterTally, SummaryTextHasOneLinePerCounter) {
+  CasterTally tally;
+  std::uint64_t next = 1;
+  for (const verify::CasterCounter& counter : verify::kCasterCounters)
+    if (counter.member) tally.*counter.member = next++;
+  tally.any_rays = 0;
+  tally.sets.push_back({"leak", 7, 3, 2});
+  tally.notes.push_back("a note");
+  tally.reproducers.push_back({"false-miss", 4, "false-miss set=leak ..."});
+  const std::uint64_t findings = tally.false_miss + tally.false_hit + tally.wrong_triangle + tally.t_over_1ulp +
+                                 tally.garbage + tally.caster_failures + tally.any_false_miss + tally.any_false_hit +
+                                 tally.invalid_hit + tally.invalid_failures;
+  EXPECT_EQ(tally.findings(), findings);
+  EXPECT_EQ(verify::summary_text(tally),
+            "rays               1\n"
+            "hits               2\n"
+            "false_miss         3\n"
+            "coplanar_miss      4\n"
+            "false_hit          5\n"
+            "wrong_triangle     6\n"
+            "  within_1ulp      7\n"
+            "t_over_1ulp        8\n"
+            "max_ulps           9\n"
+            "garbage            10\n"
+            "caster_failures    11\n"
+            "invalid_rays       16\n"
+            "invalid_hit        17\n"
+            "invalid_failures   18\n"
+            "findings           " + std::to_string(findings) + "\n"
+            "set leak       rays       7  findings       3  false_miss 2\n"
+            "note: a note\n"
+            "false-miss set=leak ...\n");
+  tally.any_rays = 12;
+  const std::string with_occlusion = verify::summary_text(tally);
+  EXPECT_NE(with_occlusion.find("caster_failures    11\n"
+                                "any_rays           12\n"
+                                "any_false_miss     13\n"
+                                "any_false_hit      14\n"
+                                "any_coplanar_miss  15\n"
+                                "invalid_rays       16\n"),
+            std::string::npos)
+      << with_occlusion;
+}
+
+// docs/check.md explains every count by its key, and lists the findings `findings` adds up.
+TEST(CasterTally, EveryCounterIsInTheDocs) {
+  std::ifstream in(std::string(RAYPROOF_DATA_DIR) + "/../docs/check.md");
+  ASSERT_TRUE(in) << "docs/check.md";
+  const std::string docs((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const auto sum_at = docs.find("`findings` adds up the findings:");
+  ASSERT_NE(sum_at, std::string::npos);
+  const std::string sum = docs.substr(sum_at, docs.find(';', sum_at) - sum_at);
+  for (const verify::CasterCounter& counter : verify::kCasterCounters) {
+    const std::string key = "`" + std::string(counter.key) + "`";
+    EXPECT_NE(docs.find(key), std::string::npos) << key;
+    EXPECT_FALSE(counter.meaning.empty()) << key;
+    if (counter.member) EXPECT_EQ(sum.find(key) != std::string::npos, counter.finding) << key << " in: " << sum;
+  }
+}
+
+// A judgement's tally merges its chunks counter by counter: on more rays than one chunk holds,
+// the counts equal the sums over the rays judged one set at a time (max_ulps: the largest).
+TEST(CasterTally, ChunksAndSetsAddUp) {
+  const OwnedMesh m = star(23);
+  verify::CasterCheckOptions o = small_options();
+  o.precision = verify::CasterPrecision::float32;
+  const verify::CasterRays rays = verify::caster_rays(m.view(), o);
+  ASSERT_GT(rays.rays.size(), 1024u);  // judged in several chunks (of 512 rays)
+  std::vector<CasterAnswer> answers(rays.rays.size());
+  std::string error;
+  verify::run_caster(strict_float_caster(m), {}, rays.rays, 256, answers, error);
+  const verify::CasterJudge judge(m.view());
+  const CasterTally whole = judge.judge(rays, answers, o);
+  verify::CasterCounts sum;
+  for (std::size_t set = 0; set < rays.names.size(); ++set) {
+    verify::CasterRays one;
+    one.names = rays.names;
+    std::vector<CasterAnswer> one_answers;
+    for (std::size_t i = 0; i < rays.rays.size(); ++i)
+      if (rays.set[i] == set) {
+        one.rays.push_back(rays.rays[i]);
+        one.set.push_back(rays.set[i]);
+        one_answers.push_back(answers[i]);
+      }
+    const CasterTally part = judge.judge(one, one_answers, o);
+    EXPECT_EQ(part.sets[set].rays, whole.sets[set].rays) << rays.names[set];
+    EXPECT_EQ(part.sets[set].findings, whole.sets[set].findings) << rays.names[set];
+    for (const verify::CasterCounter& counter : verify::kCasterCounters) {
+      if (!counter.member) continue;
+      std::uint64_t& total = sum.*counter.member;
+      total = counter.maximum ? std::max(total, part.*counter.member) : total + part.*counter.member;
+    }
+  }
+  for (const verify::CasterCounter& counter : verify::kCasterCounters)
+    EXPECT_EQ(count_of(whole, counter), count_of(sum, counter)) << counter.key;
+  EXPECT_GT(whole.false_miss, 0u);
+}
+
+// CasterCheck, the tally's name before CasterTally, still names the same type for a release.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wdeprecated-declarations"
+TEST(CasterTally, TheOldNameCasterCheckStillCompiles) {
+  static_assert(std::is_same_v<verify::CasterCheck, verify::CasterTally>);
+  const OwnedMesh m = cube();
+  const verify::CasterCheck old = verify::check_caster(exact_brute_caster(m), m.view(), small_options());
+  EXPECT_GT(old.rays, 0u);
+  EXPECT_EQ(old.findings(), 0u) << verify::summary_text(old);
+}
+#pragma GCC diagnostic pop
 
 TEST(CasterCheck, BadInputIsRefused) {
   const OwnedMesh m = cube();

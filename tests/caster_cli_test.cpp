@@ -3,8 +3,12 @@
 // events and the run goes on.
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
+
 #include <cstdlib>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "cli_support.h"
 
@@ -101,6 +105,38 @@ TEST(CasterCli, OutWritesTheReportBesideRayproofsCasters) {
   EXPECT_NE(html.find("<table>"), std::string::npos);
   EXPECT_NE(html.find("strict (/usr/bin/python3"), std::string::npos);
   EXPECT_EQ(run_rayproof("check --caster x=cat --mesh " + mesh.string() + " --caster-sets random --out /proc/nope").status, 2);
+}
+
+// --json holds the counts the text prints, under the same keys (the text's `  within_1ulp` is
+// wrong_triangle_within_1ulp), and no occlusion counts: a program answers no occlusion.
+TEST(CasterCli, JsonHoldsTheCountsOfTheText) {
+  if (!have_numpy()) GTEST_SKIP() << "/usr/bin/python3 has no numpy";
+  const auto mesh = write_file("cube.off", kCube);
+  const std::string args = "check --caster 'mt=/usr/bin/python3 " + example() + " --strict' --mesh " + mesh.string() +
+                           " --caster-rays 100 --caster-sets leak,random,invalid";
+  const auto text = run_rayproof(args);
+  const auto json = run_rayproof(args + " --json");
+  EXPECT_EQ(text.status, 1) << text.err;
+  ASSERT_EQ(json.status, 1) << json.err;
+  const nlohmann::json out = nlohmann::json::parse(json.out);
+  ASSERT_EQ(out["casters"].size(), 1u) << json.out;
+  const nlohmann::json& run = out["casters"][0];
+  const std::vector<std::pair<std::string, std::string>> keys = {
+      {"rays", "rays"}, {"hits", "hits"}, {"false_miss", "false_miss"}, {"coplanar_miss", "coplanar_miss"},
+      {"false_hit", "false_hit"}, {"wrong_triangle", "wrong_triangle"},
+      {"wrong_triangle_within_1ulp", "  within_1ulp"}, {"t_over_1ulp", "t_over_1ulp"}, {"max_ulps", "max_ulps"},
+      {"garbage", "garbage"}, {"caster_failures", "caster_failures"}, {"invalid_rays", "invalid_rays"},
+      {"invalid_hit", "invalid_hit"}, {"invalid_failures", "invalid_failures"}, {"findings", "findings"}};
+  for (const auto& [key, label] : keys) {
+    ASSERT_TRUE(run.contains(key)) << key << "\n" << json.out;
+    EXPECT_EQ(run[key].get<std::size_t>(), count_of(text.out, "mt", label)) << key << "\n" << text.out;
+  }
+  EXPECT_GT(run["false_miss"].get<std::size_t>(), 0u) << text.out;
+  for (const char* occlusion : {"any_rays", "any_false_miss", "any_false_hit", "any_coplanar_miss"}) {
+    EXPECT_FALSE(run.contains(occlusion)) << occlusion;
+    EXPECT_EQ(text.out.find(occlusion), std::string::npos) << occlusion;
+  }
+  EXPECT_TRUE(out["findings"].get<bool>());
 }
 
 // Debian's Open3D 0.16 (python3-open3d) under Debian's Embree 3: every ray it casts misses (Open3D

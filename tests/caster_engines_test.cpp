@@ -53,13 +53,13 @@ verify::CasterCheckOptions float_options() {
   return o;
 }
 
-std::size_t set_false_miss(const verify::CasterCheck& c, const std::string& set) {
+std::size_t set_false_miss(const verify::CasterTally& c, const std::string& set) {
   for (const auto& s : c.sets)
     if (s.set == set) return s.false_miss;
   return std::size_t(-1);
 }
 
-void print(const char* engine, const TestMesh& m, const verify::CasterCheck& c) {
+void print(const char* engine, const TestMesh& m, const verify::CasterTally& c) {
   std::printf("== %s on %s (%zu triangles)\n%s", engine, m.name.c_str(), m.m.triangles.size(),
               verify::summary_text(c).c_str());
 }
@@ -86,7 +86,7 @@ struct OwnCaster {
 TEST(CasterEngines, RayproofRobustCasterDoesNotLeak) {
   for (const TestMesh& m : meshes()) {
     const OwnCaster<cast::Robust> caster(m.m);
-    const verify::CasterCheck c = verify::check_caster(
+    const verify::CasterTally c = verify::check_caster(
         std::cref(caster), m.view(), float_options(),
         [&](auto o, auto d, auto out) { caster.any(o, d, out); });
     print("rayproof robust", m, c);
@@ -99,7 +99,7 @@ TEST(CasterEngines, RayproofFloatCasterIsJudged) {
   std::size_t findings = 0;
   for (const TestMesh& m : meshes()) {
     const OwnCaster<cast::Float> caster(m.m);
-    const verify::CasterCheck c = verify::check_caster(
+    const verify::CasterTally c = verify::check_caster(
         std::cref(caster), m.view(), float_options(),
         [&](auto o, auto d, auto out) { caster.any(o, d, out); });
     print("rayproof float", m, c);
@@ -185,7 +185,7 @@ void judge_embree(bool robust) {
     const EmbreeCaster e(m.m, robust);
     verify::CasterCheckOptions opt = float_options();
     opt.batch = 1;  // a ray out of Embree's range fails alone
-    const verify::CasterCheck c = verify::check_caster(
+    const verify::CasterTally c = verify::check_caster(
         [&](auto o, auto d, auto t, auto tri) { e.closest(o, d, t, tri); }, m.view(), opt,
         [&](auto o, auto d, auto out) { e.any(o, d, out); });
     print(robust ? "embree robust" : "embree", m, c);

@@ -44,21 +44,21 @@ std::string ray_text(const Ray<double>& r) {
 }
 
 /// What an exact triangle result means for a caster judged at t > 0.
-struct Contact1 {
+struct ForwardContact {
   enum Kind : std::uint8_t { none, origin, point, coplanar } kind = none;
   double t = kInf;  ///< t of the contact (a coplanar range: its start)
 };
 
-Contact1 contact_of(const TriangleHit<double>& h) {
+ForwardContact forward_contact(const TriangleHit<double>& h) {
   switch (h.contact) {
     case Contact::interior: case Contact::edge: case Contact::vertex:
-      if (h.t > 0) return {Contact1::point, h.t};
-      if (h.t == 0) return {Contact1::origin, 0};
+      if (h.t > 0) return {ForwardContact::point, h.t};
+      if (h.t == 0) return {ForwardContact::origin, 0};
       return {};
     case Contact::coplanar:
       if (std::isnan(h.t)) return {};
-      if (h.t > 0) return {Contact1::coplanar, h.t};
-      if (h.t == 0) return {Contact1::origin, 0};  // the origin lies in the triangle
+      if (h.t > 0) return {ForwardContact::coplanar, h.t};
+      if (h.t == 0) return {ForwardContact::origin, 0};  // the origin lies in the triangle
       return {};
     default: return {};
   }
@@ -121,7 +121,7 @@ std::optional<double> round_t(const Ray<double>& r, const Triangle<double>& tri,
 /// where it cannot decide), t correctly rounded by round_t, exact::intersect for what is left
 /// (coplanar ranges, extreme magnitudes).
 struct ExactContact {
-  Contact1 k;
+  ForwardContact forward;
   Contact contact = Contact::miss;
 };
 ExactContact exact_contact(const Ray<double>& r, const Triangle<double>& tri) {
@@ -129,280 +129,391 @@ ExactContact exact_contact(const Ray<double>& r, const Triangle<double>& tri) {
   switch (h.contact) {
     case Contact::interior: case Contact::edge: case Contact::vertex:
       if (h.t > 0) {
-        if (const auto rt = round_t(r, tri, h.t)) return {{Contact1::point, *rt}, h.contact};
+        if (const auto rounded = round_t(r, tri, h.t)) return {{ForwardContact::point, *rounded}, h.contact};
       }
       break;
     case Contact::coplanar: break;
     default: return {{}, h.contact};
   }
-  const TriangleHit<double> x = exact::intersect(r, tri);
-  return {contact_of(x), x.contact};
+  const TriangleHit<double> exact_hit = exact::intersect(r, tri);
+  return {forward_contact(exact_hit), exact_hit.contact};
 }
 
-struct Tally {
-  CasterCheck c;
-  std::vector<std::size_t> set_rays, set_findings, set_false_miss;
-  std::vector<CasterReproducer> reps;
-};
-
-}  // namespace
-
-std::size_t CasterCheck::findings() const {
-  return false_miss + false_hit + wrong_triangle + t_over_1ulp + garbage + caster_failures + any_false_miss +
-         any_false_hit + invalid_hit + invalid_failures;
-}
-
-struct CasterJudge::State {
-  std::vector<Vec3<double>> v;
-  std::vector<std::array<std::uint32_t, 3>> tri;
+/// The mesh the judgement is exact on: a copy of the caller's arrays and the certified caster
+/// over them.
+struct ReferenceMesh {
+  std::vector<Vec3<double>> vertices;
+  std::vector<std::array<std::uint32_t, 3>> triangles;
   std::string name;
   MeshCaster<cast::Certified> caster;
 
-  State(const CasterMesh& m)
-      : v(m.vertices.begin(), m.vertices.end()), tri(m.triangles.begin(), m.triangles.end()), name(m.name),
-        caster(VertexArray(reinterpret_cast<const double*>(v.data()), v.size()),
-               IndexArray{tri.empty() ? nullptr : tri.data()->data(), tri.size()}) {}
+  explicit ReferenceMesh(const CasterMesh& m)
+      : vertices(m.vertices.begin(), m.vertices.end()), triangles(m.triangles.begin(), m.triangles.end()),
+        name(m.name),
+        caster(VertexArray(reinterpret_cast<const double*>(vertices.data()), vertices.size()),
+               IndexArray{triangles.empty() ? nullptr : triangles.data()->data(), triangles.size()}) {}
 
-  [[nodiscard]] Triangle<double> triangle(std::size_t i) const { return {v[tri[i][0]], v[tri[i][1]], v[tri[i][2]]}; }
+  [[nodiscard]] Triangle<double> triangle(std::size_t i) const {
+    return {vertices[triangles[i][0]], vertices[triangles[i][1]], vertices[triangles[i][2]]};
+  }
 };
 
-CasterJudge::CasterJudge(const CasterMesh& mesh) : s_(std::make_unique<State>(mesh)) {}
+/// Adds `part` into `total`, counter by counter (max_ulps: the larger).
+void add_counts(CasterCounts& total, const CasterCounts& part) {
+  for (const CasterCounter& counter : kCasterCounters) {
+    if (!counter.member) continue;
+    std::uint64_t& into = total.*counter.member;
+    const std::uint64_t from = part.*counter.member;
+    into = counter.maximum ? std::max(into, from) : into + from;
+  }
+}
+
+/// What one chunk of rays (a range, in ray order) found. Chunks are judged on TBB threads, each into
+/// its own ChunkTally, and merged in ray order.
+struct ChunkTally {
+  CasterCounts counts;
+  std::vector<std::size_t> set_rays, set_findings, set_false_miss;  ///< indexed like CasterRays::names
+  std::vector<CasterReproducer> reproducers;
+  /// Reproducers kept per kind in this chunk: the first opt.reproducers of each kind over all chunks
+  /// (in ray order) are among them; the rest are never formatted.
+  std::vector<std::pair<std::string_view, std::size_t>> kept_per_kind;
+
+  /// Whether the next reproducer of `kind` is kept (counts it).
+  bool keep(std::string_view kind, std::size_t cap) {
+    for (auto& [kept_kind, kept] : kept_per_kind)
+      if (kept_kind == kind) return kept++ < cap;
+    kept_per_kind.emplace_back(kind, 1);
+    return cap > 0;
+  }
+};
+
+/// What every ray of one judge() call shares.
+struct JudgeInputs {
+  const ReferenceMesh& mesh;
+  const CasterRays& rays;
+  std::span<const CasterAnswer> answers;
+  const CasterCheckOptions& opt;
+  bool float32 = false;  ///< t errors in float ulps
+};
+
+/// The distance in ulps of the caster's precision (double, or both rounded to float).
+std::uint64_t caster_ulps(const JudgeInputs& in, double a, double b) {
+  return in.float32 ? ulp_distance(static_cast<float>(a), static_cast<float>(b)) : ulp_distance(a, b);
+}
+
+/// The exact first crossing of a ray at t > 0, and the crossings near it. The vectors are reused
+/// from ray to ray.
+struct FirstCrossing {
+  MeshHit certified;  ///< the certified caster's closest hit; none: the ray crosses nothing at t > 0
+  std::uint32_t triangle = MeshHit::kNoTriangle;  ///< the exact first triangle (ties: the lowest number)
+  bool coplanar = false;                          ///< its contact is a segment in the triangle's plane
+  std::vector<MeshHit> near;    ///< the crossings within 4 ulps of certified.t
+  std::vector<double> near_t;   ///< their correctly rounded t, when there are more than one
+  std::optional<double> exact_t;  ///< the first crossing's correctly rounded t, once computed
+  [[nodiscard]] bool hit() const { return certified.hit(); }
+};
+
+/// The judgement of one ray's answer into a chunk's tally, step by step in run()'s order. Only the
+/// disagreements, the t errors and kept reproducers cost exact arithmetic.
+class RayJudgement {
+ public:
+  RayJudgement(const JudgeInputs& in, std::size_t index, FirstCrossing& first, ChunkTally& tally)
+      : in_(in), index_(index), ray_(in.rays.rays[index]), answer_(in.answers[index]), set_(in.rays.set[index]),
+        first_(first), tally_(tally), counts_(tally.counts) {}
+
+  void run() {
+    ++tally_.set_rays[set_];
+    ++counts_.rays;
+    if (judge_invalid_or_failed()) return;
+    find_first_crossing();
+    if (first_.hit()) ++counts_.hits;
+    if (answer_.any >= 0) judge_occlusion();
+    if (judge_garbage()) return;
+    judge_closest();
+  }
+
+ private:
+  // The texts of a reproducer, as callables: called only when the reproducer is kept.
+  static auto fixed(const char* text) {
+    return [text] { return std::string(text); };
+  }
+  auto exact_text() {
+    return [this] {
+      if (!first_.hit()) return std::string("miss");
+      return fmt::format("tri {} t {} {}", first_.triangle, num(first_t()), first_.coplanar ? "coplanar" : "crossing");
+    };
+  }
+  auto caster_text() const {
+    return [this] {
+      if (answer_.failed) return std::string("failed");
+      return fmt::format("tri {} t {}", answer_.triangle, num(answer_.t));
+    };
+  }
+  std::string t_error_text(std::uint64_t ulps) const {
+    return caster_text()() + fmt::format(" ({} ulps of {})", ulps, in_.float32 ? "float" : "double");
+  }
+
+  /// An invalid ray (no crossing: any answer but a miss is a finding), or an answer the caster
+  /// failed to give. True when that is all there is to judge.
+  bool judge_invalid_or_failed() {
+    if (!ray_.valid()) {
+      ++counts_.invalid_rays;
+      if (answer_.failed)
+        finding(&CasterCounts::invalid_failures, "invalid-ray-failure", fixed("invalid"), caster_text());
+      else if (answer_.triangle != -1 || answer_.any == 1)
+        finding(&CasterCounts::invalid_hit, "invalid-ray-hit", fixed("invalid"), caster_text());
+      return true;
+    }
+    if (answer_.failed) {
+      finding(&CasterCounts::caster_failures, "caster-failure", fixed("-"), fixed("failed"));
+      return true;
+    }
+    return false;
+  }
+
+  /// Fills first_: the certified caster's closest hit, then every crossing whose certified t is
+  /// within 4 ulps of it (certified t values are within 1 ulp of the rounded exact ones, so a
+  /// triangle crossed first exactly, or tied, is among them). With one such crossing it is the
+  /// first; with several, their correctly rounded t decide (ties to the lowest triangle number).
+  void find_first_crossing() {
+    first_.certified = in_.mesh.caster.closest(ray_, kPositive);
+    first_.triangle = first_.certified.triangle;
+    first_.coplanar = first_.certified.contact == Contact::coplanar;
+    first_.exact_t.reset();
+    first_.near.clear();
+    first_.near_t.clear();
+    if (!first_.hit()) return;
+    double lo = first_.certified.t, hi = first_.certified.t;
+    for (int k = 0; k < 4; ++k) lo = next_down(lo), hi = next_up(hi);
+    first_.near = in_.mesh.caster.all(ray_, {std::max(lo, kPositive.tmin), hi});
+    if (first_.near.size() <= 1) return;
+    double best = kInf;
+    for (const MeshHit& h : first_.near) {
+      first_.near_t.push_back(rounded_t(h));
+      if (first_.near_t.back() < best || (first_.near_t.back() == best && h.triangle < first_.triangle))
+        best = first_.near_t.back(), first_.triangle = h.triangle, first_.coplanar = h.contact == Contact::coplanar;
+    }
+    first_.exact_t = best;
+  }
+
+  /// The occlusion answer: 0 where the ray crosses (a finding unless the first contact is
+  /// coplanar); 1 where the ray touches nothing at t >= 0.
+  void judge_occlusion() {
+    ++counts_.any_rays;
+    if (first_.hit() && answer_.any == 0) {
+      if (first_.coplanar) ++counts_.any_coplanar_miss;
+      else finding(&CasterCounts::any_false_miss, "any-false-miss", exact_text(), fixed("any 0"));
+    } else if (!first_.hit() && answer_.any == 1) {
+      if (!in_.mesh.caster.any(ray_, {0, kInf}))
+        finding(&CasterCounts::any_false_hit, "any-false-hit", exact_text(), fixed("any 1"));
+    }
+  }
+
+  /// An answer that is neither a miss (inf, -1) nor a hit (a triangle of the mesh, 0 <= t < inf).
+  bool judge_garbage() {
+    const double t = answer_.t;
+    const std::int64_t tri = answer_.triangle;
+    const auto triangle_count = static_cast<std::int64_t>(in_.mesh.triangles.size());
+    const bool garbage = std::isnan(t) || tri < -1 || tri >= triangle_count || (tri == -1 && !(t == kInf)) ||
+                         (tri >= 0 && !(t >= 0 && t < kInf));
+    if (garbage) finding(&CasterCounts::garbage, "garbage", exact_text(), caster_text());
+    return garbage;
+  }
+
+  /// The closest-hit answer (not garbage): a miss, the first crossing's triangle, or another one.
+  void judge_closest() {
+    const bool caster_hit = answer_.triangle >= 0;
+    if (!first_.hit() && !caster_hit) return;
+    if (!caster_hit) {
+      if (first_.coplanar) {
+        ++counts_.coplanar_miss;
+      } else {
+        finding(&CasterCounts::false_miss, "false-miss", exact_text(), caster_text());
+        ++tally_.set_false_miss[set_];
+      }
+      return;
+    }
+    const auto claimed = static_cast<std::uint32_t>(answer_.triangle);
+    if (claimed == first_.triangle && first_.hit()) judge_t_of_first();
+    else judge_other_triangle(claimed);
+  }
+
+  /// The caster named the first crossing's triangle: its t is judged (unless the contact is
+  /// coplanar) against the correctly rounded t, in the caster's precision. The reference comes from
+  /// the certified t (within 1 ulp of the rounded exact t) where that decides the count, else from
+  /// the rounded exact t: max_ulps and t_over_1ulp come out as from the exact t.
+  void judge_t_of_first() {
+    if (first_.coplanar) return;
+    std::uint64_t ulps = 0;
+    bool decided = false;
+    const double certified_t = first_.near_t.empty() ? first_.certified.t : first_t();
+    if (first_.exact_t) {
+      decided = true;
+      ulps = caster_ulps(in_, answer_.t, *first_.exact_t);
+    } else if (in_.float32) {
+      // The certified t and its neighbours round to one float: so does the exact t.
+      const float as_float = static_cast<float>(certified_t);
+      if (static_cast<float>(next_down(certified_t)) == as_float &&
+          static_cast<float>(next_up(certified_t)) == as_float) {
+        decided = true;
+        ulps = ulp_distance(static_cast<float>(answer_.t), as_float);
+      }
+    } else {
+      const std::uint64_t near_ulps = ulp_distance(answer_.t, certified_t);  // the true distance is within 1 of it
+      if (near_ulps >= 3 && near_ulps + 1 <= counts_.max_ulps)  // over 1 ulp, and not a new maximum
+        decided = true, ulps = near_ulps;
+    }
+    if (!decided) ulps = caster_ulps(in_, answer_.t, first_t());
+    counts_.max_ulps = std::max(counts_.max_ulps, ulps);
+    if (ulps > 1)
+      finding(&CasterCounts::t_over_1ulp, "t-error", exact_text(),
+              [this] { return t_error_text(caster_ulps(in_, answer_.t, first_t())); });
+  }
+
+  /// The caster named another triangle than the first crossing's: its contact (from the near
+  /// crossings, or an exact test) decides between right (a tie, or the origin on the triangle with
+  /// t = 0), a false hit (nothing crossed), and a wrong triangle; a tie's t is judged.
+  void judge_other_triangle(std::uint32_t claimed) {
+    ForwardContact claimed_contact;
+    ExactContact tested;  // the exact test, when the triangle is not a near crossing
+    std::size_t at = first_.near.size();
+    for (std::size_t j = 0; j < first_.near.size(); ++j)
+      if (first_.near[j].triangle == claimed) at = j;
+    if (at < first_.near.size()) {
+      const MeshHit& near = first_.near[at];
+      claimed_contact = {near.contact == Contact::coplanar ? ForwardContact::coplanar : ForwardContact::point,
+                         first_.near_t.empty() ? rounded_t(near) : first_.near_t[at]};
+    } else {
+      tested = exact_contact(ray_, in_.mesh.triangle(claimed));
+      claimed_contact = tested.forward;
+    }
+    if (claimed_contact.kind == ForwardContact::origin && answer_.t == 0) return;  // the origin lies on it
+    if (!first_.hit()) {
+      finding(&CasterCounts::false_hit, "false-hit", exact_text(), caster_text());
+      return;
+    }
+    if (claimed_contact.kind == ForwardContact::none || claimed_contact.kind == ForwardContact::origin) {
+      finding(&CasterCounts::wrong_triangle, "wrong-triangle", exact_text(), [&] {
+        return fmt::format("{} (not crossed at t > 0: {})", caster_text()(), to_string(tested.contact));
+      });
+      return;
+    }
+    const double exact_first_t = first_t();
+    if (claimed_contact.t != exact_first_t) {
+      if (caster_ulps(in_, claimed_contact.t, exact_first_t) <= 1) ++counts_.wrong_triangle_near;
+      finding(&CasterCounts::wrong_triangle, "wrong-triangle", exact_text(),
+              [&] { return fmt::format("{} (crossed at t {})", caster_text()(), num(claimed_contact.t)); });
+      return;
+    }
+    // A triangle tied with the first crossing: t judged against the same exact t.
+    if (claimed_contact.kind != ForwardContact::point || first_.coplanar) return;
+    const std::uint64_t ulps = caster_ulps(in_, answer_.t, exact_first_t);
+    counts_.max_ulps = std::max(counts_.max_ulps, ulps);
+    if (ulps > 1) finding(&CasterCounts::t_over_1ulp, "t-error", exact_text(), [&] { return t_error_text(ulps); });
+  }
+
+  /// The correctly rounded t of a crossing (round_t from its certified t; an exact test for a
+  /// coplanar one or where round_t cannot tell).
+  [[nodiscard]] double rounded_t(const MeshHit& h) const {
+    std::optional<double> t;
+    if (h.contact != Contact::coplanar) t = round_t(ray_, in_.mesh.triangle(h.triangle), h.t);
+    return t ? *t : exact_contact(ray_, in_.mesh.triangle(h.triangle)).forward.t;
+  }
+  /// The first crossing's correctly rounded t (computed once).
+  double first_t() {
+    if (!first_.exact_t) first_.exact_t = rounded_t(first_.certified);
+    return *first_.exact_t;
+  }
+
+  /// Counts a finding of `kind` (in `counter` and the ray's set) and keeps its reproducer when it
+  /// is among the first of its kind.
+  template <class ExactText, class CasterText>
+  void finding(std::uint64_t CasterCounts::*counter, const char* kind, ExactText&& exact, CasterText&& caster) {
+    ++(counts_.*counter);
+    ++tally_.set_findings[set_];
+    if (!tally_.keep(kind, in_.opt.reproducers)) return;
+    tally_.reproducers.push_back({kind, index_,
+                                  fmt::format("{} set={} mesh={} ray {} exact: {} caster: {}", kind,
+                                              in_.rays.names[set_], in_.mesh.name, ray_text(ray_), exact(), caster())});
+  }
+
+  const JudgeInputs& in_;
+  const std::size_t index_;
+  const Ray<double>& ray_;
+  const CasterAnswer& answer_;
+  const std::size_t set_;
+  FirstCrossing& first_;
+  ChunkTally& tally_;
+  CasterCounts& counts_;
+};
+
+/// Judges rays [begin, end) into `tally`.
+void judge_chunk(const JudgeInputs& in, std::size_t begin, std::size_t end, ChunkTally& tally) {
+  const std::size_t set_count = in.rays.names.size();
+  tally.set_rays.assign(set_count, 0);
+  tally.set_findings.assign(set_count, 0);
+  tally.set_false_miss.assign(set_count, 0);
+  FirstCrossing first;
+  for (std::size_t i = begin; i < end; ++i) RayJudgement(in, i, first, tally).run();
+}
+
+/// The chunks' tallies added up in ray order; of each kind of reproducer the first
+/// opt.reproducers are kept.
+CasterTally merge_chunks(std::vector<ChunkTally>& chunks, const CasterRays& rays, const CasterCheckOptions& opt) {
+  const std::size_t set_count = rays.names.size();
+  CasterTally out;
+  std::vector<std::size_t> set_rays(set_count, 0), set_findings(set_count, 0), set_false_miss(set_count, 0);
+  std::vector<std::string> kinds;
+  std::vector<std::size_t> kept_per_kind;
+  for (ChunkTally& chunk : chunks) {
+    add_counts(out, chunk.counts);
+    for (std::size_t k = 0; k < set_count && k < chunk.set_rays.size(); ++k) {
+      set_rays[k] += chunk.set_rays[k];
+      set_findings[k] += chunk.set_findings[k];
+      set_false_miss[k] += chunk.set_false_miss[k];
+    }
+    for (CasterReproducer& reproducer : chunk.reproducers) {
+      const auto it = std::find(kinds.begin(), kinds.end(), reproducer.kind);
+      const auto at = static_cast<std::size_t>(it - kinds.begin());
+      if (it == kinds.end()) kinds.push_back(reproducer.kind), kept_per_kind.push_back(0);
+      if (kept_per_kind[at]++ < opt.reproducers) out.reproducers.push_back(std::move(reproducer));
+    }
+  }
+  for (std::size_t k = 0; k < set_count; ++k)
+    out.sets.push_back({rays.names[k], set_rays[k], set_findings[k], set_false_miss[k]});
+  out.notes = rays.notes;
+  return out;
+}
+
+}  // namespace
+
+struct CasterJudge::State : ReferenceMesh {
+  using ReferenceMesh::ReferenceMesh;
+};
+
+CasterJudge::CasterJudge(const CasterMesh& mesh) : state_(std::make_unique<State>(mesh)) {}
 CasterJudge::~CasterJudge() = default;
 CasterJudge::CasterJudge(CasterJudge&&) noexcept = default;
 CasterJudge& CasterJudge::operator=(CasterJudge&&) noexcept = default;
 
-CasterCheck CasterJudge::judge(const CasterRays& rays, std::span<const CasterAnswer> answers,
+CasterTally CasterJudge::judge(const CasterRays& rays, std::span<const CasterAnswer> answers,
                                const CasterCheckOptions& opt) const {
   if (answers.size() != rays.rays.size() || rays.set.size() != rays.rays.size())
     throw std::invalid_argument(fmt::format("judge: {} answers for {} rays", answers.size(), rays.rays.size()));
-  const State& s = *s_;
-  const std::size_t nsets = rays.names.size();
-  const bool f32 = opt.precision == CasterPrecision::float32;
-  const auto ntri = static_cast<std::int64_t>(s.tri.size());
-
-  auto judge_range = [&](std::size_t begin, std::size_t end, Tally& T) {
-    CasterCheck& c = T.c;
-    T.set_rays.assign(nsets, 0);
-    T.set_findings.assign(nsets, 0);
-    T.set_false_miss.assign(nsets, 0);
-    // Reproducers kept per kind in this chunk: the first opt.reproducers of each kind over all
-    // chunks (in ray order) are among them; the rest are never formatted.
-    std::vector<std::pair<std::string_view, std::size_t>> kept;
-    auto keep = [&](std::string_view kind) {
-      for (auto& [k, n] : kept)
-        if (k == kind) return n++ < opt.reproducers;
-      kept.emplace_back(kind, 1);
-      return opt.reproducers > 0;
-    };
-    std::vector<MeshHit> near;
-    std::vector<double> near_t;  // correctly rounded t of each near crossing (when more than one)
-    for (std::size_t i = begin; i < end; ++i) {
-      const Ray<double>& r = rays.rays[i];
-      const CasterAnswer& a = answers[i];
-      const std::size_t set = rays.set[i];
-      ++T.set_rays[set];
-      const std::string& set_name = rays.names[set];
-      auto caster_text = [&] {
-        if (a.failed) return std::string("failed");
-        return fmt::format("tri {} t {}", a.triangle, num(a.t));
-      };
-      // exact_text and caster_answer: callables giving the text, called only for a kept reproducer.
-      auto finding = [&](std::size_t& counter, const char* kind, auto&& exact_text, auto&& caster_answer) {
-        ++counter;
-        ++T.set_findings[set];
-        if (!keep(kind)) return;
-        T.reps.push_back({kind, i,
-                          fmt::format("{} set={} mesh={} ray {} exact: {} caster: {}", kind, set_name, s.name,
-                                      ray_text(r), exact_text(), caster_answer())});
-      };
-      auto text = [](const char* t) { return [t] { return std::string(t); }; };
-      ++c.rays;
-      if (!r.valid()) {
-        ++c.invalid_rays;
-        if (a.failed) finding(c.invalid_failures, "invalid-ray-failure", text("invalid"), caster_text);
-        else if (a.triangle != -1 || a.any == 1) finding(c.invalid_hit, "invalid-ray-hit", text("invalid"), caster_text);
-        continue;
-      }
-      if (a.failed) {
-        finding(c.caster_failures, "caster-failure", text("-"), text("failed"));
-        continue;
-      }
-      const MeshHit e = s.caster.closest(r, kPositive);
-      // The exact first crossing: every crossing whose certified t is within 4 ulps of the winner's
-      // (certified t values are within 1 ulp of the rounded exact ones, so a triangle crossed first
-      // exactly, or tied, is among them). With one such crossing it is the first; with several,
-      // their correctly rounded t decide (ties to the lowest triangle number).
-      std::uint32_t first = e.triangle;
-      bool first_coplanar = e.contact == Contact::coplanar;
-      std::optional<double> m;  // the first crossing's correctly rounded t, computed when needed
-      near.clear(), near_t.clear();
-      auto rounded = [&](const MeshHit& h) {
-        std::optional<double> rt;
-        if (h.contact != Contact::coplanar) rt = round_t(r, s.triangle(h.triangle), h.t);
-        return rt ? *rt : exact_contact(r, s.triangle(h.triangle)).k.t;
-      };
-      if (e.hit()) {
-        double lo = e.t, hi = e.t;
-        for (int k = 0; k < 4; ++k) lo = next_down(lo), hi = next_up(hi);
-        near = s.caster.all(r, {std::max(lo, kPositive.tmin), hi});
-        if (near.size() > 1) {
-          double best = kInf;
-          for (const MeshHit& h : near) {
-            near_t.push_back(rounded(h));
-            if (near_t.back() < best || (near_t.back() == best && h.triangle < first))
-              best = near_t.back(), first = h.triangle, first_coplanar = h.contact == Contact::coplanar;
-          }
-          m = best;
-        }
-      }
-      auto first_t = [&] {
-        if (!m) m = rounded(e);
-        return *m;
-      };
-      auto exact_text = [&] {
-        if (!e.hit()) return std::string("miss");
-        return fmt::format("tri {} t {} {}", first, num(first_t()), first_coplanar ? "coplanar" : "crossing");
-      };
-      if (e.hit()) ++c.hits;
-      // Occlusion.
-      if (a.any >= 0) {
-        ++c.any_rays;
-        if (e.hit() && a.any == 0) {
-          if (first_coplanar) ++c.any_coplanar_miss;
-          else finding(c.any_false_miss, "any-false-miss", exact_text, text("any 0"));
-        } else if (!e.hit() && a.any == 1) {
-          if (!s.caster.any(r, {0, kInf})) finding(c.any_false_hit, "any-false-hit", exact_text, text("any 1"));
-        }
-      }
-      // Closest.
-      const bool garbage = std::isnan(a.t) || a.triangle < -1 || a.triangle >= ntri ||
-                           (a.triangle == -1 && !(a.t == kInf)) || (a.triangle >= 0 && !(a.t >= 0 && a.t < kInf));
-      if (garbage) {
-        finding(c.garbage, "garbage", exact_text, caster_text);
-        continue;
-      }
-      const bool c_hit = a.triangle >= 0;
-      if (!e.hit() && !c_hit) continue;
-      if (!c_hit) {
-        if (first_coplanar) ++c.coplanar_miss;
-        else finding(c.false_miss, "false-miss", exact_text, caster_text), ++T.set_false_miss[set];
-        continue;
-      }
-      const auto claimed = static_cast<std::uint32_t>(a.triangle);
-      if (claimed == first && e.hit()) {
-        // The first crossing's triangle: t judged unless coplanar.
-        if (first_coplanar) continue;
-        // The reference in the caster's precision, from the certified t (within 1 ulp of the
-        // rounded exact t) where that decides it, else from the rounded exact t.
-        std::uint64_t d = 0;
-        bool exact_d = false;
-        const double tc = near_t.empty() ? e.t : first_t();
-        if (m) {
-          exact_d = true;
-          d = f32 ? ulp_distance(static_cast<float>(a.t), static_cast<float>(*m)) : ulp_distance(a.t, *m);
-        } else if (f32) {
-          const float fc = static_cast<float>(tc);
-          if (static_cast<float>(next_down(tc)) == fc && static_cast<float>(next_up(tc)) == fc) {
-            exact_d = true;
-            d = ulp_distance(static_cast<float>(a.t), fc);
-          }
-        } else {
-          const std::uint64_t d0 = ulp_distance(a.t, tc);  // the true distance is within 1 of it
-          if (d0 >= 3 && d0 + 1 <= c.max_ulps) exact_d = true, d = d0;  // over 1 ulp, and not a new maximum
-        }
-        if (!exact_d) {
-          const double t_ref = first_t();
-          d = f32 ? ulp_distance(static_cast<float>(a.t), static_cast<float>(t_ref)) : ulp_distance(a.t, t_ref);
-        }
-        c.max_ulps = std::max(c.max_ulps, d);
-        if (d > 1)
-          finding(c.t_over_1ulp, "t-error", exact_text, [&] {
-            const double t_ref = first_t();
-            const std::uint64_t dd =
-                f32 ? ulp_distance(static_cast<float>(a.t), static_cast<float>(t_ref)) : ulp_distance(a.t, t_ref);
-            return caster_text() + fmt::format(" ({} ulps of {})", dd, f32 ? "float" : "double");
-          });
-        continue;
-      }
-      // Another triangle: among the near crossings, or tested exactly.
-      Contact1 k;
-      ExactContact hc;
-      std::size_t at = near.size();
-      for (std::size_t j = 0; j < near.size(); ++j)
-        if (near[j].triangle == claimed) at = j;
-      if (at < near.size()) {
-        k = {near[at].contact == Contact::coplanar ? Contact1::coplanar : Contact1::point,
-             near_t.empty() ? rounded(near[at]) : near_t[at]};
-      } else {
-        hc = exact_contact(r, s.triangle(claimed));
-        k = hc.k;
-      }
-      if (k.kind == Contact1::origin && a.t == 0) continue;  // the origin lies on the claimed triangle
-      if (!e.hit()) {
-        finding(c.false_hit, "false-hit", exact_text, caster_text);
-        continue;
-      }
-      if (k.kind == Contact1::none || k.kind == Contact1::origin) {
-        finding(c.wrong_triangle, "wrong-triangle", exact_text,
-                [&] { return fmt::format("{} (not crossed at t > 0: {})", caster_text(), to_string(hc.contact)); });
-        continue;
-      }
-      const double mt = first_t();
-      if (k.t != mt) {
-        const std::uint64_t dt = f32 ? ulp_distance(static_cast<float>(k.t), static_cast<float>(mt)) : ulp_distance(k.t, mt);
-        if (dt <= 1) ++c.wrong_triangle_near;
-        finding(c.wrong_triangle, "wrong-triangle", exact_text,
-                [&] { return fmt::format("{} (crossed at t {})", caster_text(), num(k.t)); });
-        continue;
-      }
-      // A triangle tied with the first crossing: t judged against the same exact t.
-      if (k.kind != Contact1::point || first_coplanar) continue;
-      const std::uint64_t d = f32 ? ulp_distance(static_cast<float>(a.t), static_cast<float>(mt)) : ulp_distance(a.t, mt);
-      c.max_ulps = std::max(c.max_ulps, d);
-      if (d > 1)
-        finding(c.t_over_1ulp, "t-error", exact_text,
-                [&] { return caster_text() + fmt::format(" ({} ulps of {})", d, f32 ? "float" : "double"); });
-    }
-  };
-
+  const JudgeInputs in{*state_, rays, answers, opt, opt.precision == CasterPrecision::float32};
   // Chunks in ray order; each its own tally, merged in order (deterministic reproducers).
   const std::size_t n = rays.rays.size(), chunk = 512;
-  const std::size_t chunks = (n + chunk - 1) / chunk;
-  std::vector<Tally> parts(chunks);
+  std::vector<ChunkTally> chunks((n + chunk - 1) / chunk);
   auto run = [&] {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chunks, 1), [&](const tbb::blocked_range<std::size_t>& b) {
-      for (std::size_t k = b.begin(); k < b.end(); ++k) judge_range(k * chunk, std::min(n, (k + 1) * chunk), parts[k]);
-    });
+    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chunks.size(), 1),
+                      [&](const tbb::blocked_range<std::size_t>& range) {
+                        for (std::size_t k = range.begin(); k < range.end(); ++k)
+                          judge_chunk(in, k * chunk, std::min(n, (k + 1) * chunk), chunks[k]);
+                      });
   };
   if (opt.threads > 0) tbb::task_arena(opt.threads).execute(run);
   else run();
-
-  CasterCheck out;
-  std::vector<std::size_t> set_rays(nsets, 0), set_findings(nsets, 0), set_false_miss(nsets, 0);
-  std::vector<std::size_t> kept_per_kind;
-  std::vector<std::string> kinds;
-  for (Tally& p : parts) {
-    const CasterCheck& c = p.c;
-    out.rays += c.rays, out.hits += c.hits, out.false_miss += c.false_miss, out.coplanar_miss += c.coplanar_miss;
-    out.false_hit += c.false_hit, out.wrong_triangle += c.wrong_triangle, out.t_over_1ulp += c.t_over_1ulp;
-    out.wrong_triangle_near += c.wrong_triangle_near;
-    out.max_ulps = std::max(out.max_ulps, c.max_ulps);
-    out.garbage += c.garbage, out.caster_failures += c.caster_failures, out.any_rays += c.any_rays;
-    out.any_false_miss += c.any_false_miss, out.any_false_hit += c.any_false_hit;
-    out.any_coplanar_miss += c.any_coplanar_miss, out.invalid_rays += c.invalid_rays;
-    out.invalid_hit += c.invalid_hit, out.invalid_failures += c.invalid_failures;
-    for (std::size_t k = 0; k < nsets && k < p.set_rays.size(); ++k)
-      set_rays[k] += p.set_rays[k], set_findings[k] += p.set_findings[k], set_false_miss[k] += p.set_false_miss[k];
-    for (CasterReproducer& r : p.reps) {
-      const auto it = std::find(kinds.begin(), kinds.end(), r.kind);
-      std::size_t at = static_cast<std::size_t>(it - kinds.begin());
-      if (it == kinds.end()) kinds.push_back(r.kind), kept_per_kind.push_back(0);
-      if (kept_per_kind[at]++ < opt.reproducers) out.reproducers.push_back(std::move(r));
-    }
-  }
-  for (std::size_t k = 0; k < nsets; ++k) out.sets.push_back({rays.names[k], set_rays[k], set_findings[k], set_false_miss[k]});
-  out.notes = rays.notes;
-  return out;
+  return merge_chunks(chunks, rays, opt);
 }
 
 // ---- running a caster ---------------------------------------------------------------------------
@@ -448,59 +559,45 @@ void run_caster(const ClosestCaster& closest, const AnyCaster& any, std::span<co
   }
 }
 
-CasterCheck check_caster(const ClosestCaster& closest, const CasterMesh& mesh, const CasterCheckOptions& opt,
-                         const AnyCaster& any) {
-  const CasterRays rays = caster_rays(mesh, opt);
+namespace {
+
+/// The caster run on `rays`, then judged; the first exception it threw is noted.
+CasterTally run_and_judge(const ClosestCaster& closest, const AnyCaster& any, const CasterMesh& mesh,
+                          const CasterRays& rays, const CasterCheckOptions& opt) {
   std::vector<CasterAnswer> answers(rays.rays.size());
   std::string error;
   run_caster(closest, any, rays.rays, opt.batch, answers, error);
-  CasterCheck c = CasterJudge(mesh).judge(rays, answers, opt);
-  if (!error.empty()) c.notes.push_back("the caster threw: " + error);
-  return c;
+  CasterTally tally = CasterJudge(mesh).judge(rays, answers, opt);
+  if (!error.empty()) tally.notes.push_back("the caster threw: " + error);
+  return tally;
 }
 
-CasterCheck check_caster(const ClosestCaster& closest, const CasterMesh& mesh, std::span<const Ray<double>> user_rays,
+}  // namespace
+
+CasterTally check_caster(const ClosestCaster& closest, const CasterMesh& mesh, const CasterCheckOptions& opt,
+                         const AnyCaster& any) {
+  return run_and_judge(closest, any, mesh, caster_rays(mesh, opt), opt);
+}
+
+CasterTally check_caster(const ClosestCaster& closest, const CasterMesh& mesh, std::span<const Ray<double>> user_rays,
                          const CasterCheckOptions& opt, const AnyCaster& any) {
   CasterRays rays;
   rays.rays.assign(user_rays.begin(), user_rays.end());
   rays.set.assign(rays.rays.size(), 0);
   rays.names = {"user"};
-  std::vector<CasterAnswer> answers(rays.rays.size());
-  std::string error;
-  run_caster(closest, any, rays.rays, opt.batch, answers, error);
-  CasterCheck c = CasterJudge(mesh).judge(rays, answers, opt);
-  if (!error.empty()) c.notes.push_back("the caster threw: " + error);
-  return c;
+  return run_and_judge(closest, any, mesh, rays, opt);
 }
 
-std::string summary_text(const CasterCheck& c) {
-  std::string s;
-  auto line = [&](const char* name, std::uint64_t v) { s += fmt::format("{:<18} {}\n", name, v); };
-  line("rays", c.rays);
-  line("hits", c.hits);
-  line("false_miss", c.false_miss);
-  line("coplanar_miss", c.coplanar_miss);
-  line("false_hit", c.false_hit);
-  line("wrong_triangle", c.wrong_triangle);
-  line("  within_1ulp", c.wrong_triangle_near);
-  line("t_over_1ulp", c.t_over_1ulp);
-  line("max_ulps", c.max_ulps);
-  line("garbage", c.garbage);
-  line("caster_failures", c.caster_failures);
-  if (c.any_rays) {
-    line("any_rays", c.any_rays);
-    line("any_false_miss", c.any_false_miss);
-    line("any_false_hit", c.any_false_hit);
-    line("any_coplanar_miss", c.any_coplanar_miss);
-  }
-  line("invalid_rays", c.invalid_rays);
-  line("invalid_hit", c.invalid_hit);
-  line("invalid_failures", c.invalid_failures);
-  line("findings", c.findings());
-  for (const auto& st : c.sets) s += fmt::format("set {:<10} rays {:>7}  findings {:>7}  false_miss {}\n", st.set, st.rays, st.findings, st.false_miss);
-  for (const auto& n : c.notes) s += "note: " + n + "\n";
-  for (const auto& r : c.reproducers) s += r.line + "\n";
-  return s;
+std::string summary_text(const CasterTally& tally) {
+  std::string text;
+  for (const CasterCounter& counter : kCasterCounters)
+    if (shown(tally, counter)) text += fmt::format("{:<18} {}\n", text_label(counter), count_of(tally, counter));
+  for (const auto& set : tally.sets)
+    text += fmt::format("set {:<10} rays {:>7}  findings {:>7}  false_miss {}\n", set.set, set.rays, set.findings,
+                        set.false_miss);
+  for (const auto& note : tally.notes) text += "note: " + note + "\n";
+  for (const auto& reproducer : tally.reproducers) text += reproducer.line + "\n";
+  return text;
 }
 
 }  // namespace rayproof::verify

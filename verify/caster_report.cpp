@@ -17,17 +17,18 @@ namespace {
 template <class Method>
 CasterReportRow builtin(const char* name, const CasterMesh& mesh, const CasterRays& rays, const CasterJudge& judge,
                         const CasterCheckOptions& opt) {
-  const MeshCaster<Method> c(VertexArray(&mesh.vertices[0].x, mesh.vertices.size()),
-                             IndexArray{mesh.triangles[0].data(), mesh.triangles.size()});
+  const MeshCaster<Method> caster(VertexArray(&mesh.vertices[0].x, mesh.vertices.size()),
+                                  IndexArray{mesh.triangles[0].data(), mesh.triangles.size()});
   std::vector<MeshHit> hits(rays.rays.size());
   const TRange range{std::numeric_limits<double>::denorm_min(), std::numeric_limits<double>::infinity()};
-  c.closest(rays.rays, {&range, 1}, hits, opt.threads);
+  caster.closest(rays.rays, {&range, 1}, hits, opt.threads);
   std::vector<CasterAnswer> answers(rays.rays.size());
   for (std::size_t i = 0; i < hits.size(); ++i) {
     answers[i].t = hits[i].hit() ? hits[i].t : std::numeric_limits<double>::infinity();
     answers[i].triangle = hits[i].hit() ? std::int64_t(hits[i].triangle) : -1;
   }
-  return {fmt::format("rayproof {}", name), "built-in", mesh.name, mesh.triangles.size(), judge.judge(rays, answers, opt), {}};
+  return {fmt::format("rayproof {}", name), "built-in", mesh.name, mesh.triangles.size(),
+          judge.judge(rays, answers, opt), {}};
 }
 
 std::string html_escape(const std::string& s) {
@@ -43,28 +44,6 @@ std::string html_escape(const std::string& s) {
   }
   return o;
 }
-
-struct Column {
-  const char* name;
-  std::uint64_t (*get)(const CasterCheck&);
-};
-
-const Column kColumns[] = {
-    {"rays", [](const CasterCheck& c) -> std::uint64_t { return c.rays; }},
-    {"hits", [](const CasterCheck& c) -> std::uint64_t { return c.hits; }},
-    {"false_miss", [](const CasterCheck& c) -> std::uint64_t { return c.false_miss; }},
-    {"coplanar_miss", [](const CasterCheck& c) -> std::uint64_t { return c.coplanar_miss; }},
-    {"false_hit", [](const CasterCheck& c) -> std::uint64_t { return c.false_hit; }},
-    {"wrong_triangle", [](const CasterCheck& c) -> std::uint64_t { return c.wrong_triangle; }},
-    {"of them within 1 ulp", [](const CasterCheck& c) -> std::uint64_t { return c.wrong_triangle_near; }},
-    {"t_over_1ulp", [](const CasterCheck& c) -> std::uint64_t { return c.t_over_1ulp; }},
-    {"max_ulps", [](const CasterCheck& c) -> std::uint64_t { return c.max_ulps; }},
-    {"garbage", [](const CasterCheck& c) -> std::uint64_t { return c.garbage; }},
-    {"caster_failures", [](const CasterCheck& c) -> std::uint64_t { return c.caster_failures; }},
-    {"invalid_hit", [](const CasterCheck& c) -> std::uint64_t { return c.invalid_hit; }},
-    {"invalid_failures", [](const CasterCheck& c) -> std::uint64_t { return c.invalid_failures; }},
-    {"findings", [](const CasterCheck& c) -> std::uint64_t { return c.findings(); }},
-};
 
 }  // namespace
 
@@ -100,10 +79,11 @@ void write_caster_report(const std::string& dir, const std::vector<CasterReportR
       "<h1>Casters under the exact test</h1>\n<p>" +
       html_escape(intro) + "</p>\n<table>\n<tr><th>caster</th><th>mesh</th>";
   std::string sep = "|---|---|";
-  for (const Column& col : kColumns) {
-    md += fmt::format(" {} |", col.name);
+  for (const CasterCounter& counter : kCasterCounters) {
+    if (!counter.report_column) continue;
+    md += fmt::format(" {} |", column_label(counter));
     sep += "---|";
-    html += fmt::format("<th>{}</th>", html_escape(col.name));
+    html += fmt::format("<th>{}</th>", html_escape(std::string(column_label(counter))));
   }
   md += "\n" + sep + "\n";
   html += "</tr>\n";
@@ -112,9 +92,10 @@ void write_caster_report(const std::string& dir, const std::vector<CasterReportR
     md += fmt::format("| {} | {} |", is_builtin ? r.caster : "**" + r.caster + "**", r.mesh);
     html += fmt::format("<tr{}><td>{}</td><td>{}</td>", is_builtin ? " class=\"builtin\"" : "",
                         html_escape(is_builtin ? r.caster : r.caster + " (" + r.command + ")"), html_escape(r.mesh));
-    for (const Column& col : kColumns) {
-      md += fmt::format(" {} |", col.get(r.check));
-      html += fmt::format("<td>{}</td>", col.get(r.check));
+    for (const CasterCounter& counter : kCasterCounters) {
+      if (!counter.report_column) continue;
+      md += fmt::format(" {} |", count_of(r.tally, counter));
+      html += fmt::format("<td>{}</td>", count_of(r.tally, counter));
     }
     md += "\n";
     html += "</tr>\n";
@@ -123,12 +104,12 @@ void write_caster_report(const std::string& dir, const std::vector<CasterReportR
   md += "\n## Reproducers and events\n";
   html += "<h2>Reproducers and events</h2>\n";
   for (const auto& r : rows) {
-    if (r.check.reproducers.empty() && r.events.empty() && r.check.notes.empty()) continue;
+    if (r.tally.reproducers.empty() && r.events.empty() && r.tally.notes.empty()) continue;
     md += fmt::format("\n### {} on {}\n\n```\n", r.caster, r.mesh);
     html += fmt::format("<h3>{} on {}</h3>\n<pre>", html_escape(r.caster), html_escape(r.mesh));
     for (const auto& e : r.events) md += "event: " + e + "\n", html += html_escape("event: " + e) + "\n";
-    for (const auto& n : r.check.notes) md += "note: " + n + "\n", html += html_escape("note: " + n) + "\n";
-    for (const auto& p : r.check.reproducers) md += p.line + "\n", html += html_escape(p.line) + "\n";
+    for (const auto& n : r.tally.notes) md += "note: " + n + "\n", html += html_escape("note: " + n) + "\n";
+    for (const auto& p : r.tally.reproducers) md += p.line + "\n", html += html_escape(p.line) + "\n";
     md += "```\n";
     html += "</pre>\n";
   }

@@ -13,7 +13,7 @@ struct CasterReportRow {
   std::string command;  ///< how it ran ("built-in" for rayproof's)
   std::string mesh;
   std::size_t triangles = 0;
-  CasterCheck check;
+  CasterTally tally;
   std::vector<std::string> events;  ///< crashes, hangs, garbage
 };
 

@@ -50,29 +50,14 @@ py::array_t<T, py::array::c_style | py::array::forcecast> column(py::handle obj,
   return out;
 }
 
-py::dict result_dict(const verify::CasterCheck& c) {
+/// The tally as Python's dict: every counter by its key (in kCasterCounters' order), then per-set
+/// counts, reproducers and notes.
+py::dict result_dict(const verify::CasterTally& tally) {
   py::dict d;
-  d["rays"] = c.rays;
-  d["hits"] = c.hits;
-  d["false_miss"] = c.false_miss;
-  d["coplanar_miss"] = c.coplanar_miss;
-  d["false_hit"] = c.false_hit;
-  d["wrong_triangle"] = c.wrong_triangle;
-  d["wrong_triangle_within_1ulp"] = c.wrong_triangle_near;
-  d["t_over_1ulp"] = c.t_over_1ulp;
-  d["max_ulps"] = c.max_ulps;
-  d["garbage"] = c.garbage;
-  d["caster_failures"] = c.caster_failures;
-  d["any_rays"] = c.any_rays;
-  d["any_false_miss"] = c.any_false_miss;
-  d["any_false_hit"] = c.any_false_hit;
-  d["any_coplanar_miss"] = c.any_coplanar_miss;
-  d["invalid_rays"] = c.invalid_rays;
-  d["invalid_hit"] = c.invalid_hit;
-  d["invalid_failures"] = c.invalid_failures;
-  d["findings"] = c.findings();
+  for (const verify::CasterCounter& counter : verify::kCasterCounters)
+    d[py::str(std::string(counter.key))] = verify::count_of(tally, counter);
   py::dict sets;
-  for (const auto& s : c.sets) {
+  for (const auto& s : tally.sets) {
     py::dict e;
     e["rays"] = s.rays;
     e["findings"] = s.findings;
@@ -81,9 +66,9 @@ py::dict result_dict(const verify::CasterCheck& c) {
   }
   d["sets"] = sets;
   py::list reps;
-  for (const auto& r : c.reproducers) reps.append(r.line);
+  for (const auto& r : tally.reproducers) reps.append(r.line);
   d["reproducers"] = reps;
-  d["notes"] = c.notes;
+  d["notes"] = tally.notes;
   return d;
 }
 
@@ -180,26 +165,36 @@ py::dict check_caster(py::function fn, py::handle vertices, py::handle triangles
   std::string error;
   verify::run_caster(closest, any, ray_set.rays, opt.batch, answers, error);
   if (interrupt) throw std::move(*interrupt);
-  verify::CasterCheck c;
+  verify::CasterTally tally;
   try {
     py::gil_scoped_release unlocked;
-    c = verify::CasterJudge(mesh).judge(ray_set, answers, opt);
+    tally = verify::CasterJudge(mesh).judge(ray_set, answers, opt);
   } catch (const MeshInputError& e) {
     throw py::value_error(std::string("vertices/triangles: ") + e.what());
   }
-  if (!error.empty()) c.notes.push_back("the function raised: " + error);
-  return result_dict(c);
+  if (!error.empty()) tally.notes.push_back("the function raised: " + error);
+  return result_dict(tally);
+}
+
+/// The counters' keys, comma-separated, in lines of at most 100 characters, the first of them
+/// after `first_line_used` characters (for the docstring).
+std::string count_keys(std::size_t first_line_used) {
+  std::string text;
+  std::size_t line = first_line_used;
+  for (const verify::CasterCounter& counter : verify::kCasterCounters) {
+    const bool last = &counter == &verify::kCasterCounters[std::size(verify::kCasterCounters) - 1];
+    const std::string word = std::string(counter.key) + (last ? "" : ",");
+    if (!text.empty() && line + 1 + word.size() > 100) text += "\n", line = 0;
+    else if (!text.empty()) text += " ", ++line;
+    text += word, line += word.size();
+  }
+  return text;
 }
 
 }  // namespace
 
 void bind_check_caster(py::module_& m) {
-  m.def("check_caster", &check_caster, py::arg("fn"), py::arg("vertices"), py::arg("triangles"), py::kw_only(),
-        py::arg("any_fn") = py::none(), py::arg("precision") = "double", py::arg("random_rays") = 2000,
-        py::arg("max_rays_per_set") = 20000, py::arg("seed") = 1, py::arg("sets") = py::none(),
-        py::arg("batch") = 4096, py::arg("reproducers") = 5, py::arg("rays") = py::none(),
-        py::arg("mesh_name") = "mesh", py::arg("threads") = 0,
-        R"(Judge a whole ray caster on a mesh against exact arithmetic.
+  static const std::string doc = R"(Judge a whole ray caster on a mesh against exact arithmetic.
 
 fn(origins, directions) takes (n, 3) float64 arrays and returns (t, triangle): the closest crossing
 at t > 0 of each ray, t (float) and the triangle's row in `triangles` (int), inf and -1 for a miss.
@@ -209,10 +204,13 @@ precision ('double' or 'float') sets the ulps t errors are counted in. The rays:
 directions). An exception fn raises fails that batch's rays (counted in caster_failures, or
 invalid_failures on invalid rays), and the run goes on.
 
-Returns a dict of counts (rays, hits, false_miss, coplanar_miss, false_hit, wrong_triangle, wrong_triangle_within_1ulp,
-t_over_1ulp, max_ulps, garbage, caster_failures, any_false_miss, any_false_hit, any_coplanar_miss,
-invalid_rays, invalid_hit, invalid_failures, findings), per-set counts (`sets`), one-line
-`reproducers` and `notes`. docs/check.md explains each count.)");
+Returns a dict of counts ()" + count_keys(std::string_view("Returns a dict of counts (").size()) + R"(),
+per-set counts (`sets`), one-line `reproducers` and `notes`. docs/check.md explains each count.)";
+  m.def("check_caster", &check_caster, py::arg("fn"), py::arg("vertices"), py::arg("triangles"), py::kw_only(),
+        py::arg("any_fn") = py::none(), py::arg("precision") = "double", py::arg("random_rays") = 2000,
+        py::arg("max_rays_per_set") = 20000, py::arg("seed") = 1, py::arg("sets") = py::none(),
+        py::arg("batch") = 4096, py::arg("reproducers") = 5, py::arg("rays") = py::none(),
+        py::arg("mesh_name") = "mesh", py::arg("threads") = 0, doc.c_str());
 }
 
 }  // namespace rayproof::python

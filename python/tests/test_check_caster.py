@@ -128,6 +128,13 @@ def test_own_rays_and_bad_arguments():
     D = np.array([[1.0, 1.0, 1.0], [1.0, 0.0, 0.0]])
     res = rayproof.check_caster(fn, v, f, rays=(O, D))
     assert res["rays"] == 2 and res["hits"] == 1 and res["findings"] == 0
+    # The dict's keys, in order: every count (the keys of `rayproof check --caster --json`), then
+    # the per-set counts, reproducers and notes.
+    assert list(res) == ["rays", "hits", "false_miss", "coplanar_miss", "false_hit", "wrong_triangle",
+                         "wrong_triangle_within_1ulp", "t_over_1ulp", "max_ulps", "garbage", "caster_failures",
+                         "any_rays", "any_false_miss", "any_false_hit", "any_coplanar_miss", "invalid_rays",
+                         "invalid_hit", "invalid_failures", "findings", "sets", "reproducers", "notes"]
+    assert all(key in rayproof.check_caster.__doc__ for key in list(res)[:19])
     with pytest.raises(ValueError, match="precision"):
         rayproof.check_caster(fn, v, f, precision="half")
     with pytest.raises(ValueError, match="triangles"):

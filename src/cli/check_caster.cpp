@@ -28,6 +28,22 @@ struct CasterMeshInput {
   mesh::Mesh mesh;
 };
 
+/// One caster's run on one mesh, as `--json` prints it: every count of the tally shown (by its
+/// key), per-set counts, events, reproducers and notes.
+nlohmann::json run_json(const NamedCaster& caster, const CasterMeshInput& mesh, const verify::CasterTally& tally,
+                        const verify::ExecCasterRun& run) {
+  nlohmann::json sets = nlohmann::json::object();
+  for (const auto& s : tally.sets) sets[s.set] = {{"rays", s.rays}, {"findings", s.findings}, {"false_miss", s.false_miss}};
+  nlohmann::json reproducers = nlohmann::json::array();
+  for (const auto& r : tally.reproducers) reproducers.push_back(r.line);
+  nlohmann::json out = {{"caster", caster.name}, {"command", caster.command}, {"mesh", mesh.name},
+                        {"triangles", mesh.mesh.triangles.size()}, {"sets", sets}, {"events", run.events},
+                        {"starts", run.starts}, {"reproducers", reproducers}, {"notes", tally.notes}};
+  for (const verify::CasterCounter& counter : verify::kCasterCounters)
+    if (verify::shown(tally, counter)) out[std::string(counter.key)] = verify::count_of(tally, counter);
+  return out;
+}
+
 }  // namespace
 
 int run_caster_check(const CheckCliOptions& o) {
@@ -88,69 +104,58 @@ int run_caster_check(const CheckCliOptions& o) {
     }
   }
 
-  verify::ExecCasterOptions eo;
-  eo.timeout_seconds = o.caster_timeout;
-  eo.batch = o.caster_batch;
+  verify::ExecCasterOptions exec_opt;
+  exec_opt.timeout_seconds = o.caster_timeout;
+  exec_opt.batch = o.caster_batch;
   bool any_finding = false;
-  nlohmann::json jruns = nlohmann::json::array();
+  nlohmann::json json_runs = nlohmann::json::array();
   std::vector<verify::CasterReportRow> report_rows;
   if (!o.json)
     fmt::print("rayproof check --caster: {} precision; crossings at t > 0 judged against rayproof's certified caster "
                "and exact per-triangle tests (docs/check.md)\n",
                o.caster_precision);
   for (const auto& m : meshes) {
-    const verify::CasterMesh cm{m.mesh.vertices, m.mesh.triangles, m.name};
+    const verify::CasterMesh caster_mesh{m.mesh.vertices, m.mesh.triangles, m.name};
     verify::CasterRays rays;
     std::optional<verify::CasterJudge> judge;
     try {
-      rays = verify::caster_rays(cm, opt);
-      judge.emplace(cm);
+      rays = verify::caster_rays(caster_mesh, opt);
+      judge.emplace(caster_mesh);
     } catch (const std::exception& e) {
       fmt::print(stderr, "rayproof check: {}: {}\n", m.name, e.what());
       return 2;
     }
-    for (const auto& c : casters) {
-      fmt::print(stderr, "[caster] {} on {}: {} rays\n", c.name, m.name, rays.rays.size());
-      const verify::ExecCasterRun run = verify::run_exec_caster(c.command, cm, rays, eo);
-      verify::CasterCheck res = judge->judge(rays, run.answers, opt);
-      any_finding = any_finding || res.findings() > 0;
+    for (const auto& caster : casters) {
+      fmt::print(stderr, "[caster] {} on {}: {} rays\n", caster.name, m.name, rays.rays.size());
+      const verify::ExecCasterRun run = verify::run_exec_caster(caster.command, caster_mesh, rays, exec_opt);
+      const verify::CasterTally tally = judge->judge(rays, run.answers, opt);
+      any_finding = any_finding || tally.findings() > 0;
       if (!o.out.empty())
-        report_rows.push_back({c.name, c.command, m.name, m.mesh.triangles.size(), res, run.events});
+        report_rows.push_back({caster.name, caster.command, m.name, m.mesh.triangles.size(), tally, run.events});
       if (o.json) {
-        nlohmann::json sets = nlohmann::json::object();
-        for (const auto& s : res.sets) sets[s.set] = {{"rays", s.rays}, {"findings", s.findings}, {"false_miss", s.false_miss}};
-        nlohmann::json reps = nlohmann::json::array();
-        for (const auto& r : res.reproducers) reps.push_back(r.line);
-        jruns.push_back({{"caster", c.name}, {"command", c.command}, {"mesh", m.name},
-                         {"triangles", m.mesh.triangles.size()}, {"rays", res.rays}, {"hits", res.hits},
-                         {"false_miss", res.false_miss}, {"coplanar_miss", res.coplanar_miss},
-                         {"false_hit", res.false_hit}, {"wrong_triangle", res.wrong_triangle},
-                         {"wrong_triangle_within_1ulp", res.wrong_triangle_near},
-                         {"t_over_1ulp", res.t_over_1ulp}, {"max_ulps", res.max_ulps}, {"garbage", res.garbage},
-                         {"caster_failures", res.caster_failures}, {"invalid_rays", res.invalid_rays},
-                         {"invalid_hit", res.invalid_hit}, {"invalid_failures", res.invalid_failures},
-                         {"findings", res.findings()}, {"sets", sets}, {"events", run.events},
-                         {"starts", run.starts}, {"reproducers", reps}, {"notes", res.notes}});
+        json_runs.push_back(run_json(caster, m, tally, run));
         continue;
       }
-      fmt::print("\ncaster '{}' ({}) on {} ({} triangles): {} rays, started {} time{}\n", c.name, c.command, m.name,
-                 m.mesh.triangles.size(), res.rays, run.starts, run.starts == 1 ? "" : "s");
-      fmt::print("{}", verify::summary_text(res));
+      fmt::print("\ncaster '{}' ({}) on {} ({} triangles): {} rays, started {} time{}\n", caster.name,
+                 caster.command, m.name, m.mesh.triangles.size(), tally.rays, run.starts, run.starts == 1 ? "" : "s");
+      fmt::print("{}", verify::summary_text(tally));
       for (const auto& e : run.events) fmt::print("event: {}\n", e);
-      if (res.findings() == 0)
-        fmt::print("caster '{}' answered all {} rays on {} as exact arithmetic does (t within 1 ulp)\n", c.name,
-                   res.rays, m.name);
+      if (tally.findings() == 0)
+        fmt::print("caster '{}' answered all {} rays on {} as exact arithmetic does (t within 1 ulp)\n", caster.name,
+                   tally.rays, m.name);
       else
-        fmt::print("caster '{}' differs from exact on {} of {} rays on {}\n", c.name, res.findings(), res.rays, m.name);
+        fmt::print("caster '{}' differs from exact on {} of {} rays on {}\n", caster.name, tally.findings(),
+                   tally.rays, m.name);
     }
   }
   if (!o.out.empty()) {
     // rayproof's own casters on the same rays, beside the casters under test.
     for (const auto& m : meshes) {
-      const verify::CasterMesh cm{m.mesh.vertices, m.mesh.triangles, m.name};
-      const verify::CasterRays rays = verify::caster_rays(cm, opt);
-      const verify::CasterJudge judge(cm);
-      for (auto& row : verify::builtin_caster_rows(cm, rays, judge, opt)) report_rows.push_back(std::move(row));
+      const verify::CasterMesh caster_mesh{m.mesh.vertices, m.mesh.triangles, m.name};
+      const verify::CasterRays rays = verify::caster_rays(caster_mesh, opt);
+      const verify::CasterJudge judge(caster_mesh);
+      for (auto& row : verify::builtin_caster_rows(caster_mesh, rays, judge, opt))
+        report_rows.push_back(std::move(row));
     }
     try {
       verify::write_caster_report(o.out, report_rows, o.caster_precision);
@@ -160,7 +165,7 @@ int run_caster_check(const CheckCliOptions& o) {
       return 2;
     }
   }
-  if (o.json) fmt::print("{}\n", nlohmann::json{{"casters", jruns}, {"findings", any_finding}}.dump(1));
+  if (o.json) fmt::print("{}\n", nlohmann::json{{"casters", json_runs}, {"findings", any_finding}}.dump(1));
   return any_finding ? 1 : 0;
 }
 

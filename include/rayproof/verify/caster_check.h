@@ -5,8 +5,8 @@
 ///
 ///   auto mine = [&](std::span<const Vec3<double>> o, std::span<const Vec3<double>> d,
 ///                   std::span<double> t, std::span<std::int64_t> tri) { ... };  // miss: inf, -1
-///   const verify::CasterCheck c = verify::check_caster(mine, {vertices, triangles});
-///   if (c.findings()) for (const auto& r : c.reproducers) std::cout << r.line << '\n';
+///   const verify::CasterTally tally = verify::check_caster(mine, {vertices, triangles});
+///   if (tally.findings()) for (const auto& r : tally.reproducers) std::cout << r.line << '\n';
 ///
 /// The caster answers, for each ray o + t d, its closest crossing with the mesh: t and the
 /// triangle's number (its position in the triangle array), or t = inf and -1 for a miss. Optionally
@@ -14,28 +14,11 @@
 ///
 /// The reference is exact: rayproof's certified MeshCaster (exact class, conservative traversal)
 /// gives the first crossing; exact per-triangle tests (rayproof/verify/exact.h, t correctly
-/// rounded) decide whether the caster's triangle is crossed, at what t, and ties. Per ray:
-///  - false_miss      the ray crosses the mesh (first contact not coplanar); the caster answered a miss
-///  - coplanar_miss   the first contact is a ray lying in a triangle's plane; the caster answered a
-///                    miss (counted apart: many engines treat such rays as misses by design)
-///  - false_hit       the ray crosses nothing at t > 0; the caster answered a hit
-///  - wrong_triangle  the caster's triangle is not crossed, or crossed farther than the first
-///                    crossing (ties, triangles whose exact t rounds to the same double, are all right);
-///                    wrong_triangle_near counts those of them crossed within 1 ulp (of the caster's
-///                    precision) of the first crossing: near ties a caster of that precision cannot order
-///  - t_over_1ulp     right triangle (or a tied one), t more than 1 ulp from the exact t, in ulps of
-///                    the caster's precision (exact t rounded to double, then to float for a float
-///                    caster); max_ulps the largest such error. A ray whose first contact is coplanar
-///                    is not judged on t. A ray whose origin lies on the caster's triangle (exact
-///                    t = 0) is right with t = 0 only.
-///  - garbage         an answer that is not a miss or a hit: t NaN, a triangle out of range, a
-///                    finite t with triangle -1, a hit with t < 0 or infinite
-///  - caster_failures the caster threw on the batch holding the ray (the run goes on)
-///  - any_false_miss, any_false_hit, any_coplanar_miss: the same for the occlusion answers
-///  - invalid rays (a NaN or infinite component, or d = 0) have no crossing: counted in
-///    invalid_rays; a hit answered on one in invalid_hit (a finding), a failure in invalid_failures
-///    (a finding: the caster must not throw on them).
-/// Each finding keeps a one-line reproducer (the first `reproducers` of each kind, by ray).
+/// rounded) decide whether the caster's triangle is crossed, at what t, and ties. The judgement is
+/// a CasterTally: one count per kind of answer (kCasterCounters below says what each one counts),
+/// counts per ray set, and one-line reproducers (the first `reproducers` of each kind, by ray).
+/// A ray whose first contact is coplanar is not judged on t; a ray whose origin lies on the
+/// caster's triangle (exact t = 0) is right with t = 0 only.
 ///
 /// Ray sets (caster_rays): `leak` rays from interior points of closed meshes through every vertex
 /// and edge midpoint; `graze` rays along random view directions through silhouette edges; `face`
@@ -53,6 +36,7 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "rayproof/ray.h"
@@ -112,20 +96,165 @@ struct CasterSetCounts {
   std::size_t rays = 0, findings = 0, false_miss = 0;
 };
 
-struct CasterCheck {
-  std::size_t rays = 0, hits = 0;  ///< rays judged; rays with an exact crossing at t > 0
-  std::size_t false_miss = 0, coplanar_miss = 0, false_hit = 0, wrong_triangle = 0, wrong_triangle_near = 0;
-  std::size_t t_over_1ulp = 0;
-  std::uint64_t max_ulps = 0;
-  std::size_t garbage = 0, caster_failures = 0;
-  std::size_t any_rays = 0, any_false_miss = 0, any_false_hit = 0, any_coplanar_miss = 0;
-  std::size_t invalid_rays = 0, invalid_hit = 0, invalid_failures = 0;
+/// The counts of a judgement (what each one counts: kCasterCounters).
+struct CasterCounts {
+  std::uint64_t rays = 0, hits = 0;
+  std::uint64_t false_miss = 0, coplanar_miss = 0, false_hit = 0, wrong_triangle = 0, wrong_triangle_near = 0;
+  std::uint64_t t_over_1ulp = 0, max_ulps = 0;
+  std::uint64_t garbage = 0, caster_failures = 0;
+  std::uint64_t any_rays = 0, any_false_miss = 0, any_false_hit = 0, any_coplanar_miss = 0;
+  std::uint64_t invalid_rays = 0, invalid_hit = 0, invalid_failures = 0;
+  /// Every counted finding: the sum of the counters marked `finding` (coplanar misses and t errors
+  /// within 1 ulp are not findings).
+  [[nodiscard]] constexpr std::uint64_t findings() const;
+};
+
+/// One counter of a CasterTally: the one place its name, meaning and use are written down. The
+/// summary text, `rayproof check --caster --json`, the report's columns and Python's dict are made
+/// from kCasterCounters, in its order.
+struct CasterCounter {
+  std::string_view key;  ///< the JSON and Python key; the text and report label unless given below
+  std::uint64_t CasterCounts::*member = nullptr;  ///< null for `findings` (the sum of the findings)
+  bool finding = false;      ///< added into findings()
+  bool maximum = false;      ///< merged as the largest value (else added up)
+  bool occlusion = false;    ///< a count of occlusion answers: in the text and JSON only when any_rays > 0
+  bool report_column = true; ///< a column of `check --caster --out`'s report
+  std::string_view text_label = {};    ///< the summary text's label, when not the key
+  std::string_view column_label = {};  ///< the report's column header, when not the key
+  std::string_view meaning = {};       ///< per ray: the caster's answer that is counted
+};
+
+inline constexpr CasterCounter kCasterCounters[] = {
+    {.key = "rays", .member = &CasterCounts::rays, .meaning = "judged (every ray given)"},
+    {.key = "hits",
+     .member = &CasterCounts::hits,
+     .meaning = "an answer (not a failure) to a valid ray that has an exact crossing at t > 0"},
+    {.key = "false_miss",
+     .member = &CasterCounts::false_miss,
+     .finding = true,
+     .meaning = "a miss, where the ray crosses the mesh (its first contact not coplanar)"},
+    {.key = "coplanar_miss",
+     .member = &CasterCounts::coplanar_miss,
+     .meaning = "a miss, where the first contact is a ray lying in a triangle's plane (not a finding: many "
+                "engines treat such rays as misses by design)"},
+    {.key = "false_hit",
+     .member = &CasterCounts::false_hit,
+     .finding = true,
+     .meaning = "a hit, where the ray crosses nothing at t > 0"},
+    {.key = "wrong_triangle",
+     .member = &CasterCounts::wrong_triangle,
+     .finding = true,
+     .meaning = "a triangle not crossed, or crossed farther than the first crossing (ties, triangles whose exact t "
+                "rounds to the same double, are all right)"},
+    {.key = "wrong_triangle_within_1ulp",
+     .member = &CasterCounts::wrong_triangle_near,
+     .text_label = "  within_1ulp",
+     .column_label = "of them within 1 ulp",
+     .meaning = "of the wrong triangles, those crossed within 1 ulp (of the caster's precision) of the first "
+                "crossing: near ties a caster of that precision cannot order"},
+    {.key = "t_over_1ulp",
+     .member = &CasterCounts::t_over_1ulp,
+     .finding = true,
+     .meaning = "the right (or a tied) triangle, t more than 1 ulp of the caster's precision from the exact t "
+                "(rounded to double, then to float for a float caster)"},
+    {.key = "max_ulps",
+     .member = &CasterCounts::max_ulps,
+     .maximum = true,
+     .meaning = "the largest t error in ulps over the rays judged on t"},
+    {.key = "garbage",
+     .member = &CasterCounts::garbage,
+     .finding = true,
+     .meaning = "not a miss nor a hit: t NaN, a triangle out of range, a finite t with triangle -1, a hit with "
+                "t < 0 or infinite"},
+    {.key = "caster_failures",
+     .member = &CasterCounts::caster_failures,
+     .finding = true,
+     .meaning = "none: the caster threw (or crashed, hung, wrote an unreadable line) on the ray's batch"},
+    {.key = "any_rays",
+     .member = &CasterCounts::any_rays,
+     .occlusion = true,
+     .report_column = false,
+     .meaning = "judged on an occlusion answer"},
+    {.key = "any_false_miss",
+     .member = &CasterCounts::any_false_miss,
+     .finding = true,
+     .occlusion = true,
+     .report_column = false,
+     .meaning = "occlusion 0, where the ray crosses the mesh (its first contact not coplanar)"},
+    {.key = "any_false_hit",
+     .member = &CasterCounts::any_false_hit,
+     .finding = true,
+     .occlusion = true,
+     .report_column = false,
+     .meaning = "occlusion 1, where the ray touches nothing at t >= 0"},
+    {.key = "any_coplanar_miss",
+     .member = &CasterCounts::any_coplanar_miss,
+     .occlusion = true,
+     .report_column = false,
+     .meaning = "occlusion 0, where the first contact is coplanar (not a finding)"},
+    {.key = "invalid_rays",
+     .member = &CasterCounts::invalid_rays,
+     .report_column = false,
+     .meaning = "a ray with a NaN or infinite component, or d = 0: it has no crossing"},
+    {.key = "invalid_hit",
+     .member = &CasterCounts::invalid_hit,
+     .finding = true,
+     .meaning = "an answer other than a miss (triangle -1), or occlusion 1, to an invalid ray"},
+    {.key = "invalid_failures",
+     .member = &CasterCounts::invalid_failures,
+     .finding = true,
+     .meaning = "none on an invalid ray: the caster failed (it must not throw on them)"},
+    {.key = "findings", .meaning = "every counted finding: the sum of the counts above marked as findings"},
+};
+
+constexpr std::uint64_t CasterCounts::findings() const {
+  std::uint64_t sum = 0;
+  for (const CasterCounter& counter : kCasterCounters)
+    if (counter.finding) sum += this->*counter.member;
+  return sum;
+}
+
+/// Every counter of CasterCounts is in kCasterCounters once, and `findings` (no member) once: a
+/// counter added to the struct and not to the table does not compile.
+constexpr bool every_counter_once_in_table() {
+  std::size_t derived = 0;
+  for (std::size_t i = 0; i < std::size(kCasterCounters); ++i) {
+    if (!kCasterCounters[i].member) ++derived;
+    for (std::size_t j = 0; j < i; ++j)
+      if (kCasterCounters[i].key == kCasterCounters[j].key ||
+          (kCasterCounters[i].member && kCasterCounters[i].member == kCasterCounters[j].member))
+        return false;
+  }
+  return derived == 1 && (std::size(kCasterCounters) - 1) * sizeof(std::uint64_t) == sizeof(CasterCounts);
+}
+static_assert(every_counter_once_in_table());
+
+/// The value of a counter in `counts`.
+[[nodiscard]] constexpr std::uint64_t count_of(const CasterCounts& counts, const CasterCounter& counter) {
+  return counter.member ? counts.*counter.member : counts.findings();
+}
+/// The counter's label in the summary text, and in the report's header.
+[[nodiscard]] constexpr std::string_view text_label(const CasterCounter& counter) {
+  return counter.text_label.empty() ? counter.key : counter.text_label;
+}
+[[nodiscard]] constexpr std::string_view column_label(const CasterCounter& counter) {
+  return counter.column_label.empty() ? counter.key : counter.column_label;
+}
+/// Whether the summary text and JSON show the counter (occlusion counts only when asked).
+[[nodiscard]] constexpr bool shown(const CasterCounts& counts, const CasterCounter& counter) {
+  return !counter.occlusion || counts.any_rays > 0;
+}
+
+/// What check_caster and CasterJudge::judge find: the counts, per ray set, with reproducers.
+struct CasterTally : CasterCounts {
   std::vector<CasterSetCounts> sets;
   std::vector<CasterReproducer> reproducers;
   std::vector<std::string> notes;
-  /// Every counted finding (coplanar misses and t errors within 1 ulp are not findings).
-  [[nodiscard]] std::size_t findings() const;
 };
+
+/// CasterTally's name in 0.1, kept for one release (to go after 0.2): the type holds a tally, it
+/// does not check anything.
+using CasterCheck [[deprecated("verify::CasterCheck is now verify::CasterTally")]] = CasterTally;
 
 /// The ray sets for a mesh (deterministic for the options).
 [[nodiscard]] CasterRays caster_rays(const CasterMesh& mesh, const CasterCheckOptions& opt = {});
@@ -138,19 +267,19 @@ class CasterJudge {
   CasterJudge(CasterJudge&&) noexcept;
   CasterJudge& operator=(CasterJudge&&) noexcept;
   /// Judges answers[i] to rays.rays[i] (sizes must match; std::invalid_argument otherwise).
-  [[nodiscard]] CasterCheck judge(const CasterRays& rays, std::span<const CasterAnswer> answers,
+  [[nodiscard]] CasterTally judge(const CasterRays& rays, std::span<const CasterAnswer> answers,
                                   const CasterCheckOptions& opt = {}) const;
 
  private:
   struct State;
-  std::unique_ptr<State> s_;
+  std::unique_ptr<State> state_;
 };
 
 /// caster_rays, the caster called batch by batch (an exception fails that batch's rays), judge.
-[[nodiscard]] CasterCheck check_caster(const ClosestCaster& closest, const CasterMesh& mesh,
+[[nodiscard]] CasterTally check_caster(const ClosestCaster& closest, const CasterMesh& mesh,
                                        const CasterCheckOptions& opt = {}, const AnyCaster& any = {});
 /// The same on rays you give (the `set` of every ray "user").
-[[nodiscard]] CasterCheck check_caster(const ClosestCaster& closest, const CasterMesh& mesh,
+[[nodiscard]] CasterTally check_caster(const ClosestCaster& closest, const CasterMesh& mesh,
                                        std::span<const Ray<double>> rays, const CasterCheckOptions& opt = {},
                                        const AnyCaster& any = {});
 
@@ -160,6 +289,6 @@ void run_caster(const ClosestCaster& closest, const AnyCaster& any, std::span<co
                 std::size_t batch, std::span<CasterAnswer> out, std::string& error);
 
 /// The counts as text, one `name value` per line, then the reproducers.
-[[nodiscard]] std::string summary_text(const CasterCheck& c);
+[[nodiscard]] std::string summary_text(const CasterTally& tally);
 
 }  // namespace rayproof::verify

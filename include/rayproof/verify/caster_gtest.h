@@ -6,7 +6,7 @@
 ///   EXPECT_CASTER_MATCHES_EXACT(mine, (rayproof::verify::CasterMesh{vertices, triangles}));
 ///   ASSERT_CASTER_MATCHES_EXACT(mine, mesh);
 ///
-/// It passes when check_caster finds nothing (CasterCheck::findings() == 0: no false miss, false
+/// It passes when check_caster finds nothing (CasterTally::findings() == 0: no false miss, false
 /// hit, wrong triangle, t error above 1 ulp, garbage answer, exception, or hit on an invalid ray),
 /// on the default ray sets and options; a failure prints the counts and the one-line reproducers.
 #include <gtest/gtest.h>
@@ -19,11 +19,11 @@ namespace rayproof::gtest {
 inline ::testing::AssertionResult caster_matches_exact(const verify::ClosestCaster& caster,
                                                        const verify::CasterMesh& mesh,
                                                        const verify::CasterCheckOptions& opt = {}) {
-  const verify::CasterCheck c = verify::check_caster(caster, mesh, opt);
-  if (c.findings() == 0) return ::testing::AssertionSuccess();
-  return ::testing::AssertionFailure() << "the caster differs from exact on " << c.findings() << " of " << c.rays
-                                       << " rays:\n"
-                                       << verify::summary_text(c);
+  const verify::CasterTally tally = verify::check_caster(caster, mesh, opt);
+  if (tally.findings() == 0) return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure() << "the caster differs from exact on " << tally.findings() << " of "
+                                       << tally.rays << " rays:\n"
+                                       << verify::summary_text(tally);
 }
 
 }  // namespace rayproof::gtest
