@@ -1,13 +1,13 @@
-/// rayproof::certified::fallback::intersect (verify/fallback.h): the certified tier's exact
-/// fallback, the exact algorithm (exact_algorithms.h) instantiated on gmpxx's mpq_class and a small
-/// vector of them, with the shared MPFR rounding (exact_rounding.h). GMP and MPFR only, no CGAL:
+/// rayproof::certified::fallback::intersect (exact/fallback.h): the certified tier's exact
+/// fallback, the exact algorithm (algorithms.h) instantiated on gmpxx's mpq_class and a small
+/// vector of them, with the shared MPFR rounding (rounding.h). GMP and MPFR only, no CGAL:
 /// rayproof_certified links without it. The ground truth (exact_cgal.cpp) is the same algorithm
 /// on CGAL's kernel.
-#include "verify/fallback.h"
+#include "exact/fallback.h"
 
 #include <gmpxx.h>
 
-#include "verify/exact_algorithms.h"
+#include "exact/algorithms.h"
 
 namespace rayproof::certified::fallback {
 
@@ -23,7 +23,7 @@ struct QVec {
 [[nodiscard]] QVec operator+(const QVec& a, const QVec& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
 [[nodiscard]] QVec operator*(const mpq_class& s, const QVec& a) { return {s * a.x, s * a.y, s * a.z}; }
 
-/// The kernel of exact_algorithms.h over gmpxx. Every finite double is a rational, so an input
+/// The kernel of algorithms.h over gmpxx. Every finite double is a rational, so an input
 /// converts exactly (mpq_set_d); the algorithm screens NaN and infinities out first.
 struct GmpxxKernel {
   using Q = mpq_class;
