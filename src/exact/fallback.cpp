@@ -1,6 +1,6 @@
 /// rayproof::certified::fallback::intersect (exact/fallback.h): the certified tier's exact
-/// fallback, the exact algorithm (algorithms.h) instantiated on gmpxx's mpq_class and a small
-/// vector of them, with the shared MPFR rounding (rounding.h). GMP and MPFR only, no CGAL:
+/// fallback, the exact algorithm (algorithms.h) instantiated on gmpxx's mpq_class and its vector
+/// (rational_vec.h), with the shared MPFR rounding (rounding.h). GMP and MPFR only, no CGAL:
 /// rayproof_certified links without it. The ground truth (exact_cgal.cpp) is the same algorithm
 /// on CGAL's kernel.
 #include "exact/fallback.h"
@@ -8,20 +8,13 @@
 #include <gmpxx.h>
 
 #include "exact/algorithms.h"
+#include "exact/rational_vec.h"
 
 namespace rayproof::certified::fallback {
 
 namespace {
 
-/// A point or vector with rational coordinates. The arithmetic is spelled out, each product
-/// materialized, so that no gmpxx expression template outlives its operands.
-struct QVec {
-  mpq_class x, y, z;
-};
-
-[[nodiscard]] QVec operator-(const QVec& a, const QVec& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-[[nodiscard]] QVec operator+(const QVec& a, const QVec& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-[[nodiscard]] QVec operator*(const mpq_class& s, const QVec& a) { return {s * a.x, s * a.y, s * a.z}; }
+using exact_algo::QVec;
 
 /// The kernel of algorithms.h over gmpxx. Every finite double is a rational, so an input
 /// converts exactly (mpq_set_d); the algorithm screens NaN and infinities out first.
@@ -30,12 +23,10 @@ struct GmpxxKernel {
   using Point = QVec;
   using Vector = QVec;
 
-  static QVec point(const Vec3<double>& v) { return {Q(v.x), Q(v.y), Q(v.z)}; }
-  static QVec vector(const Vec3<double>& v) { return point(v); }
-  static Q dot(const QVec& a, const QVec& b) { return Q(a.x * b.x) + Q(a.y * b.y) + Q(a.z * b.z); }
-  static QVec cross(const QVec& a, const QVec& b) {
-    return {Q(a.y * b.z) - Q(a.z * b.y), Q(a.z * b.x) - Q(a.x * b.z), Q(a.x * b.y) - Q(a.y * b.x)};
-  }
+  static QVec point(const Vec3<double>& v) { return exact_algo::rational(v); }
+  static QVec vector(const Vec3<double>& v) { return exact_algo::rational(v); }
+  static Q dot(const QVec& a, const QVec& b) { return exact_algo::dot(a, b); }
+  static QVec cross(const QVec& a, const QVec& b) { return exact_algo::cross(a, b); }
   /// det[a; b; c] = a . (b x c).
   static Q det(const QVec& a, const QVec& b, const QVec& c) { return dot(a, cross(b, c)); }
   static int sign(const Q& q) { return sgn(q); }

@@ -9,6 +9,8 @@
 #include <limits>
 #include <vector>
 
+#include "exact/rational_vec.h"
+#include "exact/rounding.h"
 #include "scene/contains_exact.h"
 #include "scene/distance_tree.h"
 
@@ -17,12 +19,8 @@ namespace rayproof::detail {
 namespace {
 
 using Q = mpq_class;
-struct QV {
-  Q x, y, z;
-};
-QV qv(const Vec3<double>& v) { return {Q(v.x), Q(v.y), Q(v.z)}; }
-QV sub(const QV& a, const QV& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-Q dot(const QV& a, const QV& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+using QV = exact_algo::QVec;
+using exact_algo::rational;
 
 /// The exact closest point of a triangle: squared distance and barycentrics (weights of a, b, c).
 struct Exact {
@@ -31,19 +29,19 @@ struct Exact {
 
 /// Closest point of segment a-b (weights 1 - t, t).
 void segment(const QV& p, const QV& a, const QV& b, Q& d2, Q& t) {
-  const QV ab = sub(b, a), ap = sub(p, a);
+  const QV ab = b - a, ap = p - a;
   const Q len = dot(ab, ab), s = dot(ab, ap);
   if (len == 0 || s <= 0) t = 0;
   else if (s >= len) t = 1;
   else t = s / len;
   const QV q{a.x + t * ab.x, a.y + t * ab.y, a.z + t * ab.z};
-  const QV d = sub(p, q);
+  const QV d = p - q;
   d2 = dot(d, d);
 }
 
 }  // namespace
 Exact exact_triangle(const Vec3<double>& pd, const std::array<Vec3<double>, 3>& t, bool degenerate) {
-  const QV p = qv(pd), a = qv(t[0]), b = qv(t[1]), c = qv(t[2]);
+  const QV p = rational(pd), a = rational(t[0]), b = rational(t[1]), c = rational(t[2]);
   Exact r;
   if (degenerate) {  // a zero-area triangle is its three edges: the nearest, the first on ties
     Q d2, s;
@@ -56,17 +54,17 @@ Exact exact_triangle(const Vec3<double>& pd, const std::array<Vec3<double>, 3>& 
     return r;
   }
   // The Voronoi regions of the vertices, edges and face, decided by exact signs.
-  const QV ab = sub(b, a), ac = sub(c, a), ap = sub(p, a);
+  const QV ab = b - a, ac = c - a, ap = p - a;
   const Q d1 = dot(ab, ap), d2 = dot(ac, ap);
   auto finish = [&](const Q& u, const Q& v, const Q& w) {
     r.u = u, r.v = v, r.w = w;
     const QV q{u * a.x + v * b.x + w * c.x, u * a.y + v * b.y + w * c.y, u * a.z + v * b.z + w * c.z};
-    const QV d = sub(p, q);
+    const QV d = p - q;
     r.d2 = dot(d, d);
     return r;
   };
   if (d1 <= 0 && d2 <= 0) return finish(1, 0, 0);
-  const QV bp = sub(p, b);
+  const QV bp = p - b;
   const Q d3 = dot(ab, bp), d4 = dot(ac, bp);
   if (d3 >= 0 && d4 <= d3) return finish(0, 1, 0);
   const Q vc = d1 * d4 - d3 * d2;
@@ -74,7 +72,7 @@ Exact exact_triangle(const Vec3<double>& pd, const std::array<Vec3<double>, 3>& 
     const Q v = d1 / (d1 - d3);
     return finish(1 - v, v, 0);
   }
-  const QV cp = sub(p, c);
+  const QV cp = p - c;
   const Q d5 = dot(ab, cp), d6 = dot(ac, cp);
   if (d6 >= 0 && d5 <= d6) return finish(0, 0, 1);
   const Q vb = d5 * d2 - d1 * d6;
@@ -93,16 +91,7 @@ Exact exact_triangle(const Vec3<double>& pd, const std::array<Vec3<double>, 3>& 
 }
 
 namespace {
-double to_double(const Q& q) {
-  // mpq_get_d truncates; through MPFR to the nearest (and the exponent range of MPFR).
-  mpfr_t x;
-  mpfr_init2(x, 53);
-  mpfr_set_q(x, q.get_mpq_t(), MPFR_RNDN);
-  const double d = mpfr_get_d(x, MPFR_RNDN);
-  mpfr_clear(x);
-  return d;
-}
-
+double to_double(const Q& q) { return exact_algo::round_nearest(q.get_mpq_t()); }
 }  // namespace
 
 /// sqrt(d2) rounded to the nearest double, ties to even (d2 >= 0): a candidate from MPFR, then
@@ -173,7 +162,7 @@ ClosestPoint exact_select(const DistanceTree& t, const Vec3<double>& p, const st
 }
 
 ClosestPoint exact_search(const DistanceTree& t, const Vec3<double>& pd) {
-  const QV p = qv(pd);
+  const QV p = rational(pd);
   std::vector<std::uint32_t> stack{0};
   std::uint32_t best = 0;
   Exact be;
