@@ -4,7 +4,6 @@
 #include <gmpxx.h>
 #include <mpfr.h>
 
-#include <bit>
 #include <cmath>
 #include <limits>
 #include <vector>
@@ -95,41 +94,18 @@ double to_double(const Q& q) { return exact_algo::round_nearest(q.get_mpq_t()); 
 }  // namespace
 
 /// sqrt(d2) rounded to the nearest double, ties to even (d2 >= 0): a candidate from MPFR, then
-/// exact comparisons of d2 with the squares of the midpoints to the neighbouring doubles.
+/// exact comparisons of d2 with the squares of the midpoints to the neighbouring doubles
+/// (exact_algo::round_by_comparison, the rounding of the exact algorithm's quadric roots).
 double round_sqrt(const mpq_class& d2) {
   if (sgn(d2) == 0) return 0.0;
   mpfr_t x;
   mpfr_init2(x, 200);
   mpfr_set_q(x, d2.get_mpq_t(), MPFR_RNDN);
   mpfr_sqrt(x, x, MPFR_RNDN);
-  double r = mpfr_get_d(x, MPFR_RNDN);
+  const double candidate = mpfr_get_d(x, MPFR_RNDN);
   mpfr_clear(x);
-  const double inf = std::numeric_limits<double>::infinity();
-  const Q two1024 = Q(1) << 1024;
-  auto exact = [&](double d) { return std::isinf(d) ? two1024 : Q(d); };
-  auto odd = [](double d) { return std::isinf(d) || (std::bit_cast<std::uint64_t>(d) & 1u) != 0; };
-  for (int guard = 0; guard < 64; ++guard) {
-    if (!std::isinf(r)) {
-      const double up = std::nextafter(r, inf);
-      const Q m = (exact(r) + exact(up)) / 2;
-      const int c = cmp(d2, m * m);
-      if (c > 0 || (c == 0 && odd(r))) {
-        r = up;
-        continue;
-      }
-    }
-    if (r > 0) {
-      const double down = std::isinf(r) ? std::numeric_limits<double>::max() : std::nextafter(r, 0.0);
-      const Q m = (exact(down) + exact(r)) / 2;
-      const int c = cmp(d2, m * m);
-      if (c < 0 || (c == 0 && odd(r))) {
-        r = down;
-        continue;
-      }
-    }
-    break;
-  }
-  return r;
+  // sign(sqrt(d2) - m): sqrt(d2) > 0, so +1 for m <= 0; else the sign of d2 - m^2.
+  return exact_algo::round_by_comparison<Q>(candidate, [&](const Q& m) { return sgn(m) <= 0 ? 1 : cmp(d2, m * m); });
 }
 
 namespace {
