@@ -34,7 +34,7 @@
 #include "rayproof/triangle_plucker.h"
 #include "rayproof/triangle_watertight.h"
 #include "verify/exact_method.h"
-#include "verify/fallback.h"
+#include "exact/fallback.h"
 
 using namespace rayproof;
 
@@ -219,7 +219,7 @@ void register_all() {
     add("triangle", in, "plucker", tri, [](const TriCase& c) { return int(is_hit(intersect_plucker(c.ray, c.tri).contact)); });
     add("triangle", in, "certified", tri, [](const TriCase& c) { return certified_tri(c, nullptr); });
     // The typed library API (rayproof/certified/intersect.h: with barycentrics), the ground truth (rayproof/verify/exact.h, CGAL)
-    // and the certified tier's exact fallback alone (verify/fallback.h, GMP): the cost of one fallback.
+    // and the certified tier's exact fallback alone (src/exact/fallback.h, GMP): the cost of one fallback.
     add("triangle", in, "certified-api", tri, [](const TriCase& c) {
       return int(is_hit(certified::intersect(rc<double>(c.ray), tc<double>(c.tri)).contact));
     });

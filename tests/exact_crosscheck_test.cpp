@@ -1,4 +1,4 @@
-/// The two instantiations of the exact algorithm (verify/exact_algorithms.h) against each other:
+/// The two instantiations of the exact algorithm (src/exact/algorithms.h) against each other:
 /// the ground truth rayproof::exact::intersect (rayproof_verify, on CGAL's Gmpq and Simple_cartesian
 /// kernel) and the certified tier's exact fallback rayproof::certified::fallback::intersect
 /// (rayproof_certified, on gmpxx's mpq_class and its own vector operations, no CGAL). The algorithm
@@ -16,7 +16,7 @@
 #include "api_cases.h"
 #include "io/case_file.h"
 #include "rayproof/verify/exact.h"
-#include "verify/fallback.h"
+#include "exact/fallback.h"
 
 namespace rayproof {
 namespace {

@@ -1,13 +1,13 @@
 /// The certified method on case files: rayproof::certified's filters (header-only) first, its exact
-/// fallback (certified::fallback, GMP, verify/fallback.h) when they cannot decide: the same
+/// fallback (certified::fallback, GMP, src/exact/fallback.h) when they cannot decide: the same
 /// implementation as rayproof::certified::intersect, on a case's fields. It is judged against the
 /// `exact` method (CGAL): separate filters, and for the fallback the same exact algorithm
-/// (verify/exact_algorithms.h) on CGAL's kernel instead of gmpxx.
+/// (src/exact/algorithms.h) on CGAL's kernel instead of gmpxx.
 #include "verify/certified_method.h"
 
 #include "methods/primitive_of.h"
 #include "rayproof/certified/intersect.h"
-#include "verify/fallback.h"
+#include "exact/fallback.h"
 
 namespace rayproof::verify {
 

@@ -1,7 +1,7 @@
 #pragma once
 /// The certified method: the floating-point filters of rayproof/certified_*.h decide the class and
 /// pin T, T2 to one double ulp; whatever they leave undecided falls back to certified::fallback
-/// (GMP, verify/fallback.h), the same as rayproof::certified::intersect.
+/// (GMP, src/exact/fallback.h), the same as rayproof::certified::intersect.
 /// Its answers have the exact class on every case and T, T2 within 1 ulp of the exact ones.
 #include <cstdint>
 #include <optional>

@@ -1,18 +1,18 @@
 /// rayproof::exact::intersect (rayproof/verify/exact.h), the ground truth: the exact algorithm
-/// (exact_algorithms.h) instantiated on CGAL's exact kernel, Simple_cartesian<Gmpq> (GMP rationals;
+/// (src/exact/algorithms.h) instantiated on CGAL's exact kernel, Simple_cartesian<Gmpq> (GMP rationals;
 /// CGAL's Point_3, Vector_3, determinant and cross_product), with the shared MPFR rounding
-/// (exact_rounding.h). The certified tier's fallback (fallback.cpp) is the same algorithm on gmpxx.
+/// (src/exact/rounding.h). The certified tier's fallback (src/exact/fallback.cpp) is the same algorithm on gmpxx.
 #include <CGAL/Gmpq.h>
 #include <CGAL/Simple_cartesian.h>
 
 #include "rayproof/verify/exact.h"
-#include "verify/exact_algorithms.h"
+#include "exact/algorithms.h"
 
 namespace rayproof::exact {
 
 namespace {
 
-/// The kernel of exact_algorithms.h over CGAL. Every finite double is a rational, so an input
+/// The kernel of src/exact/algorithms.h over CGAL. Every finite double is a rational, so an input
 /// converts exactly (mpq_set_d); the algorithm screens NaN and infinities out first.
 struct CgalKernel {
   using Q = CGAL::Gmpq;

@@ -1,6 +1,6 @@
 /// The exact method: ground truth of docs/cases.md, on a case file's fields. The case becomes a typed
 /// ray and primitive (exactly: the fields are doubles) and goes through rayproof::exact::intersect
-/// (rayproof/verify/exact.h: the exact algorithm of exact_algorithms.h on CGAL's kernel, exact_cgal.cpp).
+/// (rayproof/verify/exact.h: the exact algorithm of src/exact/algorithms.h on CGAL's kernel, exact_cgal.cpp).
 #include "verify/exact_method.h"
 
 #include <cmath>

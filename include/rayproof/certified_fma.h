@@ -15,6 +15,7 @@
 #include <limits>
 #include <optional>
 
+#include "rayproof/certified_dd.h"
 #include "rayproof/certified_stage.h"
 #include "rayproof/float_util.h"
 #include "rayproof/hit.h"
@@ -62,10 +63,7 @@ namespace rayproof::certified::dd {
 
 #if RAYPROOF_FMA_PATH != 0
 
-/// hi + lo, not normalised (lo need not be below half an ulp of hi).
-struct DD {
-  double hi, lo;
-};
+// DD (certified_dd.h): hi + lo, not normalised here (lo need not be below half an ulp of hi).
 
 /// Exact a - b as two doubles (Knuth's two-sum; no overflow assumed: an overflow shows up as a
 /// non-finite value later).

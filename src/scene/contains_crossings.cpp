@@ -16,7 +16,6 @@
 // exact t in GMP rationals, and their t is then the exact t correctly rounded (MPFR), so the listed
 // t never decrease.
 #include <gmpxx.h>
-#include <mpfr.h>
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -27,6 +26,7 @@
 #include <string>
 #include <vector>
 
+#include "exact/rounding.h"
 #include "rayproof/certified/intersect.h"
 #include "rayproof/certified_expansion.h"
 #include "scene/contains_state.h"
@@ -59,15 +59,8 @@ mpq_class exact_t(const Ray<double>& r, const std::array<Vec3<double>, 3>& p) {
   return mpq_class(dot(sub(p0, q3(r.o)), n) / dot(q3(r.d), n));
 }
 
-/// x rounded to the nearest double (ties to even).
-double round_nearest(const mpq_class& x) {
-  mpfr_t r;
-  mpfr_init2(r, 53);
-  mpfr_set_q(r, x.get_mpq_t(), MPFR_RNDN);
-  const double d = mpfr_get_d(r, MPFR_RNDN);
-  mpfr_clear(r);
-  return d;
-}
+/// x rounded to the nearest double (ties to even), by the one correct rounding (src/exact/rounding.h).
+double round_nearest(const mpq_class& x) { return exact_algo::round_nearest(x.get_mpq_t()); }
 
 /// Sign of d . n, n = (p1 - p0) x (p2 - p0): in double when the error bound allows (every rounding
 /// counted: gamma_7 of the permanent, well inside 2^-49 of it), else in GMP.

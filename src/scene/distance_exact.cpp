@@ -4,11 +4,12 @@
 #include <gmpxx.h>
 #include <mpfr.h>
 
-#include <bit>
 #include <cmath>
 #include <limits>
 #include <vector>
 
+#include "exact/rational_vec.h"
+#include "exact/rounding.h"
 #include "scene/contains_exact.h"
 #include "scene/distance_tree.h"
 
@@ -17,12 +18,8 @@ namespace rayproof::detail {
 namespace {
 
 using Q = mpq_class;
-struct QV {
-  Q x, y, z;
-};
-QV qv(const Vec3<double>& v) { return {Q(v.x), Q(v.y), Q(v.z)}; }
-QV sub(const QV& a, const QV& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-Q dot(const QV& a, const QV& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+using QV = exact_algo::QVec;
+using exact_algo::rational;
 
 /// The exact closest point of a triangle: squared distance and barycentrics (weights of a, b, c).
 struct Exact {
@@ -31,19 +28,19 @@ struct Exact {
 
 /// Closest point of segment a-b (weights 1 - t, t).
 void segment(const QV& p, const QV& a, const QV& b, Q& d2, Q& t) {
-  const QV ab = sub(b, a), ap = sub(p, a);
+  const QV ab = b - a, ap = p - a;
   const Q len = dot(ab, ab), s = dot(ab, ap);
   if (len == 0 || s <= 0) t = 0;
   else if (s >= len) t = 1;
   else t = s / len;
   const QV q{a.x + t * ab.x, a.y + t * ab.y, a.z + t * ab.z};
-  const QV d = sub(p, q);
+  const QV d = p - q;
   d2 = dot(d, d);
 }
 
 }  // namespace
 Exact exact_triangle(const Vec3<double>& pd, const std::array<Vec3<double>, 3>& t, bool degenerate) {
-  const QV p = qv(pd), a = qv(t[0]), b = qv(t[1]), c = qv(t[2]);
+  const QV p = rational(pd), a = rational(t[0]), b = rational(t[1]), c = rational(t[2]);
   Exact r;
   if (degenerate) {  // a zero-area triangle is its three edges: the nearest, the first on ties
     Q d2, s;
@@ -56,17 +53,17 @@ Exact exact_triangle(const Vec3<double>& pd, const std::array<Vec3<double>, 3>& 
     return r;
   }
   // The Voronoi regions of the vertices, edges and face, decided by exact signs.
-  const QV ab = sub(b, a), ac = sub(c, a), ap = sub(p, a);
+  const QV ab = b - a, ac = c - a, ap = p - a;
   const Q d1 = dot(ab, ap), d2 = dot(ac, ap);
   auto finish = [&](const Q& u, const Q& v, const Q& w) {
     r.u = u, r.v = v, r.w = w;
     const QV q{u * a.x + v * b.x + w * c.x, u * a.y + v * b.y + w * c.y, u * a.z + v * b.z + w * c.z};
-    const QV d = sub(p, q);
+    const QV d = p - q;
     r.d2 = dot(d, d);
     return r;
   };
   if (d1 <= 0 && d2 <= 0) return finish(1, 0, 0);
-  const QV bp = sub(p, b);
+  const QV bp = p - b;
   const Q d3 = dot(ab, bp), d4 = dot(ac, bp);
   if (d3 >= 0 && d4 <= d3) return finish(0, 1, 0);
   const Q vc = d1 * d4 - d3 * d2;
@@ -74,7 +71,7 @@ Exact exact_triangle(const Vec3<double>& pd, const std::array<Vec3<double>, 3>& 
     const Q v = d1 / (d1 - d3);
     return finish(1 - v, v, 0);
   }
-  const QV cp = sub(p, c);
+  const QV cp = p - c;
   const Q d5 = dot(ab, cp), d6 = dot(ac, cp);
   if (d6 >= 0 && d5 <= d6) return finish(0, 0, 1);
   const Q vb = d5 * d2 - d1 * d6;
@@ -93,54 +90,22 @@ Exact exact_triangle(const Vec3<double>& pd, const std::array<Vec3<double>, 3>& 
 }
 
 namespace {
-double to_double(const Q& q) {
-  // mpq_get_d truncates; through MPFR to the nearest (and the exponent range of MPFR).
-  mpfr_t x;
-  mpfr_init2(x, 53);
-  mpfr_set_q(x, q.get_mpq_t(), MPFR_RNDN);
-  const double d = mpfr_get_d(x, MPFR_RNDN);
-  mpfr_clear(x);
-  return d;
-}
-
+double to_double(const Q& q) { return exact_algo::round_nearest(q.get_mpq_t()); }
 }  // namespace
 
 /// sqrt(d2) rounded to the nearest double, ties to even (d2 >= 0): a candidate from MPFR, then
-/// exact comparisons of d2 with the squares of the midpoints to the neighbouring doubles.
+/// exact comparisons of d2 with the squares of the midpoints to the neighbouring doubles
+/// (exact_algo::round_by_comparison, the rounding of the exact algorithm's quadric roots).
 double round_sqrt(const mpq_class& d2) {
   if (sgn(d2) == 0) return 0.0;
   mpfr_t x;
   mpfr_init2(x, 200);
   mpfr_set_q(x, d2.get_mpq_t(), MPFR_RNDN);
   mpfr_sqrt(x, x, MPFR_RNDN);
-  double r = mpfr_get_d(x, MPFR_RNDN);
+  const double candidate = mpfr_get_d(x, MPFR_RNDN);
   mpfr_clear(x);
-  const double inf = std::numeric_limits<double>::infinity();
-  const Q two1024 = Q(1) << 1024;
-  auto exact = [&](double d) { return std::isinf(d) ? two1024 : Q(d); };
-  auto odd = [](double d) { return std::isinf(d) || (std::bit_cast<std::uint64_t>(d) & 1u) != 0; };
-  for (int guard = 0; guard < 64; ++guard) {
-    if (!std::isinf(r)) {
-      const double up = std::nextafter(r, inf);
-      const Q m = (exact(r) + exact(up)) / 2;
-      const int c = cmp(d2, m * m);
-      if (c > 0 || (c == 0 && odd(r))) {
-        r = up;
-        continue;
-      }
-    }
-    if (r > 0) {
-      const double down = std::isinf(r) ? std::numeric_limits<double>::max() : std::nextafter(r, 0.0);
-      const Q m = (exact(down) + exact(r)) / 2;
-      const int c = cmp(d2, m * m);
-      if (c < 0 || (c == 0 && odd(r))) {
-        r = down;
-        continue;
-      }
-    }
-    break;
-  }
-  return r;
+  // sign(sqrt(d2) - m): sqrt(d2) > 0, so +1 for m <= 0; else the sign of d2 - m^2.
+  return exact_algo::round_by_comparison<Q>(candidate, [&](const Q& m) { return sgn(m) <= 0 ? 1 : cmp(d2, m * m); });
 }
 
 namespace {
@@ -173,7 +138,7 @@ ClosestPoint exact_select(const DistanceTree& t, const Vec3<double>& p, const st
 }
 
 ClosestPoint exact_search(const DistanceTree& t, const Vec3<double>& pd) {
-  const QV p = qv(pd);
+  const QV p = rational(pd);
   std::vector<std::uint32_t> stack{0};
   std::uint32_t best = 0;
   Exact be;

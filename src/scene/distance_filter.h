@@ -10,6 +10,8 @@
 #include <type_traits>
 #include <utility>
 
+#include "rayproof/certified_dd.h"
+#include "rayproof/float_util.h"
 #include "rayproof/vec3.h"
 
 namespace rayproof::detail::dist {
@@ -21,37 +23,13 @@ inline constexpr double kUp = 1 + 0x1p-48;
 /// Absolute slack for underflow in products (far above 2^-1074; below every normal-scale radius).
 inline constexpr double kEta = 0x1p-1060;
 
-struct DD {
-  double hi = 0, lo = 0;
-};
-inline DD two_sum(double a, double b) {
-  const double s = a + b, bb = s - a;
-  return {s, (a - (s - bb)) + (b - bb)};
-}
-inline DD fast_two_sum(double a, double b) {
-  const double s = a + b;
-  return {s, b - (s - a)};
-}
-inline DD vadd(DD a, DD b) {
-  const DD s = two_sum(a.hi, b.hi), t = two_sum(a.lo, b.lo);
-  const DD v = fast_two_sum(s.hi, s.lo + t.hi);
-  return fast_two_sum(v.hi, t.lo + v.lo);
-}
-inline DD vsub(DD a, DD b) { return vadd(a, DD{-b.hi, -b.lo}); }
-inline DD vmul(DD a, DD b) {
-  const double p = a.hi * b.hi;
-  double e = std::fma(a.hi, b.hi, -p);
-  e += a.hi * b.lo + a.lo * b.hi;
-  return fast_two_sum(p, e);
-}
-inline DD vdiv(DD a, DD b) {
-  const double q1 = a.hi / b.hi;
-  DD r = vsub(a, vmul(DD{q1, 0}, b));
-  const double q2 = r.hi / b.hi;
-  r = vsub(r, vmul(DD{q2, 0}, b));
-  const double q3 = r.hi / b.hi;
-  return vadd(fast_two_sum(q1, q2), DD{q3, 0});
-}
+/// The double-double of the certified filters (rayproof/certified_dd.h), beside plain double in
+/// the overloads below that the ball arithmetic is generic over.
+using DD = certified::dd::DD;
+inline DD vadd(DD a, DD b) { return certified::dd::sum(a, b); }
+inline DD vsub(DD a, DD b) { return certified::dd::difference(a, b); }
+inline DD vmul(DD a, DD b) { return certified::dd::product(a, b); }
+inline DD vdiv(DD a, DD b) { return certified::dd::quotient(a, b); }
 inline double vadd(double a, double b) { return a + b; }
 inline double vsub(double a, double b) { return a - b; }
 inline double vmul(double a, double b) { return a * b; }

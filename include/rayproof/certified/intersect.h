@@ -9,8 +9,8 @@
 ///    ulp, a coplanar range, a barycentric they cannot bound), the answer is std::nullopt:
 ///    *undecided*. A decided answer is final: intersect returns exactly that answer.
 ///  - intersect (compiled, link rayproof::certified: GMP and MPFR, no CGAL): try_intersect, then
-///    the certified tier's exact fallback (GMP rationals, MPFR; verify/fallback.cpp: the exact
-///    algorithm of rayproof/verify/exact.h, verify/exact_algorithms.h, on gmpxx instead of CGAL's kernel)
+///    the certified tier's exact fallback (GMP rationals, MPFR; src/exact/fallback.cpp: the exact
+///    algorithm of rayproof/verify/exact.h, src/exact/algorithms.h, on gmpxx instead of CGAL's kernel)
 ///    for whatever it left undecided. Always decided.
 ///
 /// What a decided answer guarantees (fields a class does not carry are NaN, as in rayproof/hit.h):

@@ -6,8 +6,8 @@
 /// and the certified tier (rayproof/certified/intersect.h) is judged against it.
 ///
 /// Compiled, in the verify component: link rayproof::verify (CGAL, GMP, MPFR). The exact algorithm
-/// (verify/exact_algorithms.h) runs on CGAL's exact kernel (Gmpq in Simple_cartesian), with MPFR
-/// for roots and roundings (verify/exact_cgal.cpp, verify/exact_rounding.cpp). rayproof::certified
+/// (src/exact/algorithms.h) runs on CGAL's exact kernel (Gmpq in Simple_cartesian), with MPFR
+/// for roots and roundings (verify/exact_cgal.cpp, src/exact/rounding.cpp). rayproof::certified
 /// (GMP, MPFR, no CGAL) does not provide this header's functions: its exact fallback is the same
 /// algorithm on gmpxx's mpq_class, checked against this one bit for bit
 /// (tests/exact_crosscheck_test.cpp).

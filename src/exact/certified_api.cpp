@@ -1,8 +1,8 @@
 /// rayproof::certified::intersect (rayproof/certified/intersect.h): the header-only filters, then the
-/// certified fallback (verify/fallback.h: exact, GMP, no CGAL) for what they leave undecided.
+/// certified fallback (exact/fallback.h: exact, GMP, no CGAL) for what they leave undecided.
 #include "rayproof/certified/intersect.h"
 
-#include "verify/fallback.h"
+#include "exact/fallback.h"
 
 namespace rayproof::certified {
 

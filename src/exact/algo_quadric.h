@@ -1,5 +1,5 @@
 #pragma once
-/// Exact ray/sphere and ray/ellipsoid, on a kernel K (exact_algo_kernel.h): the ray substituted
+/// Exact ray/sphere and ray/ellipsoid, on a kernel K (algo_kernel.h): the ray substituted
 /// into the implicit surface gives a t^2 + 2 b t + c = 0 with rational a > 0, b, c. Predicates
 /// decide the class from the signs of the discriminant disc = b^2 - a c, of c (product of the
 /// roots) and of b (minus their sum), without square roots. Constructions: a root (-b -+
@@ -10,8 +10,8 @@
 #include "rayproof/hit.h"
 #include "rayproof/ray.h"
 #include "rayproof/sphere.h"
-#include "verify/exact_algo_kernel.h"
-#include "verify/exact_rounding.h"
+#include "exact/algo_kernel.h"
+#include "exact/rounding.h"
 
 namespace rayproof::exact_algo {
 

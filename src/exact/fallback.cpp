@@ -1,41 +1,32 @@
-/// rayproof::certified::fallback::intersect (verify/fallback.h): the certified tier's exact
-/// fallback, the exact algorithm (exact_algorithms.h) instantiated on gmpxx's mpq_class and a small
-/// vector of them, with the shared MPFR rounding (exact_rounding.h). GMP and MPFR only, no CGAL:
+/// rayproof::certified::fallback::intersect (exact/fallback.h): the certified tier's exact
+/// fallback, the exact algorithm (algorithms.h) instantiated on gmpxx's mpq_class and its vector
+/// (rational_vec.h), with the shared MPFR rounding (rounding.h). GMP and MPFR only, no CGAL:
 /// rayproof_certified links without it. The ground truth (exact_cgal.cpp) is the same algorithm
 /// on CGAL's kernel.
-#include "verify/fallback.h"
+#include "exact/fallback.h"
 
 #include <gmpxx.h>
 
-#include "verify/exact_algorithms.h"
+#include "exact/algorithms.h"
+#include "exact/rational_vec.h"
 
 namespace rayproof::certified::fallback {
 
 namespace {
 
-/// A point or vector with rational coordinates. The arithmetic is spelled out, each product
-/// materialized, so that no gmpxx expression template outlives its operands.
-struct QVec {
-  mpq_class x, y, z;
-};
+using exact_algo::QVec;
 
-[[nodiscard]] QVec operator-(const QVec& a, const QVec& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-[[nodiscard]] QVec operator+(const QVec& a, const QVec& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-[[nodiscard]] QVec operator*(const mpq_class& s, const QVec& a) { return {s * a.x, s * a.y, s * a.z}; }
-
-/// The kernel of exact_algorithms.h over gmpxx. Every finite double is a rational, so an input
+/// The kernel of algorithms.h over gmpxx. Every finite double is a rational, so an input
 /// converts exactly (mpq_set_d); the algorithm screens NaN and infinities out first.
 struct GmpxxKernel {
   using Q = mpq_class;
   using Point = QVec;
   using Vector = QVec;
 
-  static QVec point(const Vec3<double>& v) { return {Q(v.x), Q(v.y), Q(v.z)}; }
-  static QVec vector(const Vec3<double>& v) { return point(v); }
-  static Q dot(const QVec& a, const QVec& b) { return Q(a.x * b.x) + Q(a.y * b.y) + Q(a.z * b.z); }
-  static QVec cross(const QVec& a, const QVec& b) {
-    return {Q(a.y * b.z) - Q(a.z * b.y), Q(a.z * b.x) - Q(a.x * b.z), Q(a.x * b.y) - Q(a.y * b.x)};
-  }
+  static QVec point(const Vec3<double>& v) { return exact_algo::rational(v); }
+  static QVec vector(const Vec3<double>& v) { return exact_algo::rational(v); }
+  static Q dot(const QVec& a, const QVec& b) { return exact_algo::dot(a, b); }
+  static QVec cross(const QVec& a, const QVec& b) { return exact_algo::cross(a, b); }
   /// det[a; b; c] = a . (b x c).
   static Q det(const QVec& a, const QVec& b, const QVec& c) { return dot(a, cross(b, c)); }
   static int sign(const Q& q) { return sgn(q); }

@@ -1,5 +1,5 @@
 #pragma once
-/// The kernel interface of the exact algorithm (verify/exact_algorithms.h) and its rounding
+/// The kernel interface of the exact algorithm (exact/algorithms.h) and its rounding
 /// helpers. Includes neither CGAL nor gmpxx.
 ///
 /// What K provides (all static; Q results may be taken by value or const reference):
@@ -10,7 +10,7 @@
 ///   dot(v, w), cross(v, w), det(u, v, w) = u . (v x w), is_zero(v), coord(v, i) (i = 0, 1, 2)
 ///   sign(q)                 -1, 0 or +1
 ///   mpq(q)                  the GMP rational behind q (mpq_srcptr), for the MPFR rounding
-#include "verify/exact_rounding.h"
+#include "exact/rounding.h"
 
 namespace rayproof::exact_algo {
 

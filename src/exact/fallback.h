@@ -2,7 +2,7 @@
 /// The certified tier's exact fallback (inside rayproof_certified: GMP rationals, MPFR roundings, no
 /// CGAL): what rayproof::certified::intersect returns when the header-only filters leave a case
 /// undecided. The same contract, and the same algorithm, as rayproof::exact::intersect
-/// (rayproof/verify/exact.h): verify/exact_algorithms.h, here instantiated on gmpxx's mpq_class
+/// (rayproof/verify/exact.h): exact/algorithms.h, here instantiated on gmpxx's mpq_class
 /// (fallback.cpp), there on CGAL's Simple_cartesian<Gmpq> (exact_cgal.cpp, in rayproof_verify).
 /// Class of exact arithmetic; t, t2 and triangle barycentrics rounded to nearest (ties to even);
 /// NaN for the fields a class does not carry. exact_crosscheck_test requires the two

@@ -1,5 +1,5 @@
 #pragma once
-/// Exact ray/plane and ray/disk, on a kernel K (exact_algo_kernel.h). Predicates: d . n = 0
+/// Exact ray/plane and ray/disk, on a kernel K (algo_kernel.h). Predicates: d . n = 0
 /// (parallel or coplanar by (p - o) . n); t = (p - o) . n / (d . n) has the sign of the product of
 /// the two signs; the disk test compares |P - c|^2 with r^2 at the plane point P, scaled by (d .
 /// n)^2 so that no division is needed. Construction: t rounded.
@@ -7,7 +7,7 @@
 #include "rayproof/hit.h"
 #include "rayproof/plane.h"
 #include "rayproof/ray.h"
-#include "verify/exact_algo_kernel.h"
+#include "exact/algo_kernel.h"
 
 namespace rayproof::exact_algo {
 

@@ -3,7 +3,7 @@
 /// subnormal range using the ternary value, which avoids double rounding. And the MPFR
 /// approximation of quadric roots. On GMP's mpq_t: one code for both instantiations of the exact
 /// algorithm (compiled into rayproof_certified, which rayproof_verify links).
-#include "verify/exact_rounding.h"
+#include "exact/rounding.h"
 
 #include <mpfr.h>
 

@@ -5,7 +5,7 @@
 ///    CGAL's Simple_cartesian<Gmpq> (Point_3, Vector_3, CGAL::determinant, CGAL::cross_product);
 ///  - the certified tier's fallback, rayproof::certified::fallback::intersect (fallback.cpp, in
 ///    rayproof_certified): K over gmpxx's mpq_class and a small vector of them, no CGAL.
-/// The MPFR rounding (exact_rounding.h) is one shared code. So the two differ only in the number
+/// The MPFR rounding (rounding.h) is one shared code. So the two differ only in the number
 /// type and the vector operations; exact_crosscheck_test checks that they agree bit for bit.
 /// This header includes neither CGAL nor gmpxx.
 ///
@@ -14,8 +14,8 @@
 /// class does not carry. Every finite double is a rational, so inputs convert exactly; NaN and
 /// infinities are screened out first (`invalid`), then zero sizes (`degenerate`).
 ///
-/// Parts: exact_algo_kernel.h (what K provides, rounding helpers), exact_algo_planar.h,
-/// exact_algo_quadric.h, exact_algo_box.h, exact_algo_triangle.h; here the entry.
+/// Parts: algo_kernel.h (what K provides, rounding helpers), algo_planar.h,
+/// algo_quadric.h, algo_box.h, algo_triangle.h; here the entry.
 ///
 /// The entry: the screening of docs/cases.md (invalid, then degenerate), on the doubles themselves, which
 /// is exact; then the algorithm of the kind. Only the triangle's degeneracy (collinear vertices)
@@ -23,10 +23,10 @@
 #include <cmath>
 
 #include "rayproof/vec3.h"
-#include "verify/exact_algo_box.h"
-#include "verify/exact_algo_planar.h"
-#include "verify/exact_algo_quadric.h"
-#include "verify/exact_algo_triangle.h"
+#include "exact/algo_box.h"
+#include "exact/algo_planar.h"
+#include "exact/algo_quadric.h"
+#include "exact/algo_triangle.h"
 
 namespace rayproof::exact_algo {
 

@@ -1,5 +1,5 @@
 #pragma once
-/// Exact ray/axis-aligned box, on a kernel K (exact_algo_kernel.h): the slab test (Kay & Kajiya) in
+/// Exact ray/axis-aligned box, on a kernel K (algo_kernel.h): the slab test (Kay & Kajiya) in
 /// rationals. An axis with d_i = 0 bounds nothing when lo_i <= o_i <= hi_i and misses otherwise;
 /// the others bound t by (lo_i - o_i) / d_i and (hi_i - o_i) / d_i. Entry T = the largest lower
 /// bound, exit T2 = the smallest upper bound, compared exactly; both rounded to nearest.
@@ -10,7 +10,7 @@
 #include "rayproof/box.h"
 #include "rayproof/hit.h"
 #include "rayproof/ray.h"
-#include "verify/exact_algo_kernel.h"
+#include "exact/algo_kernel.h"
 
 namespace rayproof::exact_algo {
 

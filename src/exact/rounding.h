@@ -1,9 +1,9 @@
 #pragma once
 /// Exact real -> double, rounded to nearest with ties to even (IEEE 754 roundTiesToEven),
 /// subnormal and overflowing results included: the rounding tools of the exact algorithm
-/// (verify/exact_algorithms.h), shared by both of its instantiations (the ground truth on CGAL's
+/// (exact/algorithms.h), shared by both of its instantiations (the ground truth on CGAL's
 /// Gmpq, the certified fallback on gmpxx's mpq_class). The MPFR part works on GMP's mpq_t, which
-/// both number types expose, and is compiled once, into rayproof_certified (exact_rounding.cpp).
+/// both number types expose, and is compiled once, into rayproof_certified (rounding.cpp).
 /// GMP's C header only: no CGAL, no gmpxx.
 ///  - round_nearest(q): a rational, rounded by MPFR (one correctly rounded conversion).
 ///  - approximate_roots: a starting point for the quadric roots, from MPFR at 256 bits.

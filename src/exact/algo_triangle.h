@@ -1,5 +1,5 @@
 #pragma once
-/// Exact ray/triangle (closed), on a kernel K (exact_algo_kernel.h). Predicates: n = (p1 - p0) x
+/// Exact ray/triangle (closed), on a kernel K (algo_kernel.h). Predicates: n = (p1 - p0) x
 /// (p2 - p0) decides degeneracy; d . n and (p0 - o) . n decide parallel / coplanar; for a crossing
 /// line, the barycentrics of the plane point are u_i / (d . n) with u_i = det(d, p_j - o, p_k - o)
 /// (edges p1p2, p2p0, p0p1), which sum to d . n, so their signs and zeros are exact. Constructions:
@@ -11,7 +11,7 @@
 #include "rayproof/hit.h"
 #include "rayproof/ray.h"
 #include "rayproof/triangle_common.h"
-#include "verify/exact_algo_kernel.h"
+#include "exact/algo_kernel.h"
 
 namespace rayproof::exact_algo {
 
