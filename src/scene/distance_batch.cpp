@@ -1,0 +1,174 @@
+// ClosedMesh::closest_points: the batch (rayproof/scene/distance.h, docs/distance.md).
+//
+// The points are visited in Morton order of their coordinates (their answers written back in
+// input order), so that consecutive queries read the same part of the tree, and each query's
+// first bound starts from the previous answer's triangle (its distance to p is at most the previous
+// distance plus the step between the points). The answers do not depend on the order.
+//
+// The side, when asked for, is contains(p)'s answer. On a closed oriented mesh (the nonzero rule)
+// it is computed along the chain of points instead of from scratch: the winding number w(p) is
+// w(q) for the previous point q when p lies within the open ball around q or p whose radius is the
+// distance to the mesh (the ball holds no surface point, so q and p are in one component of its
+// complement); else w(q) plus the net count of the crossings of the segment q -> p, exact
+// (ClosedMesh::ray_crossings, which gives the winding number at its far end minus that at its
+// start). The first point of a chain, and every point on the parity and winding rules, asks
+// contains(p).
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "rayproof/scene/distance.h"
+#include "scene/contains_state.h"
+#include "scene/distance_tree.h"
+
+namespace rayproof {
+
+namespace detail {
+namespace {
+
+constexpr double kInfD = std::numeric_limits<double>::infinity();
+
+/// 21 bits of x spread to every third bit.
+std::uint64_t spread3(std::uint64_t x) {
+  x &= 0x1fffff;
+  x = (x | x << 32) & 0x1f00000000ffffULL;
+  x = (x | x << 16) & 0x1f0000ff0000ffULL;
+  x = (x | x << 8) & 0x100f00f00f00f00fULL;
+  x = (x | x << 4) & 0x10c30c30c30c30c3ULL;
+  x = (x | x << 2) & 0x1249249249249249ULL;
+  return x;
+}
+
+/// The visiting order: the indices of the points sorted by the Morton code of their position in
+/// the points' bounding box (invalid points first, code 0).
+std::vector<std::uint32_t> morton_order(const std::byte* base, std::size_t n, std::size_t stride) {
+  auto at = [&](std::size_t i) {
+    Vec3<double> p;
+    std::memcpy(&p, base + i * stride, sizeof p);
+    return p;
+  };
+  Vec3<double> lo{kInfD, kInfD, kInfD}, hi = -lo;
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec3<double> p = at(i);
+    if (!all_finite(p)) continue;
+    for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], p[k]), hi[k] = std::max(hi[k], p[k]);
+  }
+  std::vector<std::pair<std::uint64_t, std::uint32_t>> key(n);
+  double scale[3];
+  for (int k = 0; k < 3; ++k) {
+    const double ext = hi[k] - lo[k];  // may overflow to inf: then the scale is 0 (one cell)
+    scale[k] = ext > 0 && ext < kInfD ? 2097151.0 / ext : 0.0;
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec3<double> p = at(i);
+    std::uint64_t c = 0;
+    if (all_finite(p))
+      for (int k = 0; k < 3; ++k) c |= spread3(std::uint64_t(std::clamp((p[k] - lo[k]) * scale[k], 0.0, 2097151.0))) << k;
+    key[i] = {c, std::uint32_t(i)};
+  }
+  std::sort(key.begin(), key.end());
+  std::vector<std::uint32_t> order(n);
+  for (std::size_t i = 0; i < n; ++i) order[i] = key[i].second;
+  return order;
+}
+
+/// The previous point of a chain of side queries and its exact winding number.
+struct SideChain {
+  bool valid = false;
+  Vec3<double> q;
+  double d = 0;
+  std::int32_t w = 0;
+  RayCrossings buf;
+};
+
+/// |p - q| < r surely, for r the correctly rounded distance of p or q (the exact one is at least
+/// r (1 - 2^-53)): the squared step rounded up against r^2 rounded down.
+bool within(const Vec3<double>& p, const Vec3<double>& q, double r) {
+  const Vec3<double> s = p - q;
+  const double e2 = dot(s, s) * (1 + 0x1p-48) + 0x1p-1000;
+  const double r1 = r * (1 - 0x1p-50);
+  return e2 < r1 * r1 * (1 - 0x1p-50);
+}
+
+/// w(p) for p at distance d > 0 from the mesh (rule nonzero), from the chain's previous point.
+std::int32_t chained_winding(const ClosedMesh& m, const ContainsState& s, const Vec3<double>& p, double d, SideChain& c) {
+  auto direct = [&] {
+    const bool in_box = p.x >= s.lo.x && p.x <= s.hi.x && p.y >= s.lo.y && p.y <= s.hi.y && p.z >= s.lo.z && p.z <= s.hi.z;
+    return in_box ? query_point(s, p).winding : 0;
+  };
+  std::int32_t w;
+  if (!c.valid) {
+    w = direct();
+  } else if (within(p, c.q, std::max(d, c.d))) {
+    w = c.w;
+  } else {
+    // The segment's far end q + fl(p - q) is within 2^-53 sum |p_k - q_k| of p: inside p's ball
+    // when that is surely below d.
+    const Vec3<double> step = p - c.q;
+    const double err = (std::abs(step.x) + std::abs(step.y) + std::abs(step.z)) * 0x1p-52;
+    if (err < d * (1 - 0x1p-50)) {
+      m.ray_crossings_into(Ray<double>{c.q, step}, TRange{0.0, 1.0}, c.buf);
+      w = c.buf.valid ? c.w + c.buf.net() : direct();
+    } else {
+      w = direct();
+    }
+  }
+  c.valid = true, c.q = p, c.d = d, c.w = w;
+  return w;
+}
+
+}  // namespace
+}  // namespace detail
+
+void ClosedMesh::closest_points(std::span<const Vec3<double>> points, std::span<ClosestPoint> out, bool with_side,
+                                int threads) const {
+  if (points.size() != out.size())
+    throw MeshInputError("ClosedMesh::closest_points: " + std::to_string(out.size()) + " results for " +
+                         std::to_string(points.size()) + " points");
+  closest_points(reinterpret_cast<const double*>(points.data()), points.size(), sizeof(Vec3<double>), out.data(),
+                 with_side, threads);
+}
+
+void ClosedMesh::closest_points(const double* xyz, std::size_t n, std::size_t stride, ClosestPoint* out, bool with_side,
+                                int threads) const {
+  if (n == 0) return;
+  if (!xyz || !out) throw MeshInputError("ClosedMesh::closest_points: null pointer with a count of " + std::to_string(n));
+  if (stride < 3 * sizeof(double) || stride % sizeof(double))
+    throw MeshInputError("ClosedMesh::closest_points: stride of " + std::to_string(stride) +
+                         " bytes (need a multiple of 8, at least 24)");
+  if (n >= (std::size_t(1) << 32)) throw MeshInputError("ClosedMesh::closest_points: more than 2^32 - 1 points");
+  const detail::DistanceTree& t = detail::distance_tree(*s_);
+  const auto* base = reinterpret_cast<const std::byte*>(xyz);
+  const std::vector<std::uint32_t> order = detail::morton_order(base, n, stride);
+  const bool chain = s_->rule == ContainsRule::nonzero;
+  auto body = [&](const tbb::blocked_range<std::size_t>& r) {
+    std::uint32_t hint = 0xffffffffu;
+    detail::SideChain sc;
+    for (std::size_t j = r.begin(); j < r.end(); ++j) {
+      const std::uint32_t i = order[j];
+      Vec3<double> p;
+      std::memcpy(&p, base + i * stride, sizeof p);
+      ClosestPoint c = detail::distance_query(t, p, hint);
+      if (c.triangle < t.slot_of.size()) hint = t.slot_of[c.triangle];
+      if (with_side && c.distance == c.distance) {
+        if (c.distance == 0) c.side = Side::surface;
+        else if (chain) c.side = detail::chained_winding(*this, *s_, p, c.distance, sc) != 0 ? Side::inside : Side::outside;
+        else c.side = contains(p);
+      }
+      out[i] = c;
+    }
+  };
+  if (threads == 1 || n < 1024) return body(tbb::blocked_range<std::size_t>(0, n));
+  tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
+  arena.execute([&] { tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 256), body); });
+}
+
+}  // namespace rayproof
