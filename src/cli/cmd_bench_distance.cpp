@@ -43,6 +43,7 @@ struct BenchDistanceOptions {
   std::size_t points = 200000;
   int repeat = 3;
   int threads = 1;
+  bool ablation = false;
 };
 
 void print_set(const std::string& title, const std::vector<DistanceMethod>& ms, const DistanceSetResult& r) {
@@ -52,13 +53,13 @@ void print_set(const std::string& title, const std::vector<DistanceMethod>& ms, 
   const auto& max_ulps = r.max_ulps;
   const auto& stages = r.stages;
   fmt::print("\n{}: {} points\n", title, n);
-  fmt::print("  {:<16} {:>22} {:>13} {:>9} {:>10} {:>9}\n", "method", "Mpoints/s (min-max)", "rayproof/it", "wrong tri", "dist off",
+  fmt::print("  {:<24} {:>22} {:>13} {:>9} {:>10} {:>9}\n", "method", "Mpoints/s (min-max)", "rayproof/it", "wrong tri", "dist off",
              "max ulps");
   const double rp = *std::max_element(ms[0].rates.begin(), ms[0].rates.end());
   for (std::size_t j = 0; j < k; ++j) {
     const double lo = *std::min_element(ms[j].rates.begin(), ms[j].rates.end());
     const double hi = *std::max_element(ms[j].rates.begin(), ms[j].rates.end());
-    fmt::print("  {:<16} {:>10.3f}-{:<11.3f} {:>12.2f}x {:>9} {:>10} {:>9.3g}\n", ms[j].name, lo, hi, rp / hi, wrong[j], off[j],
+    fmt::print("  {:<24} {:>10.3f}-{:<11.3f} {:>12.2f}x {:>9} {:>10} {:>9.3g}\n", ms[j].name, lo, hi, rp / hi, wrong[j], off[j],
                max_ulps[j]);
   }
   fmt::print("  rayproof stages: double filter {} ({:.2f}%), rounding in rationals {}, candidates compared in rationals {}, "
@@ -103,7 +104,7 @@ int run_bench_distance(BenchDistanceOptions opt) {
     const double build = now() - t0;
     const double t1 = now();
     std::vector<std::string> notes;
-    std::vector<DistanceMethod> ms = scene::compare::distance_methods(m, *cm, notes);
+    std::vector<DistanceMethod> ms = scene::compare::distance_methods(m, *cm, notes, opt.ablation);
     for (const auto& note : notes) fmt::print("  {}\n", note);
     fmt::print("\n{}: {} triangles; rayproof distance tree built in {:.3f} s; competitors built in {:.3f} s\n", path,
                m.triangles.size(), build, now() - t1);
@@ -127,6 +128,9 @@ Run add_bench_distance(CLI::App& bench) {
                   "where extracted)");
   sub->add_option("--points", opt->points, "Points per set (uniform, near the surface)")->capture_default_str();
   sub->add_option("--repeat", opt->repeat, "Timed runs per method")->capture_default_str();
+  sub->add_flag("--ablation", opt->ablation,
+               "Also rayproof with one part off per row (wide tree, Morton order, previous hint, lower bound; side chain): "
+               "rayproof/it is that part's speed-up");
   sub->add_option("--threads", opt->threads, "Threads for every method (the points split into chunks)")->capture_default_str();
   return [opt] { return run_bench_distance(*opt); };
 }

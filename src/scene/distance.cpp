@@ -13,6 +13,7 @@
 // distance is the square root of the winner's interval, kept when the rounding is decided for
 // every value in it, else recomputed in double-double, else in rationals.
 #include <algorithm>
+#include <atomic>
 #include <limits>
 #include <vector>
 
@@ -179,7 +180,7 @@ void first_bound(const DistanceTree& t, const Vec3<double>& p, double& U, std::v
         if (triangle_box_lb(t.tris[s], p) > U) continue;
         Vec3<double> dir;
         U = std::min(U, upper_bound(t.tris[s], p, &dir));
-        visited.push_back({s, lower_bound_along(t.tris[s], p, dir)});
+        visited.push_back({s, triangle_box_lb(t.tris[s], p), dir});
       }
       continue;
     }
@@ -204,9 +205,9 @@ constexpr std::uint32_t kNoSlot = 0xffffffffu;
 double first_pass(const DistanceTree& t, const Vec3<double>& p, std::uint32_t hint, std::vector<DistanceVisit>& visited,
                   bool& complete) {
   double U = kInf;
-  if (hint < t.tris.size()) U = upper_bound(t.tris[hint], p);
+  if (hint < t.tris.size() && !(distance_ablation() & kAblateHint)) U = upper_bound(t.tris[hint], p);
   if (!(U < kInf)) U = kInf;  // NaN from overflow
-  if (wide_first_bound(t, p, U, visited)) return U;
+  if (!(distance_ablation() & kAblateWide) && wide_first_bound(t, p, U, visited)) return U;
   visited.clear();
   first_bound(t, p, U, visited, complete);
   return U;
@@ -302,7 +303,18 @@ ClosestPoint query(const DistanceTree& t, const Vec3<double>& p, std::uint32_t h
   }
   if (!(s.U < kInf)) s.U = kInf;  // NaN from overflow: the ball pass decides (or goes exact)
   if (complete && s.U < kInf) {
-    // The visited triangles within the bound, nearest first.
+    // The visited triangles within the bound by their box, then by the lower bound along the
+    // direction to their upper bound's point; nearest first.
+    std::size_t kept = 0;
+    const bool lower = !(distance_ablation() & kAblateLower);
+    for (const DistanceVisit& v : visited)
+      if (!lower && v.lb <= s.U) {
+        visited[kept++] = v;
+      } else if (v.lb <= s.U) {
+        const double lb = lower_bound_along(t.tris[v.slot], p, v.dir);
+        if (lb <= s.U) visited[kept++] = {v.slot, lb, v.dir};
+      }
+    visited.resize(kept);
     std::sort(visited.begin(), visited.end(), [](const DistanceVisit& a, const DistanceVisit& b) { return a.lb < b.lb; });
     for (const DistanceVisit& l : visited) {
       if (l.lb > s.U) break;
@@ -368,6 +380,12 @@ ClosestPoint query(const DistanceTree& t, const Vec3<double>& p, std::uint32_t h
 }  // namespace detail
 
 namespace detail {
+namespace {
+std::atomic<unsigned> ablation{0};
+}  // namespace
+void set_distance_ablation(unsigned flags) { ablation.store(flags, std::memory_order_relaxed); }
+unsigned distance_ablation() { return ablation.load(std::memory_order_relaxed); }
+
 const DistanceTree& distance_tree(const ContainsState& s) {
   std::call_once(s.distance_once, [&] {
     s.distance = std::make_shared<const DistanceTree>(build_distance_tree(s.vertices, s.triangles));

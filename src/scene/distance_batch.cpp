@@ -7,12 +7,13 @@
 //
 // The side, when asked for, is contains(p)'s answer. On a closed oriented mesh (the nonzero rule)
 // it is computed along the chain of points instead of from scratch: the winding number w(p) is
-// w(q) for the previous point q when p lies within the open ball around q or p whose radius is the
-// distance to the mesh (the ball holds no surface point, so q and p are in one component of its
-// complement); else w(q) plus the net count of the crossings of the segment q -> p, exact
-// (ClosedMesh::ray_crossings, which gives the winding number at its far end minus that at its
-// start). The first point of a chain, and every point on the parity and winding rules, asks
-// contains(p).
+// w(q) for the previous point q when |p - q| < d(p) + d(q), d the distance to the mesh: each point x
+// of the segment has |x - q| + |x - p| = |p - q|, so it lies in the open ball of radius d(q) around
+// q or in that of radius d(p) around p, which hold no surface point: q and p are in one component
+// of the surface's complement. Otherwise, and for the first point of a chain, w(p) is contains(p)'s
+// own count (the perturbed ray of contains.cpp); on the parity and winding rules every point asks
+// contains(p). (The net crossings of the segment q -> p by ray_crossings were tried for the other
+// points: slower than contains(p) on points near the surface, where the balls rarely cover.)
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -76,7 +77,7 @@ std::vector<std::uint32_t> morton_order(const std::byte* base, std::size_t n, st
   }
   std::sort(key.begin(), key.end());
   std::vector<std::uint32_t> order(n);
-  for (std::size_t i = 0; i < n; ++i) order[i] = key[i].second;
+  for (std::size_t i = 0; i < n; ++i) order[i] = distance_ablation() & kAblateOrder ? std::uint32_t(i) : key[i].second;
   return order;
 }
 
@@ -86,11 +87,11 @@ struct SideChain {
   Vec3<double> q;
   double d = 0;
   std::int32_t w = 0;
-  RayCrossings buf;
 };
 
-/// |p - q| < r surely, for r the correctly rounded distance of p or q (the exact one is at least
-/// r (1 - 2^-53)): the squared step rounded up against r^2 rounded down.
+/// |p - q| < r surely, for r the sum of the correctly rounded distances of p and q (each exact one
+/// is at least 2^-53 below it relative; the sum's rounding, 2^-53 more): the squared step rounded
+/// up against r^2 rounded down.
 bool within(const Vec3<double>& p, const Vec3<double>& q, double r) {
   const Vec3<double> s = p - q;
   const double e2 = dot(s, s) * (1 + 0x1p-48) + 0x1p-1000;
@@ -98,28 +99,15 @@ bool within(const Vec3<double>& p, const Vec3<double>& q, double r) {
   return e2 < r1 * r1 * (1 - 0x1p-50);
 }
 
-/// w(p) for p at distance d > 0 from the mesh (rule nonzero), from the chain's previous point.
-std::int32_t chained_winding(const ClosedMesh& m, const ContainsState& s, const Vec3<double>& p, double d, SideChain& c) {
-  auto direct = [&] {
-    const bool in_box = p.x >= s.lo.x && p.x <= s.hi.x && p.y >= s.lo.y && p.y <= s.hi.y && p.z >= s.lo.z && p.z <= s.hi.z;
-    return in_box ? query_point(s, p).winding : 0;
-  };
+/// w(p) for p at distance d > 0 from the mesh (rule nonzero): the chain's previous point's when
+/// the two balls cover the segment between them, else the perturbed ray's count (contains.cpp).
+std::int32_t chained_winding(const ContainsState& s, const Vec3<double>& p, double d, SideChain& c) {
   std::int32_t w;
-  if (!c.valid) {
-    w = direct();
-  } else if (within(p, c.q, std::max(d, c.d))) {
+  if (c.valid && within(p, c.q, d + c.d)) {
     w = c.w;
   } else {
-    // The segment's far end q + fl(p - q) is within 2^-53 sum |p_k - q_k| of p: inside p's ball
-    // when that is surely below d.
-    const Vec3<double> step = p - c.q;
-    const double err = (std::abs(step.x) + std::abs(step.y) + std::abs(step.z)) * 0x1p-52;
-    if (err < d * (1 - 0x1p-50)) {
-      m.ray_crossings_into(Ray<double>{c.q, step}, TRange{0.0, 1.0}, c.buf);
-      w = c.buf.valid ? c.w + c.buf.net() : direct();
-    } else {
-      w = direct();
-    }
+    const bool in_box = p.x >= s.lo.x && p.x <= s.hi.x && p.y >= s.lo.y && p.y <= s.hi.y && p.z >= s.lo.z && p.z <= s.hi.z;
+    w = in_box ? query_point(s, p).winding : 0;
   }
   c.valid = true, c.q = p, c.d = d, c.w = w;
   return w;
@@ -148,7 +136,7 @@ void ClosedMesh::closest_points(const double* xyz, std::size_t n, std::size_t st
   const detail::DistanceTree& t = detail::distance_tree(*s_);
   const auto* base = reinterpret_cast<const std::byte*>(xyz);
   const std::vector<std::uint32_t> order = detail::morton_order(base, n, stride);
-  const bool chain = s_->rule == ContainsRule::nonzero;
+  const bool chain = s_->rule == ContainsRule::nonzero && !(detail::distance_ablation() & detail::kAblateChain);
   auto body = [&](const tbb::blocked_range<std::size_t>& r) {
     std::uint32_t hint = 0xffffffffu;
     detail::SideChain sc;
@@ -160,7 +148,7 @@ void ClosedMesh::closest_points(const double* xyz, std::size_t n, std::size_t st
       if (c.triangle < t.slot_of.size()) hint = t.slot_of[c.triangle];
       if (with_side && c.distance == c.distance) {
         if (c.distance == 0) c.side = Side::surface;
-        else if (chain) c.side = detail::chained_winding(*this, *s_, p, c.distance, sc) != 0 ? Side::inside : Side::outside;
+        else if (chain) c.side = detail::chained_winding(*s_, p, c.distance, sc) != 0 ? Side::inside : Side::outside;
         else c.side = contains(p);
       }
       out[i] = c;

@@ -40,6 +40,19 @@ struct DistanceTree {
   int scale_exp = 0;
 };
 
+/// Parts of the query that `bench distance` turns off one at a time to measure each one's effect
+/// (ablation; the answers are the same either way). Process-wide: set it only between queries.
+enum DistanceAblation : unsigned {
+  kAblateNone = 0,
+  kAblateWide = 1,   ///< the first pass on the binary tree (scalar double boxes) instead of the wide one
+  kAblateOrder = 2,  ///< batches in input order instead of Morton order
+  kAblateHint = 4,   ///< no first bound from the previous answer
+  kAblateLower = 8,  ///< the ball pass on every triangle whose box is within U (no lower bound along a direction)
+  kAblateChain = 16, ///< the side from contains(p) for every point
+};
+void set_distance_ablation(unsigned flags);
+[[nodiscard]] unsigned distance_ablation();
+
 struct ContainsState;
 /// The mesh's distance tree, built by the first call (thread-safe).
 [[nodiscard]] const DistanceTree& distance_tree(const ContainsState& s);

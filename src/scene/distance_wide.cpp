@@ -29,8 +29,9 @@ namespace {
 /// The float bound every child is tested against for the squared-distance bound U (see above).
 inline float box_threshold(double U) { return float_above(U * (1 + 0x1p-20) + 0x1p-140); }
 
-/// The first pass's leaf visit: every triangle whose box is within U gets its upper bound and a
-/// lower bound along the direction to the point the upper bound found, and is recorded.
+/// The first pass's leaf visit: every triangle whose box is within U gets its upper bound and is
+/// recorded with its box bound and the direction to the upper bound's point (the second pass
+/// computes the lower bound along it for the triangles whose box is within the final U).
 struct LeafVisit {
   const DistanceTree& t;
   const Vec3<double>& p;
@@ -39,10 +40,11 @@ struct LeafVisit {
   std::vector<DistanceVisit>& visited;
   bool operator()(std::uint32_t first, std::uint32_t count) {
     for (std::uint32_t s = first; s < first + count; ++s) {
-      if (dist::triangle_box_lb(t.tris[s], p) > U) continue;
+      const double box = dist::triangle_box_lb(t.tris[s], p);
+      if (box > U) continue;
       Vec3<double> e;
       const double ub = dist::upper_bound(t.tris[s], p, &e);
-      visited.push_back({s, dist::lower_bound_along(t.tris[s], p, e)});
+      visited.push_back({s, box, e});
       if (ub < U) U = ub, thr = box_threshold(U);
     }
     return false;

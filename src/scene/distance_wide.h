@@ -11,11 +11,13 @@
 
 namespace rayproof::detail {
 
-/// A triangle the first pass visited within its bound: its slot and a lower bound of its squared
-/// distance to p (rounded down; dist::lower_bound_along).
+/// A triangle the first pass visited within its bound: its slot, a lower bound of its squared
+/// distance to p (rounded down: its box's), and the direction from the point its upper bound found
+/// to p (for dist::lower_bound_along).
 struct DistanceVisit {
   std::uint32_t slot;
   double lb;
+  Vec3<double> dir;
 };
 
 /// Lowers U (a rigorous upper bound of the squared distance from p to the mesh, +inf for none yet)

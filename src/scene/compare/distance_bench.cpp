@@ -11,6 +11,7 @@
 #include <tbb/task_arena.h>
 
 #include "scene/compare/distance_compare.h"
+#include "scene/distance_tree.h"
 #include "scene/watertight.h"
 
 namespace rayproof::scene::compare {
@@ -28,7 +29,8 @@ double ulps(double x, double ref) {
 
 }  // namespace
 
-std::vector<DistanceMethod> distance_methods(const mesh::Mesh& m, const ClosedMesh& cm, std::vector<std::string>& notes) {
+std::vector<DistanceMethod> distance_methods(const mesh::Mesh& m, const ClosedMesh& cm, std::vector<std::string>& notes,
+                                             bool ablation) {
   std::vector<DistanceMethod> ms;
   const ClosedMesh* c = &cm;
   ms.push_back({"rayproof", [c](std::span<const Vec3<double>> p, std::span<std::uint32_t> t, std::span<double> d) {
@@ -43,6 +45,24 @@ std::vector<DistanceMethod> distance_methods(const mesh::Mesh& m, const ClosedMe
                   c->closest_points(p, r, true, 1);
                   for (std::size_t i = 0; i < p.size(); ++i) t[i] = r[i].triangle, d[i] = r[i].distance;
                 }});
+  if (ablation) {
+    using namespace rayproof::detail;
+    const std::pair<const char*, unsigned> parts[] = {{"-wide tree", kAblateWide},     {"-morton order", kAblateOrder},
+                                                      {"-previous hint", kAblateHint}, {"-lower bound", kAblateLower},
+                                                      {"+side -chain", kAblateChain}};
+    for (const auto& [name, flag] : parts) {
+      const bool side = flag == kAblateChain;
+      ms.push_back({std::string("rayproof") + name, [c, flag, side](std::span<const Vec3<double>> p, std::span<std::uint32_t> t,
+                                                                   std::span<double> d) {
+                      thread_local std::vector<ClosestPoint> r;
+                      r.resize(p.size());
+                      set_distance_ablation(flag);
+                      c->closest_points(p, r, side, 1);
+                      set_distance_ablation(kAblateNone);
+                      for (std::size_t i = 0; i < p.size(); ++i) t[i] = r[i].triangle, d[i] = r[i].distance;
+                    }});
+    }
+  }
   for (auto& comp : make_distance_competitors(m.vertices, m.triangles)) {
     if (comp.run) ms.push_back({comp.name, comp.run});
     else notes.push_back(comp.name + ": " + comp.note);

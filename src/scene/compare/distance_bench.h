@@ -25,10 +25,12 @@ struct DistanceMethod {
   std::vector<double> dist{};  ///< and distances
 };
 
-/// rayproof (closest_points without and with the side) first, then the competitors that can be
-/// built here; `notes` gets a line for each that cannot. `cm` must outlive the methods.
+/// rayproof (closest_points without and with the side) first, then with `ablation` rayproof with one
+/// part turned off per method (the same answers; rayproof/it is that part's speed-up), then the
+/// competitors that can be built here; `notes` gets a line for each that cannot. `cm` must outlive
+/// the methods.
 [[nodiscard]] std::vector<DistanceMethod> distance_methods(const mesh::Mesh& m, const ClosedMesh& cm,
-                                                           std::vector<std::string>& notes);
+                                                           std::vector<std::string>& notes, bool ablation = false);
 
 /// The mesh of `bench distance`: a file, or for "generated" the 1.31M-triangle bumpy sphere
 /// (scene::bumpy_sphere(2^20), as bench contains). Throws mesh::MeshError for a bad file.
