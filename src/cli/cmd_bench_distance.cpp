@@ -129,7 +129,7 @@ Run add_bench_distance(CLI::App& bench) {
   sub->add_option("--points", opt->points, "Points per set (uniform, near the surface)")->capture_default_str();
   sub->add_option("--repeat", opt->repeat, "Timed runs per method")->capture_default_str();
   sub->add_flag("--ablation", opt->ablation,
-               "Also rayproof with one part off per row (wide tree, Morton order, previous hint, lower bound; side chain): "
+               "Also rayproof with one part off per row (wide tree, Morton order, previous hint, lower bound): "
                "rayproof/it is that part's speed-up");
   sub->add_option("--threads", opt->threads, "Threads for every method (the points split into chunks)")->capture_default_str();
   return [opt] { return run_bench_distance(*opt); };

@@ -5,15 +5,10 @@
 // first bound starts from the previous answer's triangle (its distance to p is at most the previous
 // distance plus the step between the points). The answers do not depend on the order.
 //
-// The side, when asked for, is contains(p)'s answer. On a closed oriented mesh (the nonzero rule)
-// it is computed along the chain of points instead of from scratch: the winding number w(p) is
-// w(q) for the previous point q when |p - q| < d(p) + d(q), d the distance to the mesh: each point x
-// of the segment has |x - q| + |x - p| = |p - q|, so it lies in the open ball of radius d(q) around
-// q or in that of radius d(p) around p, which hold no surface point: q and p are in one component
-// of the surface's complement. Otherwise, and for the first point of a chain, w(p) is contains(p)'s
-// own count (the perturbed ray of contains.cpp); on the parity and winding rules every point asks
-// contains(p). (The net crossings of the segment q -> p by ray_crossings were tried for the other
-// points: slower than contains(p) on points near the surface, where the balls rarely cover.)
+// The side, when asked for, is contains(p)'s answer, asked point by point. (Reusing the previous
+// point's exact winding number when the two points' empty balls cover the segment between them,
+// and else the net crossings of that segment, were tried: neither was measurably faster than
+// contains(p) in bench distance --ablation, and the crossings were slower near the surface.)
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -81,38 +76,6 @@ std::vector<std::uint32_t> morton_order(const std::byte* base, std::size_t n, st
   return order;
 }
 
-/// The previous point of a chain of side queries and its exact winding number.
-struct SideChain {
-  bool valid = false;
-  Vec3<double> q;
-  double d = 0;
-  std::int32_t w = 0;
-};
-
-/// |p - q| < r surely, for r the sum of the correctly rounded distances of p and q (each exact one
-/// is at least 2^-53 below it relative; the sum's rounding, 2^-53 more): the squared step rounded
-/// up against r^2 rounded down.
-bool within(const Vec3<double>& p, const Vec3<double>& q, double r) {
-  const Vec3<double> s = p - q;
-  const double e2 = dot(s, s) * (1 + 0x1p-48) + 0x1p-1000;
-  const double r1 = r * (1 - 0x1p-50);
-  return e2 < r1 * r1 * (1 - 0x1p-50);
-}
-
-/// w(p) for p at distance d > 0 from the mesh (rule nonzero): the chain's previous point's when
-/// the two balls cover the segment between them, else the perturbed ray's count (contains.cpp).
-std::int32_t chained_winding(const ContainsState& s, const Vec3<double>& p, double d, SideChain& c) {
-  std::int32_t w;
-  if (c.valid && within(p, c.q, d + c.d)) {
-    w = c.w;
-  } else {
-    const bool in_box = p.x >= s.lo.x && p.x <= s.hi.x && p.y >= s.lo.y && p.y <= s.hi.y && p.z >= s.lo.z && p.z <= s.hi.z;
-    w = in_box ? query_point(s, p).winding : 0;
-  }
-  c.valid = true, c.q = p, c.d = d, c.w = w;
-  return w;
-}
-
 }  // namespace
 }  // namespace detail
 
@@ -136,21 +99,15 @@ void ClosedMesh::closest_points(const double* xyz, std::size_t n, std::size_t st
   const detail::DistanceTree& t = detail::distance_tree(*s_);
   const auto* base = reinterpret_cast<const std::byte*>(xyz);
   const std::vector<std::uint32_t> order = detail::morton_order(base, n, stride);
-  const bool chain = s_->rule == ContainsRule::nonzero && !(detail::distance_ablation() & detail::kAblateChain);
   auto body = [&](const tbb::blocked_range<std::size_t>& r) {
     std::uint32_t hint = 0xffffffffu;
-    detail::SideChain sc;
     for (std::size_t j = r.begin(); j < r.end(); ++j) {
       const std::uint32_t i = order[j];
       Vec3<double> p;
       std::memcpy(&p, base + i * stride, sizeof p);
       ClosestPoint c = detail::distance_query(t, p, hint);
       if (c.triangle < t.slot_of.size()) hint = t.slot_of[c.triangle];
-      if (with_side && c.distance == c.distance) {
-        if (c.distance == 0) c.side = Side::surface;
-        else if (chain) c.side = detail::chained_winding(*s_, p, c.distance, sc) != 0 ? Side::inside : Side::outside;
-        else c.side = contains(p);
-      }
+      if (with_side && c.distance == c.distance) c.side = c.distance == 0 ? Side::surface : contains(p);
       out[i] = c;
     }
   };

@@ -48,7 +48,6 @@ enum DistanceAblation : unsigned {
   kAblateOrder = 2,  ///< batches in input order instead of Morton order
   kAblateHint = 4,   ///< no first bound from the previous answer
   kAblateLower = 8,  ///< the ball pass on every triangle whose box is within U (no lower bound along a direction)
-  kAblateChain = 16, ///< the side from contains(p) for every point
 };
 void set_distance_ablation(unsigned flags);
 [[nodiscard]] unsigned distance_ablation();

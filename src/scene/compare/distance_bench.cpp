@@ -47,17 +47,17 @@ std::vector<DistanceMethod> distance_methods(const mesh::Mesh& m, const ClosedMe
                 }});
   if (ablation) {
     using namespace rayproof::detail;
-    const std::pair<const char*, unsigned> parts[] = {{"-wide tree", kAblateWide},     {"-morton order", kAblateOrder},
-                                                      {"-previous hint", kAblateHint}, {"-lower bound", kAblateLower},
-                                                      {"+side -chain", kAblateChain}};
+    const std::pair<const char*, unsigned> parts[] = {{"-wide tree", kAblateWide},
+                                                      {"-morton order", kAblateOrder},
+                                                      {"-previous hint", kAblateHint},
+                                                      {"-lower bound", kAblateLower}};
     for (const auto& [name, flag] : parts) {
-      const bool side = flag == kAblateChain;
-      ms.push_back({std::string("rayproof") + name, [c, flag, side](std::span<const Vec3<double>> p, std::span<std::uint32_t> t,
-                                                                   std::span<double> d) {
+      ms.push_back({std::string("rayproof") + name, [c, flag](std::span<const Vec3<double>> p, std::span<std::uint32_t> t,
+                                                             std::span<double> d) {
                       thread_local std::vector<ClosestPoint> r;
                       r.resize(p.size());
                       set_distance_ablation(flag);
-                      c->closest_points(p, r, side, 1);
+                      c->closest_points(p, r, false, 1);
                       set_distance_ablation(kAblateNone);
                       for (std::size_t i = 0; i < p.size(); ++i) t[i] = r[i].triangle, d[i] = r[i].distance;
                     }});
