@@ -92,6 +92,11 @@ int run_bench_distance(BenchDistanceOptions opt) {
     std::unique_ptr<ClosedMesh> cm;
     try {
       m = scene::compare::distance_bench_mesh(path);
+    } catch (const mesh::MeshError& e) {  // its message names the file
+      fmt::print(stderr, "{}: {}\n", me, e.what());
+      return 2;
+    }
+    try {
       if (m.triangles.empty()) throw std::invalid_argument("the mesh has no triangles");
       cm = std::make_unique<ClosedMesh>(VertexArray(&m.vertices[0].x, m.vertices.size()),
                                         IndexArray{m.triangles.front().data(), m.triangles.size()});
