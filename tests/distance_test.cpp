@@ -343,10 +343,10 @@ TEST(Distance, PublicExactHelpers) {
 
 }  // namespace
 
-// The batch chains the side from point to point (the previous point's exact winding number plus the
-// crossings between them): it must still be contains(p)'s answer, on nested, overlapping and
-// inverted shells (winding numbers 0, 1, 2, 3 and -1), with points on the surface and in runs that
-// jump between components, on one and on two threads.
+// The batch (Morton order, each query seeded by the previous answer) must give contains(p)'s side
+// and the single query's distance, on nested, overlapping and inverted shells (winding numbers 0,
+// 1, 2, 3 and -1), with points on the surface and in runs that jump between components, on one
+// and on two threads.
 TEST(Distance, BatchSideIsContainsOnNestedOverlappingAndInvertedShells) {
   Shape s;
   auto add = [&](const Shape& c, bool invert) {
