@@ -342,3 +342,38 @@ TEST(Distance, PublicExactHelpers) {
 }
 
 }  // namespace
+
+// The batch (Morton order, each query seeded by the previous answer) must give contains(p)'s side
+// and the single query's distance, on nested, overlapping and inverted shells (winding numbers 0,
+// 1, 2, 3 and -1), with points on the surface and in runs that jump between components, on one
+// and on two threads.
+TEST(Distance, BatchSideIsContainsOnNestedOverlappingAndInvertedShells) {
+  Shape s;
+  auto add = [&](const Shape& c, bool invert) {
+    const auto base = std::uint32_t(s.v.size());
+    s.v.insert(s.v.end(), c.v.begin(), c.v.end());
+    for (Tri t : c.t) s.t.push_back(invert ? Tri{t[0] + base, t[2] + base, t[1] + base} : Tri{t[0] + base, t[1] + base, t[2] + base});
+  };
+  add(cube(0, 2), false), add(cube(1, 3), false), add(cube(-1, 4), false), add(cube(6, 7), true);
+  const ClosedMesh m = make(s);
+  ASSERT_EQ(m.rule(), rayproof::ContainsRule::nonzero);
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-2, 8);
+  std::uniform_int_distribution<int> g(-4, 16);
+  std::vector<Vec3<double>> pts(6000);
+  for (std::size_t i = 0; i < pts.size(); ++i)
+    pts[i] = i % 3 == 0 ? Vec3<double>{g(rng) * 0.5, g(rng) * 0.5, g(rng) * 0.5} : Vec3<double>{u(rng), u(rng), u(rng)};
+  std::size_t inside = 0, surface = 0;
+  for (int threads : {1, 2}) {
+    std::vector<ClosestPoint> out(pts.size());
+    m.closest_points(pts, out, true, threads);
+    for (std::size_t i = 0; i < pts.size(); ++i) {
+      const Side want = out[i].distance == 0 ? Side::surface : m.contains(pts[i]);
+      ASSERT_EQ(out[i].side, want) << "p = (" << pts[i].x << ", " << pts[i].y << ", " << pts[i].z << "), threads " << threads;
+      ASSERT_EQ(out[i].distance, m.distance(pts[i]));
+      inside += want == Side::inside, surface += want == Side::surface;
+    }
+  }
+  EXPECT_GT(inside, 1000u);  // the sets reach the shells' insides and surfaces
+  EXPECT_GT(surface, 100u);
+}

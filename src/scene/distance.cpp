@@ -12,19 +12,17 @@
 // lowest index wins; otherwise the exact stage compares their triangles in rationals. The
 // distance is the square root of the winner's interval, kept when the rounding is decided for
 // every value in it, else recomputed in double-double, else in rationals.
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
-
 #include <algorithm>
-#include <cstring>
+#include <atomic>
 #include <limits>
 #include <vector>
 
 #include "rayproof/scene/distance.h"
 #include "scene/contains_state.h"
+#include "scene/distance_bounds.h"
 #include "scene/distance_filter.h"
 #include "scene/distance_tree.h"
+#include "scene/distance_wide.h"
 
 namespace rayproof {
 
@@ -57,18 +55,6 @@ inline double box_lb(const DistanceNode& n, const Vec3<double>& p) {
   double s = 0;
   for (int k = 0; k < 3; ++k) {
     const double g = std::max({double(n.lo[k]) - p[k], p[k] - double(n.hi[k]), 0.0});
-    s += g * g;
-  }
-  return std::max(0.0, s * (1 - 0x1p-49) - 0x1p-1070);
-}
-
-/// Lower bound of the squared distance from p to a triangle's box (rounded down).
-inline double triangle_box_lb(const std::array<Vec3<double>, 3>& tri, const Vec3<double>& p) {
-  double s = 0;
-  for (int k = 0; k < 3; ++k) {
-    const double a = tri[0][k], b = tri[1][k], c = tri[2][k];
-    const double lo = std::min({a, b, c}), hi = std::max({a, b, c});
-    const double g = std::max({lo - p[k], p[k] - hi, 0.0});
     s += g * g;
   }
   return std::max(0.0, s * (1 - 0x1p-49) - 0x1p-1070);
@@ -175,65 +161,27 @@ struct Search {
   }
 };
 
-/// A rigorous upper bound of the squared distance from p to a triangle, in plain double: the
-/// distance to a point q of the triangle (weights found by the Voronoi regions in double, clamped
-/// so that they are surely nonnegative and sum to at most 1) plus a bound on the rounding of q.
-double upper_bound(const std::array<Vec3<double>, 3>& t, const Vec3<double>& p) {
-  const Vec3<double> a = t[0], ab = t[1] - t[0], ac = t[2] - t[0], ap = p - a;
-  const double d1 = dot(ab, ap), d2 = dot(ac, ap);
-  const Vec3<double> bp = p - t[1], cp = p - t[2];
-  const double d3 = dot(ab, bp), d4 = dot(ac, bp), d5 = dot(ab, cp), d6 = dot(ac, cp);
-  double v = 0, w = 0;
-  if (d1 <= 0 && d2 <= 0) v = 0, w = 0;
-  else if (d3 >= 0 && d4 <= d3) v = 1, w = 0;
-  else if (d6 >= 0 && d5 <= d6) v = 0, w = 1;
-  else {
-    const double vc = d1 * d4 - d3 * d2, vb = d5 * d2 - d1 * d6, va = d3 * d6 - d5 * d4;
-    if (vc <= 0 && d1 >= 0 && d3 <= 0) v = d1 / (d1 - d3);
-    else if (vb <= 0 && d2 >= 0 && d6 <= 0) w = d2 / (d2 - d6);
-    else if (va <= 0 && d4 - d3 >= 0 && d5 - d6 >= 0) w = (d4 - d3) / ((d4 - d3) + (d5 - d6)), v = 1 - w;
-    else v = vb / (va + vb + vc), w = vc / (va + vb + vc);
-  }
-  if (!(v >= 0)) v = 0;  // NaN too
-  if (!(w >= 0)) w = 0;
-  if (const double sum = v + w; sum > 1 - 0x1p-50) v *= (1 - 0x1p-49) / sum, w *= (1 - 0x1p-49) / sum;
-  // q = a + v ab + w ac exactly is on the triangle; its double evaluation is within delta of it.
-  double e2 = 0, delta = 0;
-  for (int k = 0; k < 3; ++k) {
-    const double q = a[k] + v * ab[k] + w * ac[k];
-    delta += (std::abs(a[k]) + v * std::abs(ab[k]) + w * std::abs(ac[k])) * 0x1p-50;
-    const double d = p[k] - q;
-    e2 += d * d;
-  }
-  // 2^-520: above any underflow of the squares (it only loosens the bound below 2^-1000).
-  const double r = std::sqrt(e2) * (1 + 0x1p-50) + delta * (1 + 0x1p-50) + 0x1p-520;
-  return r * r * (1 + 0x1p-50);
-}
-
-/// A best-first pass in plain double for a tight upper bound on the answer's squared distance. The
-/// leaves it visits, with their box bounds, go to `leaves`: every leaf whose bound is <= the final
-/// bound is among them (the bound only decreases), so the exact pass reads them instead of the tree.
-struct Leaf {
-  std::uint32_t node;
-  double lb;
-};
-double first_bound(const DistanceTree& t, const Vec3<double>& p, std::vector<Leaf>& leaves, bool& complete) {
+/// The first pass on the binary tree (points beyond the wide tree's float range): best-first in
+/// plain double, as wide_first_bound (distance_wide.h) does on the wide tree.
+void first_bound(const DistanceTree& t, const Vec3<double>& p, double& U, std::vector<DistanceVisit>& visited, bool& complete) {
   struct Entry {
     std::uint32_t node;
     double lb;
   };
   Entry stack[128];
   int top = 0;
-  double U = kInf;
   stack[top++] = {0, box_lb(t.nodes[0], p)};
   while (top) {
     const Entry e = stack[--top];
     if (e.lb > U) continue;
     const DistanceNode& n = t.nodes[e.node];
     if (n.count) {
-      leaves.push_back({e.node, e.lb});
-      for (std::uint32_t s = n.index; s < n.index + n.count; ++s)
-        if (triangle_box_lb(t.tris[s], p) <= U) U = std::min(U, upper_bound(t.tris[s], p));
+      for (std::uint32_t s = n.index; s < n.index + n.count; ++s) {
+        if (triangle_box_lb(t.tris[s], p) > U) continue;
+        Vec3<double> dir;
+        U = std::min(U, upper_bound(t.tris[s], p, &dir));
+        visited.push_back({s, triangle_box_lb(t.tris[s], p), dir});
+      }
       continue;
     }
     if (top + 2 > 128) {
@@ -249,6 +197,19 @@ double first_bound(const DistanceTree& t, const Vec3<double>& p, std::vector<Lea
       if (l1 <= U) stack[top++] = {n.index + 1, l1};
     }
   }
+}
+
+/// The first pass: U from the hint's triangle (a slot, or kNoSlot), then the wide tree (the binary
+/// one for points beyond its range).
+constexpr std::uint32_t kNoSlot = 0xffffffffu;
+double first_pass(const DistanceTree& t, const Vec3<double>& p, std::uint32_t hint, std::vector<DistanceVisit>& visited,
+                  bool& complete) {
+  double U = kInf;
+  if (hint < t.tris.size() && !(distance_ablation() & kAblateHint)) U = upper_bound(t.tris[hint], p);
+  if (!(U < kInf)) U = kInf;  // NaN from overflow
+  if (!(distance_ablation() & kAblateWide) && wide_first_bound(t, p, U, visited)) return U;
+  visited.clear();
+  first_bound(t, p, U, visited, complete);
   return U;
 }
 
@@ -297,7 +258,7 @@ void fill_point(const DistanceTree& t, const Vec3<double>& p, const Cand& w, Clo
 }
 
 /// The query on the tree's scaled copy, when p and the answer scale exactly (false otherwise).
-ClosestPoint query(const DistanceTree& t, const Vec3<double>& p);
+ClosestPoint query(const DistanceTree& t, const Vec3<double>& p, std::uint32_t hint = kNoSlot);
 bool query_scaled(const DistanceTree& t, const Vec3<double>& p, ClosestPoint& r) {
   if (!t.scaled) return false;
   const int e = t.scale_exp;
@@ -317,7 +278,9 @@ bool query_scaled(const DistanceTree& t, const Vec3<double>& p, ClosestPoint& r)
   return true;
 }
 
-ClosestPoint query(const DistanceTree& t, const Vec3<double>& p) {
+/// The query; `hint`: a slot whose triangle is likely near p (the previous point's answer in a
+/// batch), for the first bound only (the answer does not depend on it).
+ClosestPoint query(const DistanceTree& t, const Vec3<double>& p, std::uint32_t hint) {
   ClosestPoint r;
   if (!(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z))) return r;
   if (t.nodes.empty()) {
@@ -327,25 +290,35 @@ ClosestPoint query(const DistanceTree& t, const Vec3<double>& p) {
   thread_local std::vector<Cand> cands;
   cands.clear();
   Search s{t, p, cands};
-  thread_local std::vector<Leaf> leaves;
-  leaves.clear();
+  thread_local std::vector<DistanceVisit> visited;
+  visited.clear();
   bool complete = true;
-  s.U = first_bound(t, p, leaves, complete);
+  s.U = first_pass(t, p, hint, visited, complete);
   // Squares beyond the double range (over- or underflow): the scaled copy, if there is one.
   if (!(s.U >= 0x1p-900 && s.U <= 0x1p+900) && t.scaled) {
     if (query_scaled(t, p, r)) return r;
     // The scaled query reused this thread's buffers: the first pass again.
-    cands.clear(), leaves.clear(), complete = true;
-    s.U = first_bound(t, p, leaves, complete);
+    cands.clear(), visited.clear(), complete = true;
+    s.U = first_pass(t, p, kNoSlot, visited, complete);
   }
   if (!(s.U < kInf)) s.U = kInf;  // NaN from overflow: the ball pass decides (or goes exact)
   if (complete && s.U < kInf) {
-    // The leaves within the bound, nearest first.
-    std::sort(leaves.begin(), leaves.end(), [](const Leaf& a, const Leaf& b) { return a.lb < b.lb; });
-    for (const Leaf& l : leaves) {
+    // The visited triangles within the bound by their box, then by the lower bound along the
+    // direction to their upper bound's point; nearest first.
+    std::size_t kept = 0;
+    const bool lower = !(distance_ablation() & kAblateLower);
+    for (const DistanceVisit& v : visited)
+      if (!lower && v.lb <= s.U) {
+        visited[kept++] = v;
+      } else if (v.lb <= s.U) {
+        const double lb = lower_bound_along(t.tris[v.slot], p, v.dir);
+        if (lb <= s.U) visited[kept++] = {v.slot, lb, v.dir};
+      }
+    visited.resize(kept);
+    std::sort(visited.begin(), visited.end(), [](const DistanceVisit& a, const DistanceVisit& b) { return a.lb < b.lb; });
+    for (const DistanceVisit& l : visited) {
       if (l.lb > s.U) break;
-      const DistanceNode& n = t.nodes[l.node];
-      for (std::uint32_t k = n.index; k < n.index + n.count; ++k) s.triangle(k);
+      s.triangle(l.slot);
       if (s.extreme) break;
     }
   } else {
@@ -406,53 +379,30 @@ ClosestPoint query(const DistanceTree& t, const Vec3<double>& p) {
 }  // namespace
 }  // namespace detail
 
+namespace detail {
 namespace {
-const detail::DistanceTree& tree(const detail::ContainsState& s) {
+std::atomic<unsigned> ablation{0};
+}  // namespace
+void set_distance_ablation(unsigned flags) { ablation.store(flags, std::memory_order_relaxed); }
+unsigned distance_ablation() { return ablation.load(std::memory_order_relaxed); }
+
+const DistanceTree& distance_tree(const ContainsState& s) {
   std::call_once(s.distance_once, [&] {
-    s.distance = std::make_shared<const detail::DistanceTree>(detail::build_distance_tree(s.vertices, s.triangles));
+    s.distance = std::make_shared<const DistanceTree>(build_distance_tree(s.vertices, s.triangles));
   });
   return *s.distance;
 }
-}  // namespace
+ClosestPoint distance_query(const DistanceTree& t, const Vec3<double>& p, std::uint32_t hint) { return query(t, p, hint); }
+}  // namespace detail
 
 ClosestPoint ClosedMesh::closest_point(const Vec3<double>& p, bool with_side) const {
-  ClosestPoint r = detail::query(tree(*s_), p);
+  ClosestPoint r = detail::query(detail::distance_tree(*s_), p);
   if (with_side && r.distance == r.distance) r.side = r.distance == 0 ? Side::surface : contains(p);
   return r;
 }
 
-double ClosedMesh::distance(const Vec3<double>& p) const { return detail::query(tree(*s_), p).distance; }
+double ClosedMesh::distance(const Vec3<double>& p) const { return detail::query(detail::distance_tree(*s_), p).distance; }
 
 double ClosedMesh::signed_distance(const Vec3<double>& p) const { return closest_point(p, true).signed_distance(); }
-
-void ClosedMesh::closest_points(std::span<const Vec3<double>> points, std::span<ClosestPoint> out, bool with_side,
-                                int threads) const {
-  if (points.size() != out.size())
-    throw MeshInputError("ClosedMesh::closest_points: " + std::to_string(out.size()) + " results for " +
-                         std::to_string(points.size()) + " points");
-  closest_points(reinterpret_cast<const double*>(points.data()), points.size(), sizeof(Vec3<double>), out.data(),
-                 with_side, threads);
-}
-
-void ClosedMesh::closest_points(const double* xyz, std::size_t n, std::size_t stride, ClosestPoint* out, bool with_side,
-                                int threads) const {
-  if (n == 0) return;
-  if (!xyz || !out) throw MeshInputError("ClosedMesh::closest_points: null pointer with a count of " + std::to_string(n));
-  if (stride < 3 * sizeof(double) || stride % sizeof(double))
-    throw MeshInputError("ClosedMesh::closest_points: stride of " + std::to_string(stride) +
-                         " bytes (need a multiple of 8, at least 24)");
-  (void)tree(*s_);
-  const auto* base = reinterpret_cast<const std::byte*>(xyz);
-  auto body = [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t i = r.begin(); i < r.end(); ++i) {
-      Vec3<double> p;
-      std::memcpy(&p, base + i * stride, sizeof p);
-      out[i] = closest_point(p, with_side);
-    }
-  };
-  if (threads == 1 || n < 1024) return body(tbb::blocked_range<std::size_t>(0, n));
-  tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
-  arena.execute([&] { tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 256), body); });
-}
 
 }  // namespace rayproof

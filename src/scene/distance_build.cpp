@@ -31,7 +31,7 @@ DistanceTree build_distance_tree(const std::vector<Vec3<double>>& v, const std::
   opt.builder = BvhBuilder::sah;
   opt.max_leaf = kLeaf;
   opt.leaf_group = 1;
-  const Bvh bvh = build_bvh(boxes, {}, opt);
+  Bvh bvh = build_bvh(boxes, {}, opt);
   const std::size_t nn = bvh.nodes.size();
   t.nodes.resize(nn);
   std::vector<std::array<double, 6>> box(nn);  // exact double bounds: lo xyz, hi xyz
@@ -53,8 +53,16 @@ DistanceTree build_distance_tree(const std::vector<Vec3<double>>& v, const std::
   }
   for (std::size_t i = 0; i < nn; ++i)
     for (int k = 0; k < 3; ++k) t.nodes[i].lo[k] = bvh_float_down(box[i][k]), t.nodes[i].hi[k] = bvh_float_up(box[i][k + 3]);
+  // The wide tree of the first pass: the same leaves (slots) and float boxes (the exact double
+  // boxes rounded outwards), eight or four wide.
+  for (std::size_t i = 0; i < nn; ++i)
+    for (int k = 0; k < 3; ++k) bvh.nodes[i].box.lo[k] = t.nodes[i].lo[k], bvh.nodes[i].box.hi[k] = t.nodes[i].hi[k];
+  if (bvh_simd_path() == BvhSimd::avx2) t.wide8 = collapse_bvh8(std::move(bvh), boxes);
+  else t.wide4 = collapse_bvh4(std::move(bvh), boxes);
   t.tris.resize(n);
   t.ids = std::move(order);
+  t.slot_of.resize(n);
+  for (std::uint32_t s = 0; s < n; ++s) t.slot_of[t.ids[s]] = s;
   t.degenerate.resize(n);
   for (std::uint32_t s = 0; s < n; ++s) {
     t.tris[s] = tri[t.ids[s]];

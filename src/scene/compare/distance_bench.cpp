@@ -6,7 +6,13 @@
 #include <cmath>
 #include <limits>
 
+#include <tbb/blocked_range.h>
+#include <tbb/parallel_for.h>
+#include <tbb/task_arena.h>
+
 #include "scene/compare/distance_compare.h"
+#include "scene/distance_tree.h"
+#include "scene/watertight.h"
 
 namespace rayproof::scene::compare {
 
@@ -23,7 +29,8 @@ double ulps(double x, double ref) {
 
 }  // namespace
 
-std::vector<DistanceMethod> distance_methods(const mesh::Mesh& m, const ClosedMesh& cm, std::vector<std::string>& notes) {
+std::vector<DistanceMethod> distance_methods(const mesh::Mesh& m, const ClosedMesh& cm, std::vector<std::string>& notes,
+                                             bool ablation) {
   std::vector<DistanceMethod> ms;
   const ClosedMesh* c = &cm;
   ms.push_back({"rayproof", [c](std::span<const Vec3<double>> p, std::span<std::uint32_t> t, std::span<double> d) {
@@ -38,11 +45,33 @@ std::vector<DistanceMethod> distance_methods(const mesh::Mesh& m, const ClosedMe
                   c->closest_points(p, r, true, 1);
                   for (std::size_t i = 0; i < p.size(); ++i) t[i] = r[i].triangle, d[i] = r[i].distance;
                 }});
+  if (ablation) {
+    using namespace rayproof::detail;
+    const std::pair<const char*, unsigned> parts[] = {{"-wide tree", kAblateWide},
+                                                      {"-morton order", kAblateOrder},
+                                                      {"-previous hint", kAblateHint},
+                                                      {"-lower bound", kAblateLower}};
+    for (const auto& [name, flag] : parts) {
+      ms.push_back({std::string("rayproof") + name, [c, flag](std::span<const Vec3<double>> p, std::span<std::uint32_t> t,
+                                                             std::span<double> d) {
+                      thread_local std::vector<ClosestPoint> r;
+                      r.resize(p.size());
+                      set_distance_ablation(flag);
+                      c->closest_points(p, r, false, 1);
+                      set_distance_ablation(kAblateNone);
+                      for (std::size_t i = 0; i < p.size(); ++i) t[i] = r[i].triangle, d[i] = r[i].distance;
+                    }});
+    }
+  }
   for (auto& comp : make_distance_competitors(m.vertices, m.triangles)) {
     if (comp.run) ms.push_back({comp.name, comp.run});
     else notes.push_back(comp.name + ": " + comp.note);
   }
   return ms;
+}
+
+mesh::Mesh distance_bench_mesh(const std::string& path) {
+  return path == "generated" ? bumpy_sphere(std::size_t(1) << 20) : mesh::read_mesh(path);
 }
 
 DistancePointSets distance_point_sets(const mesh::Mesh& m, std::size_t n, std::mt19937_64& rng) {
@@ -71,12 +100,24 @@ DistancePointSets distance_point_sets(const mesh::Mesh& m, std::size_t n, std::m
 }
 
 DistanceSetResult time_distance_set(const mesh::Mesh& m, const ClosedMesh& cm, std::vector<DistanceMethod>& ms,
-                                    const std::vector<Vec3<double>>& pts, int repeat) {
+                                    const std::vector<Vec3<double>>& pts, int repeat, int threads) {
   for (auto& mt : ms) mt.rates.clear(), mt.tri.assign(pts.size(), 0), mt.dist.assign(pts.size(), 0);
+  tbb::task_arena arena(std::max(threads, 1));
+  auto run = [&](DistanceMethod& mt) {
+    if (threads <= 1) return mt.run(pts, mt.tri, mt.dist);
+    const std::span<const Vec3<double>> all(pts);
+    const std::size_t chunk = std::max<std::size_t>(1024, pts.size() / (std::size_t(threads) * 8));
+    arena.execute([&] {
+      tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pts.size(), chunk), [&](const tbb::blocked_range<std::size_t>& r) {
+        const std::size_t b = r.begin(), n = r.size();
+        mt.run(all.subspan(b, n), std::span(mt.tri).subspan(b, n), std::span(mt.dist).subspan(b, n));
+      });
+    });
+  };
   for (int r = 0; r < repeat; ++r)
     for (auto& mt : ms) {
       const double t0 = now();
-      mt.run(pts, mt.tri, mt.dist);
+      run(mt);
       mt.rates.push_back(double(pts.size()) / (now() - t0) * 1e-6);
     }
   // The exact reference: per point, the nearest of the methods' triangles (exact comparisons where
@@ -114,10 +155,14 @@ DistanceSetResult time_distance_set(const mesh::Mesh& m, const ClosedMesh& cm, s
   // triangle: check a sample of them against the exact distance of that triangle.
   res.sample = std::min<std::size_t>(n, 2000);
   for (std::size_t i = 0; i < res.sample; ++i) res.sample_bad += exact_triangle_distance(pts[i], tri(best[i])) != ref[i];
-  // How often the exact stage ran.
+  // How often the exact stage ran; the batch's sides against contains(p), point by point.
   std::vector<ClosestPoint> cps(n);
-  cm.closest_points(pts, cps, false, 1);
-  for (const auto& r : cps) ++res.stages[std::size_t(r.stage)];
+  cm.closest_points(pts, cps, true, 1);
+  for (std::size_t i = 0; i < n; ++i) {
+    ++res.stages[std::size_t(cps[i].stage)];
+    const Side want = cps[i].distance == 0 ? Side::surface : cm.contains(pts[i]);
+    res.side_differ += cps[i].side != want;
+  }
   return res;
 }
 

@@ -25,10 +25,16 @@ struct DistanceMethod {
   std::vector<double> dist{};  ///< and distances
 };
 
-/// rayproof (closest_points without and with the side) first, then the competitors that can be
-/// built here; `notes` gets a line for each that cannot. `cm` must outlive the methods.
+/// rayproof (closest_points without and with the side) first, then with `ablation` rayproof with one
+/// part turned off per method (the same answers; rayproof/it is that part's speed-up), then the
+/// competitors that can be built here; `notes` gets a line for each that cannot. `cm` must outlive
+/// the methods.
 [[nodiscard]] std::vector<DistanceMethod> distance_methods(const mesh::Mesh& m, const ClosedMesh& cm,
-                                                           std::vector<std::string>& notes);
+                                                           std::vector<std::string>& notes, bool ablation = false);
+
+/// The mesh of `bench distance`: a file, or for "generated" the 1.31M-triangle bumpy sphere
+/// (scene::bumpy_sphere(2^20), as bench contains). Throws mesh::MeshError for a bad file.
+[[nodiscard]] mesh::Mesh distance_bench_mesh(const std::string& path);
 
 /// `n` points uniform in the box grown by 20%, and `n` near the surface (a random point of a random
 /// triangle moved along its normal by up to 1e-3 of the box diagonal).
@@ -46,8 +52,11 @@ struct DistanceSetResult {
   std::vector<double> max_ulps;
   std::size_t sample = 0, sample_bad = 0;
   std::array<std::size_t, 5> stages{};
+  std::size_t side_differ = 0;  ///< batch sides (closest_points with the side) that differ from contains(p)
 };
+/// Each method runs on `threads` threads (> 1: the points split into chunks run concurrently
+/// through the method's own one-thread call, the same for every method).
 [[nodiscard]] DistanceSetResult time_distance_set(const mesh::Mesh& m, const ClosedMesh& cm, std::vector<DistanceMethod>& ms,
-                                                  const std::vector<Vec3<double>>& pts, int repeat);
+                                                  const std::vector<Vec3<double>>& pts, int repeat, int threads = 1);
 
 }  // namespace rayproof::scene::compare
