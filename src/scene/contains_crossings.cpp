@@ -614,7 +614,7 @@ void ClosedMesh::ray_crossings(std::span<const Ray<double>> rays, std::span<RayC
 
 namespace detail {
 namespace {
-std::atomic<unsigned> speedup_bits{7u};
+std::atomic<unsigned> speedup_bits{3u};  // CrossingsSpeedups{}
 }  // namespace
 void set_crossings_speedups(const CrossingsSpeedups& s) {
   speedup_bits.store(unsigned(s.float_traversal) | unsigned(s.lane_misses) << 1 | unsigned(s.fan_once) << 2,

@@ -1,7 +1,7 @@
 #pragma once
 /// The parts of ClosedMesh::ray_crossings' speed that can be switched off one at a time, for the
 /// ablation of `rayproof bench crossings --ablation` (internal to rayproof_scene_certified and its
-/// benches). All are on by default; the answers are the same either way (only the work differs).
+/// benches). The answers are the same either way (only the work differs; the bench compares them).
 namespace rayproof::detail {
 
 struct CrossingsSpeedups {
@@ -11,8 +11,10 @@ struct CrossingsSpeedups {
   /// Stage 1's proven misses four triangles at a time (AVX2 lanes) before the scalar filter.
   bool lane_misses = true;
   /// A vertex's or an edge's fan decided once per contact: vertices on the ray and edges with edge
-  /// function 0 remembered per ray (their signs, the edge contact's t).
-  bool fan_once = true;
+  /// function 0 remembered per ray (their signs, the edge contact's t). Off by default: measured
+  /// no gain (rays through vertices and edges on bunny00, armadillo and the generated sphere: the
+  /// same or up to 6% slower with it; docs/contains.md).
+  bool fan_once = false;
 };
 
 void set_crossings_speedups(const CrossingsSpeedups& s);
