@@ -160,6 +160,13 @@ TEST(Crossings, OriginsInsideAndOnTheSurfaceAndRanges) {
   EXPECT_EQ(dirs(r), (std::vector{In}));
   r = m.ray_crossings(ray({-1, 1, 1}, {1, 0, 0}), {0, 0.5});
   EXPECT_TRUE(r.valid && r.crossings.empty());
+  // A range reaching behind the origin: the contacts at t < 0 count too (a face; two corners).
+  r = m.ray_crossings(ray({1, 1, 1}, {1, 0.25, 0.5}), {-INFINITY, INFINITY});
+  EXPECT_EQ(dirs(r), (std::vector{In, Out}));
+  EXPECT_EQ(ts(r), (std::vector{-1.0, 1.0}));
+  r = m.ray_crossings(ray({1, 1, 1}, {1, 1, 1}), {-5, 5});
+  EXPECT_EQ(dirs(r), (std::vector{In, Out}));
+  EXPECT_EQ(ts(r), (std::vector{-1.0, 1.0}));
   // Bad rays: not valid, nothing found.
   const double nan = std::nan("");
   EXPECT_FALSE(m.ray_crossings(ray({0, 0, 0}, {0, 0, 0})).valid);

@@ -19,8 +19,11 @@
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
+#include <xmmintrin.h>
 
 #include <algorithm>
+#include <bit>
+#include <atomic>
 #include <cmath>
 #include <optional>
 #include <string>
@@ -30,6 +33,9 @@
 #include "rayproof/certified/intersect.h"
 #include "rayproof/certified_expansion.h"
 #include "scene/contains_state.h"
+#include "scene/crossings_exact_sign.h"
+#include "scene/crossings_speedups.h"
+#include "scene/leaf_simd.h"
 
 namespace rayproof {
 
@@ -95,6 +101,41 @@ struct Decided {
   Where where;
 };
 
+/// What one ray has proven about the points it passes exactly through, so that a vertex's or an
+/// edge's fan is decided once per contact instead of once per triangle: vertices on the ray's line
+/// (every edge from one has edge function exactly 0: a - o is a multiple of d), and edges whose edge
+/// function is exactly 0, keyed by their ends in coordinate order, with the sign of the
+/// perturbation's first nonzero coefficient for that order and, once a triangle found it, the
+/// contact's t (the same exact point, so the same exact t for every triangle on the edge). Only the
+/// last kRecent entries are searched: the fan's triangles are near in the BVH's leaf order, and a
+/// ray along a line of many vertices does not make each lookup longer (a miss only recomputes).
+struct Known {
+  static constexpr std::size_t kRecent = 16;
+  struct Edge {
+    Vec3<double> a, b;
+    int g = 0;
+    Contact contact = Contact::miss;  ///< edge or behind once a triangle met there found its t
+    double t = kNaN<double>;
+  };
+  std::vector<Vec3<double>> vertices;
+  std::vector<Edge> edges;
+  bool on = true;  ///< off (the ablation): nothing remembered, every triangle decided alone
+  void clear() { vertices.clear(), edges.clear(); }
+  [[nodiscard]] bool on_line(const Vec3<double>& v) const {
+    if (!on) return false;
+    for (std::size_t i = vertices.size(), e = i > kRecent ? i - kRecent : 0; i-- > e;)
+      if (vertices[i] == v) return true;
+    return false;
+  }
+  /// The entry of edge {a, b} (in coordinate order), or null.
+  [[nodiscard]] Edge* edge(const Vec3<double>& a, const Vec3<double>& b) {
+    if (!on) return nullptr;
+    for (std::size_t i = edges.size(), e = i > kRecent ? i - kRecent : 0; i-- > e;)
+      if (edges[i].a == a && edges[i].b == b) return &edges[i];
+    return nullptr;
+  }
+};
+
 /// From the exact signs of u_i (the edge function of edge (p_{i+1}, p_{i+2}); their sum is d . n)
 /// and, where u_i = 0, of the perturbation's coefficients g_i = (p_{i+1} - p_{i+2}) x d.
 Decided finish(const std::array<Vec3<double>, 3>& p, const int (&s)[3], const int (&gs)[3], int sdn) {
@@ -147,52 +188,6 @@ Decided decide_gmp(const Ray<double>& r, const std::array<Vec3<double>, 3>& p) {
   return finish(p, s, gs, sgn(den));
 }
 
-/// The exact sign of the sum of n doubles (Shewchuk's GROW-EXPANSION on a local array; n <= 24, no
-/// overflow: callers' terms are exact products of inputs in the exponent window).
-int sign_of_sum(const double* x, int n) {
-  double c[32];
-  int m = 0;
-  for (int i = 0; i < n; ++i) {
-    double q = x[i];
-    int k = 0;
-    for (int j = 0; j < m; ++j) {
-      const TwoTerm<double> t = two_sum(q, c[j]);
-      q = t.hi;
-      if (t.lo != 0) c[k++] = t.lo;
-    }
-    if (q != 0) c[k++] = q;
-    m = k;
-  }
-  return m == 0 ? 0 : (c[m - 1] > 0 ? 1 : -1);
-}
-
-/// The exact sign of u = d . (B x C) when B = a - o and C = b - o are exact in double (often so when
-/// a ray is aimed along an axis at a vertex): every product two_prod'ed into at most 24 terms.
-/// Returns 2 when a difference is not exact.
-int u_sign_exact_small(const Vec3<double>& d, const Vec3<double>& o, const Vec3<double>& a, const Vec3<double>& b) {
-  const double A[3] = {a.x, a.y, a.z}, O[3] = {o.x, o.y, o.z}, Bv[3] = {b.x, b.y, b.z}, D[3] = {d.x, d.y, d.z};
-  double B[3], C[3];
-  for (int c = 0; c < 3; ++c) {
-    const TwoTerm<double> x = two_sum(A[c], -O[c]), y = two_sum(Bv[c], -O[c]);
-    if (x.lo != 0 || y.lo != 0) return 2;
-    B[c] = x.hi, C[c] = y.hi;
-  }
-  double terms[24];
-  int n = 0;
-  for (int c = 0; c < 3; ++c) {
-    if (D[c] == 0) continue;
-    const int j = (c + 1) % 3, k = (c + 2) % 3;
-    const TwoTerm<double> p = two_prod(B[j], C[k]), q = two_prod(B[k], C[j]);
-    for (const double v : {p.hi, p.lo, -q.hi, -q.lo}) {
-      if (v == 0) continue;
-      const TwoTerm<double> w = two_prod(D[c], v);
-      terms[n++] = w.hi;
-      if (w.lo != 0) terms[n++] = w.lo;
-    }
-  }
-  return sign_of_sum(terms, n);
-}
-
 double norm_inf(const Vec3<double>& v) { return std::max({std::fabs(v.x), std::fabs(v.y), std::fabs(v.z)}); }
 
 /// The same with a double filter first: u = (d x B) . C with B = a - o, C = b - o rounded, and the
@@ -201,7 +196,7 @@ double norm_inf(const Vec3<double>& v) { return std::max({std::fabs(v.x), std::f
 /// 2^-49 (|e_j d_k| + |e_k d_j|) + 2^-1000 (e = a - b rounded: gamma_3 of the permanent, with room).
 /// What a bound leaves undecided (mostly the exact zeros of an edge or vertex contact) goes to the
 /// expansions, exact for inputs in the exponent window of a degree-3 polynomial; outside it, GMP.
-Decided decide_perturbed(const Ray<double>& r, const std::array<Vec3<double>, 3>& p) {
+Decided decide_perturbed(const Ray<double>& r, const std::array<Vec3<double>, 3>& p, Known& known) {
   using certified::ExpVec3;
   const Vec3<double>&o = r.o, &d = r.d, &p0 = p[0], &p1 = p[1], &p2 = p[2];
   if (!certified::in_range<-200, 200>(o.x, o.y, o.z, d.x, d.y, d.z, p0.x, p0.y, p0.z, p1.x, p1.y, p1.z, p2.x, p2.y,
@@ -219,7 +214,16 @@ Decided decide_perturbed(const Ray<double>& r, const std::array<Vec3<double>, 3>
       s[i] = u > 0 ? 1 : -1;
       continue;
     }
-    if (const int small = u_sign_exact_small(d, o, p[j], p[k]); small != 2) {
+    // An edge this ray already proved: u = 0 and g's sign known (negated for the other order).
+    const bool ordered = !less_xyz(p[k], p[j]);
+    const Vec3<double>&ea = ordered ? p[j] : p[k], &eb = ordered ? p[k] : p[j];
+    if (const Known::Edge* ke = known.edge(ea, eb)) {
+      s[i] = 0, gs[i] = ordered ? ke->g : -ke->g;
+      continue;
+    }
+    if (known.on_line(p[j]) || known.on_line(p[k])) {
+      s[i] = 0;
+    } else if (const int small = detail::u_sign_exact_small(d, o, p[j], p[k]); small != 2) {
       s[i] = small;
     } else {
       const certified::Expansion ux =
@@ -233,8 +237,11 @@ Decided decide_perturbed(const Ray<double>& r, const std::array<Vec3<double>, 3>
                           0x1p-49 * (std::fabs(e.z * d.x) + std::fabs(e.x * d.z)) + 0x1p-1000,
                           0x1p-49 * (std::fabs(e.x * d.y) + std::fabs(e.y * d.x)) + 0x1p-1000};
     const double gd[3] = {gv.x, gv.y, gv.z};
+    // g_c = e_a d_b - e_b d_a is exactly 0 when both of its d components are (an axis ray).
+    const double D[3] = {d.x, d.y, d.z};
     bool done = false;
     for (int c = 0; c < 3 && !done; ++c) {
+      if (D[(c + 1) % 3] == 0 && D[(c + 2) % 3] == 0) continue;
       if (std::fabs(gd[c]) > eg[c] && eg[c] < 0x1p1000) {
         gs[i] = gd[c] > 0 ? 1 : -1;
         done = true;
@@ -245,8 +252,13 @@ Decided decide_perturbed(const Ray<double>& r, const std::array<Vec3<double>, 3>
         if (v) gs[i] = v, done = true;  // else this component is exactly 0: the next one decides
       }
     }
+    if (known.on) known.edges.push_back({ea, eb, ordered ? gs[i] : -gs[i]});
   }
-  return finish(p, s, gs, sign_dn(d, p));
+  const Decided out = finish(p, s, gs, sign_dn(d, p));
+  // Two edge functions 0 and d . n != 0: the ray's line holds their common vertex (else it would
+  // lie in the plane of the vertex and both edges, the triangle's).
+  if (known.on && out.where.kind == 2 && out.sdn != 0 && !known.on_line(out.where.a)) known.vertices.push_back(out.where.a);
+  return out;
 }
 
 /// The certified filter's answer for one triangle, and for a vertex contact the perturbed decision
@@ -262,11 +274,13 @@ struct Classified {
   bool decided = false;
   Decided dd;
 };
-Classified classify(const Ray<double>& ray, const std::array<Vec3<double>, 3>& p) {
+Classified classify(const Ray<double>& ray, const std::array<Vec3<double>, 3>& p, Known& known) {
   Classified out;
   const Triangle<double> tri{p[0], p[1], p[2]};
   auto next = [&]() -> std::optional<Hit<double>> {
-    const Decided dd = decide_perturbed(ray, p);
+    const Decided dd = decide_perturbed(ray, p, known);
+    out.decided = true;
+    out.dd = dd;
     if (dd.sdn != 0 && !dd.met) return Hit<double>{Contact::miss};
     if (dd.sdn != 0 && dd.where.kind == 2) {
       const double D[3] = {ray.d.x, ray.d.y, ray.d.z}, O[3] = {ray.o.x, ray.o.y, ray.o.z};
@@ -282,13 +296,23 @@ Classified classify(const Ray<double>& ray, const std::array<Vec3<double>, 3>& p
         t = q + (r + diff.lo) / D[c];
         if (!(std::fabs(q) >= 0x1p-900 && std::fabs(q) <= 0x1p900 && std::fabs(D[c]) >= 0x1p-900)) t = kNaN<double>;
       }
-      if (t == t) {
-        out.decided = true;
-        out.dd = dd;
-        return Hit<double>{t < 0 ? Contact::behind : Contact::vertex, t};
-      }
+      if (t == t) return Hit<double>{t < 0 ? Contact::behind : Contact::vertex, t};
     }
-    return certified::detail::triangle_rest(ray, tri);
+    // An edge contact: every triangle met on that edge is met at the same point, so the first one's
+    // class (edge or behind) and t serve the others.
+    Known::Edge* ke = dd.sdn != 0 && dd.where.kind == 1 ? known.edge(dd.where.a, dd.where.b) : nullptr;
+    if (ke && ke->contact != Contact::miss) return Hit<double>{ke->contact, ke->t};
+    std::optional<Hit<double>> h;
+#if RAYPROOF_FMA_PATH != 0
+    // The contact is decided (met, on one edge): only t is left, in double-double (pinned to one
+    // ulp, or nothing when num is too near 0 to give its sign).
+    if (dd.sdn != 0 && dd.where.kind == 1 && certified::dd::available())
+      if (const std::optional<double> t = certified::dd::triangle_t(ray, tri))
+        h = Hit<double>{*t < 0 ? Contact::behind : Contact::edge, *t};
+#endif
+    if (!h) h = certified::detail::triangle_rest(ray, tri);
+    if (ke && h && (h->contact == Contact::edge || h->contact == Contact::behind)) ke->contact = h->contact, ke->t = h->t;
+    return h;
   };
   if (const auto f = certified::detail::triangle_fast(ray, tri, next)) {
     out.h = *f;
@@ -309,23 +333,39 @@ struct Candidate {
   Where where;
 };
 
+/// The next double above x (std::nextafter(x, inf) without the library call; NaN and +inf stay).
+double next_up(double x) {
+  if (!(x < std::numeric_limits<double>::infinity())) return x;
+  if (x == 0) return std::numeric_limits<double>::denorm_min();
+  const auto b = std::bit_cast<std::uint64_t>(x);
+  return std::bit_cast<double>(x > 0 ? b + 1 : b - 1);
+}
 /// Two ulps above x (the rounded t of two contacts at the same exact t differ by at most that).
-double up2(double x) {
-  const double inf = std::numeric_limits<double>::infinity();
-  return std::nextafter(std::nextafter(x, inf), inf);
-}
-double down2(double x) {
-  const double inf = std::numeric_limits<double>::infinity();
-  return std::nextafter(std::nextafter(x, -inf), -inf);
-}
+double up2(double x) { return next_up(next_up(x)); }
+double down2(double x) { return -up2(-x); }
 
 }  // namespace
 
 namespace {
 
-/// The contacts of one group [b, g) of `order` (indices into cand), at t: a crossing (or, net 0, a touch).
+/// Whether an exact t lies in [tmin, tmax] (either may be infinite).
+bool exact_in_range(const mpq_class& t, TRange range) {
+  return (!std::isfinite(range.tmin) || t >= mpq_class(range.tmin)) && (!std::isfinite(range.tmax) || t <= mpq_class(range.tmax));
+}
+
+/// Whether the exact t of a contact whose rounded t is `t` (within one ulp of it) lies in the range:
+/// from t where two ulps decide, else exactly (`exact()` computes it: a ray starting on the surface).
+template <class Exact>
+bool contact_in_range(double t, TRange range, Exact&& exact) {
+  if (t < down2(range.tmin) || t > up2(range.tmax)) return false;
+  if (t >= up2(range.tmin) && t <= down2(range.tmax)) return true;
+  return exact_in_range(exact(), range);
+}
+
+/// The contacts of one group [b, g) of `order` (indices into cand), at t (its exact t in the range):
+/// a crossing (or, net 0, a touch).
 void emit_group(const std::vector<Candidate>& cand, const std::size_t* order, std::size_t b, std::size_t g, double t,
-                TRange range, RayCrossings& out) {
+                RayCrossings& out) {
   int net = 0;
   for (std::size_t k = b; k < g; ++k) net += cand[order[k]].net;
   // The reported triangle: the lowest-numbered one crossed in the net's direction, or (a touch)
@@ -338,7 +378,6 @@ void emit_group(const std::vector<Candidate>& cand, const std::size_t* order, st
     const bool fits = net == 0 || (net > 0 ? c.net > 0 : c.net < 0);
     if (fits && (!rep || c.triangle < rep->triangle)) rep = &c;
   }
-  if (!(t >= range.tmin && t <= range.tmax)) return;
   if (net == 0) {
     out.touches.push_back({t, t, rep->triangle, worst});
   } else {
@@ -347,12 +386,40 @@ void emit_group(const std::vector<Candidate>& cand, const std::size_t* order, st
   }
 }
 
+/// The accel's tree (the one its queries use) traversed conservatively along [tmin, tmax]:
+/// `leaf(first, count)` for each leaf the ray's segment may meet.
+template <class LeafRange>
+void traverse_leaves(const scene::Accel& a, const Ray<double>& ray, TRange range, LeafRange&& leaf) {
+  auto run = [&](const auto& tree) {
+    wide_traverse_leaves(tree, ray, range.tmin, range.tmax, BvhTraversal::conservative, BvhQuery::all, leaf);
+  };
+  const bool compressed = a.nodes() == BvhNodes::compressed;
+  if (a.simd() == BvhSimd::avx2) return compressed ? run(a.bvh8q()) : run(a.bvh8());
+  return compressed ? run(a.bvh4q()) : run(a.bvh());
+}
+
+/// A leaf callback with prefetch(first), which the traversal calls for each leaf child it puts on
+/// its stack: the leaf's first group (four slots of triangles, 288 bytes) requested while the nearer children are visited (without it the leaves' first loads were most
+/// of the leaf time: cache misses).
+template <class F>
+struct PrefetchingLeaf {
+  F& f;
+  const std::array<Vec3<double>, 3>* slots;
+  bool operator()(std::uint32_t first, std::uint32_t count) { return f(first, count); }
+  void prefetch(std::uint32_t first) const {
+    const char* p = reinterpret_cast<const char*>(slots + first);
+    for (int off = 0; off < 288; off += 64) _mm_prefetch(p + off, _MM_HINT_T0);
+    _mm_prefetch(p + 287, _MM_HINT_T0);
+  }
+};
+
 /// Per thread: the candidates of the current ray and the scratch of its runs (no allocation per ray
 /// once grown).
 struct Scratch {
   std::vector<Candidate> cand;
   std::vector<std::size_t> order;
   std::vector<mpq_class> exact;
+  Known known;
 };
 
 }  // namespace
@@ -369,35 +436,72 @@ void ClosedMesh::ray_crossings_into(const Ray<double>& ray, TRange range, RayCro
   std::vector<Candidate>& cand = scratch.cand;
   std::vector<std::size_t>& order = scratch.order;
   std::vector<mpq_class>& exact = scratch.exact;
+  Known& known = scratch.known;
+  const detail::CrossingsSpeedups speedups = detail::crossings_speedups();
   cand.clear();
+  known.clear();
+  known.on = speedups.fan_once;
   const scene::LeafPrim* leaves = s.accel->leaf_prims().data();
   const std::array<Vec3<double>, 3>* slots = s.slots.data();
+  // The traversal along the exact range (conservative: every triangle with a contact at an exact t
+  // in it is visited; with tmin >= 0 on the float box test). Candidates are kept two ulps wider, so
+  // that contacts at the same exact t near an end are grouped together; which groups count is
+  // decided on their exact t.
   const double lo = down2(range.tmin), hi = up2(range.tmax);
-  s.accel->traverse_slots(ray, lo, hi, BvhTraversal::conservative, BvhQuery::all, [&](std::uint32_t j) {
-    const scene::LeafPrim& lp = leaves[j];
-    if (lp.id == scene::PrimHit::kNoPrim) return false;
-    const Classified cl = classify(ray, slots[j]);
+  // Slot j of a leaf (never padding: that lies between leaves); its record is read only for a
+  // candidate (a separate array: for the many slots that are no contact, a cache miss spared).
+  auto slot = [&](std::uint32_t j) {
+    const Classified cl = classify(ray, slots[j], known);
     const Hit<double>& h = cl.h;
     switch (h.contact) {
       case Contact::interior:
-        if (h.t >= lo && h.t <= hi) cand.push_back({h.t, lp.id, j, h.contact, -sign_dn(ray.d, slots[j]), {}});
+        if (h.t >= lo && h.t <= hi) cand.push_back({h.t, leaves[j].id, j, h.contact, -sign_dn(ray.d, slots[j]), {}});
         break;
       case Contact::edge:
       case Contact::vertex:
         if (h.t >= lo && h.t <= hi) {
-          const Decided dd = cl.decided ? cl.dd : decide_perturbed(ray, slots[j]);
-          cand.push_back({h.t, lp.id, j, h.contact, dd.crossed ? -dd.sdn : 0, dd.where});
+          const Decided dd = cl.decided ? cl.dd : decide_perturbed(ray, slots[j], known);
+          cand.push_back({h.t, leaves[j].id, j, h.contact, dd.crossed ? -dd.sdn : 0, dd.where});
+        }
+        break;
+      case Contact::behind:  // t < 0: a contact when the range reaches behind the origin
+        if (h.t >= lo && h.t <= hi) {
+          const Decided dd = cl.decided ? cl.dd : decide_perturbed(ray, slots[j], known);
+          const Contact c = dd.where.kind == 2 ? Contact::vertex : (dd.where.kind == 1 ? Contact::edge : Contact::interior);
+          cand.push_back({h.t, leaves[j].id, j, c, dd.crossed ? -dd.sdn : 0, dd.where});
         }
         break;
       case Contact::coplanar:
         if (h.t <= range.tmax && h.t2 >= range.tmin)  // NaN (no range on the triangle) fails both
-          out.touches.push_back({std::max(h.t, range.tmin), std::min(h.t2, range.tmax), lp.id, Contact::coplanar});
+          out.touches.push_back({std::max(h.t, range.tmin), std::min(h.t2, range.tmax), leaves[j].id, Contact::coplanar});
         break;
       default:
         break;
     }
+  };
+  // Whole leaves (each starts on a multiple of kLanes: one group per four slots): stage 1's proven
+  // misses in four double lanes first (the same decision as the scalar stage 1, scene/leaf_simd.h),
+  // the other slots one by one.
+  const bool lanes = speedups.lane_misses && scene::detail::leaf_simd() == scene::detail::LeafSimd::avx2;
+  auto leaf = [&](std::uint32_t first, std::uint32_t count) {
+    constexpr std::uint32_t L = scene::detail::kLanes;
+    for (std::uint32_t g0 = first, end = first + count; g0 < end; g0 += L) {
+      unsigned live = end - g0 >= L ? (1u << L) - 1 : (1u << (end - g0)) - 1;
+      if (lanes) {
+        alignas(32) double p[3][3][L];
+        for (std::uint32_t i = 0; i < L; ++i)  // (slots past a leaf's end are padding or the next leaf's: in bounds)
+          for (int v = 0; v < 3; ++v) {
+            const Vec3<double>& x = slots[g0 + i][v];
+            p[v][0][i] = x.x, p[v][1][i] = x.y, p[v][2][i] = x.z;
+          }
+        live &= ~scene::detail::certified_group_misses_avx2(ray, p, live);
+      }
+      for (; live; live &= live - 1) slot(g0 + std::uint32_t(__builtin_ctz(live)));
+    }
     return false;
-  });
+  };
+  PrefetchingLeaf<decltype(leaf)> prefetching{leaf, slots};
+  traverse_leaves(*s.accel, ray, speedups.float_traversal ? range : TRange{lo, hi}, prefetching);
   std::sort(cand.begin(), cand.end(),
             [](const Candidate& a, const Candidate& b) { return a.t != b.t ? a.t < b.t : a.triangle < b.triangle; });
   // Runs whose rounded t chain within two ulps: one group when every member is at the same vertex
@@ -411,8 +515,11 @@ void ClosedMesh::ray_crossings_into(const Ray<double>& ray, TRange range, RayCro
     for (std::size_t k = i + 1; k < e && one_point; ++k) one_point = cand[k].where == cand[i].where;
     if (e - i == 1 || one_point) {
       // One point: every member's t is within one ulp of its exact t; the least is taken (the runs
-      // around are more than two ulps away, so the order stays).
-      emit_group(cand, order.data(), 0, e - i, cand[i].t, range, out);
+      // around are more than two ulps away, so the order stays), moved into the range when the
+      // exact t is in it (then the range's end lies between t and the exact t).
+      const double t = cand[i].t;
+      if (contact_in_range(t, range, [&] { return exact_t(ray, slots[cand[i].slot]); }))
+        emit_group(cand, order.data(), 0, e - i, std::clamp(t, range.tmin, range.tmax), out);
     } else {
       exact.clear();
       for (std::size_t k = i; k < e; ++k) exact.push_back(exact_t(ray, slots[cand[k].slot]));
@@ -420,8 +527,10 @@ void ClosedMesh::ray_crossings_into(const Ray<double>& ray, TRange range, RayCro
       for (std::size_t b = 0; b < order.size();) {
         std::size_t g = b + 1;
         while (g < order.size() && exact[order[g] - i] == exact[order[b] - i]) ++g;
-        // The exact t correctly rounded: monotone in the exact t, so the listed t never decrease.
-        emit_group(cand, order.data(), b, g, round_nearest(exact[order[b] - i]), range, out);
+        // The exact t correctly rounded: monotone in the exact t, so the listed t never decrease
+        // (and stay in the range when the exact t is in it).
+        if (exact_in_range(exact[order[b] - i], range))
+          emit_group(cand, order.data(), b, g, round_nearest(exact[order[b] - i]), out);
         b = g;
       }
     }
@@ -450,5 +559,19 @@ void ClosedMesh::ray_crossings(std::span<const Ray<double>> rays, std::span<RayC
   tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
   arena.execute([&] { tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rays.size(), 64), body); });
 }
+
+namespace detail {
+namespace {
+std::atomic<unsigned> speedup_bits{3u};  // CrossingsSpeedups{}
+}  // namespace
+void set_crossings_speedups(const CrossingsSpeedups& s) {
+  speedup_bits.store(unsigned(s.float_traversal) | unsigned(s.lane_misses) << 1 | unsigned(s.fan_once) << 2,
+                     std::memory_order_relaxed);
+}
+CrossingsSpeedups crossings_speedups() {
+  const unsigned b = speedup_bits.load(std::memory_order_relaxed);
+  return {(b & 1) != 0, (b & 2) != 0, (b & 4) != 0};
+}
+}  // namespace detail
 
 }  // namespace rayproof

@@ -4,7 +4,12 @@
 #include <time.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+
+#include "rayproof/float_util.h"
+#include "scene/crossings_speedups.h"
+#include "scene/watertight.h"
 
 namespace rayproof::scene::compare {
 
@@ -65,33 +70,88 @@ CrossingRaySets crossing_ray_sets(const mesh::Mesh& m, std::size_t n, std::mt199
   }
   std::vector<std::uint32_t> used;
   for (const auto& t : m.triangles) used.insert(used.end(), t.begin(), t.end());
-  for (auto& r : s.vertex) {
-    const Vec3<double>& v = m.vertices[used[rng() % used.size()]];
-    const int k = int(rng() % 3);
+  // An axis ray along +-e_k through p: the origin p with coordinate k moved a quarter of the size
+  // outside the box (rounded to float: p_k stays on the line).
+  auto axis_ray = [&](const Vec3<double>& p, int k) {
     const double sgn = (rng() & 1) ? 1.0 : -1.0;
-    r.o = v;
-    double* oc = reinterpret_cast<double*>(&r.o);
-    oc[k] = to_float(sgn > 0 ? (&lo.x)[k] - 0.25 * s.size : (&hi.x)[k] + 0.25 * s.size);
-    r.d = {0, 0, 0};
-    reinterpret_cast<double*>(&r.d)[k] = sgn;
+    Ray<double> r{p, {0, 0, 0}};
+    (&r.o.x)[k] = to_float(sgn > 0 ? (&lo.x)[k] - 0.25 * s.size : (&hi.x)[k] + 0.25 * s.size);
+    (&r.d.x)[k] = sgn;
+    return r;
+  };
+  for (auto& r : s.vertex) r = axis_ray(m.vertices[used[rng() % used.size()]], int(rng() % 3));
+  s.edge.reserve(n);
+  for (std::size_t tries = 0; s.edge.size() < n && tries < 8 * n; ++tries) {
+    const auto& t = m.triangles[rng() % m.triangles.size()];
+    const int e = int(rng() % 3);
+    const Vec3<double>&a = m.vertices[t[e]], &b = m.vertices[t[(e + 1) % 3]];
+    const Vec3<double> mid{(a.x + b.x) * 0.5, (a.y + b.y) * 0.5, (a.z + b.z) * 0.5};
+    // Exact: the sums lost nothing (and halving a double above the subnormals is exact).
+    if (two_sum(a.x, b.x).lo != 0 || two_sum(a.y, b.y).lo != 0 || two_sum(a.z, b.z).lo != 0) continue;
+    int k = int(rng() % 3);
+    const Vec3<double> ab = b - a;
+    if ((&ab.x)[(k + 1) % 3] == 0 && (&ab.x)[(k + 2) % 3] == 0) continue;  // along the edge: no point contact
+    s.edge.push_back(axis_ray(mid, k));
   }
   return s;
 }
 
+mesh::Mesh crossings_mesh(const std::string& path) {
+  return path == "generated" ? bumpy_sphere(std::size_t(1) << 20) : mesh::read_mesh(path);
+}
+
 CrossingsRun time_crossings(const ClosedMesh& cm, const AllHitsCompetitor& embree, const std::vector<Ray<double>>& rays,
-                            double size, int repeat) {
+                            double size, int repeat, int threads, bool ablation) {
   CrossingsRun run;
-  std::vector<RayCrossings> ours(rays.size());
+  std::vector<RayCrossings> ours(rays.size()), scratch;
   std::vector<std::vector<EmbreeHit>> theirs;
+  auto now = [threads] {
+    return threads == 1 ? thread_seconds()
+                        : std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+  };
+  auto rate = [&](auto&& f) {
+    const double t0 = now();
+    f();
+    return double(rays.size()) / (now() - t0) * 1e-6;
+  };
+  std::vector<std::pair<std::string, rayproof::detail::CrossingsSpeedups>> off;
+  if (ablation) {
+    off.push_back({"without float traversal", {false, true, false}});
+    off.push_back({"without lane misses", {true, false, false}});
+    off.push_back({"with fan once", {true, true, true}});
+    scratch.resize(rays.size());
+    for (const auto& o : off) run.variants.push_back({o.first, {}, 0});
+  }
+  auto same = [](const RayCrossings& a, const RayCrossings& b) {
+    if (a.valid != b.valid || a.crossings.size() != b.crossings.size() || a.touches.size() != b.touches.size()) return false;
+    for (std::size_t i = 0; i < a.crossings.size(); ++i)
+      if (a.crossings[i].t != b.crossings[i].t || a.crossings[i].triangle != b.crossings[i].triangle ||
+          a.crossings[i].direction != b.crossings[i].direction)
+        return false;
+    for (std::size_t i = 0; i < a.touches.size(); ++i)
+      if (a.touches[i].t != b.touches[i].t || a.touches[i].t2 != b.touches[i].t2 || a.touches[i].triangle != b.touches[i].triangle ||
+          a.touches[i].contact != b.touches[i].contact)
+        return false;
+    return true;
+  };
   for (int rep = 0; rep < repeat; ++rep) {
-    double t0 = thread_seconds();
-    cm.ray_crossings(rays, ours, {}, 1);
-    run.ours.push_back(double(rays.size()) / (thread_seconds() - t0) * 1e-6);
-    if (embree.run) {
-      t0 = thread_seconds();
-      embree.run(rays, theirs);
-      run.embree.push_back(double(rays.size()) / (thread_seconds() - t0) * 1e-6);
+    // rayproof's variants in an order rotated each repeat (the first after Embree's run finds its
+    // data evicted from the caches: measured up to 10% slower in that place).
+    for (std::size_t k = 0; k <= off.size(); ++k) {
+      const std::size_t v = (k + std::size_t(rep)) % (off.size() + 1);
+      if (v == 0) {
+        run.ours.push_back(rate([&] { cm.ray_crossings(rays, ours, {}, threads); }));
+        continue;
+      }
+      rayproof::detail::set_crossings_speedups(off[v - 1].second);
+      run.variants[v - 1].ours.push_back(rate([&] { cm.ray_crossings(rays, scratch, {}, threads); }));
+      rayproof::detail::set_crossings_speedups({});
+      if (rep == 0) {  // (the default's answers are in `ours` from repeat 0 on: it runs first there)
+        std::size_t& differ = run.variants[v - 1].differing_rays;
+        for (std::size_t i = 0; i < rays.size(); ++i) differ += !same(ours[i], scratch[i]);
+      }
     }
+    if (embree.run) run.embree.push_back(rate([&] { embree.run(rays, theirs, threads); }));
   }
   CrossingsTally& t = run.tally;
   if (embree.run)

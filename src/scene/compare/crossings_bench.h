@@ -1,8 +1,8 @@
 #pragma once
-/// The measuring half of `rayproof bench crossings`: the ray sets (random, and axis rays exactly
-/// through vertices, rounded to float), timed interleaved runs of ClosedMesh::ray_crossings and of
-/// Embree's all hits on one thread (thread CPU time), and the tally of Embree's hits against
-/// rayproof's exact contacts. The tool prints what these return.
+/// The measuring half of `rayproof bench crossings`: the ray sets (random, axis rays exactly through
+/// vertices and through edge midpoints), timed interleaved runs of ClosedMesh::ray_crossings and of
+/// Embree's all hits (one thread: thread CPU time; more: wall time), and the tally of Embree's hits
+/// against rayproof's exact contacts. The tool prints what these return.
 #include <random>
 #include <string>
 #include <vector>
@@ -26,21 +26,38 @@ struct CrossingsTally {
 /// Adds one ray's comparison to `t`.
 void tally_ray(const RayCrossings& r, const std::vector<EmbreeHit>& hits, double tol, CrossingsTally& t);
 
-/// The two ray sets on a mesh whose vertices are floats: `n` random rays (origins in the box grown
-/// by 10% each side, normal directions) and `n` axis rays exactly through a used vertex.
+/// The mesh a `bench crossings` argument names: "generated" (the 1.31M-triangle bumpy sphere of
+/// bench contains) or a mesh file (mesh::read_mesh; throws mesh::MeshError).
+[[nodiscard]] mesh::Mesh crossings_mesh(const std::string& path);
+
+/// The ray sets on a mesh whose vertices are floats: `n` random rays (origins in the box grown by
+/// 10% each side, normal directions, floats), `n` axis rays exactly through a used vertex (floats),
+/// and `n` axis rays exactly through the midpoint of an edge (the midpoint (a + b) / 2 exact in
+/// double, the axis one not along the edge; the origin's other two coordinates are the midpoint's,
+/// so these origins are doubles: Embree gets their rounding to float).
 struct CrossingRaySets {
-  std::vector<Ray<double>> random, vertex;
+  std::vector<Ray<double>> random, vertex, edge;
   double size = 0;  ///< the box's largest extent
 };
 [[nodiscard]] CrossingRaySets crossing_ray_sets(const mesh::Mesh& m, std::size_t n, std::mt19937_64& rng);
 
-/// `repeat` interleaved runs of both on `rays`; the tally when Embree ran (else only rayproof's counts).
+/// `repeat` interleaved runs of both on `rays` on `threads` threads (1: thread CPU time; more:
+/// wall time); the tally when Embree ran (else only rayproof's counts). With `ablation`, rayproof
+/// also runs with each of its speed-ups (scene/crossings_speedups.h) switched from its default
+/// alone, in the same interleaved loop, and its answers are compared with the default's.
 struct CrossingsRun {
   std::vector<double> ours, embree;  ///< Mrays/s per run
+  struct Variant {
+    std::string name;  ///< e.g. "without lane misses"
+    std::vector<double> ours;
+    std::size_t differing_rays = 0;  ///< rays whose crossings or touches differ from the default's
+  };
+  std::vector<Variant> variants;
   CrossingsTally tally;
 };
 [[nodiscard]] CrossingsRun time_crossings(const ClosedMesh& cm, const AllHitsCompetitor& embree,
-                                          const std::vector<Ray<double>>& rays, double size, int repeat);
+                                          const std::vector<Ray<double>>& rays, double size, int repeat,
+                                          int threads = 1, bool ablation = false);
 
 /// Thread CPU time in seconds.
 [[nodiscard]] double thread_seconds();

@@ -25,8 +25,9 @@ struct EmbreeHit {
 struct AllHitsCompetitor {
   std::string name = "embree-all-hits";
   std::string note;  ///< why it is not available (then run is empty)
-  /// Every hit of each ray sorted by t into hits[i] (cleared first), on the calling thread.
-  std::function<void(std::span<const Ray<double>>, std::vector<std::vector<EmbreeHit>>&)> run;
+  /// Every hit of each ray sorted by t into hits[i] (cleared first): on the calling thread
+  /// (threads = 1), else rays in chunks on a TBB arena of `threads` threads (0: TBB's default).
+  std::function<void(std::span<const Ray<double>>, std::vector<std::vector<EmbreeHit>>&, int threads)> run;
 };
 
 [[nodiscard]] AllHitsCompetitor make_embree_all_hits(const std::vector<Vec3<double>>& vertices,
