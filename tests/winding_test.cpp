@@ -227,6 +227,62 @@ TEST(Winding, FarFieldBoundHoldsAtCoarseAdmissibility) {
   }
 }
 
+TEST(Winding, NearBoundHoldsAtCoarseTolerances) {
+  // Refinement stops as soon as the bound is below the tolerance: at coarse tolerances the value
+  // holds nodes seen too near for the expansion, bounded by area / (d - r)^2 alone (section 2b of
+  // winding_tree.cpp). The bound returned must hold, and be below the tolerance where met. Points
+  // near the holed sphere's surface and its holes, inside and out, and a small-leaf tree.
+  Shape s = sphere(4);
+  for (std::size_t k = 0; k < s.t.size(); k += 61) s.t.erase(s.t.begin() + std::ptrdiff_t(k));
+  const rayproof::detail::WindingTree tree(s.v, s.t), fine(s.v, s.t, 1);
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(-1, 1), radius(0.9, 1.1);
+  int coarse = 0;
+  for (int i = 0; i < 80; ++i) {
+    Vec3<double> p{u(rng), u(rng), u(rng)};
+    const double n = std::sqrt(p.x * p.x + p.y * p.y + p.z * p.z), r = i % 2 ? radius(rng) : 0.5 + i / 80.0;
+    p = {p.x / n * r, p.y / n * r, p.z / n * r};
+    const WindingValue ref = rayproof::winding_brute_force(s.v, s.t, p);
+    ASSERT_FALSE(ref.surface);
+    for (const auto* t : {&tree, &fine})
+      for (double tol : {3.0, 0.45, 0.2, 0.05, 1e-3}) {
+        const WindingValue v = t->value(p, tol);
+        EXPECT_LE(std::fabs(v.w - ref.w), v.bound + ref.bound) << "tolerance " << tol << " at radius " << r;
+        EXPECT_LE(v.bound, tol);
+        coarse += v.bound > 1e-3;
+      }
+  }
+  EXPECT_GT(coarse, 100);  // most coarse values stopped before every node was opened
+}
+
+TEST(Winding, TuningChangesNoAnswer) {
+  // The speed-ups (the near bound, compact caps, the caps' leaf size) are certified: a mesh built without them
+  // answers every point the same.
+  Shape s = sphere(4);
+  for (std::size_t k = 0; k < s.t.size(); k += 37) s.t.erase(s.t.begin() + std::ptrdiff_t(k));
+  auto& tuning = rayproof::detail::winding_tuning();
+  const auto saved = tuning;
+  const ClosedMesh fast = make(s);
+  tuning.near_bound = false, tuning.caps_leaf = 6;
+  const ClosedMesh plain = make(s);
+  tuning.near_bound = true, tuning.caps_leaf = 1;
+  const ClosedMesh small = make(s);
+  tuning.caps_leaf = saved.caps_leaf, tuning.compact_caps = !saved.compact_caps;
+  const ClosedMesh other_caps = make(s);
+  tuning = saved;
+  std::mt19937_64 rng(9);
+  int inside = 0, surface = 0;
+  for (const Vec3<double>& p : probe_points(s, rng, 1600)) {
+    const Side a = fast.contains(p);
+    EXPECT_EQ(a, plain.contains(p)) << p.x << " " << p.y << " " << p.z;
+    EXPECT_EQ(a, small.contains(p)) << p.x << " " << p.y << " " << p.z;
+    EXPECT_EQ(a, other_caps.contains(p)) << p.x << " " << p.y << " " << p.z;
+    inside += a == Side::inside, surface += a == Side::surface;
+  }
+  EXPECT_GT(inside, 100);
+  EXPECT_GT(surface, 10);
+}
+
 TEST(Winding, ClosedMeshesGiveIntegers) {
   const Shape c = cube();
   const ClosedMesh exact = make(c);

@@ -1,19 +1,21 @@
 // The winding rule's fast path. Let c be the mesh's boundary chain: every welded edge with its net
 // orientation (uses a->b minus uses b->a) when nonzero. It is a cycle (the boundary of a 2-chain),
-// so each connected component of it bounds a cone to any apex O: the cap triangles (b, a, O), one per
-// net use of a->b. Mesh + caps is then an oriented closed 2-cycle, whose winding number W(p) is an
-// exact integer (the perturbed-ray count of contains.cpp), and since solid angles add,
+// so it bounds a 2-chain made of caps: hierarchical fans over its closed walks (walk_caps below;
+// the default), or a cone to an apex O per connected component (the cap triangles (b, a, O), one
+// per net use of a->b; WindingTuning::compact_caps = false). Mesh + caps is then an oriented closed
+// 2-cycle, whose winding number W(p) is an exact integer (the perturbed-ray count of contains.cpp),
+// and since solid angles add,
 //     w_mesh(p) = W(p) - w_caps(p).
-// The caps are small (the holes' cones, apex at each component's centroid), so their far-field
-// bounds are small and w_caps is bounded after few nodes: the side is decided at about the cost of
-// contains on a closed mesh. Where this cannot decide (p on a cap or on the surface, or w within
-// the caps' bound of 1/2 after every cap triangle is evaluated directly) the full tree decides
-// (winding_tree.cpp).
+// The caps are small (they span the holes), so their bounds are small and w_caps is bounded after
+// few nodes: the side is decided at about the cost of contains on a closed mesh. Where this cannot
+// decide (p on a cap or on the surface, or w within the caps' bound of 1/2 after every cap triangle
+// is evaluated directly) the full tree decides (winding_tree.cpp).
 #include <algorithm>
 #include <bit>
 #include <cmath>
 #include <cstring>
 #include <numeric>
+#include <stdexcept>
 #include <unordered_map>
 
 #include "scene/contains_state.h"
@@ -29,6 +31,69 @@ std::uint32_t find(std::vector<std::uint32_t>& parent, std::uint32_t x) {
 
 bool in_box(const ContainsState& s, const Vec3<double>& p) {
   return s.lo.x <= p.x && p.x <= s.hi.x && s.lo.y <= p.y && p.y <= s.hi.y && s.lo.z <= p.z && p.z <= s.hi.z;
+}
+
+/// The capped mesh (mesh + caps, closed) and the caps' tree.
+void finish_caps(ContainsState& s, std::unique_ptr<ContainsState> st, const std::vector<Vec3<double>>& verts,
+                 std::vector<std::array<std::uint32_t, 3>> tris, std::vector<std::array<std::uint32_t, 3>> caps) {
+  if (caps.empty()) return;
+  tris.insert(tris.end(), caps.begin(), caps.end());
+  try {
+    load_contains_state(*st, VertexArray(&verts[0].x, verts.size()), IndexArray{tris.front().data(), tris.size()},
+                        ContainsRule::nonzero);
+  } catch (const std::exception&) {
+    return;  // not closed after all (cannot happen for a cycle; the full tree answers then)
+  }
+  s.caps = std::make_unique<WindingTree>(st->vertices, caps, winding_tuning().caps_leaf);
+  s.capped = std::move(st);
+}
+
+/// Caps made of compact triangles (the default; WindingTuning::compact_caps): the cap edges (each
+/// boundary edge reversed, as often as its net use) split into closed walks, each walk spanned by
+/// a hierarchical fan: triangles over every two consecutive walk edges, then the same over the
+/// walk of every other vertex, until three remain. The triangles' boundary, as a chain, is the walk
+/// (each chord is used once in each direction), so mesh + caps is again closed. Most triangles are
+/// as small as the hole's edges, so the tree's balls are tight; a cone from one apex (the former
+/// caps) is all slivers as long as the hole is wide, whose balls hold every point near the hole.
+std::vector<std::array<std::uint32_t, 3>> walk_caps(const std::vector<std::pair<std::uint32_t, std::uint32_t>>& cap_edges) {
+  std::unordered_map<std::uint32_t, std::vector<std::uint32_t>> out;
+  std::vector<std::uint32_t> starts;
+  for (const auto& [a, b] : cap_edges) {
+    auto& o = out[a];
+    if (o.empty()) starts.push_back(a);
+    o.push_back(b);
+  }
+  std::vector<std::array<std::uint32_t, 3>> caps;
+  std::vector<std::uint32_t> walk, next;
+  for (const std::uint32_t s : starts)
+    while (!out[s].empty()) {
+      // A closed walk from s: each vertex entered has an unused out edge (in = out everywhere).
+      walk.assign(1, s);
+      for (std::uint32_t cur = s;;) {
+        auto& o = out[cur];
+        if (o.empty()) throw std::logic_error("walk_caps: the boundary chain is not a cycle");  // cannot happen
+        const std::uint32_t nxt = o.back();
+        o.pop_back();
+        if (nxt == s) break;
+        walk.push_back(nxt), cur = nxt;
+      }
+      while (walk.size() >= 3) {
+        if (walk.size() == 3) {
+          caps.push_back({walk[0], walk[1], walk[2]});
+          break;
+        }
+        next.clear();
+        std::size_t i = 0;
+        for (; i + 2 <= walk.size(); i += 2) {
+          caps.push_back({walk[i], walk[i + 1], walk[(i + 2) % walk.size()]});
+          next.push_back(walk[i]);
+        }
+        if (i < walk.size()) next.push_back(walk[i]);  // odd: the last vertex stays
+        walk.swap(next);
+      }
+      // A walk of two vertices (a -> b -> a) bounds nothing.
+    }
+  return caps;
 }
 
 }  // namespace
@@ -58,6 +123,15 @@ void build_caps(ContainsState& s) {
     }
   if (boundary.empty()) return;  // oriented and closed: the tree alone
   std::sort(boundary.begin(), boundary.end(), [](const Edge& x, const Edge& y) { return x.lo != y.lo ? x.lo < y.lo : x.hi < y.hi; });
+  auto st = std::make_unique<ContainsState>();
+  std::vector<std::array<std::uint32_t, 3>> tris = s.triangles, caps;
+  if (winding_tuning().compact_caps) {
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> cap_edges;
+    for (const Edge& e : boundary)  // net uses lo -> hi are cancelled by hi -> lo, and the reverse
+      for (int k = 0; k < std::abs(e.net); ++k) cap_edges.push_back(e.net > 0 ? std::pair{e.hi, e.lo} : std::pair{e.lo, e.hi});
+    caps = walk_caps(cap_edges);
+    return finish_caps(s, std::move(st), s.vertices, std::move(tris), std::move(caps));
+  }
   // One apex per component: the mean of its vertices.
   std::unordered_map<std::uint32_t, std::uint32_t> apex;  // component root -> apex vertex
   std::unordered_map<std::uint32_t, std::array<double, 4>> sums;
@@ -69,9 +143,7 @@ void build_caps(ContainsState& s) {
         auto& acc = sums[find(parent, v)];
         acc[0] += s.vertices[v].x, acc[1] += s.vertices[v].y, acc[2] += s.vertices[v].z, acc[3] += 1;
       }
-  auto st = std::make_unique<ContainsState>();
   std::vector<Vec3<double>> verts = s.vertices;
-  std::vector<std::array<std::uint32_t, 3>> tris = s.triangles, caps;
   for (const auto& [root, acc] : sums) {
     apex[root] = std::uint32_t(verts.size());
     verts.push_back({acc[0] / acc[3], acc[1] / acc[3], acc[2] / acc[3]});
@@ -83,15 +155,7 @@ void build_caps(ContainsState& s) {
                                                        : std::array<std::uint32_t, 3>{e.lo, e.hi, o};
     for (int k = 0; k < std::abs(e.net); ++k) caps.push_back(cap);
   }
-  tris.insert(tris.end(), caps.begin(), caps.end());
-  try {
-    load_contains_state(*st, VertexArray(&verts[0].x, verts.size()), IndexArray{tris.front().data(), tris.size()},
-                        ContainsRule::nonzero);
-  } catch (const std::exception&) {
-    return;  // not closed after all (cannot happen for a cycle; the full tree answers then)
-  }
-  s.caps = std::make_unique<WindingTree>(st->vertices, caps);
-  s.capped = std::move(st);
+  finish_caps(s, std::move(st), verts, std::move(tris), std::move(caps));
 }
 
 Side winding_side(const ContainsState& s, const Vec3<double>& p) {

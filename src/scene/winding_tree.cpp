@@ -50,6 +50,28 @@
 //    q is computed from r rounded up and d rounded down by the factors (1 +- 2^-40), which cover
 //    their few ulps.
 //
+// 2b. A node near p. Every triangle of a node lies in its ball (c, r) (the convex hull of vertices
+//    that do), so for d = |c - p| > r every point x of it has |x - p| >= d - r and
+//      |Omega_t| = |int_t n . (x - p) / |x - p|^3 dA| <= int_t dA / |x - p|^2 <= area_t / (d - r)^2.
+//    A node too near for the expansion (q > kQMax) but whose ball excludes p contributes 0 with
+//    the bound A / (d - r)^2, A >= the sum of its triangles' exact areas (area_up below), instead
+//    of being opened at once; refinement by largest error opens it only when its bound matters.
+//    This is what decides most points on open meshes: the caps' tree (winding_caps.cpp) only
+//    needs |w_caps| < 1/2 about, and the bound is small for every cap node not at p.
+//    area_up: with e1, e2 the rounded edges (each component within u of the exact one, relative),
+//    each computed cross-product component is within 5u (|e1_j e2_k| + |e1_k e2_j|) <= 5u |e1| |e2|
+//    of the exact one, so the exact area is at most (|c| (1 + 8u) + 16u |e1| |e2|) / 2 with |c|
+//    computed (its square root and sums err by under 4u) and |e1| |e2| <= 3 max|e1_i| max|e2_i|
+//    (no squares). When |c|^2 is below 2^-1000 its squares may have underflowed (a mesh near
+//    2^-300: the fuzzer's first run with this bound found areas computed as 0 there), and the area
+//    is bounded by |e1| |e2| / 2 instead. 2^-1000 per triangle more covers products that
+//    underflowed. Sums up the tree are scaled by (1 + 2^-50) per level.
+//    Rounding of the bound: d is taken from d2 (relative error below 4u) times (1 - 2^-40), r times
+//    (1 + 2^-40), the gap g = d - r times (1 - 2^-40), the quotient times (1 + 2^-40)^2, plus
+//    2^-1060 in case it is subnormal. It is used only for d2 <= 2^1000 (no overflow of d2), g >=
+//    2^-400 (no underflow of g^2) and a bound below 8 pi (else the node is opened: the bound would
+//    not decide anything).
+//
 // 3. The sum. Recursive summation of k terms errs by at most gamma_{k-1} sum |Omega_i|; dividing by
 //    the rounded 4 pi adds 2.1u |w|; every bound is scaled by (1 + 2^-40) to cover its own
 //    rounding. WindingSum::value() returns w and the total.
@@ -118,8 +140,15 @@ WindingValue WindingSum::value() const {
   return v;
 }
 
-WindingTree::WindingTree(const std::vector<Vec3<double>>& v, const std::vector<std::array<std::uint32_t, 3>>& t)
-    : vertices_(v), triangles_(t) {
+WindingTuning& winding_tuning() {
+  static WindingTuning t;
+  return t;
+}
+
+WindingTree::WindingTree(const std::vector<Vec3<double>>& v, const std::vector<std::array<std::uint32_t, 3>>& t,
+                         std::size_t leaf_size)
+    : vertices_(v), triangles_(t), leaf_size_(leaf_size), near_bound_(winding_tuning().near_bound) {
+  if (leaf_size < 1 || leaf_size > 64) throw std::invalid_argument("WindingTree: leaf size outside [1, 64]");
   if (t.empty()) return;
   std::vector<Vec3<double>> cen(t.size());
   for (std::size_t i = 0; i < t.size(); ++i) {
@@ -134,10 +163,6 @@ WindingTree::WindingTree(const std::vector<Vec3<double>>& v, const std::vector<s
   build(ids, 0, ids.size(), cen, 0, 0);
 }
 
-namespace {
-constexpr std::size_t kLeafSize = 6;
-}
-
 void WindingTree::build(std::vector<std::uint32_t>& ids, std::size_t lo, std::size_t hi,
                         const std::vector<Vec3<double>>& cen, std::uint32_t self, int depth) {
   // nodes_[self] was allocated by the caller (children in pairs).
@@ -146,7 +171,7 @@ void WindingTree::build(std::vector<std::uint32_t>& ids, std::size_t lo, std::si
     return {vertices_[triangles_[i][0]], vertices_[triangles_[i][1]], vertices_[triangles_[i][2]]};
   };
   Node nd{};
-  if (hi - lo <= kLeafSize) {
+  if (hi - lo <= leaf_size_) {
     nd.first = std::uint32_t(tris_.size());
     nd.count = std::uint32_t(hi - lo);
     for (std::size_t i = lo; i < hi; ++i) tris_.push_back(tri(ids[i]));
@@ -161,6 +186,11 @@ void WindingTree::build(std::vector<std::uint32_t>& ids, std::size_t lo, std::si
                    nz = 0.5 * (e1.x * e2.y - e1.y * e2.x);
       const double ar = std::sqrt(nx * nx + ny * ny + nz * nz);
       av[i - lo] = {nx, ny, nz, ar};
+      // The rigorous upper bound of section 2b (ar is |c| / 2; lp >= |e1| |e2| without squares).
+      const double m1 = std::max({std::fabs(e1.x), std::fabs(e1.y), std::fabs(e1.z)});
+      const double m2 = std::max({std::fabs(e2.x), std::fabs(e2.y), std::fabs(e2.z)});
+      const double lp = 3 * m1 * m2 * (1 + 4 * kU), nn = nx * nx + ny * ny + nz * nz;
+      nd.area_up += ((nn >= 0x1p-1000 ? ar * (1 + 8 * kU) + 8 * kU * lp : 0.5 * lp) + 0x1p-1000) * kUp;
       const Vec3<double>& g = cen[ids[i]];
       sa += ar, sx += ar * g.x, sy += ar * g.y, sz += ar * g.z;
     }
@@ -217,6 +247,7 @@ void WindingTree::build(std::vector<std::uint32_t>& ids, std::size_t lo, std::si
   nd.first = kid;
   nd.count = 0;
   nd.area = L.area + Rn.area;
+  nd.area_up = (L.area_up + Rn.area_up) * (1 + 0x1p-50);
   if (nd.area > 0) {
     for (int k = 0; k < 3; ++k) nd.c[k] = (L.area * L.c[k] + Rn.area * Rn.c[k]) / nd.area;
   } else {
@@ -244,9 +275,7 @@ struct FarTerm {
   double omega = 0, err = 0;
 };
 template <class Node>
-inline FarTerm far_term(const Node& nd, const Vec3<double>& p, double qmax) {
-  const double rx = nd.c[0] - p.x, ry = nd.c[1] - p.y, rz = nd.c[2] - p.z;
-  const double d2 = rx * rx + ry * ry + rz * rz;
+inline FarTerm far_expansion(const Node& nd, double rx, double ry, double rz, double d2, double qmax) {
   const double rr = nd.r * kUp;
   // The analysis of section 2 counts relative rounding only: the moments (area r), their products
   // with R (up to area r d^2) and the bound's terms (area q^2 / d^2) must neither underflow nor
@@ -270,6 +299,26 @@ inline FarTerm far_term(const Node& nd, const Vec3<double>& p, double qmax) {
   const double trunc = nd.area * q * q * (4 - 3 * q) / (one_q * one_q) * inv_d2;
   const double round = 0x1p-38 * (1 + q) * nd.area * inv_d2;
   return {true, omega, (trunc + round) * (1 + 8 * kU) * kUp / (kDown * kDown)};
+}
+template <class Node>
+inline FarTerm far_term(const Node& nd, const Vec3<double>& p, double qmax) {
+  const double rx = nd.c[0] - p.x, ry = nd.c[1] - p.y, rz = nd.c[2] - p.z;
+  return far_expansion(nd, rx, ry, rz, rx * rx + ry * ry + rz * rz, qmax);
+}
+/// The term refinement starts from: the expansion where admissible (its bound is then always
+/// below the near bound: 2.5 A / d^2 against 4 A / d^2 at q = 1/2), else with `near` the bound of
+/// section 2b when p is outside the node's ball.
+template <class Node>
+inline FarTerm node_term(const Node& nd, const Vec3<double>& p, bool near) {
+  const double rx = nd.c[0] - p.x, ry = nd.c[1] - p.y, rz = nd.c[2] - p.z;
+  const double d2 = rx * rx + ry * ry + rz * rz;
+  const FarTerm f = far_expansion(nd, rx, ry, rz, d2, WindingTree::kQMax);
+  if (f.ok || !near || !(d2 <= 0x1p1000)) return f;
+  const double g = (std::sqrt(d2) * kDown - nd.r * kUp) * kDown;
+  if (!(g >= 0x1p-400)) return f;
+  const double e = nd.area_up / (g * g) * (kUp * kUp) + 0x1p-1060;
+  if (!(e < 8 * std::numbers::pi)) return f;
+  return {true, 0.0, e};
 }
 }  // namespace
 
@@ -298,7 +347,7 @@ WindingValue WindingTree::refine(const Vec3<double>& p, Done&& done) const {
       const Node& nd = nodes_[stack[--top]];
       if (nd.count == 0) {
         for (std::uint32_t k : {nd.first, nd.first + 1}) {
-          const FarTerm f = far_term(nodes_[k], p, kQMax);
+          const FarTerm f = node_term(nodes_[k], p, near_bound_);
           if (f.ok) {
             heap.push_back({f.err, f.omega, k});
             std::push_heap(heap.begin(), heap.end());
@@ -320,7 +369,7 @@ WindingValue WindingTree::refine(const Vec3<double>& p, Done&& done) const {
     }
   };
   constexpr double kInv4Pi = 1 / (4 * std::numbers::pi);
-  const FarTerm rootf = far_term(nodes_[0], p, kQMax);
+  const FarTerm rootf = node_term(nodes_[0], p, near_bound_);
   if (rootf.ok) {
     heap.push_back({rootf.err, rootf.omega, 0});
     far_sum = rootf.omega, far_err = rootf.err;

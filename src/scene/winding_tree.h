@@ -50,11 +50,29 @@ struct WindingSum {
   [[nodiscard]] WindingValue value() const;
 };
 
+/// Switches read when a WindingTree is built (each tree keeps its own copy): the defaults are the
+/// fastest measured on most meshes (docs/contains.md); `rayproof bench contains --open` builds
+/// meshes with one switch changed to measure its effect in the same run (the ablation). Not
+/// thread-safe to change while trees are being built.
+struct WindingTuning {
+  /// Nodes whose ball excludes p but that are too near for the expansion contribute 0 with the
+  /// bound area / (d - r)^2 (section 2b of winding_tree.cpp) instead of being opened.
+  bool near_bound = true;
+  /// Caps as hierarchical fans over the boundary's closed walks (compact triangles) instead of a
+  /// cone from one apex per boundary component (winding_caps.cpp).
+  bool compact_caps = true;
+  /// Triangles per leaf of the caps' tree (the full tree keeps 6).
+  std::size_t caps_leaf = 6;
+};
+[[nodiscard]] WindingTuning& winding_tuning();
+
 /// A binary tree over the triangles with per-node moments (Barill et al. 2018, first order: area
 /// vector and first moment about the node's centre) and a bounding ball.
 class WindingTree {
  public:
-  WindingTree(const std::vector<Vec3<double>>& v, const std::vector<std::array<std::uint32_t, 3>>& t);
+  /// `leaf_size`: at most this many triangles per leaf (1 to 64).
+  WindingTree(const std::vector<Vec3<double>>& v, const std::vector<std::array<std::uint32_t, 3>>& t,
+              std::size_t leaf_size = 6);
 
   /// w(p) with far-field terms for the nodes seen at a radius-to-distance ratio <= beta (beta in
   /// [0, 0.9]; 0: every triangle directly) and an exact near field.
@@ -84,6 +102,7 @@ class WindingTree {
     double c[3];   ///< centre (area-weighted centroid)
     double r;      ///< radius of a ball about c holding every vertex of the node's triangles
     double area;   ///< sum of the triangles' unsigned areas
+    double area_up;  ///< a rigorous upper bound on that sum (rounding and underflow included)
     double n[3];   ///< sum of the area vectors (half cross products)
     double m[9];   ///< first moment m[3 i + j] = sum area_vector_i (centroid - c)_j
     std::uint32_t first, count;  ///< leaf: its triangles in tris_; inner: count = 0, children first, first + 1
@@ -92,6 +111,8 @@ class WindingTree {
   std::vector<std::array<Vec3<double>, 3>> tris_;  ///< leaf order
   std::vector<Vec3<double>> vertices_;             ///< for the MPFR stage
   std::vector<std::array<std::uint32_t, 3>> triangles_;
+  std::size_t leaf_size_ = 6;
+  bool near_bound_ = true;
   void build(std::vector<std::uint32_t>& ids, std::size_t lo, std::size_t hi, const std::vector<Vec3<double>>& cen,
              std::uint32_t self, int depth);
 };

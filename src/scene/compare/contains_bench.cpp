@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <filesystem>
 #include <memory>
 
@@ -12,12 +13,19 @@
 #include "rayproof/scene/winding.h"
 #include "scene/compare/contains_compare.h"
 #include "scene/watertight.h"
+#include "scene/winding_tree.h"
 
 namespace rayproof::scene::compare {
 
 namespace {
 
 double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
+/// The calling thread's CPU time in seconds.
+double thread_cpu() {
+  timespec ts{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+  return double(ts.tv_sec) + 1e-9 * double(ts.tv_nsec);
+}
 
 template <class Caster>
 PointRunner parity_runner(std::shared_ptr<Caster> c) {
@@ -37,18 +45,6 @@ certified::Expansion abs_diff(double x, double y) {
 ClosedMesh closed_mesh(const mesh::Mesh& m, ContainsRule rule = ContainsRule::automatic) {
   return ClosedMesh(VertexArray(&m.vertices[0].x, m.vertices.size()), IndexArray{m.triangles.front().data(), m.triangles.size()},
                     rule);
-}
-
-/// Worst and best Mpoints/s of `repeat` runs of contains.
-std::pair<double, double> time_contains(const ClosedMesh& cm, const Points& pts, std::vector<Side>& out, int repeat) {
-  double best = 0, worst = 1e300;
-  for (int r = 0; r < repeat; ++r) {
-    const double t0 = now();
-    cm.contains(pts, out, 1);
-    const double rate = double(pts.size()) / (now() - t0) * 1e-6;
-    best = std::max(best, rate), worst = std::min(worst, rate);
-  }
-  return {worst, best};
 }
 
 }  // namespace
@@ -189,36 +185,49 @@ Points lattice_points(const KnownShape& shape) {
   return pts;
 }
 
-ClosedRun time_closed_mesh(const std::string& path, std::size_t points, int repeat, std::mt19937_64& rng) {
-  ClosedRun run;
-  try {
-    const mesh::Mesh m = mesh::read_mesh(path);
-    const ClosedMesh cm = closed_mesh(m);
-    const Points pts = box_points(m, points, rng);
-    std::vector<Side> out(pts.size());
-    std::tie(run.lo, run.hi) = time_contains(cm, pts, out, repeat);
-    run.name = std::filesystem::path(path).stem().string();
-    run.triangles = m.triangles.size();
-    run.rule = to_string(cm.rule());
-  } catch (const std::exception& e) {
-    run.error = e.what();
-  }
-  return run;
+namespace {
+
+/// `m` with 1% of its triangles removed (seeded by `rng`).
+mesh::Mesh cut_holes(mesh::Mesh m, std::mt19937_64& rng) {
+  std::vector<std::array<std::uint32_t, 3>> kept;
+  for (const auto& t : m.triangles)
+    if (rng() % 100 != 0) kept.push_back(t);
+  m.triangles = std::move(kept);
+  return m;
 }
 
-OpenRun time_open_mesh(const std::string& path, std::size_t points, int repeat, std::mt19937_64& rng) {
-  OpenRun run;
-  mesh::Mesh m;
+mesh::Mesh load(const std::string& path) { return path == "generated" ? bumpy_sphere(std::size_t(1) << 20) : mesh::read_mesh(path); }
+
+/// A ClosedMesh of `m` built with `tuning` (the winding trees read it when built).
+std::unique_ptr<ClosedMesh> build_with(const mesh::Mesh& m, const rayproof::detail::WindingTuning& tuning) {
+  const rayproof::detail::WindingTuning saved = rayproof::detail::winding_tuning();
+  rayproof::detail::winding_tuning() = tuning;
   std::unique_ptr<ClosedMesh> cm;
   try {
-    m = path == "generated" ? bumpy_sphere(std::size_t(1) << 20) : mesh::read_mesh(path);
+    cm = std::make_unique<ClosedMesh>(closed_mesh(m));
+  } catch (...) {
+    rayproof::detail::winding_tuning() = saved;
+    throw;
+  }
+  rayproof::detail::winding_tuning() = saved;
+  return cm;
+}
+
+}  // namespace
+
+OpenRun time_open_mesh(const std::string& path, const std::string& closed_path, std::size_t points, int repeat, int threads,
+                       std::mt19937_64& rng) {
+  OpenRun run;
+  mesh::Mesh m, orig;
+  std::unique_ptr<ClosedMesh> cm, ref;
+  try {
+    m = load(path);
     run.name = path == "generated" ? "generated" : std::filesystem::path(path).stem().string();
     cm = std::make_unique<ClosedMesh>(closed_mesh(m));
-    if (cm->closed()) {  // cut holes: 1% of the triangles removed
-      std::vector<std::array<std::uint32_t, 3>> kept;
-      for (const auto& t : m.triangles)
-        if (rng() % 100 != 0) kept.push_back(t);
-      m.triangles = kept;
+    if (cm->closed()) {  // cut holes; the input is then the closed original
+      orig = std::move(m);
+      run.closed_name = run.name;
+      m = cut_holes(orig, rng);
       run.name += " minus 1% of its triangles";
       cm = std::make_unique<ClosedMesh>(closed_mesh(m));
     }
@@ -226,12 +235,77 @@ OpenRun time_open_mesh(const std::string& path, std::size_t points, int repeat, 
     run.error = e.what();
     return run;
   }
+  if (!closed_path.empty() && run.closed_name.empty()) {
+    try {
+      orig = load(closed_path);
+      run.closed_name = closed_path == "generated" ? "generated" : std::filesystem::path(closed_path).stem().string();
+    } catch (const std::exception& e) {
+      run.closed_error = e.what();
+    }
+  }
+  if (!run.closed_name.empty()) {
+    try {
+      ref = std::make_unique<ClosedMesh>(closed_mesh(orig));
+      if (!ref->closed()) throw std::invalid_argument("not closed");
+      run.closed_triangles = orig.triangles.size();
+    } catch (const std::exception& e) {
+      run.closed_error = run.closed_name + ": " + e.what(), run.closed_name.clear(), ref.reset();
+    }
+  }
   run.triangles = m.triangles.size();
   run.closed = cm->closed();
   const Points pts = box_points(m, points, rng);
   run.points = pts.size();
-  std::vector<Side> out(pts.size());
-  std::tie(run.lo, run.hi) = time_contains(*cm, pts, out, repeat);
+  // The rows, timed interleaved. The ablation: the open mesh built with one speed-up turned off.
+  struct Timed {
+    OpenRow row;
+    const ClosedMesh* mesh;
+  };
+  std::vector<Timed> rows;
+  std::vector<std::unique_ptr<ClosedMesh>> held;
+  rows.push_back({{"contains (rule winding)", 1, false}, cm.get()});
+  if (ref) rows.push_back({{"contains on the closed " + run.closed_name, 1, true}, ref.get()});
+  const rayproof::detail::WindingTuning best = rayproof::detail::winding_tuning();
+  auto variant = [&](std::string name, rayproof::detail::WindingTuning t) {
+    held.push_back(build_with(m, t));
+    rows.push_back({{std::move(name), 1, false}, held.back().get()});
+  };
+  if (best.near_bound) {
+    auto t = best;
+    t.near_bound = false;
+    variant("  without the near bound", t);
+  }
+  {
+    auto t = best;
+    t.compact_caps = !best.compact_caps;
+    variant(best.compact_caps ? "  caps as cones" : "  caps as hierarchical fans", t);
+  }
+  if (best.caps_leaf != 6) {
+    auto t = best;
+    t.caps_leaf = 6;
+    variant("  caps' leaves of 6", t);
+  }
+  if (threads > 1 && pts.size() >= 2048) {
+    rows.push_back({{"contains (rule winding)", threads, false}, cm.get()});
+    if (ref) rows.push_back({{"contains on the closed " + run.closed_name, threads, true}, ref.get()});
+  }
+  std::vector<Side> out(pts.size()), other(pts.size());
+  cm->contains(pts, out, 1);
+  for (auto& r : rows) {
+    if (r.row.closed || r.mesh == cm.get()) continue;
+    r.mesh->contains(pts, other, 1);
+    for (std::size_t i = 0; i < pts.size(); ++i) r.row.differ += other[i] != out[i];
+  }
+  for (int k = 0; k < repeat; ++k)
+    for (auto& r : rows) {
+      const double t0 = now(), c0 = thread_cpu();
+      r.mesh->contains(pts, other, r.row.threads);
+      const double rate = double(pts.size()) / (now() - t0) * 1e-6;
+      if (r.row.threads == 1) r.row.cpu = std::max(r.row.cpu, double(pts.size()) / (thread_cpu() - c0) * 1e-6);
+      r.row.hi = std::max(r.row.hi, rate);
+      r.row.lo = k == 0 ? rate : std::min(r.row.lo, rate);
+    }
+  for (auto& r : rows) run.rows.push_back(r.row);
   // The brute force on a prefix sized to take about a second or two.
   const std::size_t nb = std::clamp<std::size_t>(std::size_t(4e7 / double(m.triangles.size())), 20, pts.size());
   std::vector<double> wb(nb);

@@ -67,26 +67,36 @@ struct KnownShape {
 /// The shape's lattice points and, for those on its surface, the one-ulp neighbours along each axis.
 [[nodiscard]] Points lattice_points(const KnownShape& shape);
 
-/// contains on a closed mesh: the reference rate for the open meshes.
-struct ClosedRun {
-  std::string name, rule, error;  ///< `error` set when the mesh could not be read or measured
-  std::size_t triangles = 0;
-  double lo = 0, hi = 0;  ///< Mpoints/s, worst and best run
+/// One timed row of the open-mesh run: Mpoints/s over the repeats, and the points whose answer
+/// differs from the open mesh's default build (0 for a certified variant; rows on the closed
+/// original are not compared).
+struct OpenRow {
+  std::string name;
+  int threads = 1;
+  bool closed = false;  ///< measured on the closed original
+  double lo = 0, hi = 0;
+  double cpu = 0;  ///< one thread: best Mpoints per second of the thread's CPU time (steadier on a loaded machine)
+  std::size_t differ = 0;
 };
-[[nodiscard]] ClosedRun time_closed_mesh(const std::string& path, std::size_t points, int repeat, std::mt19937_64& rng);
 
-/// contains by the winding rule on an open mesh (a closed one gets 1% of its triangles removed;
-/// "generated": the 1.31M-triangle bumpy sphere), beside a brute-force double winding number on a
-/// prefix of the points sized to take a second or two.
+/// contains by the winding rule on an open mesh (a closed one gets 1% of its triangles removed, and
+/// is then its own closed original; "generated": the 1.31M-triangle bumpy sphere), beside contains
+/// on the closed original (`closed_path`, or the cut mesh's source) on the same points, the open
+/// mesh built with each speed-up turned off (WindingTuning: the ablation), both at `threads`
+/// threads too when above 1 (and the points at least 2048: below that the batch runs on one
+/// thread); every row interleaved over the repeats. And a brute-force double
+/// winding number on a prefix of the points sized to take a second or two.
 struct OpenRun {
-  std::string name, error;
-  std::size_t triangles = 0, points = 0;
+  std::string name, error, closed_name;  ///< closed_name empty: no closed original
+  std::string closed_error;              ///< why the closed original was not measured
+  std::size_t triangles = 0, closed_triangles = 0, points = 0;
   bool closed = false;
   std::array<std::size_t, 4> sides{};  ///< tally by Side
-  double lo = 0, hi = 0;  ///< contains, Mpoints/s
+  std::vector<OpenRow> rows;           ///< rows[0]: the open mesh, default build, one thread
   double brute = 0;  ///< brute force, best Mpoints/s
   std::size_t brute_points = 0, compared = 0, wrong = 0, inside = 0;  ///< against the brute force where |w - 1/2| >= 1e-6
 };
-[[nodiscard]] OpenRun time_open_mesh(const std::string& path, std::size_t points, int repeat, std::mt19937_64& rng);
+[[nodiscard]] OpenRun time_open_mesh(const std::string& path, const std::string& closed_path, std::size_t points, int repeat,
+                                     int threads, std::mt19937_64& rng);
 
 }  // namespace rayproof::scene::compare
