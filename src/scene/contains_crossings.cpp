@@ -29,6 +29,7 @@
 #include <string>
 #include <vector>
 
+#include "exact/rational_vec.h"
 #include "exact/rounding.h"
 #include "rayproof/certified/intersect.h"
 #include "rayproof/certified_expansion.h"
@@ -48,21 +49,14 @@ int sgn(const mpq_class& x) {
   return s > 0 ? 1 : (s < 0 ? -1 : 0);
 }
 
-struct Q3 {
-  mpq_class x, y, z;
-};
-Q3 q3(const Vec3<double>& p) { return {mpq_class(p.x), mpq_class(p.y), mpq_class(p.z)}; }
-Q3 sub(const Q3& a, const Q3& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-Q3 cross(const Q3& a, const Q3& b) {
-  return {a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x};
-}
-mpq_class dot(const Q3& a, const Q3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+using exact_algo::QVec;
+using exact_algo::rational;
 
 /// The exact t = ((p0 - o) . n) / (d . n) (d . n != 0).
 mpq_class exact_t(const Ray<double>& r, const std::array<Vec3<double>, 3>& p) {
-  const Q3 p0 = q3(p[0]);
-  const Q3 n = cross(sub(q3(p[1]), p0), sub(q3(p[2]), p0));
-  return mpq_class(dot(sub(p0, q3(r.o)), n) / dot(q3(r.d), n));
+  const QVec p0 = rational(p[0]);
+  const QVec n = cross(rational(p[1]) - p0, rational(p[2]) - p0);
+  return mpq_class(dot(p0 - rational(r.o), n) / dot(rational(r.d), n));
 }
 
 /// x rounded to the nearest double (ties to even), by the one correct rounding (src/exact/rounding.h).
@@ -77,8 +71,8 @@ int sign_dn(const Vec3<double>& d, const std::array<Vec3<double>, 3>& p) {
                       std::fabs(d.y) * (std::fabs(e1.z * e2.x) + std::fabs(e1.x * e2.z)) +
                       std::fabs(d.z) * (std::fabs(e1.x * e2.y) + std::fabs(e1.y * e2.x));
   if (perm > 0x1p-900 && perm < 0x1p1000 && std::fabs(dn) > 0x1p-49 * perm) return dn > 0 ? 1 : -1;
-  const Q3 q0 = q3(p[0]);
-  return sgn(dot(q3(d), cross(sub(q3(p[1]), q0), sub(q3(p[2]), q0))));
+  const QVec q0 = rational(p[0]);
+  return sgn(dot(rational(d), cross(rational(p[1]) - q0, rational(p[2]) - q0)));
 }
 
 /// Where an edge or vertex contact is: the vertex, or the edge's two ends in coordinate order
@@ -170,9 +164,9 @@ int first_sign(F&& sign_of) {
 }
 
 Decided decide_gmp(const Ray<double>& r, const std::array<Vec3<double>, 3>& p) {
-  const Q3 o = q3(r.o), d = q3(r.d);
-  const Q3 P[3] = {q3(p[0]), q3(p[1]), q3(p[2])};
-  const Q3 A[3] = {sub(P[0], o), sub(P[1], o), sub(P[2], o)};
+  const QVec o = rational(r.o), d = rational(r.d);
+  const QVec P[3] = {rational(p[0]), rational(p[1]), rational(p[2])};
+  const QVec A[3] = {P[0] - o, P[1] - o, P[2] - o};
   int s[3], gs[3] = {0, 0, 0};
   mpq_class den = 0;
   for (int i = 0; i < 3; ++i) {
@@ -181,7 +175,7 @@ Decided decide_gmp(const Ray<double>& r, const std::array<Vec3<double>, 3>& p) {
     den += u;
     s[i] = sgn(u);
     if (s[i] == 0) {
-      const Q3 g = cross(sub(P[j], P[k]), d);  // the perturbation's coefficients: eps, eps^2, eps^3
+      const QVec g = cross(P[j] - P[k], d);  // the perturbation's coefficients: eps, eps^2, eps^3
       gs[i] = first_sign([&](int c) { return sgn(c == 0 ? g.x : (c == 1 ? g.y : g.z)); });
     }
   }
