@@ -1,7 +1,7 @@
 #pragma once
-// The query machinery of Accel (accel.cpp: single rays and batches; accel_packet.cpp: packets of
-// eight): the kernel dispatch, the leaf kernels (group lanes, certified's stages, slot by slot), the
-// single-ray closest / any hit and the TBB batch loop. Internal to rayproof_scene.
+// The query machinery of Accel (accel_closest / any / all.cpp: single rays and batches; accel_packet.h:
+// packets of eight): the kernel dispatch, the leaf kernels (group lanes, certified's stages, slot by
+// slot), the single-ray closest / any hit and the TBB batch loop. Internal to rayproof_scene.
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
