@@ -1,5 +1,6 @@
 // Scene queries: BVH construction, the method names, single rays and TBB batches (the query
-// machinery in accel_query.h; packets of eight in accel_packet.cpp).
+// machinery in accel_query.h, expanded once per query in accel_closest.cpp, accel_any.cpp and
+// accel_all.cpp; packets of eight in accel_packet.cpp).
 #include "scene/accel.h"
 
 #include <algorithm>
@@ -208,52 +209,9 @@ bool Accel::any(const Ray<double>& r, const SceneMethod& m, QueryRange q) const 
   return hit != 0;
 }
 
-void Accel::closest_range(const Ray<double>* rays, std::size_t b, std::size_t e, std::span<const QueryRange> ranges,
-                          HitSink sink, void* context, const SceneMethod& m) const {
-  with_tree([&](const auto& tree) {
-    return with_kernel(scene_, verts_, ntri_, m, [&](auto& k) {
-      for (std::size_t i = b; i < e; ++i)
-        sink(context, i, closest_with(leaves_of(tree, leaf_prims_, groups_), k, rays[i], m.traversal, range_of(ranges, i)));
-      return 0;
-    });
-  });
-}
-
-void Accel::any_range(const Ray<double>* rays, std::size_t b, std::size_t e, std::span<const QueryRange> ranges,
-                      std::uint8_t* out, const SceneMethod& m) const {
-  with_tree([&](const auto& tree) {
-    return with_kernel(scene_, verts_, ntri_, m, [&](auto& k) {
-      for (std::size_t i = b; i < e; ++i)
-        out[i] = any_with(leaves_of(tree, leaf_prims_, groups_), k, rays[i], m.traversal, range_of(ranges, i));
-      return 0;
-    });
-  });
-}
-
-std::vector<PrimHit> Accel::all(const Ray<double>& r, const SceneMethod& m, QueryRange q) const {
-  std::vector<PrimHit> out;
-  if (!r.valid()) return out;
-  with_tree([&](const auto& tree) {
-    return with_kernel(scene_, verts_, ntri_, m, [&](auto& k) {
-      k.prepare(r);
-      traverse_with(leaves_of(tree, leaf_prims_, groups_), k, q, q.tmax, m.traversal, BvhQuery::all,
-                    [&](std::uint32_t id, const Crossing* c, int n) {
-                      for (int i = 0; i < n; ++i)
-                        if (c[i].t >= q.tmin && c[i].t <= q.tmax) out.push_back({c[i].contact, c[i].t, id, c[i].b1, c[i].b2});
-                      return false;
-                    });
-      return 0;
-    });
-  });
-  std::sort(out.begin(), out.end(), [](const PrimHit& a, const PrimHit& b) { return a.t < b.t || (a.t == b.t && a.prim < b.prim); });
-  return out;
-}
-
-
 void Accel::closest_batch(std::span<const Ray<double>> rays, std::span<PrimHit> out, const SceneMethod& m, int threads,
                           QueryRange q) const {
-  closest_batch(rays, std::span<const QueryRange>(&q, 1),
-                [](void* c, std::size_t i, const PrimHit& h) { static_cast<PrimHit*>(c)[i] = h; }, out.data(), m, threads);
+  closest_batch(rays, std::span<const QueryRange>(&q, 1), store_hit, out.data(), m, threads);
 }
 
 void Accel::any_batch(std::span<const Ray<double>> rays, std::span<std::uint8_t> out, const SceneMethod& m,

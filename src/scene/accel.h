@@ -216,10 +216,12 @@ class Accel {
   void any_range(const Ray<double>* rays, std::size_t b, std::size_t e, std::span<const QueryRange> ranges,
                  std::uint8_t* out, const SceneMethod& m) const;
   /// The body of closest_packets / any_packets over threads: `packet(leaves, kernels, first, n)`
-  /// for each packet of eight rays [first, first + n) on the eight-wide trees, `single(leaves,
-  /// kernel, i)` for each ray on the SSE path (defined and used in accel.cpp only).
-  template <class Packet, class Single>
-  void over_packets(std::size_t nrays, const SceneMethod& m, int threads, Packet&& packet, Single&& single) const;
+  /// for each packet of eight rays [first, first + n) on the eight-wide trees; on the SSE path
+  /// `rays(b, e)` for the rays [b, e) of each share of packets, answered ray by ray through
+  /// closest_range / any_range (no second expansion of the single-ray queries). Defined in
+  /// accel_packet.h, used in accel_packet.cpp and accel_packet_any.cpp only.
+  template <class Packet, class Rays>
+  void over_packets(std::size_t nrays, const SceneMethod& m, int threads, Packet&& packet, Rays&& rays) const;
   /// Bytes of the nodes of the tree in use (the others are empty).
   [[nodiscard]] std::size_t tree_bytes() const { return bvh_.bytes() + bvh8_.bytes() + bvh4q_.bytes() + bvh8q_.bytes(); }
   /// The packed leaf groups from the leaf records (after the vertex indices are in).

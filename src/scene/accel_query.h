@@ -1,7 +1,7 @@
 #pragma once
-// The query machinery of Accel (accel.cpp: single rays and batches; accel_packet.cpp: packets of
-// eight): the kernel dispatch, the leaf kernels (group lanes, certified's stages, slot by slot), the
-// single-ray closest / any hit and the TBB batch loop. Internal to rayproof_scene.
+// The query machinery of Accel (accel_closest / any / all.cpp: single rays and batches; accel_packet.h:
+// packets of eight): the kernel dispatch, the leaf kernels (group lanes, certified's stages, slot by
+// slot), the single-ray closest / any hit and the TBB batch loop. Internal to rayproof_scene.
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -175,32 +175,45 @@ bool group_leaf(const K& k, const L_& L, std::uint32_t first, std::uint32_t coun
   return false;
 }
 
+/// wide_traverse_leaves (rayproof/bvh_wide.h) with the query fixed at compile time. That one
+/// takes the query at run time, so every leaf callable it is given instantiates the loops of all
+/// three queries (each in both modes, with the float and the double box test); each caller here
+/// has one query, and only its loops are built (a third of the traversal code to compile).
+template <BvhQuery Query, class Tree, class LeafRange>
+void traverse_leaves(const Tree& bvh, const Ray<double>& ray, double tmin, const double& tmax, BvhTraversal mode,
+                     LeafRange& leaf) {
+  if (bvh.empty()) return;
+  using Run = rayproof::detail::WideTraversal<Tree>;
+  if (mode == BvhTraversal::conservative) return Run::template run<true, Query>(bvh, ray, tmin, tmax, leaf);
+  Run::template run<false, Query>(bvh, ray, tmin, tmax, leaf);
+}
+
 /// Runs the traversal with the leaf groups when the kernel has group versions and the groups
 /// exist, else slot by slot: emit(id, crossings, n) as in group_leaf.
-template <class K, class L_, class Emit>
-void traverse_with(const L_& L, const K& k, QueryRange q, const double& tmax, BvhTraversal mode, BvhQuery query,
-                   Emit&& emit) {
+template <BvhQuery Query, class K, class L_, class Emit>
+void traverse_with(const L_& L, const K& k, QueryRange q, const double& tmax, BvhTraversal mode, Emit&& emit) {
   if constexpr (kGroupKernel<K>) {
     if (L.groups) {
-      wide_traverse_leaves(L.bvh, k.traversal_ray(), q.tmin, tmax, mode, query,
-                           [&](std::uint32_t first, std::uint32_t count) {
-                             if constexpr (std::is_same_v<K, detail::CompiledKernel<double, TriAlgo::certified>>) {
-                               return certified_leaf(k, L, first, count, emit);
-                             } else {
-                               return group_leaf(k, L, first, count, emit);
-                             }
-                           });
+      auto leaf = [&](std::uint32_t first, std::uint32_t count) {
+        if constexpr (std::is_same_v<K, detail::CompiledKernel<double, TriAlgo::certified>>) {
+          return certified_leaf(k, L, first, count, emit);
+        } else {
+          return group_leaf(k, L, first, count, emit);
+        }
+      };
+      traverse_leaves<Query>(L.bvh, k.traversal_ray(), q.tmin, tmax, mode, leaf);
       return;
     }
   }
-  wide_traverse_leaves(L.bvh, k.traversal_ray(), q.tmin, tmax, mode, query, [&](std::uint32_t first, std::uint32_t count) {
+  auto leaf = [&](std::uint32_t first, std::uint32_t count) {
     for (std::uint32_t j = first; j < first + count; ++j) {
       Crossing c[2];
       const int n = k.crossings(L.prims[j], c);
       if (n && emit(L.prims[j].id, c, n)) return true;
     }
     return false;
-  });
+  };
+  traverse_leaves<Query>(L.bvh, k.traversal_ray(), q.tmin, tmax, mode, leaf);
 }
 
 template <class L_, class K>
@@ -209,7 +222,7 @@ PrimHit closest_with(const L_& L, K& k, const Ray<double>& r, BvhTraversal mode,
   k.prepare(r);
   PrimHit best;
   double tmax = q.tmax;
-  traverse_with(L, k, q, tmax, mode, BvhQuery::closest, [&](std::uint32_t id, const Crossing* c, int n) {
+  traverse_with<BvhQuery::closest>(L, k, q, tmax, mode, [&](std::uint32_t id, const Crossing* c, int n) {
     for (int i = 0; i < n; ++i)
       if (c[i].t >= q.tmin && (c[i].t < tmax || (c[i].t == tmax && id < best.prim))) {
         tmax = c[i].t;
@@ -225,7 +238,7 @@ bool any_with(const L_& L, K& k, const Ray<double>& r, BvhTraversal mode, QueryR
   if (!r.valid()) return false;
   k.prepare(r);
   bool hit = false;
-  traverse_with(L, k, q, q.tmax, mode, BvhQuery::any, [&](std::uint32_t, const Crossing* c, int n) {
+  traverse_with<BvhQuery::any>(L, k, q, q.tmax, mode, [&](std::uint32_t, const Crossing* c, int n) {
     for (int i = 0; i < n; ++i)
       if (c[i].t >= q.tmin && c[i].t <= q.tmax) return hit = true;
     return false;
@@ -243,6 +256,9 @@ void parallel_rays(std::size_t n, int threads, Body&& body) {
     });
   });
 }
+
+/// The HitSink that stores hit i at `out[i]` (context: a PrimHit array).
+inline void store_hit(void* out, std::size_t i, const PrimHit& h) { static_cast<PrimHit*>(out)[i] = h; }
 
 /// Ray i's range: one per ray, one for all, or the default.
 inline QueryRange range_of(std::span<const QueryRange> ranges, std::size_t i) {
