@@ -1,29 +1,12 @@
 #pragma once
-/// Exact signs from two_sum / two_prod terms for ClosedMesh::ray_crossings (contains_crossings.cpp):
-/// the edge function of a ray and an edge when the differences from the origin are exact in double.
+/// Exact signs from two_sum / two_prod terms, summed in a certified::Expansion, for
+/// ClosedMesh::ray_crossings (contains_crossings.cpp): the edge function of a ray and an edge when
+/// the differences from the origin are exact in double.
+#include "rayproof/certified_expansion.h"
 #include "rayproof/float_util.h"
 #include "rayproof/vec3.h"
 
 namespace rayproof::detail {
-
-/// The exact sign of the sum of n doubles (Shewchuk's GROW-EXPANSION on a local array; n <= 24, no
-/// overflow: callers' terms are exact products of inputs in the exponent window).
-inline int sign_of_sum(const double* x, int n) {
-  double c[32];
-  int m = 0;
-  for (int i = 0; i < n; ++i) {
-    double q = x[i];
-    int k = 0;
-    for (int j = 0; j < m; ++j) {
-      const TwoTerm<double> t = two_sum(q, c[j]);
-      q = t.hi;
-      if (t.lo != 0) c[k++] = t.lo;
-    }
-    if (q != 0) c[k++] = q;
-    m = k;
-  }
-  return m == 0 ? 0 : (c[m - 1] > 0 ? 1 : -1);
-}
 
 /// The exact sign of u = d . (B x C) when B = a - o and C = b - o are exact in double (often so when
 /// a ray is aimed along an axis at a vertex): every product two_prod'ed into at most 24 terms.
@@ -36,8 +19,7 @@ inline int u_sign_exact_small(const Vec3<double>& d, const Vec3<double>& o, cons
     if (x.lo != 0 || y.lo != 0) return 2;
     B[c] = x.hi, C[c] = y.hi;
   }
-  double terms[24];
-  int n = 0;
+  certified::Expansion sum;  // at most 24 components: far below its capacity, never `bad`
   for (int c = 0; c < 3; ++c) {
     if (D[c] == 0) continue;
     const int j = (c + 1) % 3, k = (c + 2) % 3;
@@ -45,11 +27,11 @@ inline int u_sign_exact_small(const Vec3<double>& d, const Vec3<double>& o, cons
     for (const double v : {p.hi, p.lo, -q.hi, -q.lo}) {
       if (v == 0) continue;
       const TwoTerm<double> w = two_prod(D[c], v);
-      terms[n++] = w.hi;
-      if (w.lo != 0) terms[n++] = w.lo;
+      sum.grow(w.hi);
+      if (w.lo != 0) sum.grow(w.lo);
     }
   }
-  return sign_of_sum(terms, n);
+  return sum.sign();
 }
 
 }  // namespace rayproof::detail
