@@ -236,24 +236,17 @@ template <bool Conservative, BvhQuery Query, bool Uniform, class Tree, class Lea
   }
 }
 
-/// The packet's registers, then the loop for its mode, query and sign pattern.
-template <class Tree, class Leaf>
+/// The packet's registers, then the loop for its mode and sign pattern (the query fixed by the caller).
+template <BvhQuery Query, class Tree, class Leaf>
 [[gnu::target("avx2")]] void packet8_go(const Tree& bvh, const Packet8RayF& p, unsigned in, const double* tmax,
-                                        bool conservative, BvhQuery query, Leaf& leaf) {
+                                        bool conservative, Leaf& leaf) {
   const Packet8Regs r = packet_regs(p, in);
-  auto go = [&]<bool C, bool U>() {
-    switch (query) {
-      case BvhQuery::closest: return packet8_run<C, BvhQuery::closest, U>(bvh, r, in, tmax, leaf);
-      case BvhQuery::any: return packet8_run<C, BvhQuery::any, U>(bvh, r, in, tmax, leaf);
-      case BvhQuery::all: return packet8_run<C, BvhQuery::all, U>(bvh, r, in, tmax, leaf);
-    }
-  };
   if (conservative) {
-    if (r.uniform) go.template operator()<true, true>();
-    else go.template operator()<true, false>();
+    if (r.uniform) packet8_run<true, Query, true>(bvh, r, in, tmax, leaf);
+    else packet8_run<true, Query, false>(bvh, r, in, tmax, leaf);
   } else {
-    if (r.uniform) go.template operator()<false, true>();
-    else go.template operator()<false, false>();
+    if (r.uniform) packet8_run<false, Query, true>(bvh, r, in, tmax, leaf);
+    else packet8_run<false, Query, false>(bvh, r, in, tmax, leaf);
   }
 }
 
@@ -266,10 +259,12 @@ template <class Tree, class Leaf>
 /// tmax[lane] (read again after each leaf) to the lane's best t so far. The same rays through
 /// wide_traverse_leaves visit, lane by lane, leaves whose boxes pass the same box test (the order
 /// differs: see the header comment).
-template <class Tree, class LeafLane>
+/// The query as a template argument: a caller that asks one kind of query compiles only its loop
+/// (each loop is instantiated per mode and sign pattern, so the runtime overload below compiles three).
+template <BvhQuery Query, class Tree, class LeafLane>
   requires(std::is_same_v<Tree, Bvh8> || std::is_same_v<Tree, Bvh8Q>)
 void bvh8_packet_traverse_leaves(const Tree& bvh, const Ray<double>* rays, const double* tmin, const double* tmax,
-                                 unsigned live, BvhTraversal mode, BvhQuery query, LeafLane&& leaf) {
+                                 unsigned live, BvhTraversal mode, LeafLane&& leaf) {
   if (bvh.empty() || !(live &= 0xffu)) return;
   const bool conservative = mode == BvhTraversal::conservative;
   detail::Packet8RayF p{};
@@ -282,19 +277,24 @@ void bvh8_packet_traverse_leaves(const Tree& bvh, const Ray<double>* rays, const
       in |= 1u << lane;
     } else {  // out of the float range: the single-ray double box test
       auto one = [&](std::uint32_t first, std::uint32_t count) { return leaf(lane, first, count); };
-      auto run = [&]<bool C>() {
-        switch (query) {
-          case BvhQuery::closest: return detail::wide_traverse_double<Tree, C, BvhQuery::closest>(bvh, rays[lane], tmin[lane], tmax[lane], one);
-          case BvhQuery::any: return detail::wide_traverse_double<Tree, C, BvhQuery::any>(bvh, rays[lane], tmin[lane], tmax[lane], one);
-          case BvhQuery::all: return detail::wide_traverse_double<Tree, C, BvhQuery::all>(bvh, rays[lane], tmin[lane], tmax[lane], one);
-        }
-      };
-      if (conservative) run.template operator()<true>();
-      else run.template operator()<false>();
+      if (conservative) detail::wide_traverse_double<Tree, true, Query>(bvh, rays[lane], tmin[lane], tmax[lane], one);
+      else detail::wide_traverse_double<Tree, false, Query>(bvh, rays[lane], tmin[lane], tmax[lane], one);
     }
   }
   if (!in) return;
-  detail::packet8_go(bvh, p, in, tmax, conservative, query, leaf);
+  detail::packet8_go<Query>(bvh, p, in, tmax, conservative, leaf);
+}
+
+/// The query chosen at run time.
+template <class Tree, class LeafLane>
+  requires(std::is_same_v<Tree, Bvh8> || std::is_same_v<Tree, Bvh8Q>)
+void bvh8_packet_traverse_leaves(const Tree& bvh, const Ray<double>* rays, const double* tmin, const double* tmax,
+                                 unsigned live, BvhTraversal mode, BvhQuery query, LeafLane&& leaf) {
+  switch (query) {
+    case BvhQuery::closest: return bvh8_packet_traverse_leaves<BvhQuery::closest>(bvh, rays, tmin, tmax, live, mode, leaf);
+    case BvhQuery::any: return bvh8_packet_traverse_leaves<BvhQuery::any>(bvh, rays, tmin, tmax, live, mode, leaf);
+    case BvhQuery::all: return bvh8_packet_traverse_leaves<BvhQuery::all>(bvh, rays, tmin, tmax, live, mode, leaf);
+  }
 }
 
 /// Pixel numbers (j * width + i) of a width x height image in tiles of tile_w x tile_h pixels (4x2:

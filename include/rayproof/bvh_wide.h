@@ -43,6 +43,7 @@
 #include <span>
 #include <stdexcept>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 #include "rayproof/bvh.h"
@@ -458,12 +459,33 @@ struct WideBoxTestDouble {
   }
 };
 
-/// The loop with the double box test: rays out of the float path's range, either width and node kind.
-template <class Tree, bool Conservative, BvhQuery Query, class Leaf>
-void wide_traverse_double(const Tree& bvh, const Ray<double>& ray, double tmin, const double& tmax, Leaf& leaf) {
+/// A leaf callable without its type: the double path below takes its leaf through this, so that it
+/// is compiled once per tree, mode and query instead of once per caller's leaf (each caller's
+/// kernels and queries made it the largest part of the traversal code, for a path few rays take).
+struct WideLeafRef {
+  void* leaf;
+  bool (*call)(void*, std::uint32_t, std::uint32_t);
+  bool operator()(std::uint32_t first, std::uint32_t count) const { return call(leaf, first, count); }
+};
+
+template <class Tree, bool Conservative, BvhQuery Query>
+[[gnu::noinline]] void wide_traverse_double_erased(const Tree& bvh, const Ray<double>& ray, double tmin, const double& tmax,
+                                                   WideLeafRef leaf) {
   const WideBoxTestDouble<Conservative, typename Tree::Node> test{
       BvhRay<double>(ray, Conservative ? BvhTraversal::conservative : BvhTraversal::standard), tmin};
   wide_traverse_loop<Tree, double, Query>(bvh, test, [&] { return tmax; }, leaf);
+}
+
+/// The loop with the double box test: rays out of the float path's range (and conservative queries
+/// from tmin < 0), either width and node kind. The leaf is called through WideLeafRef (one indirect
+/// call per leaf; a leaf's prefetch(first), where it has one, is not used on this path).
+template <class Tree, bool Conservative, BvhQuery Query, class Leaf>
+void wide_traverse_double(const Tree& bvh, const Ray<double>& ray, double tmin, const double& tmax, Leaf& leaf) {
+  using L = std::remove_reference_t<Leaf>;
+  const WideLeafRef ref{const_cast<void*>(static_cast<const void*>(&leaf)), [](void* l, std::uint32_t first, std::uint32_t count) {
+                          return static_cast<bool>((*static_cast<L*>(l))(first, count));
+                        }};
+  wide_traverse_double_erased<Tree, Conservative, Query>(bvh, ray, tmin, tmax, ref);
 }
 
 /// tmax in float for the float box tests: an upper bound (float_above) when conservative.

@@ -11,7 +11,7 @@ void closest_packet(const Leaves<Tree>& L, K* ks, const Ray<double>* rays, int n
                     std::size_t first, BvhTraversal mode, PrimHit* out) {
   PacketLanes<K> P(ks, rays, n, ranges, first);
   for (int i = 0; i < n; ++i) out[i] = P.live >> i & 1 ? PrimHit{} : PrimHit{Contact::invalid};
-  bvh8_packet_traverse_leaves(L.bvh, P.ray, P.tmin, P.tmax, P.live, mode, BvhQuery::closest,
+  bvh8_packet_traverse_leaves<BvhQuery::closest>(L.bvh, P.ray, P.tmin, P.tmax, P.live, mode,
                               [&](int lane, std::uint32_t f, std::uint32_t count) {
                                 PrimHit& best = out[lane];
                                 double& tmax = P.tmax[lane];

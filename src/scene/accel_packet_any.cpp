@@ -12,7 +12,7 @@ void any_packet(const Leaves<Tree>& L, K* ks, const Ray<double>* rays, int n, st
                 std::size_t first, BvhTraversal mode, std::uint8_t* out) {
   PacketLanes<K> P(ks, rays, n, ranges, first);
   for (int i = 0; i < n; ++i) out[i] = 0;
-  bvh8_packet_traverse_leaves(L.bvh, P.ray, P.tmin, P.tmax, P.live, mode, BvhQuery::any,
+  bvh8_packet_traverse_leaves<BvhQuery::any>(L.bvh, P.ray, P.tmin, P.tmax, P.live, mode,
                               [&](int lane, std::uint32_t f, std::uint32_t count) {
                                 const QueryRange q = P.q[lane];
                                 // any_with's emit, for this lane.

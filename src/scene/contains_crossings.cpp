@@ -268,46 +268,54 @@ struct Classified {
   bool decided = false;
   Decided dd;
 };
+
+/// What stage 1 could not decide (its `next`): the perturbed decision, and t from the vertex, the
+/// edge already met, double-double or the filter's later stages. Kept out of line: stage 1 is
+/// compiled with `flatten`, which would otherwise inline all of this (GMP included) into every
+/// copy of it, for no speed (this path is rare) and most of this file's compile time.
+[[gnu::noinline]] std::optional<Hit<double>> classify_undecided(const Ray<double>& ray, const std::array<Vec3<double>, 3>& p,
+                                                                const Triangle<double>& tri, Known& known, Classified& out) {
+  const Decided dd = decide_perturbed(ray, p, known);
+  out.decided = true;
+  out.dd = dd;
+  if (dd.sdn != 0 && !dd.met) return Hit<double>{Contact::miss};
+  if (dd.sdn != 0 && dd.where.kind == 2) {
+    const double D[3] = {ray.d.x, ray.d.y, ray.d.z}, O[3] = {ray.o.x, ray.o.y, ray.o.z};
+    const double V[3] = {dd.where.a.x, dd.where.a.y, dd.where.a.z};
+    int c = 0;
+    for (int k = 1; k < 3; ++k)
+      if (std::fabs(D[k]) > std::fabs(D[c])) c = k;
+    const TwoTerm<double> diff = two_sum(V[c], -O[c]);
+    double t = 0;
+    if (diff.hi != 0) {
+      const double q = diff.hi / D[c];
+      const double r = std::fma(-q, D[c], diff.hi);
+      t = q + (r + diff.lo) / D[c];
+      if (!(std::fabs(q) >= 0x1p-900 && std::fabs(q) <= 0x1p900 && std::fabs(D[c]) >= 0x1p-900)) t = kNaN<double>;
+    }
+    if (t == t) return Hit<double>{t < 0 ? Contact::behind : Contact::vertex, t};
+  }
+  // An edge contact: every triangle met on that edge is met at the same point, so the first one's
+  // class (edge or behind) and t serve the others.
+  Known::Edge* ke = dd.sdn != 0 && dd.where.kind == 1 ? known.edge(dd.where.a, dd.where.b) : nullptr;
+  if (ke && ke->contact != Contact::miss) return Hit<double>{ke->contact, ke->t};
+  std::optional<Hit<double>> h;
+#if RAYPROOF_FMA_PATH != 0
+  // The contact is decided (met, on one edge): only t is left, in double-double (pinned to one
+  // ulp, or nothing when num is too near 0 to give its sign).
+  if (dd.sdn != 0 && dd.where.kind == 1 && certified::dd::available())
+    if (const std::optional<double> t = certified::dd::triangle_t(ray, tri))
+      h = Hit<double>{*t < 0 ? Contact::behind : Contact::edge, *t};
+#endif
+  if (!h) h = certified::detail::triangle_rest(ray, tri);
+  if (ke && h && (h->contact == Contact::edge || h->contact == Contact::behind)) ke->contact = h->contact, ke->t = h->t;
+  return h;
+}
+
 Classified classify(const Ray<double>& ray, const std::array<Vec3<double>, 3>& p, Known& known) {
   Classified out;
   const Triangle<double> tri{p[0], p[1], p[2]};
-  auto next = [&]() -> std::optional<Hit<double>> {
-    const Decided dd = decide_perturbed(ray, p, known);
-    out.decided = true;
-    out.dd = dd;
-    if (dd.sdn != 0 && !dd.met) return Hit<double>{Contact::miss};
-    if (dd.sdn != 0 && dd.where.kind == 2) {
-      const double D[3] = {ray.d.x, ray.d.y, ray.d.z}, O[3] = {ray.o.x, ray.o.y, ray.o.z};
-      const double V[3] = {dd.where.a.x, dd.where.a.y, dd.where.a.z};
-      int c = 0;
-      for (int k = 1; k < 3; ++k)
-        if (std::fabs(D[k]) > std::fabs(D[c])) c = k;
-      const TwoTerm<double> diff = two_sum(V[c], -O[c]);
-      double t = 0;
-      if (diff.hi != 0) {
-        const double q = diff.hi / D[c];
-        const double r = std::fma(-q, D[c], diff.hi);
-        t = q + (r + diff.lo) / D[c];
-        if (!(std::fabs(q) >= 0x1p-900 && std::fabs(q) <= 0x1p900 && std::fabs(D[c]) >= 0x1p-900)) t = kNaN<double>;
-      }
-      if (t == t) return Hit<double>{t < 0 ? Contact::behind : Contact::vertex, t};
-    }
-    // An edge contact: every triangle met on that edge is met at the same point, so the first one's
-    // class (edge or behind) and t serve the others.
-    Known::Edge* ke = dd.sdn != 0 && dd.where.kind == 1 ? known.edge(dd.where.a, dd.where.b) : nullptr;
-    if (ke && ke->contact != Contact::miss) return Hit<double>{ke->contact, ke->t};
-    std::optional<Hit<double>> h;
-#if RAYPROOF_FMA_PATH != 0
-    // The contact is decided (met, on one edge): only t is left, in double-double (pinned to one
-    // ulp, or nothing when num is too near 0 to give its sign).
-    if (dd.sdn != 0 && dd.where.kind == 1 && certified::dd::available())
-      if (const std::optional<double> t = certified::dd::triangle_t(ray, tri))
-        h = Hit<double>{*t < 0 ? Contact::behind : Contact::edge, *t};
-#endif
-    if (!h) h = certified::detail::triangle_rest(ray, tri);
-    if (ke && h && (h->contact == Contact::edge || h->contact == Contact::behind)) ke->contact = h->contact, ke->t = h->t;
-    return h;
-  };
+  auto next = [&]() -> std::optional<Hit<double>> { return classify_undecided(ray, p, tri, known, out); };
   if (const auto f = certified::detail::triangle_fast(ray, tri, next)) {
     out.h = *f;
   } else {

@@ -15,6 +15,11 @@
 
 namespace rayproof::scene::compare {
 
+/// True when `n` is one of the comma-separated `names` (a bench's list of peers to run).
+inline bool named_in(const std::string& names, const std::string& n) {
+  return ("," + names + ",").find("," + n + ",") != std::string::npos;
+}
+
 struct Competitor {
   std::string name;
   double build_s = 0;

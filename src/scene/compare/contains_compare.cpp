@@ -8,6 +8,7 @@
 #include <limits>
 #include <memory>
 
+#include "scene/compare/competitors.h"
 #include "scene/compare/contains_compare.h"
 
 #ifdef RAYPROOF_HAVE_EMBREE
@@ -18,10 +19,9 @@ namespace rayproof::scene::compare {
 
 namespace {
 
-bool wanted(const std::string& names, const std::string& n) { return ("," + names + ",").find("," + n + ",") != std::string::npos; }
 
 template <class K>
-ContainsCompetitor make_cgal(const std::vector<Vec3<double>>& v, const std::vector<std::array<std::uint32_t, 3>>& t,
+ContainsCompetitor make_cgal_side_of(const std::vector<Vec3<double>>& v, const std::vector<std::array<std::uint32_t, 3>>& t,
                              const char* name) {
   using Mesh = CGAL::Surface_mesh<typename K::Point_3>;
   struct Held {
@@ -72,7 +72,7 @@ void count_hits(const RTCFilterFunctionNArguments* args) {
   args->valid[0] = 0;  // reject: the traversal goes on to every other hit
 }
 
-ContainsCompetitor make_embree(const std::vector<Vec3<double>>& v, const std::vector<std::array<std::uint32_t, 3>>& t) {
+ContainsCompetitor make_embree_parity(const std::vector<Vec3<double>>& v, const std::vector<std::array<std::uint32_t, 3>>& t) {
   auto e = make_embree_mesh(v, t, RTC_SCENE_FLAG_CONTEXT_FILTER_FUNCTION);
   ContainsCompetitor c{"embree-parity", "", nullptr};
   c.run = [e](std::span<const Vec3<double>> pts, std::span<std::uint8_t> out) {
@@ -101,11 +101,11 @@ std::vector<ContainsCompetitor> make_contains_competitors(const std::vector<Vec3
                                                           const std::vector<std::array<std::uint32_t, 3>>& triangles,
                                                           const std::string& names) {
   std::vector<ContainsCompetitor> out;
-  if (wanted(names, "cgal-epick")) out.push_back(make_cgal<CGAL::Epick>(vertices, triangles, "cgal-epick"));
-  if (wanted(names, "cgal-epeck")) out.push_back(make_cgal<CGAL::Epeck>(vertices, triangles, "cgal-epeck"));
-  if (wanted(names, "embree-parity")) {
+  if (named_in(names, "cgal-epick")) out.push_back(make_cgal_side_of<CGAL::Epick>(vertices, triangles, "cgal-epick"));
+  if (named_in(names, "cgal-epeck")) out.push_back(make_cgal_side_of<CGAL::Epeck>(vertices, triangles, "cgal-epeck"));
+  if (named_in(names, "embree-parity")) {
 #ifdef RAYPROOF_HAVE_EMBREE
-    out.push_back(make_embree(vertices, triangles));
+    out.push_back(make_embree_parity(vertices, triangles));
 #else
     out.push_back({"embree-parity", "not built with Embree 3", nullptr});
 #endif

@@ -9,6 +9,7 @@
 #include <limits>
 #include <memory>
 
+#include "scene/compare/competitors.h"
 #include "scene/compare/distance_compare.h"
 
 #ifdef RAYPROOF_HAVE_EMBREE
@@ -19,9 +20,8 @@ namespace rayproof::scene::compare {
 
 namespace {
 
-bool wanted(const std::string& names, const std::string& n) { return ("," + names + ",").find("," + n + ",") != std::string::npos; }
 
-DistanceCompetitor make_cgal(const std::vector<Vec3<double>>& v, const std::vector<std::array<std::uint32_t, 3>>& t) {
+DistanceCompetitor make_cgal_aabb_distance(const std::vector<Vec3<double>>& v, const std::vector<std::array<std::uint32_t, 3>>& t) {
   using K = CGAL::Epick;
   using Tri = K::Triangle_3;
   using Iter = std::vector<Tri>::const_iterator;
@@ -105,7 +105,7 @@ bool point_query_callback(RTCPointQueryFunctionArguments* args) {
   return false;
 }
 
-DistanceCompetitor make_embree(const std::vector<Vec3<double>>& v, const std::vector<std::array<std::uint32_t, 3>>& t) {
+DistanceCompetitor make_embree_point_query(const std::vector<Vec3<double>>& v, const std::vector<std::array<std::uint32_t, 3>>& t) {
   auto e = std::make_shared<EmbreeHeld>();
   e->v = v, e->t = t;
   e->device = rtcNewDevice("threads=1");
@@ -145,10 +145,10 @@ std::vector<DistanceCompetitor> make_distance_competitors(const std::vector<Vec3
                                                           const std::vector<std::array<std::uint32_t, 3>>& triangles,
                                                           const std::string& names) {
   std::vector<DistanceCompetitor> out;
-  if (wanted(names, "cgal-epick")) out.push_back(make_cgal(vertices, triangles));
-  if (wanted(names, "embree")) {
+  if (named_in(names, "cgal-epick")) out.push_back(make_cgal_aabb_distance(vertices, triangles));
+  if (named_in(names, "embree")) {
 #ifdef RAYPROOF_HAVE_EMBREE
-    out.push_back(make_embree(vertices, triangles));
+    out.push_back(make_embree_point_query(vertices, triangles));
 #else
     out.push_back({"embree", "not built with Embree 3", nullptr});
 #endif
