@@ -8,8 +8,13 @@
 #include <string>
 #include <vector>
 
+#include <tbb/global_control.h>
+
 #include "scene/accel.h"
 #include "scene/compare/competitors.h"
+#include "scene/compare/contains_compare.h"
+#include "scene/compare/crossings_compare.h"
+#include "scene/compare/distance_compare.h"
 #include "scene/compare/isa.h"
 #include "scene/scene.h"
 #include "scene/watertight.h"
@@ -158,4 +163,21 @@ TEST(BenchCompetitors, SelectedKernelsFromAnEmbreeReport) {
   EXPECT_EQ(k.find("16"), nullptr);
   EXPECT_TRUE(compare::parse_selected_kernels("no report here\n").kernels.empty());
   EXPECT_TRUE(compare::parse_selected_kernels("selected scene intersector\n").kernels.empty());
+}
+
+// The mesh benches' Embree peers (bench distance, contains, crossings) live while every method is
+// timed, ours included. An Embree device made with "threads=1" caps TBB's parallelism for the whole
+// process (its global_control) while it lives: at --threads 2 every method then ran on one thread.
+TEST(BenchCompetitors, MeshPeersLeaveTbbsThreadCountAlone) {
+  if (!compare::have_embree()) GTEST_SKIP() << "built without Embree";
+  const auto before = tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism);
+  if (before < 2) GTEST_SKIP() << "one hardware thread here: nothing to cap";
+  const mesh::Mesh m = icosphere(2);
+  const auto d = compare::make_distance_competitors(m.vertices, m.triangles, "embree");
+  const auto c = compare::make_contains_competitors(m.vertices, m.triangles, "embree-parity");
+  const auto a = compare::make_embree_all_hits(m.vertices, m.triangles);
+  ASSERT_EQ(d.size(), 1u);
+  ASSERT_EQ(c.size(), 1u);
+  ASSERT_TRUE(d[0].run && c[0].run && a.run);
+  EXPECT_EQ(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism), before);
 }

@@ -343,8 +343,8 @@ double next_up(double x) {
   return std::bit_cast<double>(x > 0 ? b + 1 : b - 1);
 }
 /// Two ulps above x (the rounded t of two contacts at the same exact t differ by at most that).
-double up2(double x) { return next_up(next_up(x)); }
-double down2(double x) { return -up2(-x); }
+double two_ulps_up(double x) { return next_up(next_up(x)); }
+double two_ulps_down(double x) { return -two_ulps_up(-x); }
 
 }  // namespace
 
@@ -359,8 +359,8 @@ bool exact_in_range(const mpq_class& t, TRange range) {
 /// from t where two ulps decide, else exactly (`exact()` computes it: a ray starting on the surface).
 template <class Exact>
 bool contact_in_range(double t, TRange range, Exact&& exact) {
-  if (t < down2(range.tmin) || t > up2(range.tmax)) return false;
-  if (t >= up2(range.tmin) && t <= down2(range.tmax)) return true;
+  if (t < two_ulps_down(range.tmin) || t > two_ulps_up(range.tmax)) return false;
+  if (t >= two_ulps_up(range.tmin) && t <= two_ulps_down(range.tmax)) return true;
   return exact_in_range(exact(), range);
 }
 
@@ -449,7 +449,7 @@ void ClosedMesh::ray_crossings_into(const Ray<double>& ray, TRange range, RayCro
   // in it is visited; with tmin >= 0 on the float box test). Candidates are kept two ulps wider, so
   // that contacts at the same exact t near an end are grouped together; which groups count is
   // decided on their exact t.
-  const double lo = down2(range.tmin), hi = up2(range.tmax);
+  const double lo = two_ulps_down(range.tmin), hi = two_ulps_up(range.tmax);
   // Slot j of a leaf (never padding: that lies between leaves); its record is read only for a
   // candidate (a separate array: for the many slots that are no contact, a cache miss spared).
   auto slot = [&](std::uint32_t j) {
@@ -510,7 +510,7 @@ void ClosedMesh::ray_crossings_into(const Ray<double>& ray, TRange range, RayCro
   // or on the same edge (as coordinates: the same point); else ordered and grouped by exact t.
   for (std::size_t i = 0; i < cand.size();) {
     std::size_t e = i + 1;
-    while (e < cand.size() && cand[e].t <= up2(cand[e - 1].t)) ++e;
+    while (e < cand.size() && cand[e].t <= two_ulps_up(cand[e - 1].t)) ++e;
     order.clear();
     for (std::size_t k = i; k < e; ++k) order.push_back(k);
     bool one_point = cand[i].where.kind != 0;

@@ -18,7 +18,7 @@ using scene::detail::orient3d_value_exact;
 
 inline double coord(const Vec3<double>& p, int k) { return reinterpret_cast<const double*>(&p)[k]; }
 
-struct Contact1 {
+struct SegmentContact {
   bool hit = false;
   Contact contact = Contact::miss;
   double t = kNaN<double>;
@@ -50,9 +50,9 @@ bool segments_2d(double pu, double pv, double qu, double qv, double au, double a
 }
 
 /// The closed segment p->q against the closed triangle abc (p != q).
-Contact1 segment_triangle(const Vec3<double>& a, const Vec3<double>& b, const Vec3<double>& c, const Vec3<double>& p,
+SegmentContact segment_triangle(const Vec3<double>& a, const Vec3<double>& b, const Vec3<double>& c, const Vec3<double>& p,
                           const Vec3<double>& q) {
-  Contact1 r;
+  SegmentContact r;
   const int dp = orient3d_exact(a, b, c, p), dq = orient3d_exact(a, b, c, q);
   if (dp * dq > 0) return r;
   if (dp == 0 && dq == 0) {
@@ -111,7 +111,7 @@ SegmentHit ClosedMesh::segment(const Vec3<double>& p, const Vec3<double>& q) con
   auto consider = [&](std::uint32_t tri) {
     const auto& t = s.triangles[tri];
     const Vec3<double>&a = s.vertices[t[0]], &b = s.vertices[t[1]], &c = s.vertices[t[2]];
-    const Contact1 c1 = segment_triangle(a, b, c, p, q);
+    const SegmentContact c1 = segment_triangle(a, b, c, p, q);
     if (!c1.hit) return;
     if (!out.crosses || c1.t < out.t || (c1.t == out.t && tri < out.triangle))
       out.crosses = true, out.t = c1.t, out.triangle = tri, out.contact = c1.contact;

@@ -42,7 +42,10 @@ namespace {
 
 using namespace dist;
 
-struct Cand {
+/// A triangle still in the running for the nearest: [lo, hi] encloses its squared distance to the
+/// point, at its leaf-order slot, on the feature (kind, k) the filter found nearest; `sure` when that
+/// bound is certain enough to lower the search's upper bound.
+struct NearCandidate {
   double lo, hi;
   std::uint32_t slot;
   Kind kind;
@@ -63,7 +66,7 @@ inline double box_lb(const DistanceNode& n, const Vec3<double>& p) {
 struct Search {
   const DistanceTree& t;
   const Vec3<double>& p;
-  std::vector<Cand>& c;
+  std::vector<NearCandidate>& c;
   double U = kInf;
   bool extreme = false;
 
@@ -213,7 +216,7 @@ double first_pass(const DistanceTree& t, const Vec3<double>& p, std::uint32_t hi
   return U;
 }
 
-bool same_feature(const DistanceTree& t, const Cand& a, const Cand& b) {
+bool same_feature(const DistanceTree& t, const NearCandidate& a, const NearCandidate& b) {
   if (a.kind != b.kind) return false;
   if (a.kind == kFace) return a.slot == b.slot;
   if (a.kind == kVertex) return t.tris[a.slot][a.k] == t.tris[b.slot][b.k];
@@ -225,7 +228,7 @@ bool same_feature(const DistanceTree& t, const Cand& a, const Cand& b) {
 }
 
 /// The closest point and barycentrics of the winning feature, in double.
-void fill_point(const DistanceTree& t, const Vec3<double>& p, const Cand& w, ClosestPoint& r) {
+void fill_point(const DistanceTree& t, const Vec3<double>& p, const NearCandidate& w, ClosestPoint& r) {
   const auto& tri = t.tris[w.slot];
   std::array<double, 3> b{0, 0, 0};
   if (w.kind == kVertex) {
@@ -287,7 +290,7 @@ ClosestPoint query(const DistanceTree& t, const Vec3<double>& p, std::uint32_t h
     r.distance = kInf;
     return r;
   }
-  thread_local std::vector<Cand> cands;
+  thread_local std::vector<NearCandidate> cands;
   cands.clear();
   Search s{t, p, cands};
   thread_local std::vector<DistanceVisit> visited;
@@ -331,11 +334,11 @@ ClosestPoint query(const DistanceTree& t, const Vec3<double>& p, std::uint32_t h
     return r;
   }
   // The features that can attain the least value.
-  const Cand* first = nullptr;
+  const NearCandidate* first = nullptr;
   bool ambiguous = false;
   std::uint32_t best_id = 0xffffffffu;
-  const Cand* best = nullptr;
-  for (const Cand& c : cands) {
+  const NearCandidate* best = nullptr;
+  for (const NearCandidate& c : cands) {
     if (c.lo > s.U) continue;
     if (!c.sure) ambiguous = true;
     if (!first) first = &c;
@@ -350,7 +353,7 @@ ClosestPoint query(const DistanceTree& t, const Vec3<double>& p, std::uint32_t h
   if (ambiguous) {
     thread_local std::vector<std::uint32_t> slots;
     slots.clear();
-    for (const Cand& c : cands)
+    for (const NearCandidate& c : cands)
       if (c.lo <= s.U) slots.push_back(c.slot);
     std::sort(slots.begin(), slots.end());
     slots.erase(std::unique(slots.begin(), slots.end()), slots.end());

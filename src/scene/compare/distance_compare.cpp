@@ -14,6 +14,8 @@
 
 #ifdef RAYPROOF_HAVE_EMBREE
 #include <embree3/rtcore.h>
+
+#include "scene/compare/embree_mesh.h"
 #endif
 
 namespace rayproof::scene::compare {
@@ -108,7 +110,7 @@ bool point_query_callback(RTCPointQueryFunctionArguments* args) {
 DistanceCompetitor make_embree_point_query(const std::vector<Vec3<double>>& v, const std::vector<std::array<std::uint32_t, 3>>& t) {
   auto e = std::make_shared<EmbreeHeld>();
   e->v = v, e->t = t;
-  e->device = rtcNewDevice("threads=1");
+  e->device = new_embree_device();
   e->scene = rtcNewScene(e->device);
   RTCGeometry g = rtcNewGeometry(e->device, RTC_GEOMETRY_TYPE_TRIANGLE);
   auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), v.size()));
