@@ -2,22 +2,19 @@
 // The query machinery of Accel (accel_closest / any / all.cpp: single rays and batches; accel_packet.h:
 // packets of eight): the kernel dispatch, the leaf kernels (group lanes, certified's stages, slot by
 // slot), the single-ray closest / any hit and the TBB batch loop. Internal to rayproof_scene.
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 
 #include <emmintrin.h>
 
 #include <type_traits>
 
 #include "scene/accel.h"
+#include "scene/batch_threads.h"
 #include "scene/kernels.h"
 
 namespace rayproof::scene::accel_detail {
 
 using detail::Crossing;
 using detail::TriAlgo;
-
 
 /// Runs `f(kernel)` with the kernel type the method names.
 template <class F>
@@ -246,15 +243,10 @@ bool any_with(const L_& L, K& k, const Ray<double>& r, BvhTraversal mode, QueryR
   return hit;
 }
 
+/// Rays [0, n) over `threads` threads in ranges of about 256 (batch_threads.h).
 template <class Body>
 void parallel_rays(std::size_t n, int threads, Body&& body) {
-  const int t = threads > 0 ? threads : tbb::this_task_arena::max_concurrency();
-  tbb::task_arena arena(t);
-  arena.execute([&] {
-    tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 256), [&](const tbb::blocked_range<std::size_t>& r) {
-      body(r.begin(), r.end());
-    });
-  });
+  scene::detail::for_each_batch_range(n, threads, 0, 256, body);
 }
 
 /// The HitSink that stores hit i at `out[i]` (context: a PrimHit array).

@@ -6,9 +6,6 @@
 // exact orientation determinant (orient2d in the (k1, k2) projection, orient3d for the side), and
 // a determinant that is exactly 0 at p is decided by its eps terms, which are signs of coordinate
 // differences. Candidates come from the BVH, traversed conservatively along the unperturbed ray.
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <bit>
@@ -21,6 +18,7 @@
 #include <vector>
 
 #include "scene/accel.h"
+#include "scene/batch_threads.h"
 #include "scene/contains_exact.h"
 #include "scene/contains_state.h"
 
@@ -58,7 +56,6 @@ std::string str(const Vec3<double>& p) {
   return buf;
 }
 
-
 }  // namespace
 
 namespace detail {
@@ -84,7 +81,6 @@ std::vector<std::uint32_t> weld(const std::vector<Vec3<double>>& v) {
   }
   return out;
 }
-
 
 ClosureReport check_closure(const std::vector<Vec3<double>>& v, const std::vector<std::array<std::uint32_t, 3>>& tris) {
   const std::vector<std::uint32_t> id = weld(v);
@@ -123,7 +119,6 @@ std::string edge_text(const std::vector<Vec3<double>>& v, const std::array<std::
 
 }  // namespace detail
 
-
 namespace {
 
 inline double coord(const Vec3<double>& p, int k) { return reinterpret_cast<const double*>(&p)[k]; }
@@ -134,7 +129,6 @@ inline int sos_edge(double au, double av, double bu, double bv) {
   if (bv != av) return av > bv ? 1 : -1;
   return bu > au ? 1 : (bu < au ? -1 : 0);
 }
-
 
 }  // namespace
 
@@ -154,7 +148,6 @@ bool on_closed_triangle_coplanar(const Vec3<double>& a, const Vec3<double>& b, c
   }
   return false;  // zero area: not part of the surface
 }
-
 
 /// The perturbed ray's count at p (finite, inside the closed bounding box).
 PointQuery query_point(const ContainsState& s, const Vec3<double>& p) {
@@ -268,16 +261,13 @@ void ClosedMesh::contains(const double* xyz, std::size_t n, std::size_t stride, 
   if (stride < 3 * sizeof(double) || stride % sizeof(double))
     throw MeshInputError("ClosedMesh::contains: stride of " + str(stride) + " bytes (need a multiple of 8, at least 24)");
   const auto* base = reinterpret_cast<const std::byte*>(xyz);
-  auto body = [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t i = r.begin(); i < r.end(); ++i) {
+  scene::detail::for_each_batch_range(n, threads, 2048, 1024, [&](std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i) {
       Vec3<double> p;
       std::memcpy(&p, base + i * stride, sizeof p);
       out[i] = static_cast<std::uint8_t>(contains(p));
     }
-  };
-  if (threads == 1 || n < 2048) return body(tbb::blocked_range<std::size_t>(0, n));
-  tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
-  arena.execute([&] { tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 1024), body); });
+  });
 }
 
 }  // namespace rayproof

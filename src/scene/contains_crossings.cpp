@@ -16,9 +16,6 @@
 // exact t in GMP rationals, and their t is then the exact t correctly rounded (MPFR), so the listed
 // t never decrease.
 #include <gmpxx.h>
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 #include <xmmintrin.h>
 
 #include <algorithm>
@@ -33,6 +30,7 @@
 #include "exact/rounding.h"
 #include "rayproof/certified/intersect.h"
 #include "rayproof/certified_expansion.h"
+#include "scene/batch_threads.h"
 #include "scene/contains_state.h"
 #include "scene/crossings_exact_sign.h"
 #include "scene/crossings_speedups.h"
@@ -554,12 +552,9 @@ void ClosedMesh::ray_crossings(std::span<const Ray<double>> rays, std::span<RayC
   if (rays.size() != out.size())
     throw MeshInputError("ClosedMesh::ray_crossings: " + std::to_string(out.size()) + " results for " +
                          std::to_string(rays.size()) + " rays");
-  auto body = [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t i = r.begin(); i < r.end(); ++i) ray_crossings_into(rays[i], range, out[i]);
-  };
-  if (threads == 1 || rays.size() < 256) return body(tbb::blocked_range<std::size_t>(0, rays.size()));
-  tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
-  arena.execute([&] { tbb::parallel_for(tbb::blocked_range<std::size_t>(0, rays.size(), 64), body); });
+  scene::detail::for_each_batch_range(rays.size(), threads, 256, 64, [&](std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i) ray_crossings_into(rays[i], range, out[i]);
+  });
 }
 
 namespace detail {

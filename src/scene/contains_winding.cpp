@@ -1,14 +1,12 @@
 // ClosedMesh's generalized winding numbers (winding_tree.cpp): the value with its bound, one point
 // or a batch.
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 
 #include <cmath>
 #include <cstring>
 #include <limits>
 #include <string>
 
+#include "scene/batch_threads.h"
 #include "scene/contains_state.h"
 
 namespace rayproof {
@@ -36,18 +34,15 @@ void ClosedMesh::winding_values(const double* xyz, std::size_t n, std::size_t st
     throw MeshInputError("ClosedMesh::winding_values: stride of " + std::to_string(stride) +
                          " bytes (need a multiple of 8, at least 24)");
   const auto* base = reinterpret_cast<const std::byte*>(xyz);
-  auto body = [&](const tbb::blocked_range<std::size_t>& r) {
-    for (std::size_t i = r.begin(); i < r.end(); ++i) {
+  scene::detail::for_each_batch_range(n, threads, 256, 64, [&](std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i) {
       Vec3<double> p;
       std::memcpy(&p, base + i * stride, sizeof p);
       const WindingValue v = winding_value(p, tolerance);
       w[i] = v.w;
       bound[i] = v.bound;
     }
-  };
-  if (threads == 1 || n < 256) return body(tbb::blocked_range<std::size_t>(0, n));
-  tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
-  arena.execute([&] { tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 64), body); });
+  });
 }
 
 }  // namespace rayproof

@@ -9,9 +9,6 @@
 // point's exact winding number when the two points' empty balls cover the segment between them,
 // and else the net crossings of that segment, were tried: neither was measurably faster than
 // contains(p) in bench distance --ablation, and the crossings were slower near the surface.)
-#include <tbb/blocked_range.h>
-#include <tbb/parallel_for.h>
-#include <tbb/task_arena.h>
 
 #include <algorithm>
 #include <cmath>
@@ -22,6 +19,7 @@
 #include <vector>
 
 #include "rayproof/scene/distance.h"
+#include "scene/batch_threads.h"
 #include "scene/contains_state.h"
 #include "scene/distance_tree.h"
 
@@ -99,9 +97,9 @@ void ClosedMesh::closest_points(const double* xyz, std::size_t n, std::size_t st
   const detail::DistanceTree& t = detail::distance_tree(*s_);
   const auto* base = reinterpret_cast<const std::byte*>(xyz);
   const std::vector<std::uint32_t> order = detail::morton_order(base, n, stride);
-  auto body = [&](const tbb::blocked_range<std::size_t>& r) {
+  scene::detail::for_each_batch_range(n, threads, 1024, 256, [&](std::size_t b, std::size_t e) {
     std::uint32_t hint = 0xffffffffu;
-    for (std::size_t j = r.begin(); j < r.end(); ++j) {
+    for (std::size_t j = b; j < e; ++j) {
       const std::uint32_t i = order[j];
       Vec3<double> p;
       std::memcpy(&p, base + i * stride, sizeof p);
@@ -110,10 +108,7 @@ void ClosedMesh::closest_points(const double* xyz, std::size_t n, std::size_t st
       if (with_side && c.distance == c.distance) c.side = c.distance == 0 ? Side::surface : contains(p);
       out[i] = c;
     }
-  };
-  if (threads == 1 || n < 1024) return body(tbb::blocked_range<std::size_t>(0, n));
-  tbb::task_arena arena(threads > 0 ? threads : tbb::task_arena::automatic);
-  arena.execute([&] { tbb::parallel_for(tbb::blocked_range<std::size_t>(0, n, 256), body); });
+  });
 }
 
 }  // namespace rayproof
