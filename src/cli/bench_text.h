@@ -7,28 +7,13 @@
 #include <utility>
 #include <vector>
 
+#include "scene/compare/scene_bench.h"
+
 namespace rayproof::cli {
 
-/// One method or competitor on one mesh, ray set, query and path: "single" (one ray at a time),
-/// "packet8" / "packet16" (8 / 16 consecutive rays per call; primary rays in 4x2 pixel tiles).
-struct BenchRow {
-  std::string mesh, method, rays, query = "closest", path = "single";
-  std::size_t n = 0;            ///< rays timed
-  double mrays = 0;             ///< million rays per second on one thread
-  int scaled_threads = 0;       ///< 0: not measured on more threads
-  double mrays_scaled = 0;      ///< on scaled_threads threads
-  double build_s = 0, bytes = -1;  ///< bytes per triangle the method reads: -1 not known
-  double bytes_held = -1;          ///< bytes per triangle its structures hold: -1 not known
-  std::int64_t leaks = -1, leak_rays = 0;  ///< leaks -1: not measured (not a closed mesh)
-};
-
-/// The BVH build on one mesh at one thread count: ours (scene::Accel, SAH) and Embree's (the
-/// faster of its default and robust builds; -1 without Embree), each the best of some repeats.
-struct BenchBuild {
-  std::string mesh;
-  int threads = 1;
-  double ours_s = 0, embree_s = -1;
-};
+using scene::compare::BenchBuild;
+using scene::compare::BenchIsa;
+using scene::compare::BenchRow;
 
 enum class Goal { at_least, at_most };
 
@@ -58,17 +43,6 @@ struct BenchTarget {
 /// build <= 1.0; per mesh, robust's bytes per triangle <= 64 and robust's and certified's leaks = 0.
 [[nodiscard]] std::vector<BenchTarget> bench_targets(const std::vector<BenchRow>& rows,
                                                      const std::vector<BenchBuild>& builds);
-
-/// Which instruction set each side ran: ours (scene::compare::our_isa) and each competitor that
-/// reports one (scene::compare::Competitor::isa; Embree's as Embree itself reports it).
-struct BenchIsa {
-  std::string nodes, leaves;                      ///< ours: "avx2-8wide" / "sse-4wide"; "avx2", "sse", ...
-  std::vector<std::pair<std::string, bool>> cpu;  ///< CPU features and whether it has each
-  struct Side {
-    std::string name, isa, kernel, how;  ///< a competitor, its ISA, the kernel named, how it is known
-  };
-  std::vector<Side> competitors;
-};
 
 /// "isa: rayproof nodes <nodes>, leaves <leaves> (cpu: avx2 fma, no avx512f)\n" and, when
 /// competitors report theirs, "isa: embree avx512, embree-avx2 avx2 (<how>: embree
