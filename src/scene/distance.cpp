@@ -63,6 +63,40 @@ inline double box_lb(const DistanceNode& n, const Vec3<double>& p) {
   return std::max(0.0, s * (1 - 0x1p-49) - 0x1p-1070);
 }
 
+/// Best-first over the binary tree from the root: the nearer child first, boxes whose lower bound
+/// is above U skipped (U is read again after each leaf, which may lower it). leaf(first, count) gets
+/// a leaf's slots and returns false to stop. False when a degenerate tree is deeper than the stack
+/// (128 entries): the search was cut short.
+template <class Leaf>
+bool binary_best_first(const DistanceTree& t, const Vec3<double>& p, const double& U, Leaf&& leaf) {
+  struct Entry {
+    std::uint32_t node;
+    double lb;
+  };
+  Entry stack[128];
+  int top = 0;
+  stack[top++] = {0, box_lb(t.nodes[0], p)};
+  while (top) {
+    const Entry e = stack[--top];
+    if (e.lb > U) continue;
+    const DistanceNode& n = t.nodes[e.node];
+    if (n.count) {
+      if (!leaf(n.index, n.count)) return true;
+      continue;
+    }
+    if (top + 2 > 128) return false;
+    const double l0 = box_lb(t.nodes[n.index], p), l1 = box_lb(t.nodes[n.index + 1], p);
+    if (l0 <= l1) {
+      if (l1 <= U) stack[top++] = {n.index + 1, l1};
+      if (l0 <= U) stack[top++] = {n.index, l0};
+    } else {
+      if (l0 <= U) stack[top++] = {n.index, l0};
+      if (l1 <= U) stack[top++] = {n.index + 1, l1};
+    }
+  }
+  return true;
+}
+
 struct Search {
   const DistanceTree& t;
   const Vec3<double>& p;
@@ -131,75 +165,27 @@ struct Search {
   }
 
   void run() {
-    struct Entry {
-      std::uint32_t node;
-      double lb;
-    };
-    Entry stack[128];
-    int top = 0;
-    stack[top++] = {0, box_lb(t.nodes[0], p)};
-    while (top) {
-      const Entry e = stack[--top];
-      if (e.lb > U) continue;
-      const DistanceNode& n = t.nodes[e.node];
-      if (n.count) {
-        for (std::uint32_t s = n.index; s < n.index + n.count; ++s) triangle(s);
-        if (extreme) return;
-        continue;
-      }
-      const double l0 = box_lb(t.nodes[n.index], p), l1 = box_lb(t.nodes[n.index + 1], p);
-      if (top + 2 > 128) {  // a degenerate tree deeper than the stack: finish exactly
-        extreme = true;
-        return;
-      }
-      // The nearer child on top.
-      if (l0 <= l1) {
-        if (l1 <= U) stack[top++] = {n.index + 1, l1};
-        if (l0 <= U) stack[top++] = {n.index, l0};
-      } else {
-        if (l0 <= U) stack[top++] = {n.index, l0};
-        if (l1 <= U) stack[top++] = {n.index + 1, l1};
-      }
-    }
+    const bool whole = binary_best_first(t, p, U, [&](std::uint32_t first, std::uint32_t count) {
+      for (std::uint32_t s = first; s < first + count; ++s) triangle(s);
+      return !extreme;
+    });
+    if (!whole) extreme = true;  // a degenerate tree deeper than the stack: finish exactly
   }
 };
 
 /// The first pass on the binary tree (points beyond the wide tree's float range): best-first in
 /// plain double, as wide_first_bound (distance_wide.h) does on the wide tree.
 void first_bound(const DistanceTree& t, const Vec3<double>& p, double& U, std::vector<DistanceVisit>& visited, bool& complete) {
-  struct Entry {
-    std::uint32_t node;
-    double lb;
-  };
-  Entry stack[128];
-  int top = 0;
-  stack[top++] = {0, box_lb(t.nodes[0], p)};
-  while (top) {
-    const Entry e = stack[--top];
-    if (e.lb > U) continue;
-    const DistanceNode& n = t.nodes[e.node];
-    if (n.count) {
-      for (std::uint32_t s = n.index; s < n.index + n.count; ++s) {
-        if (triangle_box_lb(t.tris[s], p) > U) continue;
-        Vec3<double> dir;
-        U = std::min(U, upper_bound(t.tris[s], p, &dir));
-        visited.push_back({s, triangle_box_lb(t.tris[s], p), dir});
-      }
-      continue;
+  const bool whole = binary_best_first(t, p, U, [&](std::uint32_t first, std::uint32_t count) {
+    for (std::uint32_t s = first; s < first + count; ++s) {
+      if (triangle_box_lb(t.tris[s], p) > U) continue;
+      Vec3<double> dir;
+      U = std::min(U, upper_bound(t.tris[s], p, &dir));
+      visited.push_back({s, triangle_box_lb(t.tris[s], p), dir});
     }
-    if (top + 2 > 128) {
-      complete = false;
-      break;
-    }
-    const double l0 = box_lb(t.nodes[n.index], p), l1 = box_lb(t.nodes[n.index + 1], p);
-    if (l0 <= l1) {
-      if (l1 <= U) stack[top++] = {n.index + 1, l1};
-      if (l0 <= U) stack[top++] = {n.index, l0};
-    } else {
-      if (l0 <= U) stack[top++] = {n.index, l0};
-      if (l1 <= U) stack[top++] = {n.index + 1, l1};
-    }
-  }
+    return true;
+  });
+  if (!whole) complete = false;
 }
 
 /// The first pass: U from the hint's triangle (a slot, or kNoSlot), then the wide tree (the binary
