@@ -35,11 +35,9 @@ struct BenchOptions {
   std::string scene;
   int threads = 0;
   bool json = false;
-  std::size_t triangles = 1 << 20, rays = 200000, slow_rays = 5000, leak_rays = 200000;
+  std::size_t triangles = 1 << 20;
   std::string methods = "float,double,cramer-float,cramer-double,watertight-float,watertight,robust,certified";
-  std::string competitors = "embree,embree-robust,cgal-epick,cgal-epeck";
-  int repeat = 3;
-  int width = 640, height = 480;  ///< primary rays: this image of the default view
+  scene::compare::SceneBenchOptions measure;  ///< ray counts, competitors, repeats, image
 };
 
 /// The built-in mesh list for `bench` without a scene: bunny00 and refined_elephant from CGAL's
@@ -88,10 +86,7 @@ int bench_scene(const BenchOptions& opt, const std::string& path, int threads, s
   if (!opt.json)
     fmt::print(stderr, "{}: {} triangles, {} primitives{}; one thread{}\n", mesh_name, s.mesh.triangles.size(), s.size(),
                reader_note(path), threads > 1 ? fmt::format(" and {} threads", threads) : "");
-  scene::compare::SceneBenchOptions measure;
-  measure.rays = opt.rays, measure.slow_rays = opt.slow_rays, measure.leak_rays = opt.leak_rays;
-  measure.competitors = opt.competitors, measure.repeat = opt.repeat, measure.width = opt.width, measure.height = opt.height;
-  scene::compare::bench_scene(measure, s, mesh_name, methods, threads, rows, builds, notes, isa);
+  scene::compare::bench_scene(opt.measure, s, mesh_name, methods, threads, rows, builds, notes, isa);
   return 0;
 }
 
@@ -102,7 +97,7 @@ int run_bench(const BenchOptions& opt) {
   std::vector<std::string> notes;  // packet widths a competitor does not offer, and why
   BenchIsa isa;
   try {
-    scene::compare::check_competitor_names(opt.competitors);  // before any timing
+    scene::compare::check_competitor_names(opt.measure.competitors);  // before any timing
   } catch (const std::invalid_argument& e) {
     fmt::print(stderr, "rayproof bench: {}\n", e.what());
     return 2;
@@ -134,7 +129,7 @@ int run_bench(const BenchOptions& opt) {
                avx2);
   fmt::print("\n");
   fmt::print("BVH build (SAH, bounds included), best of {}; Embree: the faster of its default and robust builds.\n{}\n",
-             std::max(1, opt.repeat), build_table(builds));
+             std::max(1, opt.measure.repeat), build_table(builds));
   fmt::print("Targets: speed against Embree, two-thread scaling, build time, bytes per triangle, leaks "
              "(verdicts decided on the printed values).\n{}",
              targets_table(targets));
@@ -152,17 +147,17 @@ Run add_bench(CLI::App& app) {
       ->check(CLI::Range(0, 1024));
   sub->add_flag("--json", opt->json, "Print a JSON array of results");
   sub->add_option("--triangles", opt->triangles, "Triangles of the generated mesh (at least)")->capture_default_str();
-  sub->add_option("--rays", opt->rays, "Random rays")->capture_default_str();
-  sub->add_option("--slow-rays", opt->slow_rays, "Rays per set for registry (non-compiled) methods")->capture_default_str();
-  sub->add_option("--leak-rays", opt->leak_rays, "At most this many leak rays")->capture_default_str();
-  sub->add_option("--width", opt->width, "Primary rays: image width (scenes without a camera)")
+  sub->add_option("--rays", opt->measure.rays, "Random rays")->capture_default_str();
+  sub->add_option("--slow-rays", opt->measure.slow_rays, "Rays per set for registry (non-compiled) methods")->capture_default_str();
+  sub->add_option("--leak-rays", opt->measure.leak_rays, "At most this many leak rays")->capture_default_str();
+  sub->add_option("--width", opt->measure.width, "Primary rays: image width (scenes without a camera)")
       ->capture_default_str()->check(CLI::Range(1, 1 << 14));
-  sub->add_option("--height", opt->height, "Primary rays: image height (scenes without a camera)")
+  sub->add_option("--height", opt->measure.height, "Primary rays: image height (scenes without a camera)")
       ->capture_default_str()->check(CLI::Range(1, 1 << 14));
-  sub->add_option("--repeat", opt->repeat, "Time each ray set and build this many times, report the fastest")
+  sub->add_option("--repeat", opt->measure.repeat, "Time each ray set and build this many times, report the fastest")
       ->capture_default_str()->check(CLI::Range(1, 1000));
   sub->add_option("--methods", opt->methods, "Comma-separated methods")->capture_default_str();
-  sub->add_option("--competitors", opt->competitors,
+  sub->add_option("--competitors", opt->measure.competitors,
                   "Comma-separated competitors to run, of embree, embree-robust, embree-avx2, embree-robust-avx2 (Embree's "
                   "two on a device with max_isa=avx2), cgal-epick, cgal-epeck (none: no competitor)")
       ->capture_default_str();
