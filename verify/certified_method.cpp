@@ -55,7 +55,7 @@ void register_certified_method(MethodRegistry& reg) {
            "exact class, T within 1 ulp: error-bounded filters in extended precision, exact (GMP) fallback",
            Precision::float64, std::vector<io::Kind>(io::kAllKinds.begin(), io::kAllKinds.end()),
            [](const io::Case& c) { return certified_classify(c, &g_fallbacks); }, certified_fallbacks, {}, {},
-           exact_promises()});
+           exact_promises(), {FastKernel::certified, true}});
 }
 
 }  // namespace rayproof::verify

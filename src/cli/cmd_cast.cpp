@@ -100,7 +100,7 @@ Run add_cast(CLI::App& app) {
   auto* sub = app.add_subcommand("cast", "Cast rays into a scene or mesh: one result line per ray");
   sub->add_option("scene", opt->scene, "Mesh file (.off .obj .ply .stl .gltf .glb), scene JSON, or 'default'")->required();
   sub->add_option("rays", opt->rays, "Ray file (ox oy oz dx dy dz per line), or - for standard input")->required();
-  sub->add_option("--method,-m", opt->method, "Method (compiled: float, double, cramer-*, watertight*; or any registry method)")
+  sub->add_option("--method,-m", opt->method, "Method: any registry method (float, double, cramer-*, watertight*, robust and certified run compiled BVH kernels)")
       ->capture_default_str();
   sub->add_option("--query,-q", opt->query, "closest, any, all or crossings (a mesh's crossings, each once, with direction)")
       ->check(CLI::IsMember({"closest", "any", "all", "crossings"}))

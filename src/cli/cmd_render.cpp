@@ -112,8 +112,8 @@ int run_render_light(const RenderOptions& opt, const scene::Scene& s, const Scen
   lo.threads = opt.threads;
   const scene::SceneMethod& sm = caster_method;
   lo.float_inputs = sm.generic ? sm.generic->precision == Precision::float32
-                               : (sm.fast == scene::FastKernel::mt_float || sm.fast == scene::FastKernel::cramer_float ||
-                                  sm.fast == scene::FastKernel::watertight_float || sm.fast == scene::FastKernel::robust);
+                               : (sm.fast == FastKernel::mt_float || sm.fast == FastKernel::cramer_float ||
+                                  sm.fast == FastKernel::watertight_float || sm.fast == FastKernel::robust);
   std::optional<SceneCaster> exact;
   if (opt.verify) {
     exact.emplace(s, scene::find_scene_method("exact", registry::all_methods()));

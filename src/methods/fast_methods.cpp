@@ -29,13 +29,17 @@ void register_fast_methods(MethodRegistry& reg) {
   const std::vector<io::Kind> all(io::kAllKinds.begin(), io::kAllKinds.end());
   const std::vector<io::Kind> tri{io::Kind::triangle};
   reg.add({"float", "worked problems' formulas in float (Möller–Trumbore for triangles), float inputs",
-           Precision::float32, all, [](const io::Case& c) { return textbook<float>(c, TriangleMethod::moller_trumbore); }, {}});
+           Precision::float32, all, [](const io::Case& c) { return textbook<float>(c, TriangleMethod::moller_trumbore); }, {},
+           {}, {}, {}, {FastKernel::mt_float, false}});
   reg.add({"double", "worked problems' formulas in double (Möller–Trumbore for triangles)", Precision::float64, all,
-           [](const io::Case& c) { return textbook<double>(c, TriangleMethod::moller_trumbore); }, {}});
+           [](const io::Case& c) { return textbook<double>(c, TriangleMethod::moller_trumbore); }, {}, {}, {}, {},
+           {FastKernel::mt_double, false}});
   reg.add({"cramer-float", "triangle by Cramer's rule (M = [-D, E1, E2]) in float, float inputs", Precision::float32,
-           tri, [](const io::Case& c) { return textbook<float>(c, TriangleMethod::cramer); }, {}});
+           tri, [](const io::Case& c) { return textbook<float>(c, TriangleMethod::cramer); }, {}, {}, {}, {},
+           {FastKernel::cramer_float, false}});
   reg.add({"cramer-double", "triangle by Cramer's rule in double", Precision::float64, tri,
-           [](const io::Case& c) { return textbook<double>(c, TriangleMethod::cramer); }, {}});
+           [](const io::Case& c) { return textbook<double>(c, TriangleMethod::cramer); }, {}, {}, {}, {},
+           {FastKernel::cramer_double, false}});
 }
 
 }  // namespace rayproof

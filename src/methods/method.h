@@ -39,6 +39,20 @@ struct Promise {
   [[nodiscard]] std::string describe() const;
 };
 
+/// The triangle kernels the scene's BVH compiles into its traversal (no call through the case
+/// interface per primitive). robust and certified are compiled for triangles and reach the method's
+/// `classify` for other kinds and, for certified, when the filter cannot decide (the exact fallback).
+enum class FastKernel : std::uint8_t { none, mt_float, mt_double, cramer_float, cramer_double, watertight_float,
+                                       watertight_double, robust, certified };
+
+/// How the scene (src/scene: meshes and BVHs) runs a method: its compiled kernel, and whether the
+/// box test must be conservative (Ize 2013) for the method's promise to hold. A method without a
+/// compiled kernel runs through `classify` per primitive with conservative boxes.
+struct SceneKernel {
+  FastKernel kernel = FastKernel::none;
+  bool conservative_boxes = true;
+};
+
 struct Method {
   std::string name;
   std::string summary;
@@ -59,6 +73,8 @@ struct Method {
   std::function<std::vector<KernelFailure>()> take_failures{};
   /// What the method promises per kind; a kind not listed: nothing.
   std::map<io::Kind, Promise> promises{};
+  /// How `rayproof cast --method NAME` and the scene's batch queries run it on a mesh.
+  SceneKernel scene{};
 
   /// The promise on kind k (nothing when none is declared).
   [[nodiscard]] Promise promise(io::Kind k) const;

@@ -49,7 +49,8 @@ void register_robust_methods(MethodRegistry& reg) {
            // a 94.7M-case fuzz); boxes: the conservative slabs miss none. Quadrics, planes and disks
            // rounded in float miss near tangency and rims, so nothing is promised there.
            {{io::Kind::triangle, Promise{false, Promise::NoFalseMiss::ahead, {}}},
-            {io::Kind::box, Promise{false, Promise::NoFalseMiss::all, {}}}}});
+            {io::Kind::box, Promise{false, Promise::NoFalseMiss::all, {}}}},
+           {FastKernel::robust, true}});
   // In double, with bounded zeros too, triangles at t > 0 are still missed where the front door's
   // double normal underflows to zero or products overflow (measured: 960 of 5000 on
   // tri_extreme_scale, `gen all --precision double`), so only the conservative slabs' promise carries over.
@@ -58,7 +59,13 @@ void register_robust_methods(MethodRegistry& reg) {
   reg.add({"watertight-float", "Woop, Benthin & Wald 2013 entirely in float (robust runs it in double)",
            Precision::float32, tri,
            [](const io::Case& c) { return result_of(c, intersect_watertight<float, float>(ray_of<float>(c), triangle_of<float>(c))); },
-           {}});
+           {}, {}, {}, {}, {FastKernel::watertight_float, true}});
+  // The mesh tool's watertight (`cast --method watertight`): the same test in double on the
+  // scene's double inputs, with conservative boxes (Ize 2013) as its guarantee needs.
+  reg.add({"watertight", "Woop, Benthin & Wald 2013 in double on double inputs (the BVH caster's watertight)",
+           Precision::float64, tri,
+           [](const io::Case& c) { return result_of(c, intersect_watertight<double, double>(ray_of<double>(c), triangle_of<double>(c))); },
+           {}, {}, {}, {}, {FastKernel::watertight_double, true}});
   // The kernel robust ran before its bounded zeros (triangle_watertight.h), kept for comparison:
   // verify, fuzz and report place it beside robust in one run.
   reg.add({"watertight-double", "Woop, Benthin & Wald 2013 in double on float inputs, exact zeros (robust before bounded zeros)",

@@ -12,24 +12,6 @@ namespace rayproof::scene {
 using namespace accel_detail;
 namespace {
 
-struct FastName {
-  const char* name;
-  FastKernel kernel;
-  BvhTraversal traversal;
-};
-// Möller–Trumbore and Cramer are the worked problems' kernels with the textbook slab test;
-// watertight (Woop et al.) keeps its guarantee only with conservative traversal (Ize).
-constexpr FastName kFast[] = {
-    {"float", FastKernel::mt_float, BvhTraversal::standard},
-    {"double", FastKernel::mt_double, BvhTraversal::standard},
-    {"cramer-float", FastKernel::cramer_float, BvhTraversal::standard},
-    {"cramer-double", FastKernel::cramer_double, BvhTraversal::standard},
-    {"watertight-float", FastKernel::watertight_float, BvhTraversal::conservative},
-    {"watertight", FastKernel::watertight_double, BvhTraversal::conservative},
-    {"robust", FastKernel::robust, BvhTraversal::conservative},
-    {"certified", FastKernel::certified, BvhTraversal::conservative},
-};
-
 const Scene& empty_scene() {
   static const Scene s;
   return s;
@@ -38,22 +20,19 @@ const Scene& empty_scene() {
 }  // namespace
 
 SceneMethod find_scene_method(const std::string& name, const MethodRegistry& reg) {
-  for (const auto& f : kFast) {
-    if (name != f.name) continue;
-    const bool needs_registry = f.kernel == FastKernel::robust || f.kernel == FastKernel::certified;
-    const Method* m = needs_registry ? reg.find(name) : nullptr;
-    if (needs_registry && !m) break;
-    return {name, f.kernel, m, f.traversal};
-  }
-  if (const Method* m = reg.find(name)) return {name, FastKernel::none, m, BvhTraversal::conservative};
-  std::string known;
-  for (const auto& f : kFast) known += std::string(known.empty() ? "" : ", ") + f.name;
-  throw SceneError("unknown method '" + name + "' (compiled: " + known + "; or any of: " + reg.names() + ")");
+  const Method* m = reg.find(name);
+  if (!m) throw SceneError("unknown method '" + name + "' (known: " + reg.names() + ")");
+  const FastKernel k = m->scene.kernel;
+  const BvhTraversal traversal = m->scene.conservative_boxes ? BvhTraversal::conservative : BvhTraversal::standard;
+  // robust and certified reach the method for other kinds (and certified for its fallback).
+  const bool reaches_method = k == FastKernel::none || k == FastKernel::robust || k == FastKernel::certified;
+  return {name, k, reaches_method ? m : nullptr, traversal};
 }
 
-std::vector<std::string> fast_scene_method_names() {
+std::vector<std::string> compiled_scene_method_names(const MethodRegistry& reg) {
   std::vector<std::string> out;
-  for (const auto& f : kFast) out.emplace_back(f.name);
+  for (const Method& m : reg.all())
+    if (m.scene.kernel != FastKernel::none) out.push_back(m.name);
   return out;
 }
 

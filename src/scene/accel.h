@@ -41,12 +41,10 @@ struct PrimHit {
   }
 };
 
-/// Kernels compiled into the traversal (no per-primitive dispatch through the registry).
-/// robust and certified are compiled for triangles and reach the registry method (`generic`) for
-/// other kinds and, for certified, when the filter cannot decide (the exact fallback; the typed
-/// SceneMethod::triangle_fallback instead when set, as MeshCaster<cast::Certified> does).
-enum class FastKernel { none, mt_float, mt_double, cramer_float, cramer_double, watertight_float, watertight_double,
-                        robust, certified };
+// FastKernel, the kernels compiled into the traversal, is declared with the registry's Method
+// (methods/method.h): each method says there how the scene runs it. certified's exact fallback is
+// the registry method (`generic`), or the typed SceneMethod::triangle_fallback when set, as
+// MeshCaster<cast::Certified> does.
 
 /// A typed exact fallback for `certified` triangles the filter cannot decide: the exact class, t
 /// within 1 ulp (as the registry's certified method). Given by the layer that has exact arithmetic.
@@ -62,11 +60,12 @@ struct SceneMethod {
   TriangleFallback triangle_fallback = nullptr;  ///< certified: used instead of `generic` for triangles
 };
 
-/// The scene method called `name`: a compiled kernel when there is one, else the registry's
-/// method of that name (conservative traversal). Throws SceneError when neither exists.
+/// The registry's method called `name` as the scene runs it: its compiled kernel and traversal
+/// (Method::scene), else its case interface per primitive with conservative boxes. Throws
+/// SceneError when the registry has no such method.
 [[nodiscard]] SceneMethod find_scene_method(const std::string& name, const MethodRegistry& reg);
-/// Names with compiled kernels, for messages and the bench.
-[[nodiscard]] std::vector<std::string> fast_scene_method_names();
+/// The registry's methods with compiled kernels, in its order, for messages and the bench.
+[[nodiscard]] std::vector<std::string> compiled_scene_method_names(const MethodRegistry& reg);
 
 /// A primitive in the BVH's leaf order: a triangle's vertex indices (unused for other kinds) and its
 /// global number. Leaves read these contiguously instead of prim_ids -> triangles -> vertices.

@@ -234,7 +234,7 @@ AdviseResult advise(const Scene& s, const MethodRegistry& reg, const AdviseOptio
   // Methods first, so that an unknown name fails before any work.
   std::vector<std::string> names = opt.methods;
   if (names.empty()) {
-    names = fast_scene_method_names();
+    names = compiled_scene_method_names(reg);
     for (const auto& m : reg.all())
       if (m.name != "exact" && std::find(names.begin(), names.end(), m.name) == names.end()) names.push_back(m.name);
   }

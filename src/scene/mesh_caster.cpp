@@ -83,10 +83,10 @@ MeshStatePtr build_mesh_state(const VertexArray& v, const IndexArray& ix, scene:
 }
 
 MeshStatePtr make_mesh_state(const VertexArray& v, const IndexArray& i, cast::Float) {
-  return build_mesh_state(v, i, {"float", scene::FastKernel::mt_float, nullptr, BvhTraversal::standard});
+  return build_mesh_state(v, i, {"float", FastKernel::mt_float, nullptr, BvhTraversal::standard});
 }
 MeshStatePtr make_mesh_state(const VertexArray& v, const IndexArray& i, cast::Robust) {
-  return build_mesh_state(v, i, {"robust", scene::FastKernel::robust, nullptr, BvhTraversal::conservative});
+  return build_mesh_state(v, i, {"robust", FastKernel::robust, nullptr, BvhTraversal::conservative});
 }
 
 }  // namespace detail

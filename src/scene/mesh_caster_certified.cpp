@@ -17,7 +17,7 @@ Hit<double> exact_triangle(const Ray<double>& r, const Triangle<double>& t) {
 }  // namespace
 
 MeshStatePtr make_mesh_state(const VertexArray& v, const IndexArray& i, cast::Certified) {
-  scene::SceneMethod m{"certified", scene::FastKernel::certified, nullptr, BvhTraversal::conservative};
+  scene::SceneMethod m{"certified", FastKernel::certified, nullptr, BvhTraversal::conservative};
   m.triangle_fallback = exact_triangle;
   return build_mesh_state(v, i, std::move(m));
 }

@@ -8,8 +8,8 @@ namespace rayproof::scene {
 CastHit to_cast_hit(const scene::PrimHit& h) { return rayproof::detail::to_mesh_hit(h); }
 
 bool SceneCaster::takes_public_api(const scene::Scene& s, const scene::SceneMethod& m, const BvhBuildOptions& opt) {
-  const bool kernel = m.fast == scene::FastKernel::mt_float || m.fast == scene::FastKernel::robust ||
-                      m.fast == scene::FastKernel::certified;
+  const bool kernel = m.fast == FastKernel::mt_float || m.fast == FastKernel::robust ||
+                      m.fast == FastKernel::certified;
   const BvhBuildOptions mesh_caster_build;  // MeshCaster's: SAH, leaves of 4
   return kernel && s.size() == s.mesh.triangles.size() && opt.builder == mesh_caster_build.builder &&
          opt.max_leaf == mesh_caster_build.max_leaf && opt.leaf_group == mesh_caster_build.leaf_group;
@@ -22,9 +22,9 @@ SceneCaster::SceneCaster(const scene::Scene& s, const scene::SceneMethod& m, con
                         sizeof(Vec3<double>));
     const IndexArray ix{s.mesh.triangles.empty() ? nullptr : s.mesh.triangles[0].data(), s.mesh.triangles.size(),
                         sizeof(s.mesh.triangles[0])};
-    if (m.fast == scene::FastKernel::mt_float) mesh_.emplace<MeshCaster<cast::Float>>(v, ix);
-    if (m.fast == scene::FastKernel::robust) mesh_.emplace<MeshCaster<cast::Robust>>(v, ix);
-    if (m.fast == scene::FastKernel::certified) mesh_.emplace<MeshCaster<cast::Certified>>(v, ix);
+    if (m.fast == FastKernel::mt_float) mesh_.emplace<MeshCaster<cast::Float>>(v, ix);
+    if (m.fast == FastKernel::robust) mesh_.emplace<MeshCaster<cast::Robust>>(v, ix);
+    if (m.fast == FastKernel::certified) mesh_.emplace<MeshCaster<cast::Certified>>(v, ix);
   }
   if (!public_api()) shared_ = &own_.emplace(s, opt);
 }
