@@ -1,4 +1,4 @@
-// ClosedMesh (rayproof/scene/contains.h): exact containment on shapes whose inside is known in closed
+// ExactMesh (rayproof/scene/contains.h): exact containment on shapes whose inside is known in closed
 // form (cube, dented cube, octahedron), on the lattice points whose rays pass through their edges
 // and vertices, on their faces, edges and vertices and one ulp off them; open and misoriented meshes;
 // a self-intersecting mesh; segments; the BVH against a brute-force count along another axis.
@@ -12,13 +12,13 @@
 #include <vector>
 
 #include "mesh/mesh.h"
-#include "rayproof/scene/contains.h"
+#include "rayproof/scene/exact_mesh.h"
 #include "rayproof/orient.h"
-#include "scene/contains_exact.h"
+#include "exact/orient_exact.h"
 
 namespace {
 
-using rayproof::ClosedMesh;
+using rayproof::ExactMesh;
 using rayproof::Side;
 using rayproof::Vec3;
 using Tri = std::array<std::uint32_t, 3>;
@@ -28,8 +28,8 @@ struct Shape {
   std::vector<Tri> t;
 };
 
-ClosedMesh make(const Shape& s, rayproof::ContainsRule rule = rayproof::ContainsRule::automatic) {
-  return ClosedMesh({&s.v[0].x, s.v.size()}, {s.t.front().data(), s.t.size()}, rule);
+ExactMesh make(const Shape& s, rayproof::ContainsRule rule = rayproof::ContainsRule::automatic) {
+  return ExactMesh({&s.v[0].x, s.v.size()}, {s.t.front().data(), s.t.size()}, rule);
 }
 
 /// [0, 2]^3, outward.
@@ -84,7 +84,7 @@ Side octa_truth(const Vec3<double>& p) {
 }
 
 template <class Truth>
-int wrong_on_lattice(const ClosedMesh& m, double lo, double hi, double step, Truth truth, int& surface) {
+int wrong_on_lattice(const ExactMesh& m, double lo, double hi, double step, Truth truth, int& surface) {
   int wrong = 0;
   for (double x = lo; x <= hi; x += step)
     for (double y = lo; y <= hi; y += step)
@@ -94,7 +94,7 @@ int wrong_on_lattice(const ClosedMesh& m, double lo, double hi, double step, Tru
         surface += want == Side::surface;
         // The winding number too: a double count (2) would still be "inside" under the nonzero rule.
         const std::int32_t w = m.oriented() ? m.winding(p) : 0;
-        const std::int32_t want_w = want == Side::inside ? 1 : (want == Side::surface ? ClosedMesh::kOnSurface : 0);
+        const std::int32_t want_w = want == Side::inside ? 1 : (want == Side::surface ? ExactMesh::kOnSurface : 0);
         if (got != want || (m.oriented() && w != want_w)) {
           if (++wrong <= 5) ADD_FAILURE() << "(" << x << ", " << y << ", " << z << "): " << to_string(got) << ", want " << to_string(want)
                                  << " (winding " << w << ")";
@@ -103,7 +103,7 @@ int wrong_on_lattice(const ClosedMesh& m, double lo, double hi, double step, Tru
   return wrong;
 }
 
-TEST(ClosedMesh, LatticeOnCubeDentedCubeOctahedron) {
+TEST(ExactMesh, LatticeOnCubeDentedCubeOctahedron) {
   // Step 1/8 (cube) and 1/16 (octahedron): the points on faces, edges and vertices, and the axis
   // rays through edges and vertices (every lattice line through a vertex or the diagonals).
   int surface = 0;
@@ -113,8 +113,8 @@ TEST(ClosedMesh, LatticeOnCubeDentedCubeOctahedron) {
   EXPECT_GT(surface, 3000);  // the lattices do put thousands of points on the surfaces
 }
 
-TEST(ClosedMesh, OneUlpOffTheSurface) {
-  const ClosedMesh c = make(cube()), o = make(octahedron());
+TEST(ExactMesh, OneUlpOffTheSurface) {
+  const ExactMesh c = make(cube()), o = make(octahedron());
   int n = 0;
   for (double a = 0.125; a < 2; a += 0.25)
     for (double b = 0.125; b < 2; b += 0.25) {
@@ -139,16 +139,16 @@ TEST(ClosedMesh, OneUlpOffTheSurface) {
   EXPECT_GT(n, 150);
 }
 
-TEST(ClosedMesh, WindingNumberAndOrientation) {
-  const ClosedMesh c = make(cube());
+TEST(ExactMesh, WindingNumberAndOrientation) {
+  const ExactMesh c = make(cube());
   EXPECT_TRUE(c.oriented());
   EXPECT_EQ(c.winding({1, 1, 1}), 1);
   EXPECT_EQ(c.winding({3, 1, 1}), 0);
-  EXPECT_EQ(c.winding({2, 1, 1}), ClosedMesh::kOnSurface);
+  EXPECT_EQ(c.winding({2, 1, 1}), ExactMesh::kOnSurface);
   // Inward-facing triangles: winding -1, still inside.
   Shape inv = cube();
   for (Tri& t : inv.t) std::swap(t[1], t[2]);
-  const ClosedMesh ci = make(inv);
+  const ExactMesh ci = make(inv);
   EXPECT_EQ(ci.winding({1, 1, 1}), -1);
   EXPECT_EQ(ci.contains({1, 1, 1}), Side::inside);
   // A ray from the centre along +x through the face's diagonal (an edge of two triangles): once.
@@ -156,14 +156,14 @@ TEST(ClosedMesh, WindingNumberAndOrientation) {
   EXPECT_EQ(make(octahedron()).crossings({0, 0, 0}), 1u);  // every axis ray through a vertex
 }
 
-TEST(ClosedMesh, InvalidPoints) {
-  const ClosedMesh c = make(cube());
+TEST(ExactMesh, InvalidPoints) {
+  const ExactMesh c = make(cube());
   EXPECT_EQ(c.contains({std::nan(""), 1, 1}), Side::invalid);
   EXPECT_EQ(c.contains({1, INFINITY, 1}), Side::invalid);
   EXPECT_EQ(c.contains({1e308, -1e308, 1}), Side::outside);
 }
 
-TEST(ClosedMesh, OpenMeshIsRefusedForNonzeroAndParityNamingAnEdge) {
+TEST(ExactMesh, OpenMeshIsRefusedForNonzeroAndParityNamingAnEdge) {
   Shape s = cube();
   s.t.pop_back();
   EXPECT_EQ(make(s).rule(), rayproof::ContainsRule::winding);  // automatic: the generalized winding number
@@ -178,7 +178,7 @@ TEST(ClosedMesh, OpenMeshIsRefusedForNonzeroAndParityNamingAnEdge) {
   }
 }
 
-TEST(ClosedMesh, DuplicatedVerticesAreWelded) {
+TEST(ExactMesh, DuplicatedVerticesAreWelded) {
   // Every triangle with its own three vertices (as STL stores them): closed after welding.
   const Shape c = cube();
   Shape soup;
@@ -187,16 +187,16 @@ TEST(ClosedMesh, DuplicatedVerticesAreWelded) {
     for (std::uint32_t k : t) soup.v.push_back(c.v[k]);
     soup.t.push_back({n, n + 1, n + 2});
   }
-  const ClosedMesh m = make(soup);
+  const ExactMesh m = make(soup);
   EXPECT_EQ(m.contains({1, 1, 1}), Side::inside);
   EXPECT_EQ(m.contains({0, 1, 1}), Side::surface);
 }
 
-TEST(ClosedMesh, MisorientedMeshUsesParityOrIsRefusedForNonzero) {
+TEST(ExactMesh, MisorientedMeshUsesParityOrIsRefusedForNonzero) {
   Shape s = cube();
   std::swap(s.t[0][1], s.t[0][2]);  // one triangle flipped: closed, not oriented
   EXPECT_THROW((void)make(s, rayproof::ContainsRule::nonzero), rayproof::MeshNotClosedError);
-  const ClosedMesh m = make(s);
+  const ExactMesh m = make(s);
   EXPECT_FALSE(m.oriented());
   EXPECT_EQ(m.rule(), rayproof::ContainsRule::parity);
   EXPECT_THROW((void)m.winding({1, 1, 1}), std::logic_error);
@@ -204,13 +204,13 @@ TEST(ClosedMesh, MisorientedMeshUsesParityOrIsRefusedForNonzero) {
   EXPECT_EQ(wrong_on_lattice(m, -0.5, 2.5, 0.25, cube_truth, surface), 0);
 }
 
-TEST(ClosedMesh, SelfIntersectingMeshHasItsWindingNumber) {
+TEST(ExactMesh, SelfIntersectingMeshHasItsWindingNumber) {
   // Two overlapping cubes as one mesh: winding 2 in the overlap. Nonzero: inside; parity: outside.
   Shape s = cube(), t = cube();
   for (auto& p : t.v) p = {p.x + 1, p.y, p.z};
   for (Tri tr : t.t) s.t.push_back({tr[0] + 8, tr[1] + 8, tr[2] + 8});
   s.v.insert(s.v.end(), t.v.begin(), t.v.end());
-  const ClosedMesh nz = make(s), par = make(s, rayproof::ContainsRule::parity);
+  const ExactMesh nz = make(s), par = make(s, rayproof::ContainsRule::parity);
   EXPECT_EQ(nz.winding({1.5, 1, 1}), 2);
   EXPECT_EQ(nz.winding({0.5, 1, 1}), 1);
   EXPECT_EQ(nz.contains({1.5, 1, 1}), Side::inside);
@@ -218,8 +218,8 @@ TEST(ClosedMesh, SelfIntersectingMeshHasItsWindingNumber) {
   EXPECT_EQ(par.contains({2.5, 1, 1}), Side::inside);
 }
 
-TEST(ClosedMesh, Segments) {
-  const ClosedMesh c = make(cube());
+TEST(ExactMesh, Segments) {
+  const ExactMesh c = make(cube());
   auto h = c.segment({-1, 1, 1}, {1, 1, 1});  // through the face x = 0 at its diagonal (an edge)
   EXPECT_TRUE(h.crosses);
   EXPECT_EQ(h.p_side, Side::outside);
@@ -252,7 +252,7 @@ TEST(ClosedMesh, Segments) {
 TEST(Orient, FilterAndExpansionsAgreeWithGmpOnNearDegenerateInputs) {
   // Points nearly on a plane / line (one coordinate nudged by a few ulps), at several scales, and
   // inputs spanning huge exponent ranges (the expansions' window left: GMP decides).
-  using namespace rayproof::scene::detail;
+  namespace certified = rayproof::certified;
   std::mt19937_64 rng(5);
   std::uniform_real_distribution<double> u(-1, 1);
   int zeros = 0;
@@ -264,18 +264,18 @@ TEST(Orient, FilterAndExpansionsAgreeWithGmpOnNearDegenerateInputs) {
     Vec3<double> p{a.x + 0.5 * (b.x - a.x), a.y + 0.5 * (b.y - a.y), a.z + 0.5 * (b.z - a.z)};  // near the segment ab
     for (int k = 0; k < int(rng() % 3); ++k) p.z = std::nextafter(p.z, (rng() & 1) ? 1e300 : -1e300);
     if (i % 4 == 0) c = {std::ldexp(u(rng), -1000), std::ldexp(u(rng), 900), 0};  // a huge exponent spread
-    const int o3 = rayproof::orient::orient3d(a, b, c, p), g3 = orient3d_gmp(a, b, c, p);
+    const int o3 = rayproof::orient::orient3d(a, b, c, p), g3 = certified::orient3d_gmp(a, b, c, p);
     if (o3 != rayproof::orient::kUnknown) EXPECT_EQ(o3, g3) << i;
-    EXPECT_EQ(orient3d_exact(a, b, c, p), g3) << i;
-    const int o2 = rayproof::orient::orient2d(a.x, a.y, b.x, b.y, c.x, c.y), g2 = orient2d_gmp(a.x, a.y, b.x, b.y, c.x, c.y);
+    EXPECT_EQ(certified::orient3d_exact(a, b, c, p), g3) << i;
+    const int o2 = rayproof::orient::orient2d(a.x, a.y, b.x, b.y, c.x, c.y), g2 = certified::orient2d_gmp(a.x, a.y, b.x, b.y, c.x, c.y);
     if (o2 != rayproof::orient::kUnknown) EXPECT_EQ(o2, g2) << i;
-    EXPECT_EQ(orient2d_exact(a.x, a.y, b.x, b.y, c.x, c.y), g2) << i;
+    EXPECT_EQ(certified::orient2d_exact(a.x, a.y, b.x, b.y, c.x, c.y), g2) << i;
     zeros += g2 == 0;
   }
   // Exactly degenerate: collinear and coplanar points with exact coordinates.
-  EXPECT_EQ(orient3d_exact({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0x1p-1074, 0x1p600, 0}), 0);
-  EXPECT_EQ(orient3d_exact({0, 0, 0}, {0x1p600, 0, 0}, {0, 0x1p-600, 0}, {0, 0, 0x1p-1074}), 1);
-  EXPECT_EQ(orient2d_exact(0, 0, 0x1p-1074, 0x1p-1074, 0x1p1000, 0x1p1000), 0);
+  EXPECT_EQ(certified::orient3d_exact({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {0x1p-1074, 0x1p600, 0}), 0);
+  EXPECT_EQ(certified::orient3d_exact({0, 0, 0}, {0x1p600, 0, 0}, {0, 0x1p-600, 0}, {0, 0, 0x1p-1074}), 1);
+  EXPECT_EQ(certified::orient2d_exact(0, 0, 0x1p-1074, 0x1p-1074, 0x1p1000, 0x1p1000), 0);
   (void)zeros;
 }
 
@@ -299,14 +299,14 @@ int brute_winding_z(const rayproof::mesh::Mesh& m, const Vec3<double>& p) {
   return w;
 }
 
-TEST(ClosedMesh, BunnyAgreesWithBruteForceAlongAnotherAxis) {
+TEST(ExactMesh, BunnyAgreesWithBruteForceAlongAnotherAxis) {
 #ifndef RAYPROOF_CGAL_MESHES
   GTEST_SKIP() << "CGAL's demo meshes were not extracted (libcgal-dev's data.tar.gz missing)";
 #else
   const std::string path = std::string(RAYPROOF_CGAL_MESHES) + "/bunny00.off";
   if (!std::filesystem::exists(path)) GTEST_SKIP() << path << " not extracted";
   const auto mesh = rayproof::mesh::read_mesh(path);
-  const ClosedMesh m({&mesh.vertices[0].x, mesh.vertices.size()}, {mesh.triangles.front().data(), mesh.triangles.size()});
+  const ExactMesh m({&mesh.vertices[0].x, mesh.vertices.size()}, {mesh.triangles.front().data(), mesh.triangles.size()});
   Vec3<double> lo = mesh.vertices[0], hi = lo;
   for (const auto& v : mesh.vertices)
     lo = {std::min(lo.x, v.x), std::min(lo.y, v.y), std::min(lo.z, v.z)}, hi = {std::max(hi.x, v.x), std::max(hi.y, v.y), std::max(hi.z, v.z)};

@@ -1,4 +1,4 @@
-// ClosedMesh::ray_crossings (rayproof/scene/contains.h): every crossing of a ray once, with its
+// ExactMesh::ray_crossings (rayproof/scene/contains.h): every crossing of a ray once, with its
 // direction, touches apart. Rays through a cube's faces, edges, face diagonals and vertices, along
 // its faces and grazing its silhouette; a tetrahedron through and along its edges; an open box; and
 // random rays on lattice meshes (closed, bumpy, holed) against a brute force in GMP rationals that
@@ -14,11 +14,11 @@
 #include <random>
 #include <vector>
 
-#include "rayproof/scene/contains.h"
+#include "rayproof/scene/exact_mesh.h"
 
 namespace {
 
-using rayproof::ClosedMesh;
+using rayproof::ExactMesh;
 using rayproof::Contact;
 using rayproof::CrossingDirection;
 using rayproof::Ray;
@@ -33,7 +33,7 @@ struct Shape {
   std::vector<Tri> t;
 };
 
-ClosedMesh make(const Shape& s) { return ClosedMesh({&s.v[0].x, s.v.size()}, {s.t.front().data(), s.t.size()}); }
+ExactMesh make(const Shape& s) { return ExactMesh({&s.v[0].x, s.v.size()}, {s.t.front().data(), s.t.size()}); }
 
 /// [0, 2]^3, outward; vertex i = 2 (i & 1, i >> 1 & 1, i >> 2 & 1).
 Shape cube() {
@@ -71,7 +71,7 @@ std::size_t touches_of(const RayCrossings& r, Contact c) {
 }
 
 TEST(Crossings, CubeThroughFaces) {
-  const ClosedMesh m = make(cube());
+  const ExactMesh m = make(cube());
   const RayCrossings r = m.ray_crossings(ray({-1, 0.5, 0.75}, {1, 0, 0}));
   ASSERT_TRUE(r.valid);
   EXPECT_EQ(dirs(r), (std::vector{In, Out}));
@@ -84,7 +84,7 @@ TEST(Crossings, CubeThroughFaces) {
 }
 
 TEST(Crossings, CubeThroughEdgesDiagonalsAndVertices) {
-  const ClosedMesh m = make(cube());
+  const ExactMesh m = make(cube());
   // Through the vertical edges x = y = 0 and x = y = 2 (each shared by two faces' triangles).
   RayCrossings r = m.ray_crossings(ray({-1, -1, 0.5}, {1, 1, 0}));
   EXPECT_EQ(dirs(r), (std::vector{In, Out}));
@@ -107,7 +107,7 @@ TEST(Crossings, CubeThroughEdgesDiagonalsAndVertices) {
 }
 
 TEST(Crossings, CubeGrazingSilhouette) {
-  const ClosedMesh m = make(cube());
+  const ExactMesh m = make(cube());
   // Touches the edge x = 0, z = 2 at (0, 1, 2) and leaves above the cube.
   RayCrossings r = m.ray_crossings(ray({-1, 1, 1}, {1, 0, 1}));
   EXPECT_TRUE(r.crossings.empty());
@@ -126,7 +126,7 @@ TEST(Crossings, CubeGrazingSilhouette) {
 }
 
 TEST(Crossings, CubeAlongFaces) {
-  const ClosedMesh m = make(cube());
+  const ExactMesh m = make(cube());
   // In the plane of the top face: its two triangles are coplanar touches; the perturbed ray
   // (moved by eps^3 towards +z) passes above the cube, so the side faces are touched, not crossed.
   RayCrossings r = m.ray_crossings(ray({-1, 1, 2}, {1, 0, 0}));
@@ -146,7 +146,7 @@ TEST(Crossings, CubeAlongFaces) {
 }
 
 TEST(Crossings, OriginsInsideAndOnTheSurfaceAndRanges) {
-  const ClosedMesh m = make(cube());
+  const ExactMesh m = make(cube());
   RayCrossings r = m.ray_crossings(ray({1, 1, 1}, {1, 0.25, 0.5}));
   EXPECT_EQ(dirs(r), (std::vector{Out}));
   EXPECT_EQ(r.net(), -m.winding({1, 1, 1}));
@@ -175,7 +175,7 @@ TEST(Crossings, OriginsInsideAndOnTheSurfaceAndRanges) {
 }
 
 TEST(Crossings, Tetrahedron) {
-  const ClosedMesh m = make(tetrahedron());
+  const ExactMesh m = make(tetrahedron());
   // Through the slanted face's interior, out through the corner where three faces meet.
   RayCrossings r = m.ray_crossings(ray({1, 1, 1}, {-1, -1, -1}));
   EXPECT_EQ(dirs(r), (std::vector{In, Out}));
@@ -202,7 +202,7 @@ TEST(Crossings, Tetrahedron) {
 TEST(Crossings, OpenBox) {
   Shape s = cube();
   s.t.erase(s.t.begin() + 2, s.t.begin() + 4);  // no top face
-  const ClosedMesh m = make(s);
+  const ExactMesh m = make(s);
   EXPECT_FALSE(m.closed());
   // Down through the missing top: only the bottom, crossed along its normal (-z): out.
   RayCrossings r = m.ray_crossings(ray({0.5, 0.75, 3}, {0, 0, -1}));
@@ -323,7 +323,7 @@ Ray<double> lattice_ray(std::mt19937& rng, int n) {
 }
 
 void check_against_brute(const Shape& s, int n, int rays, std::uint32_t seed, bool closed_oriented) {
-  const ClosedMesh m = make(s);
+  const ExactMesh m = make(s);
   std::mt19937 rng(seed);
   std::size_t edge_or_vertex = 0, touched = 0, coplanar = 0, checked_winding = 0;
   for (int i = 0; i < rays; ++i) {
@@ -351,7 +351,7 @@ void check_against_brute(const Shape& s, int n, int rays, std::uint32_t seed, bo
     }
     if (closed_oriented) {
       const std::int32_t w = m.winding(r.o);
-      if (w != ClosedMesh::kOnSurface) {
+      if (w != ExactMesh::kOnSurface) {
         EXPECT_EQ(got.net(), -w) << "ray " << i;
         ++checked_winding;
       }
@@ -397,7 +397,7 @@ TEST(CrossingsBrute, HoledBoxesAndSoups) {
 TEST(Crossings, BatchMatchesSingle) {
   std::mt19937 rng(9);
   const Shape s = lattice_box(4, rng, true);
-  const ClosedMesh m = make(s);
+  const ExactMesh m = make(s);
   std::vector<Ray<double>> rays;
   for (int i = 0; i < 2000; ++i) rays.push_back(lattice_ray(rng, 4));
   std::vector<RayCrossings> out(rays.size());
@@ -449,7 +449,7 @@ TEST(CrossingsRandomMeshes, WindingIdentityThroughVertices) {
   std::size_t checked = 0, vertex_contacts = 0;
   for (int mesh = 0; mesh < 40; ++mesh) {
     const Shape s = bumpy_sphere(6 + int(rng() % 6), rng);
-    const ClosedMesh m = make(s);
+    const ExactMesh m = make(s);
     ASSERT_TRUE(m.oriented());
     std::uniform_real_distribution<double> u(-1.5, 1.5);
     for (int i = 0; i < 200; ++i) {
@@ -469,7 +469,7 @@ TEST(CrossingsRandomMeshes, WindingIdentityThroughVertices) {
       for (std::size_t k = 1; k < got.crossings.size(); ++k) ASSERT_LE(got.crossings[k - 1].t, got.crossings[k].t);
       for (const auto& t : got.touches) vertex_contacts += t.contact == Contact::vertex;
       const std::int32_t w = m.winding(r.o);
-      if (w == ClosedMesh::kOnSurface) continue;
+      if (w == ExactMesh::kOnSurface) continue;
       ASSERT_EQ(got.net(), -w) << "mesh " << mesh << " ray " << i;
       ++checked;
     }
@@ -488,11 +488,11 @@ namespace {
 TEST(Crossings, ScaledFarFromOne) {
   const Ray<double> rays[] = {ray({-1, 0.5, 0.75}, {1, 0, 0}), ray({-1, -1, 0.5}, {1, 1, 0}), ray({-1, -1, -1}, {1, 1, 1}),
                               ray({-1, 1, 1}, {1, 0, 1}), ray({-1, 1, 2}, {1, 0, 0}), ray({-1, 1, 0}, {1, 0, 0})};
-  const ClosedMesh unit = make(cube());
+  const ExactMesh unit = make(cube());
   for (const double f : {0x1p-600, 0x1p600}) {
     Shape s = cube();
     for (auto& p : s.v) p = {p.x * f, p.y * f, p.z * f};
-    const ClosedMesh m = make(s);
+    const ExactMesh m = make(s);
     for (const auto& r : rays) {
       const RayCrossings a = unit.ray_crossings(r);
       const RayCrossings b = m.ray_crossings(ray({r.o.x * f, r.o.y * f, r.o.z * f}, {r.d.x * f, r.d.y * f, r.d.z * f}));

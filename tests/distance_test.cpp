@@ -1,4 +1,4 @@
-// ClosedMesh::closest_point (rayproof/scene/distance.h) against a brute force in GMP rationals on
+// ExactMesh::closest_point (rayproof/scene/distance.h) against a brute force in GMP rationals on
 // small meshes: every triangle's exact squared distance from its features (vertices, edge
 // projections, face projection: another formulation than the library's), the nearest triangles
 // (ties by symmetry), the distance checked by exact comparison with the squares of the midpoints
@@ -18,7 +18,7 @@
 
 namespace {
 
-using rayproof::ClosedMesh;
+using rayproof::ExactMesh;
 using rayproof::ClosestPoint;
 using rayproof::Side;
 using rayproof::Vec3;
@@ -30,7 +30,7 @@ struct Shape {
   std::vector<Tri> t;
 };
 
-ClosedMesh make(const Shape& s) { return ClosedMesh({&s.v[0].x, s.v.size()}, {s.t.front().data(), s.t.size()}); }
+ExactMesh make(const Shape& s) { return ExactMesh({&s.v[0].x, s.v.size()}, {s.t.front().data(), s.t.size()}); }
 
 Shape cube(double lo = 0, double hi = 2) {
   Shape s;
@@ -129,7 +129,7 @@ bool correctly_rounded(double d, const Q& d2) {
 }
 
 /// Checks one query against the brute force; returns the stage for tallies.
-void check(const Shape& s, const ClosedMesh& m, const Vec3<double>& p, const char* what) {
+void check(const Shape& s, const ExactMesh& m, const Vec3<double>& p, const char* what) {
   SCOPED_TRACE(::testing::Message() << what << " p = (" << p.x << ", " << p.y << ", " << p.z << ")");
   const Brute b = brute(s, p);
   const ClosestPoint r = m.closest_point(p);
@@ -160,7 +160,7 @@ void check(const Shape& s, const ClosedMesh& m, const Vec3<double>& p, const cha
 
 TEST(Distance, CubeFacesEdgesVerticesAndOnTheSurface) {
   const Shape s = cube();
-  const ClosedMesh m = make(s);
+  const ExactMesh m = make(s);
   // Vertices, edge midpoints, face points with dyadic barycentrics: distance 0, surface.
   for (const auto& v : s.v) check(s, m, v, "vertex");
   for (const auto& t : s.t)
@@ -185,7 +185,7 @@ TEST(Distance, TiesBySymmetry) {
   // The centre of the cube is 1 from all twelve triangles; the octahedron's centre from all eight;
   // points on the axes are tied between the faces around a vertex.
   for (const Shape& s : {cube(), octahedron(), cube(-1, 1)}) {
-    const ClosedMesh m = make(s);
+    const ExactMesh m = make(s);
     for (const Vec3<double>& p : std::vector<Vec3<double>>{{1, 1, 1}, {0, 0, 0}, {0, 0, 3}, {0, 5, 0}, {-7, 0, 0}, {1, 1, 9},
                                                            {3, 3, 3}, {0.5, 0.5, 0.5}, {-2, -2, 0}})
       check(s, m, p, "symmetric");
@@ -196,7 +196,7 @@ TEST(Distance, RandomPointsUniformAndNearTheSurface) {
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> u(-0.5, 2.5), tiny(-1e-9, 1e-9), w(0, 1);
   for (const Shape& s : {cube(), octahedron(), scaled(octahedron(), 3.3)}) {
-    const ClosedMesh m = make(s);
+    const ExactMesh m = make(s);
     for (int i = 0; i < 300; ++i) check(s, m, {u(rng), u(rng), u(rng)}, "uniform");
     for (int i = 0; i < 300; ++i) {  // a point of a random triangle, moved by about 1e-9
       const auto& t = s.t[rng() % s.t.size()];
@@ -211,18 +211,18 @@ TEST(Distance, RandomPointsUniformAndNearTheSurface) {
 
 TEST(Distance, FarPoints) {
   const Shape s = octahedron();
-  const ClosedMesh m = make(s);
+  const ExactMesh m = make(s);
   for (double f : {1e3, 1e15, 1e30, 1e100, 1e150, 1e200, 1e300})
     for (const Vec3<double>& d : std::vector<Vec3<double>>{{1, 0, 0}, {0.3, -0.7, 0.1}, {-1, -1, -1}, {0, 0, 1}})
       check(s, m, d * f, "far");
   // Farther than the double range: +inf.
   const Shape big = scaled(cube(-1, 1), 1.5e308);
-  const ClosedMesh mb = make(big);
+  const ExactMesh mb = make(big);
   // The exact distance from (-1.7e308, ...) is sqrt(3) * 2e307 (representable); from (1.7e308, 1.7e308,
   // -1.7e308) to the opposite corner's octant much more than the largest double.
   EXPECT_TRUE(correctly_rounded(mb.distance({-1.7e308, -1.7e308, -1.7e308}), brute(big, {-1.7e308, -1.7e308, -1.7e308}).d2));
   const Shape far = scaled(cube(-1, 1), 1e308);
-  const ClosedMesh mf = make(far);
+  const ExactMesh mf = make(far);
   EXPECT_TRUE(std::isinf(mf.distance({-1.7e308, -1.7e308, -1.7e308}) * 0 + mf.distance({1.7e308, 1.7e308, 1.7e308})) ||
               correctly_rounded(mf.distance({1.7e308, 1.7e308, 1.7e308}), brute(far, {1.7e308, 1.7e308, 1.7e308}).d2));
   check(big, mb, {1.7e308, 0, 0}, "near the top of the range");
@@ -233,7 +233,7 @@ TEST(Distance, ScaledByTwoToThePlusMinus600) {
   std::uniform_real_distribution<double> u(-0.5, 2.5);
   for (double f : {0x1p600, 0x1p-600, 0x1p-1000, 0x1p900}) {
     const Shape s0 = cube(), s = scaled(s0, f);
-    const ClosedMesh m0 = make(s0), m = make(s);
+    const ExactMesh m0 = make(s0), m = make(s);
     for (int i = 0; i < 40; ++i) {
       const Vec3<double> p0{u(rng), u(rng), u(rng)}, p = p0 * f;
       check(s, m, p, "scaled");
@@ -256,7 +256,7 @@ TEST(Distance, RandomSoupsWithZeroAreaTriangles) {
     for (int i = 0; i < 16; ++i) s.t.push_back({std::uint32_t(rng() % 12), std::uint32_t(rng() % 12), std::uint32_t(rng() % 12)});
     s.v.push_back({0, 0, 0}), s.v.push_back({1, 1, 1}), s.v.push_back({2, 2, 2});  // collinear: zero area
     s.t.push_back({12, 13, 14});
-    const ClosedMesh m = make(s);
+    const ExactMesh m = make(s);
     for (int i = 0; i < 40; ++i) check(s, m, {u(rng), u(rng), u(rng)}, "soup");
     for (int i = 0; i < 20; ++i) check(s, m, {double(g(rng)), double(g(rng)), double(g(rng)) * 0.5}, "soup lattice");
   }
@@ -264,7 +264,7 @@ TEST(Distance, RandomSoupsWithZeroAreaTriangles) {
 
 TEST(Distance, InvalidPointsAndBatch) {
   const Shape s = cube();
-  const ClosedMesh m = make(s);
+  const ExactMesh m = make(s);
   const double nan = std::numeric_limits<double>::quiet_NaN(), inf = std::numeric_limits<double>::infinity();
   for (const Vec3<double>& p : std::vector<Vec3<double>>{{nan, 0, 0}, {0, inf, 0}, {0, 0, -inf}}) {
     const ClosestPoint r = m.closest_point(p);
@@ -296,7 +296,7 @@ TEST(Distance, RoundingTiesToEvenAndDuplicateTriangles) {
     Shape s;
     s.v = {{-k * 0x1p-53, 0, 0}, {-1, 1, 0.5}, {-1, -1, -0.5}};
     s.t = {{0, 1, 2}};
-    const ClosedMesh m = make(s);
+    const ExactMesh m = make(s);
     check(s, m, {1, 0, 0}, "midpoint");
     const double want = k == 1 ? 1.0 : k == 3 ? 1 + 0x1p-51 : k == 5 ? 1 + 0x1p-51 : 1 + 0x1p-52;
     EXPECT_EQ(m.distance({1, 0, 0}), want) << k;
@@ -305,7 +305,7 @@ TEST(Distance, RoundingTiesToEvenAndDuplicateTriangles) {
   Shape s;
   s.v = {{0, 0, 0}, {4, 0, 0}, {0, 4, 0}, {0, 0, 0}, {4, 0, 0}, {0, 4, 0}, {1, 1, 0}, {3, -1, 0}, {-1, 3, 0}};
   s.t = {{3, 4, 5}, {0, 1, 2}, {6, 7, 8}};
-  const ClosedMesh m = make(s);
+  const ExactMesh m = make(s);
   std::mt19937_64 rng(9);
   std::uniform_real_distribution<double> u(-1, 5);
   for (int i = 0; i < 200; ++i) check(s, m, {u(rng), u(rng), u(rng)}, "duplicates");
@@ -325,7 +325,7 @@ TEST(Distance, SliversAndNearlyCollinearTriangles) {
       s.v.push_back({a.x + t * (b.x - a.x) + tiny(rng), a.y + t * (b.y - a.y) + tiny(rng), a.z + t * (b.z - a.z)});
       s.t.push_back({base, base + 1, base + 2});
     }
-    const ClosedMesh m = make(s);
+    const ExactMesh m = make(s);
     for (int i = 0; i < 50; ++i) check(s, m, {u(rng), u(rng), u(rng)}, "sliver");
     for (const auto& v : s.v) check(s, m, {v.x + tiny(rng), v.y, v.z}, "sliver vertex");
   }
@@ -355,7 +355,7 @@ TEST(Distance, BatchSideIsContainsOnNestedOverlappingAndInvertedShells) {
     for (Tri t : c.t) s.t.push_back(invert ? Tri{t[0] + base, t[2] + base, t[1] + base} : Tri{t[0] + base, t[1] + base, t[2] + base});
   };
   add(cube(0, 2), false), add(cube(1, 3), false), add(cube(-1, 4), false), add(cube(6, 7), true);
-  const ClosedMesh m = make(s);
+  const ExactMesh m = make(s);
   ASSERT_EQ(m.rule(), rayproof::ContainsRule::nonzero);
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> u(-2, 8);

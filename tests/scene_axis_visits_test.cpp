@@ -17,7 +17,7 @@
 #include <vector>
 
 #include "rayproof/bvh_wide.h"
-#include "rayproof/scene/contains.h"
+#include "rayproof/scene/exact_mesh.h"
 #include "scene/accel.h"
 #include "scene/watertight.h"
 
@@ -38,10 +38,10 @@ constexpr double kInf = std::numeric_limits<double>::infinity();
 // tmin < 0: a range that starts behind the origin (any caller's TRange); scaled: a mesh far from the
 // origin, where every query takes the double test.
 const Query kQueries[] = {
-    {"ClosedMesh::ray_crossings, range [-1, inf) (contains_crossings.cpp)", BvhQuery::all, -1.0, kInf, false, false},
-    {"ClosedMesh::ray_crossings, default range (contains_crossings.cpp)", BvhQuery::all, 0.0, kInf, true, false},
-    {"ClosedMesh::contains, the perturbed ray (contains.cpp: query_point)", BvhQuery::any, 0.0, kInf, true, false},
-    {"ClosedMesh::segment (contains_segment.cpp)", BvhQuery::all, 0.0, 1.0, true, true},
+    {"ExactMesh::ray_crossings, range [-1, inf) (crossings.cpp)", BvhQuery::all, -1.0, kInf, false, false},
+    {"ExactMesh::ray_crossings, default range (crossings.cpp)", BvhQuery::all, 0.0, kInf, true, false},
+    {"ExactMesh::contains, the perturbed ray (contains.cpp: query_point)", BvhQuery::any, 0.0, kInf, true, false},
+    {"ExactMesh::segment (segment.cpp)", BvhQuery::all, 0.0, 1.0, true, true},
     {"MeshCaster closest, range [-1, inf) (accel_query.h)", BvhQuery::closest, -1.0, kInf, false, false},
     {"MeshCaster any, range [-1, inf) (accel_query.h)", BvhQuery::any, -1.0, kInf, false, false},
     {"MeshCaster all, range [-1, inf) (accel_query.h)", BvhQuery::all, -1.0, kInf, false, false},
@@ -123,7 +123,7 @@ TEST(SceneAxisRays, TheQueriesAnswerOnTheDoubleTest) {
   for (int i = 0; i < 8; ++i) v.push_back(Vec3<double>{double(i & 1), double(i >> 1 & 1), double(i >> 2 & 1)} * s);
   const std::vector<std::array<std::uint32_t, 3>> t = {{0, 2, 1}, {1, 2, 3}, {4, 5, 6}, {5, 7, 6}, {0, 1, 4}, {1, 5, 4},
                                                        {2, 6, 3}, {3, 6, 7}, {0, 4, 2}, {2, 4, 6}, {1, 3, 5}, {3, 7, 5}};
-  const ClosedMesh cube({&v[0].x, v.size()}, {t.front().data(), t.size()});
+  const ExactMesh cube({&v[0].x, v.size()}, {t.front().data(), t.size()});
   const RayCrossings far = cube.ray_crossings({{-s, 0.5 * s, 0.25 * s}, {1, 0, 0}});
   ASSERT_EQ(far.crossings.size(), 2u);
   EXPECT_EQ(far.crossings[0].t, s);
@@ -135,7 +135,7 @@ TEST(SceneAxisRays, TheQueriesAnswerOnTheDoubleTest) {
     for (const auto& p : v) w.push_back(p * (1 / s));
     return w;
   }();
-  const ClosedMesh unit({&u[0].x, u.size()}, {t.front().data(), t.size()});
+  const ExactMesh unit({&u[0].x, u.size()}, {t.front().data(), t.size()});
   const RayCrossings both = unit.ray_crossings({{0.5, 0.5, 0.25}, {0, 1, 0}}, {-1, kInf});
   ASSERT_EQ(both.crossings.size(), 2u);
   EXPECT_EQ(both.crossings[0].t, -0.5);

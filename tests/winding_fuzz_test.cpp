@@ -87,7 +87,7 @@ TEST(WindingFuzz, LibraryAnswersPass) {
 TEST(WindingFuzz, CatchesAFlippedSide) {
   auto opt = short_campaign();
   // Inside reported as outside: every inside point of the campaign is a finding.
-  opt.contains = [](const rayproof::ClosedMesh& m, const rayproof::Vec3<double>& p) {
+  opt.contains = [](const rayproof::ExactMesh& m, const rayproof::Vec3<double>& p) {
     const Side s = m.contains(p);
     return s == Side::inside ? Side::outside : s;
   };
@@ -102,7 +102,7 @@ TEST(WindingFuzz, CatchesAFlippedSide) {
 
 TEST(WindingFuzz, CatchesAValueOffItsBound) {
   auto opt = short_campaign();
-  opt.value = [](const rayproof::ClosedMesh& m, const rayproof::Vec3<double>& p) {
+  opt.value = [](const rayproof::ExactMesh& m, const rayproof::Vec3<double>& p) {
     WindingValue v = m.winding_value(p);
     if (!v.surface) v.w += 3 * v.bound + 1e-9;  // within 1e-6 of the truth where bounds are small
     return v;
@@ -116,7 +116,7 @@ TEST(WindingFuzz, CatchesAValueOffItsBound) {
 
 TEST(WindingFuzz, CatchesAMissedSurface) {
   auto opt = short_campaign();
-  opt.contains = [](const rayproof::ClosedMesh& m, const rayproof::Vec3<double>& p) {
+  opt.contains = [](const rayproof::ExactMesh& m, const rayproof::Vec3<double>& p) {
     const Side s = m.contains(p);
     return s == Side::surface ? Side::outside : s;
   };

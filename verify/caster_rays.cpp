@@ -19,7 +19,7 @@
 #include "rayproof/verify/caster_check.h"
 
 #include "rayproof/float_util.h"
-#include "rayproof/scene/contains.h"
+#include "rayproof/scene/exact_mesh.h"
 #include "rayproof/scene/mesh_caster.h"
 #include "rayproof/triangle_common.h"
 
@@ -119,7 +119,7 @@ CasterRays caster_rays(const CasterMesh& mesh, const CasterCheckOptions& opt) {
     std::vector<Ray<double>> rays;
     std::vector<Vec3<double>> inside;
     try {
-      const ClosedMesh closed(VertexArray(reinterpret_cast<const double*>(V.data()), V.size()),
+      const ExactMesh closed(VertexArray(reinterpret_cast<const double*>(V.data()), V.size()),
                               IndexArray{F.empty() ? nullptr : F.data()->data(), F.size()});
       // Candidates: the box centre, then points just inside triangle centroids (both sides tried).
       std::vector<Vec3<double>> cands{centre};

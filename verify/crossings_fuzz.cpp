@@ -1,4 +1,4 @@
-// run_crossings_fuzz: ClosedMesh::ray_crossings on the random closed meshes of fuzz --mesh, against the
+// run_crossings_fuzz: ExactMesh::ray_crossings on the random closed meshes of fuzz --mesh, against the
 // exact winding number at each ray's origin.
 #include "verify/crossings_fuzz.h"
 
@@ -7,7 +7,7 @@
 #include <set>
 #include <utility>
 
-#include "rayproof/scene/contains.h"
+#include "rayproof/scene/exact_mesh.h"
 
 namespace rayproof::verify {
 
@@ -23,7 +23,7 @@ CrossingsFuzzResult run_crossings_fuzz(const MeshFuzzOptions& opt) {
     std::vector<Vec3<double>> interior;
     std::mt19937_64 rng;
     const mesh::Mesh m = fuzz_mesh(opt, i, shape, interior, rng);
-    const ClosedMesh cm(VertexArray(&m.vertices[0].x, m.vertices.size()),
+    const ExactMesh cm(VertexArray(&m.vertices[0].x, m.vertices.size()),
                         IndexArray{m.triangles.front().data(), m.triangles.size()});
     ++res.meshes;
     res.triangles += m.triangles.size();
@@ -44,7 +44,7 @@ CrossingsFuzzResult run_crossings_fuzz(const MeshFuzzOptions& opt) {
       for (int e = 0; e < 3; ++e) edges.insert(std::minmax(t[e], t[(e + 1) % 3]));
     for (const auto& p : origins) {
       const std::int32_t w = cm.winding(p);
-      if (w == ClosedMesh::kOnSurface) continue;
+      if (w == ExactMesh::kOnSurface) continue;
       std::vector<std::pair<Ray<double>, bool>> rays;  // the ray, aimed at a vertex or an edge midpoint
       for (const auto& v : m.vertices) rays.push_back({{p, v - p}, true});
       for (const auto& [a, b] : edges) rays.push_back({{p, (m.vertices[a] + m.vertices[b]) * 0.5 - p}, true});

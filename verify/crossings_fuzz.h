@@ -1,9 +1,9 @@
 #pragma once
-/// Fuzzing of ClosedMesh::ray_crossings (`rayproof fuzz --mesh --crossings`): the random closed meshes of
+/// Fuzzing of ExactMesh::ray_crossings (`rayproof fuzz --mesh --crossings`): the random closed meshes of
 /// `fuzz --mesh` (verify/mesh_fuzz.h, the same mesh i for a seed), rays from their interior points
 /// and from points outside aimed exactly at every vertex, at every edge's midpoint and in random
 /// directions. On a closed oriented mesh the net count of crossings (in minus out) along a ray from
-/// p must be minus the exact winding number at p (ClosedMesh::winding: another ray, another code
+/// p must be minus the exact winding number at p (ExactMesh::winding: another ray, another code
 /// path), the number of crossings must have the parity of that winding number, and the listed t
 /// must never decrease. A ray through a vertex or an edge is exactly where all-hits double-counts.
 #include <cstdint>

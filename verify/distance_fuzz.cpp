@@ -48,7 +48,7 @@ DistanceFuzzResult run_distance_fuzz(const DistanceFuzzOptions& opt) {
     }
     for (int i = 0; i < nt; ++i) t.push_back({std::uint32_t(rng() % nv), std::uint32_t(rng() % nv), std::uint32_t(rng() % nv)});
     if (rng() % 3 == 0) t.push_back(t.front());  // a duplicate: an exact tie between two indices
-    const ClosedMesh m(VertexArray(&v[0].x, v.size()), IndexArray{t.front().data(), t.size()});
+    const ExactMesh m(VertexArray(&v[0].x, v.size()), IndexArray{t.front().data(), t.size()});
     auto tri = [&](std::size_t i) { return std::array<Vec3<double>, 3>{v[t[i][0]], v[t[i][1]], v[t[i][2]]}; };
     for (int k = 0; k < 24; ++k) {
       Vec3<double> p;

@@ -2,7 +2,7 @@
 /// fuzz --distance: random small meshes (soups with integer and real coordinates, zero-area and
 /// duplicate triangles, scaled by powers of two up to 2^+-1000) and points on and around them
 /// (vertices, edge midpoints, dyadic face points, jittered, uniform, far), each query of
-/// ClosedMesh::closest_point checked against a brute force over every triangle in rationals: the
+/// ExactMesh::closest_point checked against a brute force over every triangle in rationals: the
 /// lowest nearest triangle, the correctly rounded distance, surface exactly at distance 0.
 #include <cstddef>
 #include <cstdint>

@@ -247,13 +247,13 @@ WindingFuzzResult run_winding_fuzz(const WindingFuzzOptions& opt) {
     const int e = exponents[pick(rng, std::size(exponents))];
     for (auto& p : s.v) p = {std::ldexp(p.x, e), std::ldexp(p.y, e), std::ldexp(p.z, e)};
     ++res.meshes, ++res.kind_meshes[std::size_t(kind)], res.triangles += s.t.size();
-    std::unique_ptr<ClosedMesh> m;
+    std::unique_ptr<ExactMesh> m;
     try {
-      m = std::make_unique<ClosedMesh>(VertexArray(&s.v[0].x, s.v.size()), IndexArray{s.t.front().data(), s.t.size()},
+      m = std::make_unique<ExactMesh>(VertexArray(&s.v[0].x, s.v.size()), IndexArray{s.t.front().data(), s.t.size()},
                                        ContainsRule::winding);
     } catch (const std::exception& ex) {
       ++res.errors;
-      record(s, s.v.front(), fmt::format("ClosedMesh with the winding rule threw: {}", ex.what()));
+      record(s, s.v.front(), fmt::format("ExactMesh with the winding rule threw: {}", ex.what()));
       continue;
     }
     Vec3<double> lo, hi;

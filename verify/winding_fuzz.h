@@ -9,7 +9,7 @@
 /// triangles; all scaled by a power of two up to 2^+-300.
 /// Points (28 a mesh): random in the bounding box, vertices, edge midpoints, points on faces, one-ulp
 /// neighbours of vertices and of edge midpoints (holes' rims, cracks), far points.
-/// Each point checks, on a ClosedMesh built with ContainsRule::winding:
+/// Each point checks, on an ExactMesh built with ContainsRule::winding:
 ///  (a) winding_value(p)'s interval [w - bound, w + bound] meets the reference's;
 ///  (b) contains(p) is the reference's side (inside where w > 1/2) wherever the reference keeps
 ///      |w - 1/2| >= 1e-6 (points nearer are counted and skipped);
@@ -21,7 +21,7 @@
 #include <string>
 #include <vector>
 
-#include "rayproof/scene/contains.h"
+#include "rayproof/scene/exact_mesh.h"
 
 namespace rayproof::verify {
 
@@ -50,9 +50,9 @@ struct WindingFuzzOptions {
   std::uint64_t seed = 1;
   int bits = 128;              ///< the reference's MPFR precision
   /// The answers under test (tests replace them with wrong ones to see the checker fail): empty
-  /// means ClosedMesh::winding_value and ClosedMesh::contains.
-  std::function<WindingValue(const ClosedMesh&, const Vec3<double>&)> value;
-  std::function<Side(const ClosedMesh&, const Vec3<double>&)> contains;
+  /// means ExactMesh::winding_value and ExactMesh::contains.
+  std::function<WindingValue(const ExactMesh&, const Vec3<double>&)> value;
+  std::function<Side(const ExactMesh&, const Vec3<double>&)> contains;
 };
 
 struct WindingFuzzFinding {

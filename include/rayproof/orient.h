@@ -7,7 +7,7 @@
 /// products; a guard on the permanent keeps underflowed products out of it. Stage 2 is the exact sign
 /// with the expansions of certified_expansion.h when the inputs lie in their exponent window; outside
 /// it the functions return kUnknown and the caller decides with a big-number fallback
-/// (src/scene/contains_exact.cpp, GMP). Header-only, no dependencies.
+/// (src/exact/orient_exact.cpp, GMP). Header-only, no dependencies.
 #include <cmath>
 
 #include "rayproof/certified_expansion.h"

@@ -11,7 +11,7 @@
 #include <variant>
 
 #include "bindings.h"
-#include "rayproof/scene/contains.h"
+#include "rayproof/scene/exact_mesh.h"
 #include "rayproof/scene/distance.h"
 #include "rayproof/scene/mesh_caster.h"
 
@@ -27,10 +27,10 @@ struct Lazy {
   std::unique_ptr<MeshCaster<M>> caster;
 };
 
-/// A ClosedMesh for one rule, built on first use.
+/// A ExactMesh for one rule, built on first use.
 struct LazyClosed {
   std::once_flag once;
-  std::unique_ptr<ClosedMesh> mesh;
+  std::unique_ptr<ExactMesh> mesh;
   std::string error;
 };
 
@@ -117,7 +117,7 @@ class PyMesh {
   py::array_t<std::uint8_t> contains(py::handle points, const std::string& rule, int threads) {
     const Rows p = rows_of(points, "points", 3, true);
     const std::size_t n = p.broadcast ? 1 : p.rows;
-    const ClosedMesh& cm = closed(rule);
+    const ExactMesh& cm = closed(rule);
     py::array_t<std::uint8_t> out(static_cast<py::ssize_t>(n));
     const double* xyz = p.data.data();
     std::uint8_t* o = out.mutable_data();
@@ -128,12 +128,12 @@ class PyMesh {
     return out;
   }
 
-  /// distance() / signed_distance() / closest_points(): ClosedMesh::closest_points over the points
+  /// distance() / signed_distance() / closest_points(): ExactMesh::closest_points over the points
   /// (float64 C-contiguous (n, 3) read in place), the GIL released (docs/distance.md).
   std::vector<ClosestPoint> nearest(py::handle points, bool with_side, int threads) {
     const Rows p = rows_of(points, "points", 3, true);
     const std::size_t n = p.broadcast ? 1 : p.rows;
-    const ClosedMesh& cm = closed("automatic");
+    const ExactMesh& cm = closed("automatic");
     std::vector<ClosestPoint> r(n);
     const double* xyz = p.data.data();
     {
@@ -182,7 +182,7 @@ class PyMesh {
   py::object winding(py::handle points, double tolerance, bool with_bound, int threads) {
     const Rows p = rows_of(points, "points", 3, true);
     const std::size_t n = p.broadcast ? 1 : p.rows;
-    const ClosedMesh& any = closed("automatic");
+    const ExactMesh& any = closed("automatic");
     if (!(tolerance > 0)) throw py::value_error("tolerance: must be positive");
     if (with_bound || !any.closed() || !any.oriented()) {
       py::array_t<double> w(static_cast<py::ssize_t>(n)), bound(static_cast<py::ssize_t>(n));
@@ -194,7 +194,7 @@ class PyMesh {
       }
       return py::make_tuple(w, bound);
     }
-    const ClosedMesh& cm = closed("nonzero");
+    const ExactMesh& cm = closed("nonzero");
     py::array_t<std::int32_t> out(static_cast<py::ssize_t>(n));
     std::int32_t* o = out.mutable_data();
     {
@@ -212,7 +212,7 @@ class PyMesh {
   py::dict segment(py::handle ps, py::handle qs) {
     const Rows p = rows_of(ps, "p", 3, true), q = rows_of(qs, "q", 3, true);
     const std::size_t n = common_rows({{"p", &p}, {"q", &q}});
-    const ClosedMesh& cm = closed("automatic");
+    const ExactMesh& cm = closed("automatic");
     const auto sn = static_cast<py::ssize_t>(n);
     py::array_t<bool> crosses(sn);
     py::array_t<double> t(sn);
@@ -248,7 +248,7 @@ class PyMesh {
     const auto rays = rays_of(origins, directions);
     const std::size_t n = rays.size();
     if (!(tmin <= tmax)) throw py::value_error(fmt::format("tmin {} is not <= tmax {}", tmin, tmax));
-    const ClosedMesh& cm = closed("automatic");
+    const ExactMesh& cm = closed("automatic");
     std::vector<RayCrossings> res(n);
     {
       py::gil_scoped_release unlocked;
@@ -311,8 +311,8 @@ class PyMesh {
   [[nodiscard]] std::string rule() { return to_string(closed("automatic").rule()); }
 
  private:
-  /// The ClosedMesh of `rule`, built once (GIL released); MeshNotClosedError becomes ValueError.
-  const ClosedMesh& closed(const std::string& rule) {
+  /// The ExactMesh of `rule`, built once (GIL released); MeshNotClosedError becomes ValueError.
+  const ExactMesh& closed(const std::string& rule) {
     const int k = rule == "automatic" ? 0 : rule == "nonzero" ? 1 : rule == "parity" ? 2 : rule == "winding" ? 3 : -1;
     if (k < 0) throw py::value_error(fmt::format("rule: '{}' is not a rule (automatic, nonzero, parity, winding)", rule));
     LazyClosed& lazy = closed_[k];
@@ -324,7 +324,7 @@ class PyMesh {
                                  : k == 1 ? ContainsRule::nonzero
                                  : k == 2 ? ContainsRule::parity
                                           : ContainsRule::winding;
-          lazy.mesh = std::make_unique<ClosedMesh>(VertexArray(vertices_.data(), vertices()),
+          lazy.mesh = std::make_unique<ExactMesh>(VertexArray(vertices_.data(), vertices()),
                                                    IndexArray{indices_.data(), triangles()}, r);
         } catch (const std::invalid_argument& e) {
           lazy.error = e.what();

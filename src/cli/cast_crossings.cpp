@@ -1,4 +1,4 @@
-// rayproof cast MESH RAYS --query crossings: load the mesh as a ClosedMesh (any mesh: open ones
+// rayproof cast MESH RAYS --query crossings: load the mesh as an ExactMesh (any mesh: open ones
 // and soups too), read the rays, print each ray's crossings (and touches).
 #include "cli/mesh_input.h"
 #include "cli/cast_crossings.h"
@@ -12,7 +12,7 @@
 #include "cli/input.h"
 #include "io/case_file.h"
 #include "mesh/mesh.h"
-#include "rayproof/scene/contains.h"
+#include "rayproof/scene/exact_mesh.h"
 #include "scene/ray_file.h"
 
 namespace rayproof::cli {
@@ -22,7 +22,7 @@ int run_cast_crossings(const CastCrossingsArgs& a) {
   auto loaded = read_closed_mesh(me, a.mesh);
   if (!loaded) return 2;
   const mesh::Mesh& m = loaded->mesh;
-  const std::unique_ptr<ClosedMesh>& cm = loaded->closed;
+  const std::unique_ptr<ExactMesh>& cm = loaded->closed;
   if (a.verbose) fmt::print(stderr, "{}: {}: {} triangles, {}\n", me, a.mesh, m.triangles.size(), cm->closed() ? "closed" : "not closed");
   if (!(a.tmin <= a.tmax)) {
     fmt::print(stderr, "{}: --tmin {} is not <= --tmax {}\n", me, a.tmin, a.tmax);

@@ -1,6 +1,6 @@
 #pragma once
 /// `rayproof cast MESH RAYS --query crossings [--touches]`: each ray's crossings of a triangle mesh,
-/// once each, with direction (rayproof::ClosedMesh::ray_crossings; docs/contains.md, "Crossings").
+/// once each, with direction (rayproof::ExactMesh::ray_crossings; docs/contains.md, "Crossings").
 #include <string>
 
 namespace rayproof::cli {

@@ -1,6 +1,6 @@
 /// rayproof bench contains [MESH...] [--points N] [--repeat R] [--open MESH...] [--threads T]: point
 /// containment side by side on one thread; the open meshes' section also at T threads. Methods:
-/// rayproof `contains` (ClosedMesh, exact), CGAL Side_of_triangle_mesh with Epick and Epeck,
+/// rayproof `contains` (ExactMesh, exact), CGAL Side_of_triangle_mesh with Epick and Epeck,
 /// Embree 3 one-ray parity along (1, 1, 1) as Open3D casts it, and rayproof float and robust parity along (1, 1, 1) (MeshCaster::all, crossings
 /// counted). Point sets per mesh: random points in the bounding box, and hard points: the vertices
 /// (on the surface), one ulp off them along each axis, points whose axis and diagonal rays pass
@@ -24,7 +24,7 @@
 
 #include "cli/commands.h"
 #include "mesh/mesh.h"
-#include "rayproof/scene/contains.h"
+#include "rayproof/scene/exact_mesh.h"
 #include "scene/compare/contains_bench.h"
 
 namespace rayproof::cli {
@@ -44,7 +44,7 @@ struct Options {
 };
 
 /// The methods for a mesh; those that cannot run here are named with the reason.
-std::vector<TimedMethod> methods(const mesh::Mesh& m, const ClosedMesh& cm, bool epeck) {
+std::vector<TimedMethod> methods(const mesh::Mesh& m, const ExactMesh& cm, bool epeck) {
   std::vector<TimedMethod> ms = scene::compare::contains_methods(m, cm, epeck);
   for (const auto& t : ms)
     if (!t.run) fmt::print("  {}: {}\n", t.name, t.note);
@@ -184,13 +184,13 @@ int run_bench_contains(const Options& opt) {
       fmt::print(stderr, "rayproof bench contains: {}\n", e.what());
       return 2;
     }
-    std::unique_ptr<ClosedMesh> cm, nz;
+    std::unique_ptr<ExactMesh> cm, nz;
     try {
       // CGAL's Side_of_triangle_mesh counts crossings mod 2: contains is measured with the parity
       // rule, and its nonzero answers (the default) are compared with it below.
-      cm = std::make_unique<ClosedMesh>(VertexArray(&m.vertices[0].x, m.vertices.size()), IndexArray{m.triangles.front().data(), m.triangles.size()},
+      cm = std::make_unique<ExactMesh>(VertexArray(&m.vertices[0].x, m.vertices.size()), IndexArray{m.triangles.front().data(), m.triangles.size()},
                                         ContainsRule::parity);
-      nz = std::make_unique<ClosedMesh>(VertexArray(&m.vertices[0].x, m.vertices.size()), IndexArray{m.triangles.front().data(), m.triangles.size()});
+      nz = std::make_unique<ExactMesh>(VertexArray(&m.vertices[0].x, m.vertices.size()), IndexArray{m.triangles.front().data(), m.triangles.size()});
     } catch (const std::invalid_argument& e) {
       fmt::print("\n{}: skipped: {}\n", path, e.what());
       continue;
@@ -220,7 +220,7 @@ int run_bench_contains(const Options& opt) {
     }
   }
   for (auto& shape : scene::compare::known_shapes()) {
-    const ClosedMesh cm(VertexArray(&shape.mesh.vertices[0].x, shape.mesh.vertices.size()),
+    const ExactMesh cm(VertexArray(&shape.mesh.vertices[0].x, shape.mesh.vertices.size()),
                         IndexArray{shape.mesh.triangles.front().data(), shape.mesh.triangles.size()});
     std::vector<TimedMethod> ms = methods(shape.mesh, cm, !opt.no_epeck);
     const Pts pts = scene::compare::lattice_points(shape);

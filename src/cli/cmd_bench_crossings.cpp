@@ -1,5 +1,5 @@
 /// rayproof bench crossings [MESH...] [--rays N] [--repeat R] [--threads T] [--ablation]: every crossing along
-/// rays, side by side: rayproof's ClosedMesh::ray_crossings (each crossing once, exact) and Embree
+/// rays, side by side: rayproof's ExactMesh::ray_crossings (each crossing once, exact) and Embree
 /// 3's all hits (a filter function records every hit and rejects it so traversal goes on; sorted by
 /// t), both on T threads (1, the default: thread CPU time; more: wall time). MESH is a mesh file or
 /// `generated` (the 1.31M-triangle bumpy sphere). Both see the mesh with its vertices rounded to
@@ -26,7 +26,7 @@
 
 #include "cli/commands.h"
 #include "mesh/mesh.h"
-#include "rayproof/scene/contains.h"
+#include "rayproof/scene/exact_mesh.h"
 #include "scene/compare/crossings_bench.h"
 
 namespace rayproof::cli {
@@ -76,9 +76,9 @@ int run_bench_crossings(const BenchCrossingsOptions& opt) {
     }
     for (auto& p : m.vertices) p = {double(float(p.x)), double(float(p.y)), double(float(p.z))};
     const double b0 = thread_seconds();
-    std::unique_ptr<ClosedMesh> cm;
+    std::unique_ptr<ExactMesh> cm;
     try {
-      cm = std::make_unique<ClosedMesh>(VertexArray(&m.vertices[0].x, m.vertices.size()),
+      cm = std::make_unique<ExactMesh>(VertexArray(&m.vertices[0].x, m.vertices.size()),
                                         IndexArray{m.triangles.front().data(), m.triangles.size()});
     } catch (const std::invalid_argument& e) {
       fmt::print(stderr, "rayproof bench crossings: {}: {}\n", path, e.what());

@@ -1,6 +1,6 @@
 /// rayproof bench distance [MESH...] [--points N] [--repeat R] [--threads T]: closest point queries
 /// side by side, on one thread by default (T > 1: every method on T threads, the points in chunks).
-/// MESH `generated`: the 1.31M-triangle bumpy sphere (as bench contains). Methods: rayproof (ClosedMesh::closest_points, exact; without and with the side),
+/// MESH `generated`: the 1.31M-triangle bumpy sphere (as bench contains). Methods: rayproof (ExactMesh::closest_points, exact; without and with the side),
 /// CGAL AABB_tree closest_point_and_primitive (Epick) and Embree 3 rtcPointQuery with a
 /// closest-point callback. Point sets per mesh: uniform in the bounding box grown by 20%, and near
 /// the surface (a random point of a random triangle moved along its normal by up to 1e-3 of the
@@ -89,7 +89,7 @@ int run_bench_distance(BenchDistanceOptions opt) {
              opt.repeat);
   for (const auto& path : opt.meshes) {
     mesh::Mesh m;
-    std::unique_ptr<ClosedMesh> cm;
+    std::unique_ptr<ExactMesh> cm;
     try {
       m = scene::compare::distance_bench_mesh(path);
     } catch (const mesh::MeshError& e) {  // its message names the file
@@ -98,7 +98,7 @@ int run_bench_distance(BenchDistanceOptions opt) {
     }
     try {
       if (m.triangles.empty()) throw std::invalid_argument("the mesh has no triangles");
-      cm = std::make_unique<ClosedMesh>(VertexArray(&m.vertices[0].x, m.vertices.size()),
+      cm = std::make_unique<ExactMesh>(VertexArray(&m.vertices[0].x, m.vertices.size()),
                                         IndexArray{m.triangles.front().data(), m.triangles.size()});
     } catch (const std::exception& e) {
       fmt::print(stderr, "{}: {}: {}\n", me, path, e.what());

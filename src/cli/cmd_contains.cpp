@@ -22,7 +22,7 @@
 #include "cli/point_lines.h"
 #include "io/case_file.h"
 #include "mesh/mesh.h"
-#include "rayproof/scene/contains.h"
+#include "rayproof/scene/exact_mesh.h"
 
 namespace rayproof::cli {
 
@@ -84,7 +84,7 @@ ContainsRule parse_rule(const std::string& r) {
   return r == "winding" ? ContainsRule::winding : ContainsRule::automatic;
 }
 /// The rule as the summary line states it.
-std::string rule_text(const ClosedMesh& m) {
+std::string rule_text(const ExactMesh& m) {
   switch (m.rule()) {
     case ContainsRule::parity: return "rule parity";
     case ContainsRule::winding:
@@ -98,7 +98,7 @@ int run_contains(const ContainsOptions& opt) {
   const char* me = "rayproof contains";
   auto loaded = read_closed_mesh(me, opt.mesh, parse_rule(opt.rule));
   if (!loaded) return 2;
-  const std::unique_ptr<ClosedMesh>& cm = loaded->closed;
+  const std::unique_ptr<ExactMesh>& cm = loaded->closed;
   // --winding: the exact integer on a closed oriented mesh (unless the winding rule was asked for),
   // else the generalized winding number with its bound.
   const bool integer_winding = cm->closed() && cm->oriented() && cm->rule() != ContainsRule::winding;

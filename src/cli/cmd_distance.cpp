@@ -35,7 +35,7 @@ int run_distance(const DistanceOptions& opt) {
   const char* me = "rayproof distance";
   auto loaded = read_closed_mesh(me, opt.mesh);
   if (!loaded) return 2;
-  const std::unique_ptr<ClosedMesh>& cm = loaded->closed;
+  const std::unique_ptr<ExactMesh>& cm = loaded->closed;
   Input in = open_input(opt.points);
   if (!in.stream) {
     fmt::print(stderr, "{}: {}\n", me, in.error);

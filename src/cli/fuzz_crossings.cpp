@@ -1,4 +1,4 @@
-// fuzz --mesh --crossings: ClosedMesh::ray_crossings on random closed meshes (verify/crossings_fuzz.h).
+// fuzz --mesh --crossings: ExactMesh::ray_crossings on random closed meshes (verify/crossings_fuzz.h).
 #include <fmt/core.h>
 
 #include "cli/mesh_modes.h"

@@ -20,7 +20,7 @@ std::optional<MeshInput> read_closed_mesh(const char* me, const std::string& pat
     return std::nullopt;
   }
   try {
-    in.closed = std::make_unique<ClosedMesh>(VertexArray(&m.vertices[0].x, m.vertices.size()),
+    in.closed = std::make_unique<ExactMesh>(VertexArray(&m.vertices[0].x, m.vertices.size()),
                                              IndexArray{m.triangles.front().data(), m.triangles.size()}, rule);
   } catch (const std::invalid_argument& e) {  // MeshNotClosedError, MeshInputError
     fmt::print(stderr, "{}: {}: {}\n", me, path, e.what());

@@ -46,7 +46,7 @@ struct FuzzCliOptions {
   int jobs = 1;
   std::string out = "fuzz-findings";
   bool mesh = false;
-  bool crossings = false;  ///< with mesh: fuzz ClosedMesh::ray_crossings instead (fuzz_crossings.cpp)
+  bool crossings = false;  ///< with mesh: fuzz ExactMesh::ray_crossings instead (fuzz_crossings.cpp)
   bool distance = false;  ///< fuzz --distance (fuzz_distance.cpp)
   bool winding = false;  ///< fuzz --winding (fuzz_winding.cpp)
   std::string shard;    ///< K/N

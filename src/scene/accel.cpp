@@ -9,7 +9,7 @@
 #include "scene/accel_query.h"
 
 namespace rayproof::scene {
-using namespace accel_detail;
+using namespace detail;
 namespace {
 
 const Scene& empty_scene() {

@@ -6,7 +6,7 @@
 #include "scene/accel_query.h"
 
 namespace rayproof::scene {
-using namespace accel_detail;
+using namespace detail;
 
 std::vector<PrimHit> Accel::all(const Ray<double>& r, const SceneMethod& m, QueryRange q) const {
   std::vector<PrimHit> out;

@@ -4,7 +4,7 @@
 #include "scene/accel_query.h"
 
 namespace rayproof::scene {
-using namespace accel_detail;
+using namespace detail;
 
 void Accel::any_range(const Ray<double>* rays, std::size_t b, std::size_t e, std::span<const QueryRange> ranges,
                       std::uint8_t* out, const SceneMethod& m) const {

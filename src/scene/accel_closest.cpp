@@ -6,7 +6,7 @@
 #include "scene/accel_query.h"
 
 namespace rayproof::scene {
-using namespace accel_detail;
+using namespace detail;
 
 void Accel::closest_range(const Ray<double>* rays, std::size_t b, std::size_t e, std::span<const QueryRange> ranges,
                           HitSink sink, void* context, const SceneMethod& m) const {

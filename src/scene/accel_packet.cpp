@@ -3,7 +3,7 @@
 #include "scene/accel_packet.h"
 
 namespace rayproof::scene {
-using namespace accel_detail;
+using namespace detail;
 namespace {
 
 template <class Tree, class K>

@@ -11,7 +11,7 @@
 #include "scene/accel_query.h"
 
 namespace rayproof::scene {
-namespace accel_detail {
+namespace detail {
 
 /// One leaf for one ray: the group kernels where traverse_with uses them, else slot by slot
 /// (the same choice as traverse_with).
@@ -85,11 +85,11 @@ void packets_over(std::size_t b, std::size_t e, std::size_t nrays, const K& k, O
   }
 }
 
-}  // namespace accel_detail
+}  // namespace detail
 
 template <class Packet, class Rays>
 void Accel::over_packets(std::size_t nrays, const SceneMethod& m, int threads, Packet&& packet, Rays&& rays) const {
-  using namespace accel_detail;
+  using namespace detail;
   const std::size_t packets = (nrays + kPacketWidth - 1) / kPacketWidth;
   parallel_rays(packets, threads, [&](std::size_t b, std::size_t e) {
     if (simd_ != BvhSimd::avx2) return rays(b * kPacketWidth, std::min(e * kPacketWidth, nrays));  // ray by ray

@@ -11,7 +11,7 @@
 #include "scene/batch_threads.h"
 #include "scene/kernels.h"
 
-namespace rayproof::scene::accel_detail {
+namespace rayproof::scene::detail {
 
 using detail::Crossing;
 using detail::TriAlgo;
@@ -257,4 +257,4 @@ inline QueryRange range_of(std::span<const QueryRange> ranges, std::size_t i) {
   return ranges.size() > 1 ? ranges[i] : ranges.empty() ? QueryRange{} : ranges[0];
 }
 
-}  // namespace rayproof::scene::accel_detail
+}  // namespace rayproof::scene::detail

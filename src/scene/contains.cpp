@@ -1,4 +1,4 @@
-// rayproof::ClosedMesh: the closure check and the exact point query (docs/contains.md).
+// rayproof::ExactMesh: the closure check and the exact point query (docs/contains.md).
 //
 // The query casts an axis-parallel ray from p (axis k, sign sigma: towards the nearest face of the
 // mesh's bounding box) and counts its crossings with the triangles, as the ray from
@@ -19,8 +19,8 @@
 
 #include "scene/accel.h"
 #include "scene/batch_threads.h"
-#include "scene/contains_exact.h"
-#include "scene/contains_state.h"
+#include "exact/orient_exact.h"
+#include "scene/exact_mesh_state.h"
 
 namespace rayproof {
 
@@ -46,8 +46,8 @@ const char* to_string(ContainsRule r) {
 
 namespace {
 
-using scene::detail::orient2d_exact;
-using scene::detail::orient3d_exact;
+using certified::orient2d_exact;
+using certified::orient3d_exact;
 
 std::string str(std::size_t n) { return std::to_string(n); }
 std::string str(const Vec3<double>& p) {
@@ -58,7 +58,7 @@ std::string str(const Vec3<double>& p) {
 
 }  // namespace
 
-namespace detail {
+namespace scene::detail {
 
 /// The vertices with equal coordinates (+0 and -0 alike) mapped to the first of them.
 std::vector<std::uint32_t> weld(const std::vector<Vec3<double>>& v) {
@@ -117,7 +117,7 @@ std::string edge_text(const std::vector<Vec3<double>>& v, const std::array<std::
          str(e[2]) + " triangle" + (e[2] == 1 ? "" : "s");
 }
 
-}  // namespace detail
+}  // namespace scene::detail
 
 namespace {
 
@@ -132,7 +132,7 @@ inline int sos_edge(double au, double av, double bu, double bv) {
 
 }  // namespace
 
-namespace detail {
+namespace scene::detail {
 
 /// p on the closed triangle, knowing orient3d(a, b, c, p) = 0: a projection where the triangle has
 /// area, and the three edge signs there 0 or the triangle's.
@@ -150,7 +150,7 @@ bool on_closed_triangle_coplanar(const Vec3<double>& a, const Vec3<double>& b, c
 }
 
 /// The perturbed ray's count at p (finite, inside the closed bounding box).
-PointQuery query_point(const ContainsState& s, const Vec3<double>& p) {
+PointQuery query_point(const ExactMeshState& s, const Vec3<double>& p) {
   PointQuery q;
   // The nearest face of the bounding box: the shortest ray, the fewest boxes.
   int k = 0, sigma = 1;
@@ -198,68 +198,68 @@ PointQuery query_point(const ContainsState& s, const Vec3<double>& p) {
   return q;
 }
 
-}  // namespace detail
+}  // namespace scene::detail
 
 namespace {
 
 bool finite(const Vec3<double>& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
-bool in_box(const detail::ContainsState& s, const Vec3<double>& p) {
+bool in_box(const scene::detail::ExactMeshState& s, const Vec3<double>& p) {
   return s.lo.x <= p.x && p.x <= s.hi.x && s.lo.y <= p.y && p.y <= s.hi.y && s.lo.z <= p.z && p.z <= s.hi.z;
 }
 
 }  // namespace
 
-ClosedMesh::ClosedMesh(const VertexArray& vertices, const IndexArray& indices, ContainsRule rule)
+ExactMesh::ExactMesh(const VertexArray& vertices, const IndexArray& indices, ContainsRule rule)
     : s_(std::make_unique<State>()) {
-  detail::load_contains_state(*s_, vertices, indices, rule);
+  scene::detail::load_exact_mesh_state(*s_, vertices, indices, rule);
 }
-ClosedMesh::~ClosedMesh() = default;
-ClosedMesh::ClosedMesh(ClosedMesh&&) noexcept = default;
-ClosedMesh& ClosedMesh::operator=(ClosedMesh&&) noexcept = default;
+ExactMesh::~ExactMesh() = default;
+ExactMesh::ExactMesh(ExactMesh&&) noexcept = default;
+ExactMesh& ExactMesh::operator=(ExactMesh&&) noexcept = default;
 
-std::size_t ClosedMesh::triangle_count() const { return s_->triangles.size(); }
-bool ClosedMesh::oriented() const { return s_->closure.misoriented_edges == 0 && s_->closure.open_edges == 0; }
-bool ClosedMesh::closed() const { return s_->closure.open_edges == 0; }
-ContainsRule ClosedMesh::rule() const { return s_->rule; }
+std::size_t ExactMesh::triangle_count() const { return s_->triangles.size(); }
+bool ExactMesh::oriented() const { return s_->closure.misoriented_edges == 0 && s_->closure.open_edges == 0; }
+bool ExactMesh::closed() const { return s_->closure.open_edges == 0; }
+ContainsRule ExactMesh::rule() const { return s_->rule; }
 
-Side ClosedMesh::contains(const Vec3<double>& p) const {
+Side ExactMesh::contains(const Vec3<double>& p) const {
   if (!finite(p)) return Side::invalid;
-  if (s_->rule == ContainsRule::winding) return detail::winding_side(*s_, p);  // w > 1/2 (winding_caps.cpp)
+  if (s_->rule == ContainsRule::winding) return scene::detail::winding_side(*s_, p);  // w > 1/2 (winding_caps.cpp)
   if (!in_box(*s_, p)) return Side::outside;
-  const detail::PointQuery q = detail::query_point(*s_, p);
+  const scene::detail::PointQuery q = scene::detail::query_point(*s_, p);
   if (q.surface) return Side::surface;
   const bool in = s_->rule == ContainsRule::parity ? (q.crossings & 1) != 0 : q.winding != 0;
   return in ? Side::inside : Side::outside;
 }
 
-std::int32_t ClosedMesh::winding(const Vec3<double>& p) const {
-  if (!closed()) throw std::logic_error("ClosedMesh::winding: the mesh is not closed (" + str(s_->closure.open_edges) +
+std::int32_t ExactMesh::winding(const Vec3<double>& p) const {
+  if (!closed()) throw std::logic_error("ExactMesh::winding: the mesh is not closed (" + str(s_->closure.open_edges) +
                                         " open edges): its winding number is not an integer; see winding_value");
-  if (!oriented()) throw std::logic_error("ClosedMesh::winding: the mesh is not oriented (" +
+  if (!oriented()) throw std::logic_error("ExactMesh::winding: the mesh is not oriented (" +
                                           str(s_->closure.misoriented_edges) + " edges used unequally in each direction)");
   if (!finite(p) || !in_box(*s_, p)) return 0;
-  const detail::PointQuery q = detail::query_point(*s_, p);
+  const scene::detail::PointQuery q = scene::detail::query_point(*s_, p);
   return q.surface ? kOnSurface : q.winding;
 }
 
-std::uint32_t ClosedMesh::crossings(const Vec3<double>& p) const {
+std::uint32_t ExactMesh::crossings(const Vec3<double>& p) const {
   if (!finite(p) || !in_box(*s_, p)) return 0;
-  return detail::query_point(*s_, p).crossings;
+  return scene::detail::query_point(*s_, p).crossings;
 }
 
-void ClosedMesh::contains(std::span<const Vec3<double>> points, std::span<Side> out, int threads) const {
+void ExactMesh::contains(std::span<const Vec3<double>> points, std::span<Side> out, int threads) const {
   if (points.size() != out.size())
-    throw MeshInputError("ClosedMesh::contains: " + str(out.size()) + " results for " + str(points.size()) + " points");
+    throw MeshInputError("ExactMesh::contains: " + str(out.size()) + " results for " + str(points.size()) + " points");
   static_assert(sizeof(Side) == 1);
   contains(reinterpret_cast<const double*>(points.data()), points.size(), sizeof(Vec3<double>),
            reinterpret_cast<std::uint8_t*>(out.data()), threads);
 }
 
-void ClosedMesh::contains(const double* xyz, std::size_t n, std::size_t stride, std::uint8_t* out, int threads) const {
+void ExactMesh::contains(const double* xyz, std::size_t n, std::size_t stride, std::uint8_t* out, int threads) const {
   if (n == 0) return;
-  if (!xyz || !out) throw MeshInputError("ClosedMesh::contains: null pointer with a count of " + str(n));
+  if (!xyz || !out) throw MeshInputError("ExactMesh::contains: null pointer with a count of " + str(n));
   if (stride < 3 * sizeof(double) || stride % sizeof(double))
-    throw MeshInputError("ClosedMesh::contains: stride of " + str(stride) + " bytes (need a multiple of 8, at least 24)");
+    throw MeshInputError("ExactMesh::contains: stride of " + str(stride) + " bytes (need a multiple of 8, at least 24)");
   const auto* base = reinterpret_cast<const std::byte*>(xyz);
   scene::detail::for_each_batch_range(n, threads, 2048, 1024, [&](std::size_t b, std::size_t e) {
     for (std::size_t i = b; i < e; ++i) {

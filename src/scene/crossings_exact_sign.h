@@ -1,12 +1,12 @@
 #pragma once
 /// Exact signs from two_sum / two_prod terms, summed in a certified::Expansion, for
-/// ClosedMesh::ray_crossings (contains_crossings.cpp): the edge function of a ray and an edge when
+/// ExactMesh::ray_crossings (crossings.cpp): the edge function of a ray and an edge when
 /// the differences from the origin are exact in double.
 #include "rayproof/certified_expansion.h"
 #include "rayproof/float_util.h"
 #include "rayproof/vec3.h"
 
-namespace rayproof::detail {
+namespace rayproof::scene::detail {
 
 /// The exact sign of u = d . (B x C) when B = a - o and C = b - o are exact in double (often so when
 /// a ray is aimed along an axis at a vertex): every product two_prod'ed into at most 24 terms.
@@ -34,4 +34,4 @@ inline int u_sign_exact_small(const Vec3<double>& d, const Vec3<double>& o, cons
   return sum.sign();
 }
 
-}  // namespace rayproof::detail
+}  // namespace rayproof::scene::detail

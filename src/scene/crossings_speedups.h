@@ -1,8 +1,8 @@
 #pragma once
-/// The parts of ClosedMesh::ray_crossings' speed that can be switched off one at a time, for the
+/// The parts of ExactMesh::ray_crossings' speed that can be switched off one at a time, for the
 /// ablation of `rayproof bench crossings --ablation` (internal to rayproof_scene_certified and its
 /// benches). The answers are the same either way (only the work differs; the bench compares them).
-namespace rayproof::detail {
+namespace rayproof::scene::detail {
 
 struct CrossingsSpeedups {
   /// Traverse the exact range [tmin, tmax] (the float box test when tmin >= 0) rather than one two
@@ -20,4 +20,4 @@ struct CrossingsSpeedups {
 void set_crossings_speedups(const CrossingsSpeedups& s);
 [[nodiscard]] CrossingsSpeedups crossings_speedups();
 
-}  // namespace rayproof::detail
+}  // namespace rayproof::scene::detail

@@ -1,4 +1,4 @@
-// ClosedMesh's closest-point queries (rayproof/scene/distance.h, docs/distance.md).
+// ExactMesh's closest-point queries (rayproof/scene/distance.h, docs/distance.md).
 //
 // A best-first search over the distance tree in double ball arithmetic: every feature of a visited
 // triangle (its face, edges and vertices) gets the squared distance from p to the feature's affine
@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "rayproof/scene/distance.h"
-#include "scene/contains_state.h"
+#include "scene/exact_mesh_state.h"
 #include "scene/distance_bounds.h"
 #include "scene/distance_filter.h"
 #include "scene/distance_tree.h"
@@ -37,10 +37,9 @@ const char* to_string(DistanceStage s) {
   return "?";
 }
 
-namespace detail {
+namespace scene::detail {
 namespace {
 
-using namespace dist;
 
 /// A triangle still in the running for the nearest: [lo, hi] encloses its squared distance to the
 /// point, at its leaf-order slot, on the feature (kind, k) the filter found nearest; `sure` when that
@@ -366,32 +365,32 @@ ClosestPoint query(const DistanceTree& t, const Vec3<double>& p, std::uint32_t h
 }
 
 }  // namespace
-}  // namespace detail
+}  // namespace scene::detail
 
-namespace detail {
+namespace scene::detail {
 namespace {
 std::atomic<unsigned> ablation{0};
 }  // namespace
 void set_distance_ablation(unsigned flags) { ablation.store(flags, std::memory_order_relaxed); }
 unsigned distance_ablation() { return ablation.load(std::memory_order_relaxed); }
 
-const DistanceTree& distance_tree(const ContainsState& s) {
+const DistanceTree& distance_tree(const ExactMeshState& s) {
   std::call_once(s.distance_once, [&] {
     s.distance = std::make_shared<const DistanceTree>(build_distance_tree(s.vertices, s.triangles));
   });
   return *s.distance;
 }
 ClosestPoint distance_query(const DistanceTree& t, const Vec3<double>& p, std::uint32_t hint) { return query(t, p, hint); }
-}  // namespace detail
+}  // namespace scene::detail
 
-ClosestPoint ClosedMesh::closest_point(const Vec3<double>& p, bool with_side) const {
-  ClosestPoint r = detail::query(detail::distance_tree(*s_), p);
+ClosestPoint ExactMesh::closest_point(const Vec3<double>& p, bool with_side) const {
+  ClosestPoint r = scene::detail::query(scene::detail::distance_tree(*s_), p);
   if (with_side && r.distance == r.distance) r.side = r.distance == 0 ? Side::surface : contains(p);
   return r;
 }
 
-double ClosedMesh::distance(const Vec3<double>& p) const { return detail::query(detail::distance_tree(*s_), p).distance; }
+double ExactMesh::distance(const Vec3<double>& p) const { return scene::detail::query(scene::detail::distance_tree(*s_), p).distance; }
 
-double ClosedMesh::signed_distance(const Vec3<double>& p) const { return closest_point(p, true).signed_distance(); }
+double ExactMesh::signed_distance(const Vec3<double>& p) const { return closest_point(p, true).signed_distance(); }
 
 }  // namespace rayproof

@@ -1,4 +1,4 @@
-// ClosedMesh::closest_points: the batch (rayproof/scene/distance.h, docs/distance.md).
+// ExactMesh::closest_points: the batch (rayproof/scene/distance.h, docs/distance.md).
 //
 // The points are visited in Morton order of their coordinates (their answers written back in
 // input order), so that consecutive queries read the same part of the tree, and each query's
@@ -20,12 +20,12 @@
 
 #include "rayproof/scene/distance.h"
 #include "scene/batch_threads.h"
-#include "scene/contains_state.h"
+#include "scene/exact_mesh_state.h"
 #include "scene/distance_tree.h"
 
 namespace rayproof {
 
-namespace detail {
+namespace scene::detail {
 namespace {
 
 constexpr double kInfD = std::numeric_limits<double>::infinity();
@@ -75,35 +75,35 @@ std::vector<std::uint32_t> morton_order(const std::byte* base, std::size_t n, st
 }
 
 }  // namespace
-}  // namespace detail
+}  // namespace scene::detail
 
-void ClosedMesh::closest_points(std::span<const Vec3<double>> points, std::span<ClosestPoint> out, bool with_side,
+void ExactMesh::closest_points(std::span<const Vec3<double>> points, std::span<ClosestPoint> out, bool with_side,
                                 int threads) const {
   if (points.size() != out.size())
-    throw MeshInputError("ClosedMesh::closest_points: " + std::to_string(out.size()) + " results for " +
+    throw MeshInputError("ExactMesh::closest_points: " + std::to_string(out.size()) + " results for " +
                          std::to_string(points.size()) + " points");
   closest_points(reinterpret_cast<const double*>(points.data()), points.size(), sizeof(Vec3<double>), out.data(),
                  with_side, threads);
 }
 
-void ClosedMesh::closest_points(const double* xyz, std::size_t n, std::size_t stride, ClosestPoint* out, bool with_side,
+void ExactMesh::closest_points(const double* xyz, std::size_t n, std::size_t stride, ClosestPoint* out, bool with_side,
                                 int threads) const {
   if (n == 0) return;
-  if (!xyz || !out) throw MeshInputError("ClosedMesh::closest_points: null pointer with a count of " + std::to_string(n));
+  if (!xyz || !out) throw MeshInputError("ExactMesh::closest_points: null pointer with a count of " + std::to_string(n));
   if (stride < 3 * sizeof(double) || stride % sizeof(double))
-    throw MeshInputError("ClosedMesh::closest_points: stride of " + std::to_string(stride) +
+    throw MeshInputError("ExactMesh::closest_points: stride of " + std::to_string(stride) +
                          " bytes (need a multiple of 8, at least 24)");
-  if (n >= (std::size_t(1) << 32)) throw MeshInputError("ClosedMesh::closest_points: more than 2^32 - 1 points");
-  const detail::DistanceTree& t = detail::distance_tree(*s_);
+  if (n >= (std::size_t(1) << 32)) throw MeshInputError("ExactMesh::closest_points: more than 2^32 - 1 points");
+  const scene::detail::DistanceTree& t = scene::detail::distance_tree(*s_);
   const auto* base = reinterpret_cast<const std::byte*>(xyz);
-  const std::vector<std::uint32_t> order = detail::morton_order(base, n, stride);
+  const std::vector<std::uint32_t> order = scene::detail::morton_order(base, n, stride);
   scene::detail::for_each_batch_range(n, threads, 1024, 256, [&](std::size_t b, std::size_t e) {
     std::uint32_t hint = 0xffffffffu;
     for (std::size_t j = b; j < e; ++j) {
       const std::uint32_t i = order[j];
       Vec3<double> p;
       std::memcpy(&p, base + i * stride, sizeof p);
-      ClosestPoint c = detail::distance_query(t, p, hint);
+      ClosestPoint c = scene::detail::distance_query(t, p, hint);
       if (c.triangle < t.slot_of.size()) hint = t.slot_of[c.triangle];
       if (with_side && c.distance == c.distance) c.side = c.distance == 0 ? Side::surface : contains(p);
       out[i] = c;

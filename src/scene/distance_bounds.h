@@ -9,7 +9,7 @@
 
 #include "rayproof/vec3.h"
 
-namespace rayproof::detail::dist {
+namespace rayproof::scene::detail {
 
 /// Lower bound of the squared distance from p to a triangle's box (rounded down).
 inline double triangle_box_lb(const std::array<Vec3<double>, 3>& tri, const Vec3<double>& p) {
@@ -83,4 +83,4 @@ inline double lower_bound_along(const std::array<Vec3<double>, 3>& t, const Vec3
   return lb2 > 0 && lb2 < std::numeric_limits<double>::infinity() ? lb2 : 0.0;
 }
 
-}  // namespace rayproof::detail::dist
+}  // namespace rayproof::scene::detail

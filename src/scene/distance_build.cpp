@@ -6,10 +6,10 @@
 #include <stdexcept>
 
 #include "rayproof/bvh_build.h"
-#include "scene/contains_exact.h"
+#include "exact/orient_exact.h"
 #include "scene/distance_tree.h"
 
-namespace rayproof::detail {
+namespace rayproof::scene::detail {
 
 namespace {
 constexpr std::uint32_t kLeaf = 4;
@@ -67,7 +67,7 @@ DistanceTree build_distance_tree(const std::vector<Vec3<double>>& v, const std::
   for (std::uint32_t s = 0; s < n; ++s) {
     t.tris[s] = tri[t.ids[s]];
     const auto& [a, bb, c] = t.tris[s];
-    using scene::detail::orient2d_exact;
+    using certified::orient2d_exact;
     t.degenerate[s] = orient2d_exact(a.x, a.y, bb.x, bb.y, c.x, c.y) == 0 && orient2d_exact(a.y, a.z, bb.y, bb.z, c.y, c.z) == 0 &&
                       orient2d_exact(a.z, a.x, bb.z, bb.x, c.z, c.x) == 0;
   }
@@ -93,4 +93,4 @@ DistanceTree build_distance_tree(const std::vector<Vec3<double>>& v, const std::
   return t;
 }
 
-}  // namespace rayproof::detail
+}  // namespace rayproof::scene::detail

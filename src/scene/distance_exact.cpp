@@ -10,10 +10,10 @@
 
 #include "exact/rational_vec.h"
 #include "exact/rounding.h"
-#include "scene/contains_exact.h"
+#include "exact/orient_exact.h"
 #include "scene/distance_tree.h"
 
-namespace rayproof::detail {
+namespace rayproof::scene::detail {
 
 namespace {
 
@@ -173,14 +173,14 @@ ClosestPoint exact_search(const DistanceTree& t, const Vec3<double>& pd) {
 }
 
 
-}  // namespace rayproof::detail
+}  // namespace rayproof::scene::detail
 
 namespace rayproof {
 
 namespace {
 bool finite(const Vec3<double>& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
 bool zero_area(const std::array<Vec3<double>, 3>& t) {
-  using scene::detail::orient2d_exact;
+  using certified::orient2d_exact;
   const auto& [a, b, c] = t;
   return orient2d_exact(a.x, a.y, b.x, b.y, c.x, c.y) == 0 && orient2d_exact(a.y, a.z, b.y, b.z, c.y, c.z) == 0 &&
          orient2d_exact(a.z, a.x, b.z, b.x, c.z, c.x) == 0;
@@ -189,12 +189,12 @@ bool zero_area(const std::array<Vec3<double>, 3>& t) {
 
 double exact_triangle_distance(const Vec3<double>& p, const std::array<Vec3<double>, 3>& t) {
   if (!finite(p) || !finite(t[0]) || !finite(t[1]) || !finite(t[2])) return std::numeric_limits<double>::quiet_NaN();
-  return detail::round_sqrt(detail::exact_triangle(p, t, zero_area(t)).d2);
+  return scene::detail::round_sqrt(scene::detail::exact_triangle(p, t, zero_area(t)).d2);
 }
 
 int compare_triangle_distances(const Vec3<double>& p, const std::array<Vec3<double>, 3>& t1,
                                const std::array<Vec3<double>, 3>& t2) {
-  const int c = cmp(detail::exact_triangle(p, t1, zero_area(t1)).d2, detail::exact_triangle(p, t2, zero_area(t2)).d2);
+  const int c = cmp(scene::detail::exact_triangle(p, t1, zero_area(t1)).d2, scene::detail::exact_triangle(p, t2, zero_area(t2)).d2);
   return c < 0 ? -1 : (c > 0 ? 1 : 0);
 }
 

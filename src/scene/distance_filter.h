@@ -14,7 +14,7 @@
 #include "rayproof/float_util.h"
 #include "rayproof/vec3.h"
 
-namespace rayproof::detail::dist {
+namespace rayproof::scene::detail {
 
 inline constexpr double kInf = std::numeric_limits<double>::infinity();
 /// Relative slack for the rounding of the radius computations themselves (a few operations of
@@ -160,4 +160,4 @@ bool round_sqrt_ball(const V& x, double r, double& out) {
   return false;
 }
 
-}  // namespace rayproof::detail::dist
+}  // namespace rayproof::scene::detail

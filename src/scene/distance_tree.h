@@ -1,5 +1,5 @@
 #pragma once
-/// The closest-point tree of a ClosedMesh (internal to rayproof_scene_certified): a binary BVH
+/// The closest-point tree of an ExactMesh (internal to rayproof_scene_certified): a binary BVH
 /// with double boxes (exact bounds of the vertices) over the triangles, stored in leaf order, the
 /// same tree collapsed to eight (AVX2) or four (SSE) children per node for the first pass
 /// (distance_wide.cpp), and the exact stage's helpers (distance_exact.cpp).
@@ -13,7 +13,7 @@
 #include "rayproof/scene/distance.h"
 #include "rayproof/vec3.h"
 
-namespace rayproof::detail {
+namespace rayproof::scene::detail {
 
 /// 32 bytes: the two children of a node share a cache line. The bounds are the exact double
 /// bounds of the triangles rounded outwards to float (beyond the float range: +-inf).
@@ -52,9 +52,9 @@ enum DistanceAblation : unsigned {
 void set_distance_ablation(unsigned flags);
 [[nodiscard]] unsigned distance_ablation();
 
-struct ContainsState;
+struct ExactMeshState;
 /// The mesh's distance tree, built by the first call (thread-safe).
-[[nodiscard]] const DistanceTree& distance_tree(const ContainsState& s);
+[[nodiscard]] const DistanceTree& distance_tree(const ExactMeshState& s);
 /// The closest-point query (distance.cpp); `hint`: a slot whose triangle is likely near p (a batch's
 /// previous answer; 0xffffffff for none), for the first bound only: the answer does not depend on it.
 [[nodiscard]] ClosestPoint distance_query(const DistanceTree& t, const Vec3<double>& p, std::uint32_t hint);
@@ -70,4 +70,4 @@ struct ContainsState;
 /// handle (over- or underflow).
 [[nodiscard]] ClosestPoint exact_search(const DistanceTree& t, const Vec3<double>& p);
 
-}  // namespace rayproof::detail
+}  // namespace rayproof::scene::detail

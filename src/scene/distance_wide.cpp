@@ -22,7 +22,11 @@
 
 #include "scene/distance_bounds.h"
 
-namespace rayproof::detail {
+namespace rayproof::scene::detail {
+
+using rayproof::detail::float_above;  // the header-only helpers (rayproof/float_util.h, bvh_wide_loop.h)
+using rayproof::detail::wide_traverse_loop;
+using rayproof::detail::wide_traverse_loop_avx2;
 
 namespace {
 
@@ -40,10 +44,10 @@ struct LeafVisit {
   std::vector<DistanceVisit>& visited;
   bool operator()(std::uint32_t first, std::uint32_t count) {
     for (std::uint32_t s = first; s < first + count; ++s) {
-      const double box = dist::triangle_box_lb(t.tris[s], p);
+      const double box = triangle_box_lb(t.tris[s], p);
       if (box > U) continue;
       Vec3<double> e;
-      const double ub = dist::upper_bound(t.tris[s], p, &e);
+      const double ub = upper_bound(t.tris[s], p, &e);
       visited.push_back({s, box, e});
       if (ub < U) U = ub, thr = box_threshold(U);
     }
@@ -113,4 +117,4 @@ bool wide_first_bound(const DistanceTree& t, const Vec3<double>& p, double& U, s
   return true;
 }
 
-}  // namespace rayproof::detail
+}  // namespace rayproof::scene::detail

@@ -9,11 +9,11 @@
 #include "rayproof/vec3.h"
 #include "scene/distance_tree.h"
 
-namespace rayproof::detail {
+namespace rayproof::scene::detail {
 
 /// A triangle the first pass visited within its bound: its slot, a lower bound of its squared
 /// distance to p (rounded down: its box's), and the direction from the point its upper bound found
-/// to p (for dist::lower_bound_along).
+/// to p (for lower_bound_along).
 struct DistanceVisit {
   std::uint32_t slot;
   double lb;
@@ -28,4 +28,4 @@ struct DistanceVisit {
 /// the caller takes the binary tree.
 [[nodiscard]] bool wide_first_bound(const DistanceTree& t, const Vec3<double>& p, double& U, std::vector<DistanceVisit>& visited);
 
-}  // namespace rayproof::detail
+}  // namespace rayproof::scene::detail

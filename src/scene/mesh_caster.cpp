@@ -8,7 +8,7 @@
 #include "scene/mesh_caster_state.h"
 
 namespace rayproof {
-namespace detail {
+namespace scene::detail {
 
 void MeshStateDeleter::operator()(const MeshState* s) const { delete s; }
 
@@ -89,9 +89,9 @@ MeshStatePtr make_mesh_state(const VertexArray& v, const IndexArray& i, cast::Ro
   return build_mesh_state(v, i, {"robust", FastKernel::robust, nullptr, BvhTraversal::conservative});
 }
 
-}  // namespace detail
+}  // namespace scene::detail
 
-MeshHit detail::to_mesh_hit(const scene::PrimHit& h) {
+MeshHit scene::detail::to_mesh_hit(const scene::PrimHit& h) {
   MeshHit m;
   m.contact = h.contact;
   if (h.prim == scene::PrimHit::kNoPrim) return m;
@@ -101,8 +101,8 @@ MeshHit detail::to_mesh_hit(const scene::PrimHit& h) {
 
 namespace {
 
-using detail::str;
-using detail::to_mesh_hit;
+using scene::detail::str;
+using scene::detail::to_mesh_hit;
 
 /// The batch's spans agree: as many results as rays, and 0, 1 or one range per ray.
 void check_batch(std::size_t rays, std::size_t ranges, std::size_t results) {

@@ -5,7 +5,7 @@
 #include "scene/mesh_caster_state.h"
 
 namespace rayproof {
-namespace detail {
+namespace scene::detail {
 namespace {
 
 /// The exact class and t (rounded to nearest) of a ray/triangle pair the filter left undecided.
@@ -22,7 +22,7 @@ MeshStatePtr make_mesh_state(const VertexArray& v, const IndexArray& i, cast::Ce
   return build_mesh_state(v, i, std::move(m));
 }
 
-}  // namespace detail
+}  // namespace scene::detail
 
 template MeshCaster<cast::Certified>::MeshCaster(const VertexArray&, const IndexArray&);
 

@@ -7,7 +7,7 @@
 #include "rayproof/scene/mesh_caster.h"
 #include "scene/accel.h"
 
-namespace rayproof::detail {
+namespace rayproof::scene::detail {
 
 struct MeshState {
   std::vector<Vec3<double>> copy;  ///< the converted vertices, when they could not be read in place
@@ -28,10 +28,10 @@ struct MeshState {
 [[nodiscard]] MeshStatePtr make_mesh_state(const VertexArray& v, const IndexArray& i, cast::Robust);
 [[nodiscard]] MeshStatePtr make_mesh_state(const VertexArray& v, const IndexArray& i, cast::Certified);
 
-}  // namespace rayproof::detail
+}  // namespace rayproof::scene::detail
 
 namespace rayproof {
 template <class Method>
 MeshCaster<Method>::MeshCaster(const VertexArray& vertices, const IndexArray& indices)
-    : state_(detail::make_mesh_state(vertices, indices, Method{})) {}
+    : state_(scene::detail::make_mesh_state(vertices, indices, Method{})) {}
 }  // namespace rayproof

@@ -5,7 +5,7 @@
 
 namespace rayproof::scene {
 
-CastHit to_cast_hit(const scene::PrimHit& h) { return rayproof::detail::to_mesh_hit(h); }
+CastHit to_cast_hit(const scene::PrimHit& h) { return rayproof::scene::detail::to_mesh_hit(h); }
 
 bool SceneCaster::takes_public_api(const scene::Scene& s, const scene::SceneMethod& m, const BvhBuildOptions& opt) {
   const bool kernel = m.fast == FastKernel::mt_float || m.fast == FastKernel::robust ||

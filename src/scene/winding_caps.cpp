@@ -18,9 +18,9 @@
 #include <stdexcept>
 #include <unordered_map>
 
-#include "scene/contains_state.h"
+#include "scene/exact_mesh_state.h"
 
-namespace rayproof::detail {
+namespace rayproof::scene::detail {
 
 namespace {
 
@@ -29,17 +29,17 @@ std::uint32_t find(std::vector<std::uint32_t>& parent, std::uint32_t x) {
   return x;
 }
 
-bool in_box(const ContainsState& s, const Vec3<double>& p) {
+bool in_box(const ExactMeshState& s, const Vec3<double>& p) {
   return s.lo.x <= p.x && p.x <= s.hi.x && s.lo.y <= p.y && p.y <= s.hi.y && s.lo.z <= p.z && p.z <= s.hi.z;
 }
 
 /// The capped mesh (mesh + caps, closed) and the caps' tree.
-void finish_caps(ContainsState& s, std::unique_ptr<ContainsState> st, const std::vector<Vec3<double>>& verts,
+void finish_caps(ExactMeshState& s, std::unique_ptr<ExactMeshState> st, const std::vector<Vec3<double>>& verts,
                  std::vector<std::array<std::uint32_t, 3>> tris, std::vector<std::array<std::uint32_t, 3>> caps) {
   if (caps.empty()) return;
   tris.insert(tris.end(), caps.begin(), caps.end());
   try {
-    load_contains_state(*st, VertexArray(&verts[0].x, verts.size()), IndexArray{tris.front().data(), tris.size()},
+    load_exact_mesh_state(*st, VertexArray(&verts[0].x, verts.size()), IndexArray{tris.front().data(), tris.size()},
                         ContainsRule::nonzero);
   } catch (const std::exception&) {
     return;  // not closed after all (cannot happen for a cycle; the full tree answers then)
@@ -98,7 +98,7 @@ std::vector<std::array<std::uint32_t, 3>> walk_caps(const std::vector<std::pair<
 
 }  // namespace
 
-void build_caps(ContainsState& s) {
+void build_caps(ExactMeshState& s) {
   const std::vector<std::uint32_t> id = weld(s.vertices);
   std::unordered_map<std::uint64_t, int> balance;
   for (const auto& t : s.triangles)
@@ -123,7 +123,7 @@ void build_caps(ContainsState& s) {
     }
   if (boundary.empty()) return;  // oriented and closed: the tree alone
   std::sort(boundary.begin(), boundary.end(), [](const Edge& x, const Edge& y) { return x.lo != y.lo ? x.lo < y.lo : x.hi < y.hi; });
-  auto st = std::make_unique<ContainsState>();
+  auto st = std::make_unique<ExactMeshState>();
   std::vector<std::array<std::uint32_t, 3>> tris = s.triangles, caps;
   if (winding_tuning().compact_caps) {
     std::vector<std::pair<std::uint32_t, std::uint32_t>> cap_edges;
@@ -158,7 +158,7 @@ void build_caps(ContainsState& s) {
   finish_caps(s, std::move(st), verts, std::move(tris), std::move(caps));
 }
 
-Side winding_side(const ContainsState& s, const Vec3<double>& p) {
+Side winding_side(const ExactMeshState& s, const Vec3<double>& p) {
   if (!s.capped) return s.tree->side(p);
   std::int32_t W = 0;
   if (in_box(*s.capped, p)) {
@@ -176,4 +176,4 @@ Side winding_side(const ContainsState& s, const Vec3<double>& p) {
   return s.tree->side(p);
 }
 
-}  // namespace rayproof::detail
+}  // namespace rayproof::scene::detail

@@ -15,16 +15,16 @@
 #include <stdexcept>
 #include <utility>
 
-#include "scene/contains_exact.h"
-#include "scene/contains_state.h"
+#include "exact/orient_exact.h"
+#include "scene/exact_mesh_state.h"
 #include "scene/winding_tree.h"
 
-namespace rayproof::detail {
+namespace rayproof::scene::detail {
 
 namespace {
 
-using scene::detail::orient2d_exact;
-using scene::detail::orient3d_exact;
+using certified::orient2d_exact;
+using certified::orient3d_exact;
 
 inline double coord(const Vec3<double>& p, int k) { return reinterpret_cast<const double*>(&p)[k]; }
 
@@ -222,14 +222,14 @@ WindingValue winding_mpfr(std::span<const Vec3<double>> vertices,
   return out;
 }
 
-}  // namespace rayproof::detail
+}  // namespace rayproof::scene::detail
 
 namespace rayproof {
 
 WindingValue winding_brute_force_mpfr(std::span<const Vec3<double>> vertices,
                                       std::span<const std::array<std::uint32_t, 3>> triangles, const Vec3<double>& p,
                                       int bits) {
-  return detail::winding_mpfr(vertices, triangles, p, bits, nullptr);
+  return scene::detail::winding_mpfr(vertices, triangles, p, bits, nullptr);
 }
 
 }  // namespace rayproof

@@ -82,7 +82,7 @@
 
 #include "scene/winding_tree.h"
 
-namespace rayproof::detail {
+namespace rayproof::scene::detail {
 
 namespace {
 
@@ -481,13 +481,13 @@ WindingValue winding_brute_force(std::span<const Vec3<double>> vertices,
   return s.value();
 }
 
-}  // namespace rayproof::detail
+}  // namespace rayproof::scene::detail
 
 namespace rayproof {
 
 WindingValue winding_brute_force(std::span<const Vec3<double>> vertices,
                                  std::span<const std::array<std::uint32_t, 3>> triangles, const Vec3<double>& p) {
-  return detail::winding_brute_force(vertices, triangles, p);
+  return scene::detail::winding_brute_force(vertices, triangles, p);
 }
 
 double winding_plain_double(std::span<const Vec3<double>> vertices,

@@ -1,16 +1,16 @@
 #pragma once
 /// The generalized winding number over a tree with a far-field expansion and a guaranteed bound
-/// (internal to rayproof_scene_certified; the public face is ClosedMesh::winding_value and
+/// (internal to rayproof_scene_certified; the public face is ExactMesh::winding_value and
 /// ContainsRule::winding). The derivations are in winding_tree.cpp.
 #include <array>
 #include <cstdint>
 #include <span>
 #include <vector>
 
-#include "rayproof/scene/contains.h"
+#include "rayproof/scene/exact_mesh.h"
 #include "rayproof/scene/winding.h"
 
-namespace rayproof::detail {
+namespace rayproof::scene::detail {
 
 /// One triangle's solid angle at p with a bound on its error: |Omega_exact - omega| <= err.
 /// status: 0 bounded; 1 unresolved in this precision (p on or within rounding of the triangle's
@@ -117,4 +117,4 @@ class WindingTree {
              std::uint32_t self, int depth);
 };
 
-}  // namespace rayproof::detail
+}  // namespace rayproof::scene::detail

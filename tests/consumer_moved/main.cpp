@@ -1,6 +1,7 @@
 // A downstream program written to the docs before the public headers moved into folders by library:
 // it includes the six old paths (rayproof/certified.h, exact.h, check.h, gtest.h, contains.h,
-// mesh_caster.h), which must still build, with one deprecation message each, and work.
+// mesh_caster.h), which must still build, with one deprecation message each, and work. It also names
+// the mesh object by its earlier name, ClosedMesh (now ExactMesh), which must warn and work too.
 #include <rayproof/certified.h>
 #include <rayproof/check.h>
 #include <rayproof/contains.h>

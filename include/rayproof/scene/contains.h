@@ -1,6 +1,8 @@
 #pragma once
-/// ClosedMesh: exact point containment ("is p inside?") and segment queries on a closed triangle
-/// mesh, at BVH speed. The rule and its proof: docs/contains.md.
+/// The queries of docs/contains.md: exact point containment ("is p inside?"), segments and a ray's
+/// crossings, asked of a rayproof::ExactMesh (rayproof/scene/exact_mesh.h). This header declares
+/// their answers (Side, SegmentHit, Crossing, Touch, RayCrossings) and states their contract; the
+/// rule and its proof: docs/contains.md.
 ///
 /// Contract:
 /// - Input: the arrays of MeshCaster (rayproof/scene/mesh_caster.h, the same checks and MeshInputError).
@@ -21,7 +23,7 @@
 ///   the parity ray with edges and vertices are decided by Simulation of Simplicity: no retry, no
 ///   epsilon. Zero-area triangles are never crossed and are not surface.
 /// - A point with a NaN or infinite coordinate is Side::invalid.
-/// - ray_crossings(ray): every crossing of a ray once, with its direction, and the touches apart, exact
+/// - ExactMesh::ray_crossings(ray): every crossing of a ray once, with its direction, and the touches apart, exact
 ///   (any mesh; docs/contains.md, "Crossings").
 /// - Threads: queries are const and may run concurrently; the batch calls run on a TBB arena of
 ///   `threads` threads (0: TBB's default).
@@ -108,81 +110,8 @@ struct RayCrossings {
     return n;
   }
 };
-struct ClosestPoint;  // rayproof/scene/distance.h
-
-class ClosedMesh {
- public:
-  static constexpr std::int32_t kOnSurface = std::numeric_limits<std::int32_t>::min();
-
-  /// Checks and copies the arrays, checks closure, builds the BVH. Throws MeshInputError,
-  /// MeshNotClosedError; ContainsRule::nonzero on a mesh that is not oriented throws
-  /// MeshNotClosedError too (its message names a misoriented edge).
-  ClosedMesh(const VertexArray& vertices, const IndexArray& indices, ContainsRule rule = ContainsRule::automatic);
-  ~ClosedMesh();
-  ClosedMesh(ClosedMesh&&) noexcept;
-  ClosedMesh& operator=(ClosedMesh&&) noexcept;
-
-  [[nodiscard]] std::size_t triangle_count() const;
-  /// Every edge used as often in each direction: the winding number is defined.
-  [[nodiscard]] bool oriented() const;
-  /// The rule contains() applies: nonzero, parity or winding.
-  [[nodiscard]] ContainsRule rule() const;
-  /// Every edge used by an even number of triangles.
-  [[nodiscard]] bool closed() const;
-
-  [[nodiscard]] Side contains(const Vec3<double>& p) const;
-  /// The exact winding number at p; kOnSurface on the surface, 0 for an invalid point. Throws
-  /// std::logic_error when the mesh is not closed and oriented (see winding_value).
-  [[nodiscard]] std::int32_t winding(const Vec3<double>& p) const;
-  /// Crossings of the perturbed parity ray (the parity rule's count; mainly for tests).
-  [[nodiscard]] std::uint32_t crossings(const Vec3<double>& p) const;
-  /// The generalized winding number at p with its bound (any mesh): on a closed oriented mesh the
-  /// exact integer with bound 0; elsewhere a value refined until bound <= tolerance (or the bound
-  /// of evaluating every triangle directly, a few ulps per triangle, if that is larger).
-  [[nodiscard]] WindingValue winding_value(const Vec3<double>& p, double tolerance = 1e-6) const;
-  /// winding_value of n packed points `stride` bytes apart into w[i] and bound[i] (surface: w NaN
-  /// and bound 0; invalid: w NaN and bound infinite).
-  void winding_values(const double* xyz, std::size_t n, std::size_t stride, double* w, double* bound,
-                      double tolerance = 1e-6, int threads = 0) const;
-
-  /// contains() of every point into `out` (same size; MeshInputError otherwise).
-  void contains(std::span<const Vec3<double>> points, std::span<Side> out, int threads = 0) const;
-  /// The same on packed x y z doubles `stride` bytes apart (the Python binding's arrays).
-  void contains(const double* xyz, std::size_t n, std::size_t stride, std::uint8_t* out, int threads = 0) const;
-
-  /// Every point where the ray crosses the surface with tmin <= t <= tmax, once each, in exact t
-  /// order, with its direction; and apart from them the touches. Exact: each triangle is crossed or
-  /// not as by the ray moved sideways by an infinitesimal (o + eps e_x + eps^2 e_y + eps^3 e_z), and
-  /// the triangles met at one exact point (equal exact t) form one contact whose net count decides:
-  /// +k (-k): k crossings in (out), 0: a touch. Any mesh (open, a soup): triangles as given.
-  [[nodiscard]] RayCrossings ray_crossings(const Ray<double>& ray, TRange range = {}) const;
-  /// ray_crossings() into `out`, reusing its vectors' storage.
-  void ray_crossings_into(const Ray<double>& ray, TRange range, RayCrossings& out) const;
-  /// ray_crossings() of every ray into `out` (same size; MeshInputError otherwise; its vectors' storage
-  /// is reused).
-  void ray_crossings(std::span<const Ray<double>> rays, std::span<RayCrossings> out, TRange range = {},
-                 int threads = 0) const;
-
-  /// Whether the closed segment p->q meets the surface, and where first.
-  [[nodiscard]] SegmentHit segment(const Vec3<double>& p, const Vec3<double>& q) const;
-
-  /// Closest point, nearest triangle, distance and (with_side) side of p: rayproof/scene/distance.h
-  /// (include it for ClosestPoint), docs/distance.md.
-  [[nodiscard]] ClosestPoint closest_point(const Vec3<double>& p, bool with_side = true) const;
-  /// closest_point() of every point into `out` (same size; MeshInputError otherwise).
-  void closest_points(std::span<const Vec3<double>> points, std::span<ClosestPoint> out, bool with_side = true,
-                      int threads = 0) const;
-  /// The same on packed x y z doubles `stride` bytes apart.
-  void closest_points(const double* xyz, std::size_t n, std::size_t stride, ClosestPoint* out, bool with_side = true,
-                      int threads = 0) const;
-  /// The distance alone (correctly rounded; NaN for an invalid point).
-  [[nodiscard]] double distance(const Vec3<double>& p) const;
-  /// The distance with the side's sign: negative inside, 0 on the surface, NaN for an invalid point.
-  [[nodiscard]] double signed_distance(const Vec3<double>& p) const;
-
- private:
-  struct State;
-  std::unique_ptr<State> s_;
-};
-
 }  // namespace rayproof
+
+// The mesh object these queries are asked of. Programs written to the earlier docs included this
+// header for the class, then called ExactMesh (now a deprecated alias in exact_mesh.h).
+#include "rayproof/scene/exact_mesh.h"

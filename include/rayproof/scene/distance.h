@@ -1,5 +1,5 @@
 #pragma once
-/// Closest point and distance on a ClosedMesh (rayproof/scene/contains.h): the nearest triangle, the
+/// Closest point and distance on an ExactMesh (rayproof/scene/exact_mesh.h): the nearest triangle, the
 /// closest point on it with its barycentrics, the distance and the side. The rule and why it is
 /// exact: docs/distance.md.
 ///
@@ -14,7 +14,7 @@
 ///   triangle's vertices 0, 1, 2 (summing to 1 up to rounding), computed in double from the exactly
 ///   chosen feature (face, edge or vertex), or rounded from the exact rationals when the exact stage
 ///   ran: within a few ulps of the coordinates, not exact (the weights lose digits on slivers).
-/// - side: ClosedMesh::contains(p) (exact), when asked for; Side::surface exactly when distance is 0.
+/// - side: ExactMesh::contains(p) (exact), when asked for; Side::surface exactly when distance is 0.
 /// - A point with a NaN or infinite coordinate: distance NaN, triangle kNoTriangle, side invalid.
 ///   A mesh without triangles: distance +inf, triangle kNoTriangle, side outside.
 /// - Threads: the calls are const; the first builds the distance tree once (thread-safe).

@@ -109,13 +109,13 @@ struct TRange {
   double tmax = std::numeric_limits<double>::infinity();
 };
 
-namespace detail {
+namespace scene::detail {
 struct MeshState;  // the BVH, the vertices (or a view of the user's) and the method: src/scene
 struct MeshStateDeleter {
   void operator()(const MeshState* s) const;
 };
 using MeshStatePtr = std::unique_ptr<const MeshState, MeshStateDeleter>;
-}  // namespace detail
+}  // namespace scene::detail
 
 template <class Method>
 class MeshCaster {
@@ -148,7 +148,7 @@ class MeshCaster {
            int threads = 0) const;
 
  private:
-  detail::MeshStatePtr state_;
+  scene::detail::MeshStatePtr state_;
 };
 
 extern template class MeshCaster<cast::Float>;

@@ -6,7 +6,7 @@
 /// with small holes and near 0 far outside. The derivations of the bounds: docs/contains.md and the
 /// comments of src/scene/winding_tree.cpp.
 ///
-/// rayproof::ClosedMesh (rayproof/scene/contains.h) answers `contains` on meshes that are not closed
+/// rayproof::ExactMesh (rayproof/scene/exact_mesh.h) answers `contains` on meshes that are not closed
 /// with ContainsRule::winding (inside where w > 1/2) and gives w with its bound (winding_value).
 /// The functions here are the brute-force references (every triangle, no tree) used by the tests
 /// and `rayproof bench contains`.

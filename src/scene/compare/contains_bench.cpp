@@ -42,8 +42,8 @@ certified::Expansion abs_diff(double x, double y) {
 }
 
 
-ClosedMesh closed_mesh(const mesh::Mesh& m, ContainsRule rule = ContainsRule::automatic) {
-  return ClosedMesh(VertexArray(&m.vertices[0].x, m.vertices.size()), IndexArray{m.triangles.front().data(), m.triangles.size()},
+ExactMesh closed_mesh(const mesh::Mesh& m, ContainsRule rule = ContainsRule::automatic) {
+  return ExactMesh(VertexArray(&m.vertices[0].x, m.vertices.size()), IndexArray{m.triangles.front().data(), m.triangles.size()},
                     rule);
 }
 
@@ -71,7 +71,7 @@ std::vector<Disagreement> measure(std::vector<TimedMethod>& ms, const Points& pt
   return shown;
 }
 
-std::vector<TimedMethod> contains_methods(const mesh::Mesh& m, const ClosedMesh& cm, bool epeck) {
+std::vector<TimedMethod> contains_methods(const mesh::Mesh& m, const ExactMesh& cm, bool epeck) {
   std::vector<TimedMethod> ms;
   auto add = [&ms](std::string name, PointRunner run, bool once, bool parity, std::string note = {}) {
     TimedMethod t;
@@ -198,18 +198,18 @@ mesh::Mesh cut_holes(mesh::Mesh m, std::mt19937_64& rng) {
 
 mesh::Mesh load(const std::string& path) { return path == "generated" ? bumpy_sphere(std::size_t(1) << 20) : mesh::read_mesh(path); }
 
-/// A ClosedMesh of `m` built with `tuning` (the winding trees read it when built).
-std::unique_ptr<ClosedMesh> build_with(const mesh::Mesh& m, const rayproof::detail::WindingTuning& tuning) {
-  const rayproof::detail::WindingTuning saved = rayproof::detail::winding_tuning();
-  rayproof::detail::winding_tuning() = tuning;
-  std::unique_ptr<ClosedMesh> cm;
+/// A ExactMesh of `m` built with `tuning` (the winding trees read it when built).
+std::unique_ptr<ExactMesh> build_with(const mesh::Mesh& m, const rayproof::scene::detail::WindingTuning& tuning) {
+  const rayproof::scene::detail::WindingTuning saved = rayproof::scene::detail::winding_tuning();
+  rayproof::scene::detail::winding_tuning() = tuning;
+  std::unique_ptr<ExactMesh> cm;
   try {
-    cm = std::make_unique<ClosedMesh>(closed_mesh(m));
+    cm = std::make_unique<ExactMesh>(closed_mesh(m));
   } catch (...) {
-    rayproof::detail::winding_tuning() = saved;
+    rayproof::scene::detail::winding_tuning() = saved;
     throw;
   }
-  rayproof::detail::winding_tuning() = saved;
+  rayproof::scene::detail::winding_tuning() = saved;
   return cm;
 }
 
@@ -219,17 +219,17 @@ OpenRun time_open_mesh(const std::string& path, const std::string& closed_path, 
                        std::mt19937_64& rng) {
   OpenRun run;
   mesh::Mesh m, orig;
-  std::unique_ptr<ClosedMesh> cm, ref;
+  std::unique_ptr<ExactMesh> cm, ref;
   try {
     m = load(path);
     run.name = path == "generated" ? "generated" : std::filesystem::path(path).stem().string();
-    cm = std::make_unique<ClosedMesh>(closed_mesh(m));
+    cm = std::make_unique<ExactMesh>(closed_mesh(m));
     if (cm->closed()) {  // cut holes; the input is then the closed original
       orig = std::move(m);
       run.closed_name = run.name;
       m = cut_holes(orig, rng);
       run.name += " minus 1% of its triangles";
-      cm = std::make_unique<ClosedMesh>(closed_mesh(m));
+      cm = std::make_unique<ExactMesh>(closed_mesh(m));
     }
   } catch (const std::exception& e) {
     run.error = e.what();
@@ -245,7 +245,7 @@ OpenRun time_open_mesh(const std::string& path, const std::string& closed_path, 
   }
   if (!run.closed_name.empty()) {
     try {
-      ref = std::make_unique<ClosedMesh>(closed_mesh(orig));
+      ref = std::make_unique<ExactMesh>(closed_mesh(orig));
       if (!ref->closed()) throw std::invalid_argument("not closed");
       run.closed_triangles = orig.triangles.size();
     } catch (const std::exception& e) {
@@ -259,14 +259,14 @@ OpenRun time_open_mesh(const std::string& path, const std::string& closed_path, 
   // The rows, timed interleaved. The ablation: the open mesh built with one speed-up turned off.
   struct Timed {
     OpenRow row;
-    const ClosedMesh* mesh;
+    const ExactMesh* mesh;
   };
   std::vector<Timed> rows;
-  std::vector<std::unique_ptr<ClosedMesh>> held;
+  std::vector<std::unique_ptr<ExactMesh>> held;
   rows.push_back({{"contains (rule winding)", 1, false}, cm.get()});
   if (ref) rows.push_back({{"contains on the closed " + run.closed_name, 1, true}, ref.get()});
-  const rayproof::detail::WindingTuning best = rayproof::detail::winding_tuning();
-  auto variant = [&](std::string name, rayproof::detail::WindingTuning t) {
+  const rayproof::scene::detail::WindingTuning best = rayproof::scene::detail::winding_tuning();
+  auto variant = [&](std::string name, rayproof::scene::detail::WindingTuning t) {
     held.push_back(build_with(m, t));
     rows.push_back({{std::move(name), 1, false}, held.back().get()});
   };

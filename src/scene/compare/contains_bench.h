@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "mesh/mesh.h"
-#include "rayproof/scene/contains.h"
+#include "rayproof/scene/exact_mesh.h"
 #include "rayproof/vec3.h"
 
 namespace rayproof::scene::compare {
@@ -44,7 +44,7 @@ std::vector<Disagreement> measure(std::vector<TimedMethod>& ms, const Points& pt
 
 /// rayproof `contains` on `cm`, the competitors of make_contains_competitors (Epeck only when
 /// `epeck`), and rayproof's float and robust casters counting crossings along (1, 1, 1).
-[[nodiscard]] std::vector<TimedMethod> contains_methods(const mesh::Mesh& m, const ClosedMesh& cm, bool epeck);
+[[nodiscard]] std::vector<TimedMethod> contains_methods(const mesh::Mesh& m, const ExactMesh& cm, bool epeck);
 
 /// `n` points uniform in the mesh's bounding box.
 [[nodiscard]] Points box_points(const mesh::Mesh& m, std::size_t n, std::mt19937_64& rng);

@@ -100,7 +100,7 @@ mesh::Mesh crossings_mesh(const std::string& path) {
   return path == "generated" ? bumpy_sphere(std::size_t(1) << 20) : mesh::read_mesh(path);
 }
 
-CrossingsRun time_crossings(const ClosedMesh& cm, const AllHitsCompetitor& embree, const std::vector<Ray<double>>& rays,
+CrossingsRun time_crossings(const ExactMesh& cm, const AllHitsCompetitor& embree, const std::vector<Ray<double>>& rays,
                             double size, int repeat, int threads, bool ablation) {
   CrossingsRun run;
   std::vector<RayCrossings> ours(rays.size()), scratch;
@@ -114,7 +114,7 @@ CrossingsRun time_crossings(const ClosedMesh& cm, const AllHitsCompetitor& embre
     f();
     return double(rays.size()) / (now() - t0) * 1e-6;
   };
-  std::vector<std::pair<std::string, rayproof::detail::CrossingsSpeedups>> off;
+  std::vector<std::pair<std::string, rayproof::scene::detail::CrossingsSpeedups>> off;
   if (ablation) {
     off.push_back({"without float traversal", {false, true, false}});
     off.push_back({"without lane misses", {true, false, false}});
@@ -143,9 +143,9 @@ CrossingsRun time_crossings(const ClosedMesh& cm, const AllHitsCompetitor& embre
         run.ours.push_back(rate([&] { cm.ray_crossings(rays, ours, {}, threads); }));
         continue;
       }
-      rayproof::detail::set_crossings_speedups(off[v - 1].second);
+      rayproof::scene::detail::set_crossings_speedups(off[v - 1].second);
       run.variants[v - 1].ours.push_back(rate([&] { cm.ray_crossings(rays, scratch, {}, threads); }));
-      rayproof::detail::set_crossings_speedups({});
+      rayproof::scene::detail::set_crossings_speedups({});
       if (rep == 0) {  // (the default's answers are in `ours` from repeat 0 on: it runs first there)
         std::size_t& differ = run.variants[v - 1].differing_rays;
         for (std::size_t i = 0; i < rays.size(); ++i) differ += !same(ours[i], scratch[i]);

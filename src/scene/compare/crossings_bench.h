@@ -1,6 +1,6 @@
 #pragma once
 /// The measuring half of `rayproof bench crossings`: the ray sets (random, axis rays exactly through
-/// vertices and through edge midpoints), timed interleaved runs of ClosedMesh::ray_crossings and of
+/// vertices and through edge midpoints), timed interleaved runs of ExactMesh::ray_crossings and of
 /// Embree's all hits (one thread: thread CPU time; more: wall time), and the tally of Embree's hits
 /// against rayproof's exact contacts. The tool prints what these return.
 #include <random>
@@ -9,7 +9,7 @@
 
 #include "mesh/mesh.h"
 #include "rayproof/ray.h"
-#include "rayproof/scene/contains.h"
+#include "rayproof/scene/exact_mesh.h"
 #include "scene/compare/crossings_compare.h"
 
 namespace rayproof::scene::compare {
@@ -55,7 +55,7 @@ struct CrossingsRun {
   std::vector<Variant> variants;
   CrossingsTally tally;
 };
-[[nodiscard]] CrossingsRun time_crossings(const ClosedMesh& cm, const AllHitsCompetitor& embree,
+[[nodiscard]] CrossingsRun time_crossings(const ExactMesh& cm, const AllHitsCompetitor& embree,
                                           const std::vector<Ray<double>>& rays, double size, int repeat,
                                           int threads = 1, bool ablation = false);
 

@@ -29,10 +29,10 @@ double ulps(double x, double ref) {
 
 }  // namespace
 
-std::vector<DistanceMethod> distance_methods(const mesh::Mesh& m, const ClosedMesh& cm, std::vector<std::string>& notes,
+std::vector<DistanceMethod> distance_methods(const mesh::Mesh& m, const ExactMesh& cm, std::vector<std::string>& notes,
                                              bool ablation) {
   std::vector<DistanceMethod> ms;
-  const ClosedMesh* c = &cm;
+  const ExactMesh* c = &cm;
   ms.push_back({"rayproof", [c](std::span<const Vec3<double>> p, std::span<std::uint32_t> t, std::span<double> d) {
                   thread_local std::vector<ClosestPoint> r;
                   r.resize(p.size());
@@ -46,7 +46,7 @@ std::vector<DistanceMethod> distance_methods(const mesh::Mesh& m, const ClosedMe
                   for (std::size_t i = 0; i < p.size(); ++i) t[i] = r[i].triangle, d[i] = r[i].distance;
                 }});
   if (ablation) {
-    using namespace rayproof::detail;
+    using namespace rayproof::scene::detail;
     const std::pair<const char*, unsigned> parts[] = {{"-wide tree", kAblateWide},
                                                       {"-morton order", kAblateOrder},
                                                       {"-previous hint", kAblateHint},
@@ -99,7 +99,7 @@ DistancePointSets distance_point_sets(const mesh::Mesh& m, std::size_t n, std::m
   return s;
 }
 
-DistanceSetResult time_distance_set(const mesh::Mesh& m, const ClosedMesh& cm, std::vector<DistanceMethod>& ms,
+DistanceSetResult time_distance_set(const mesh::Mesh& m, const ExactMesh& cm, std::vector<DistanceMethod>& ms,
                                     const std::vector<Vec3<double>>& pts, int repeat, int threads) {
   for (auto& mt : ms) mt.rates.clear(), mt.tri.assign(pts.size(), 0), mt.dist.assign(pts.size(), 0);
   tbb::task_arena arena(std::max(threads, 1));

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "mesh/mesh.h"
-#include "rayproof/scene/contains.h"
+#include "rayproof/scene/exact_mesh.h"
 #include "rayproof/scene/distance.h"
 
 namespace rayproof::scene::compare {
@@ -29,7 +29,7 @@ struct DistanceMethod {
 /// part turned off per method (the same answers; rayproof/it is that part's speed-up), then the
 /// competitors that can be built here; `notes` gets a line for each that cannot. `cm` must outlive
 /// the methods.
-[[nodiscard]] std::vector<DistanceMethod> distance_methods(const mesh::Mesh& m, const ClosedMesh& cm,
+[[nodiscard]] std::vector<DistanceMethod> distance_methods(const mesh::Mesh& m, const ExactMesh& cm,
                                                            std::vector<std::string>& notes, bool ablation = false);
 
 /// The mesh of `bench distance`: a file, or for "generated" the 1.31M-triangle bumpy sphere
@@ -56,7 +56,7 @@ struct DistanceSetResult {
 };
 /// Each method runs on `threads` threads (> 1: the points split into chunks run concurrently
 /// through the method's own one-thread call, the same for every method).
-[[nodiscard]] DistanceSetResult time_distance_set(const mesh::Mesh& m, const ClosedMesh& cm, std::vector<DistanceMethod>& ms,
+[[nodiscard]] DistanceSetResult time_distance_set(const mesh::Mesh& m, const ExactMesh& cm, std::vector<DistanceMethod>& ms,
                                                   const std::vector<Vec3<double>>& pts, int repeat, int threads = 1);
 
 }  // namespace rayproof::scene::compare

@@ -1,20 +1,20 @@
-// ClosedMesh::segment: whether the closed segment p->q meets the surface (exact orientation signs),
+// ExactMesh::segment: whether the closed segment p->q meets the surface (exact orientation signs),
 // the class of each contact, and the first one along the segment (t from the exact determinants,
 // rounded).
 #include <algorithm>
 #include <cmath>
 #include <limits>
 
-#include "scene/contains_exact.h"
-#include "scene/contains_state.h"
+#include "exact/orient_exact.h"
+#include "scene/exact_mesh_state.h"
 
 namespace rayproof {
 
 namespace {
 
-using scene::detail::orient2d_exact;
-using scene::detail::orient3d_exact;
-using scene::detail::orient3d_value_exact;
+using certified::orient2d_exact;
+using certified::orient3d_exact;
+using certified::orient3d_value_exact;
 
 inline double coord(const Vec3<double>& p, int k) { return reinterpret_cast<const double*>(&p)[k]; }
 
@@ -98,7 +98,7 @@ SegmentContact segment_triangle(const Vec3<double>& a, const Vec3<double>& b, co
 
 }  // namespace
 
-SegmentHit ClosedMesh::segment(const Vec3<double>& p, const Vec3<double>& q) const {
+SegmentHit ExactMesh::segment(const Vec3<double>& p, const Vec3<double>& q) const {
   SegmentHit out;
   out.p_side = contains(p), out.q_side = contains(q);
   if (out.p_side == Side::invalid || out.q_side == Side::invalid) return out;

@@ -1,4 +1,4 @@
-// ClosedMesh::ray_crossings: every point where a ray passes through the surface, once, with its
+// ExactMesh::ray_crossings: every point where a ray passes through the surface, once, with its
 // direction, and the touches apart (docs/contains.md, "Crossings").
 //
 // Candidates: the BVH along the ray (conservative traversal), each triangle classified by the
@@ -31,7 +31,7 @@
 #include "rayproof/certified/intersect.h"
 #include "rayproof/certified_expansion.h"
 #include "scene/batch_threads.h"
-#include "scene/contains_state.h"
+#include "scene/exact_mesh_state.h"
 #include "scene/crossings_exact_sign.h"
 #include "scene/crossings_speedups.h"
 #include "scene/leaf_simd.h"
@@ -215,7 +215,7 @@ Decided decide_perturbed(const Ray<double>& r, const std::array<Vec3<double>, 3>
     }
     if (known.on_line(p[j]) || known.on_line(p[k])) {
       s[i] = 0;
-    } else if (const int small = detail::u_sign_exact_small(d, o, p[j], p[k]); small != 2) {
+    } else if (const int small = scene::detail::u_sign_exact_small(d, o, p[j], p[k]); small != 2) {
       s[i] = small;
     } else {
       const certified::Expansion ux =
@@ -424,7 +424,7 @@ struct Scratch {
 
 }  // namespace
 
-void ClosedMesh::ray_crossings_into(const Ray<double>& ray, TRange range, RayCrossings& out) const {
+void ExactMesh::ray_crossings_into(const Ray<double>& ray, TRange range, RayCrossings& out) const {
   out.crossings.clear();
   out.touches.clear();
   out.valid = false;
@@ -437,7 +437,7 @@ void ClosedMesh::ray_crossings_into(const Ray<double>& ray, TRange range, RayCro
   std::vector<std::size_t>& order = scratch.order;
   std::vector<mpq_class>& exact = scratch.exact;
   Known& known = scratch.known;
-  const detail::CrossingsSpeedups speedups = detail::crossings_speedups();
+  const scene::detail::CrossingsSpeedups speedups = scene::detail::crossings_speedups();
   cand.clear();
   known.clear();
   known.on = speedups.fan_once;
@@ -541,23 +541,23 @@ void ClosedMesh::ray_crossings_into(const Ray<double>& ray, TRange range, RayCro
   });
 }
 
-RayCrossings ClosedMesh::ray_crossings(const Ray<double>& ray, TRange range) const {
+RayCrossings ExactMesh::ray_crossings(const Ray<double>& ray, TRange range) const {
   RayCrossings out;
   ray_crossings_into(ray, range, out);
   return out;
 }
 
-void ClosedMesh::ray_crossings(std::span<const Ray<double>> rays, std::span<RayCrossings> out, TRange range,
+void ExactMesh::ray_crossings(std::span<const Ray<double>> rays, std::span<RayCrossings> out, TRange range,
                            int threads) const {
   if (rays.size() != out.size())
-    throw MeshInputError("ClosedMesh::ray_crossings: " + std::to_string(out.size()) + " results for " +
+    throw MeshInputError("ExactMesh::ray_crossings: " + std::to_string(out.size()) + " results for " +
                          std::to_string(rays.size()) + " rays");
   scene::detail::for_each_batch_range(rays.size(), threads, 256, 64, [&](std::size_t b, std::size_t e) {
     for (std::size_t i = b; i < e; ++i) ray_crossings_into(rays[i], range, out[i]);
   });
 }
 
-namespace detail {
+namespace scene::detail {
 namespace {
 std::atomic<unsigned> speedup_bits{3u};  // CrossingsSpeedups{}
 }  // namespace
@@ -569,6 +569,6 @@ CrossingsSpeedups crossings_speedups() {
   const unsigned b = speedup_bits.load(std::memory_order_relaxed);
   return {(b & 1) != 0, (b & 2) != 0, (b & 4) != 0};
 }
-}  // namespace detail
+}  // namespace scene::detail
 
 }  // namespace rayproof

@@ -2,9 +2,9 @@
 // and products of rationals are exact, so the sign is exact for any exponents.
 #include <gmpxx.h>
 
-#include "scene/contains_exact.h"
+#include "exact/orient_exact.h"
 
-namespace rayproof::scene::detail {
+namespace rayproof::certified {
 
 namespace {
 int sgn_q(const mpq_class& x) { return mpq_sgn(x.get_mpq_t()); }
@@ -39,4 +39,4 @@ double orient3d_value_gmp(const Vec3<double>& a, const Vec3<double>& b, const Ve
   return orient3d_q(a, b, c, p).get_d();
 }
 
-}  // namespace rayproof::scene::detail
+}  // namespace rayproof::certified

@@ -1,5 +1,5 @@
 #pragma once
-/// What a rayproof::ClosedMesh holds (internal to rayproof_scene_certified): packed copies of the
+/// What a rayproof::ExactMesh holds (internal to rayproof_scene_certified): packed copies of the
 /// vertices and triangles, the closure report, the bounding box and the BVH over the copies.
 #include <array>
 #include <memory>
@@ -9,11 +9,11 @@
 #include <string>
 #include <vector>
 
-#include "rayproof/scene/contains.h"
+#include "rayproof/scene/exact_mesh.h"
 #include "scene/accel.h"
 #include "scene/winding_tree.h"
 
-namespace rayproof::detail {
+namespace rayproof::scene::detail {
 
 struct DistanceTree;  // scene/distance_tree.h
 
@@ -25,7 +25,7 @@ struct ClosureReport {
   std::array<std::uint32_t, 3> open_example{}, misoriented_example{};
 };
 
-struct ContainsState {
+struct ExactMeshState {
   std::vector<Vec3<double>> vertices;
   std::vector<std::array<std::uint32_t, 3>> triangles;
   ClosureReport closure;
@@ -39,7 +39,7 @@ struct ContainsState {
   std::unique_ptr<WindingTree> tree;
   /// The winding rule's fast path (winding_caps.cpp): the mesh closed by caps over its boundary
   /// (its exact integer winding number) and a tree over the caps alone.
-  std::unique_ptr<ContainsState> capped;
+  std::unique_ptr<ExactMeshState> capped;
   std::unique_ptr<WindingTree> caps;
   /// The closest-point tree (distance.cpp), built by the first distance query.
   mutable std::once_flag distance_once;
@@ -53,11 +53,11 @@ struct PointQuery {
   std::uint32_t crossings = 0;
 };
 /// The perturbed ray's count at p (finite, inside the closed bounding box; contains.cpp).
-[[nodiscard]] PointQuery query_point(const ContainsState& s, const Vec3<double>& p);
+[[nodiscard]] PointQuery query_point(const ExactMeshState& s, const Vec3<double>& p);
 /// Builds s.capped and s.caps when the caps close the mesh (winding_caps.cpp).
-void build_caps(ContainsState& s);
+void build_caps(ExactMeshState& s);
 /// The winding rule's side of a finite p (winding_caps.cpp).
-[[nodiscard]] Side winding_side(const ContainsState& s, const Vec3<double>& p);
+[[nodiscard]] Side winding_side(const ExactMeshState& s, const Vec3<double>& p);
 
 [[nodiscard]] ClosureReport check_closure(const std::vector<Vec3<double>>& v,
                                           const std::vector<std::array<std::uint32_t, 3>>& tris);
@@ -72,10 +72,10 @@ void build_caps(ContainsState& s);
 
 [[nodiscard]] std::string edge_text(const std::vector<Vec3<double>>& v, const std::array<std::uint32_t, 3>& e);
 /// Checks and copies the arrays, checks closure (MeshNotClosedError), builds the BVH.
-void load_contains_state(ContainsState& s, const VertexArray& v, const IndexArray& ix, ContainsRule rule);
+void load_exact_mesh_state(ExactMeshState& s, const VertexArray& v, const IndexArray& ix, ContainsRule rule);
 
-}  // namespace rayproof::detail
+}  // namespace rayproof::scene::detail
 
 namespace rayproof {
-struct ClosedMesh::State : detail::ContainsState {};
+struct ExactMesh::State : scene::detail::ExactMeshState {};
 }  // namespace rayproof

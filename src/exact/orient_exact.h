@@ -1,9 +1,9 @@
 #pragma once
 /// The exact signs of rayproof/orient.h for every double input: the filter and the expansions
-/// first, GMP rationals when the inputs leave the expansions' exponent window (contains_exact.cpp).
+/// first, GMP rationals when the inputs leave the expansions' exponent window (orient_exact.cpp).
 #include "rayproof/orient.h"
 
-namespace rayproof::scene::detail {
+namespace rayproof::certified {
 
 [[nodiscard]] int orient2d_gmp(double au, double av, double bu, double bv, double pu, double pv);
 [[nodiscard]] int orient3d_gmp(const Vec3<double>& a, const Vec3<double>& b, const Vec3<double>& c,
@@ -28,4 +28,4 @@ namespace rayproof::scene::detail {
   return s != orient::kUnknown ? s : orient3d_gmp(a, b, c, p);
 }
 
-}  // namespace rayproof::scene::detail
+}  // namespace rayproof::certified

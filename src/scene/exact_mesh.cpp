@@ -1,12 +1,12 @@
-// ClosedMesh's construction: the input checks of MeshCaster, packed copies, closure, the BVH.
+// ExactMesh's construction: the input checks of MeshCaster, packed copies, closure, the BVH.
 #include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <string>
 
-#include "scene/contains_state.h"
+#include "scene/exact_mesh_state.h"
 
-namespace rayproof::detail {
+namespace rayproof::scene::detail {
 
 namespace {
 
@@ -14,7 +14,7 @@ std::string str(std::size_t n) { return std::to_string(n); }
 
 void check_array(const char* what, const void* data, std::size_t count, std::size_t stride, std::size_t elem) {
   if (count == 0) return;
-  const std::string a = std::string("ClosedMesh: ") + what + " array: ";
+  const std::string a = std::string("ExactMesh: ") + what + " array: ";
   if (!data) throw MeshInputError(a + "null pointer with a count of " + str(count));
   if (count > 0xfffffffeu) throw MeshInputError(a + "count " + str(count) + " exceeds the limit of 2^32 - 2");
   if (stride < elem)
@@ -27,7 +27,7 @@ void check_array(const char* what, const void* data, std::size_t count, std::siz
 
 }  // namespace
 
-void load_contains_state(ContainsState& s, const VertexArray& v, const IndexArray& ix, ContainsRule rule) {
+void load_exact_mesh_state(ExactMeshState& s, const VertexArray& v, const IndexArray& ix, ContainsRule rule) {
   const std::size_t vsize = v.is_double ? sizeof(double) : sizeof(float);
   check_array("vertex", v.data, v.count, v.stride, 3 * vsize);
   check_array("index", ix.data, ix.triangles, ix.stride, 3 * sizeof(std::uint32_t));
@@ -51,11 +51,11 @@ void load_contains_state(ContainsState& s, const VertexArray& v, const IndexArra
     std::memcpy(s.triangles[t].data(), ib + t * ix.stride, 3 * sizeof(std::uint32_t));
     for (std::uint32_t k : s.triangles[t]) {
       if (k >= v.count)
-        throw MeshInputError("ClosedMesh: triangle " + str(t) + " has vertex index " + str(k) + " out of range (vertex count " +
+        throw MeshInputError("ExactMesh: triangle " + str(t) + " has vertex index " + str(k) + " out of range (vertex count " +
                              str(v.count) + ")");
       const Vec3<double>& p = s.vertices[k];
       if (!(std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)))
-        throw MeshInputError("ClosedMesh: vertex " + str(k) + " (used by triangle " + str(t) + ") has a NaN or infinite coordinate");
+        throw MeshInputError("ExactMesh: vertex " + str(k) + " (used by triangle " + str(t) + ") has a NaN or infinite coordinate");
       if (!any) s.lo = s.hi = p, any = true;
       s.lo = {std::min(s.lo.x, p.x), std::min(s.lo.y, p.y), std::min(s.lo.z, p.z)};
       s.hi = {std::max(s.hi.x, p.x), std::max(s.hi.y, p.y), std::max(s.hi.z, p.z)};
@@ -91,4 +91,4 @@ void load_contains_state(ContainsState& s, const VertexArray& v, const IndexArra
       for (int k = 0; k < 3; ++k) s.slots[j][k] = s.vertices[leaves[j].v[k]];
 }
 
-}  // namespace rayproof::detail
+}  // namespace rayproof::scene::detail
