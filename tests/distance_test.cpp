@@ -15,6 +15,8 @@
 #include <vector>
 
 #include "rayproof/scene/distance.h"
+#include "scene/distance_bounds.h"
+#include "scene/distance_tree.h"
 
 namespace {
 
@@ -376,4 +378,77 @@ TEST(Distance, BatchSideIsContainsOnNestedOverlappingAndInvertedShells) {
   }
   EXPECT_GT(inside, 1000u);  // the sets reach the shells' insides and surfaces
   EXPECT_GT(surface, 100u);
+}
+
+// The wide first pass's leaf lanes (distance_bounds.h: box_bounds4, upper_bounds4) give each
+// triangle's box bound, upper bound and direction bit for bit as the scalar functions, whose
+// proofs they rely on: random, degenerate (repeated and collinear vertices), sliver and scaled
+// triangles, points on their vertices, edges and faces and around them.
+TEST(Distance, LeafLanesEqualTheScalarBoundsBitForBit) {
+  if (!__builtin_cpu_supports("avx2")) GTEST_SKIP() << "no AVX2";
+  namespace d = rayproof::scene::detail;
+  using T3 = std::array<Vec3<double>, 3>;
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<double> u(-1, 1);
+  auto rv = [&](double sc) { return Vec3<double>{u(rng) * sc, u(rng) * sc, u(rng) * sc}; };
+  std::size_t regions[3] = {0, 0, 0};  // interior, edge or vertex of the scalar's weights, roughly
+  for (int round = 0; round < 40000; ++round) {
+    const double sc = std::ldexp(1.0, int(rng() % 7) * 100 - 300);
+    T3 tris[4];
+    for (T3& t : tris) {
+      t = {rv(sc), rv(sc), rv(sc)};
+      switch (rng() % 6) {
+        case 0: t[2] = t[1]; break;                                                  // repeated vertex
+        case 1: t[2] = t[0] + (t[1] - t[0]) * 0.5; break;                            // collinear
+        case 2: t[2] = t[0] + (t[1] - t[0]) * 0.25 + Vec3<double>{0, 0, sc * 1e-12}; break;  // sliver
+        case 3: t[1] = t[0]; t[2] = t[0]; break;                                     // a point
+        default: break;
+      }
+    }
+    const T3& near = tris[rng() % 4];
+    Vec3<double> p;
+    switch (rng() % 5) {
+      case 0: p = near[rng() % 3]; break;
+      case 1: p = near[0] + (near[1] - near[0]) * 0.375; break;
+      case 2: p = near[0] + (near[1] - near[0]) * 0.25 + (near[2] - near[0]) * 0.25; break;
+      case 3: p = near[0] + rv(sc * 1e-9); break;
+      default: p = rv(sc * 4); break;
+    }
+    const T3* g[4] = {&tris[0], &tris[1], &tris[2], &tris[3]};
+    __m256d v[3][3];
+    d::Lanes4 b;
+    d::box_bounds4(g, p, v, b);
+    d::upper_bounds4(v, p, b);
+    for (int i = 0; i < 4; ++i) {
+      Vec3<double> dir;
+      const double box = d::triangle_box_lb(tris[i], p), ub = d::upper_bound(tris[i], p, &dir);
+      ASSERT_EQ(b.box[i], box) << "round " << round << " lane " << i;
+      ASSERT_EQ(std::bit_cast<std::uint64_t>(b.ub[i]), std::bit_cast<std::uint64_t>(ub)) << "round " << round << " lane " << i;
+      for (int k = 0; k < 3; ++k)
+        ASSERT_EQ(std::bit_cast<std::uint64_t>(b.dir[k][i]), std::bit_cast<std::uint64_t>(dir[k])) << "round " << round;
+      regions[std::min(2, int(dir[0] == 0) + int(dir[1] == 0) + int(dir[2] == 0))]++;
+    }
+  }
+  EXPECT_GT(regions[0], 1000u);
+}
+
+// The same answers with the leaf lanes and without (the bench's ablation switch), on a bumpy
+// closed mesh at uniform and near-surface points.
+TEST(Distance, LeafLanesChangeNoAnswer) {
+  Shape s = cube(0, 2);
+  const ExactMesh m = make(s);
+  std::mt19937_64 rng(19);
+  std::uniform_real_distribution<double> u(-1, 3);
+  std::vector<Vec3<double>> pts(4000);
+  for (auto& p : pts) p = {u(rng), u(rng), u(rng)};
+  for (std::size_t i = 0; i < pts.size(); i += 2) pts[i].x = std::nextafter(2.0, i % 4 ? 3.0 : 0.0);
+  std::vector<ClosestPoint> a(pts.size()), b(pts.size());
+  m.closest_points(pts, a, false, 1);
+  rayproof::scene::detail::set_distance_ablation(rayproof::scene::detail::kAblateLanes);
+  m.closest_points(pts, b, false, 1);
+  rayproof::scene::detail::set_distance_ablation(rayproof::scene::detail::kAblateNone);
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    ASSERT_EQ(a[i].distance, b[i].distance) << i;
+    ASSERT_EQ(a[i].triangle, b[i].triangle) << i;
+  }
 }

@@ -7,6 +7,8 @@
 #include <cmath>
 #include <limits>
 
+#include <immintrin.h>
+
 #include "rayproof/vec3.h"
 
 namespace rayproof::scene::detail {
@@ -58,6 +60,107 @@ inline double upper_bound(const std::array<Vec3<double>, 3>& t, const Vec3<doubl
   // 2^-520: above any underflow of the squares (it only loosens the bound below 2^-1000).
   const double r = std::sqrt(e2) * (1 + 0x1p-50) + delta * (1 + 0x1p-50) + 0x1p-520;
   return r * r * (1 + 0x1p-50);
+}
+
+/// Four triangles at once in AVX2 lanes (the wide first pass's leaves, distance_wide.cpp): lane i
+/// of `box` is triangle_box_lb(*tri[i], p), of `ub` upper_bound(*tri[i], p, &dir) with dir in
+/// dir[k][i], bit for bit. Every lane takes the scalar functions' operations in their order (no
+/// contraction: the build has -ffp-contract=off; division and sqrt are correctly rounded in both),
+/// and their branches become blends that pick what the scalar code would have computed, so both
+/// bounds' proofs hold unchanged. (Lanes of the branches not taken may hold NaN or inf; they are
+/// blended out. min and max give the same values as std::min/std::max up to the sign of zero, which
+/// no later step can see: a gap is squared and the sum clamped at 0.)
+struct Lanes4 {
+  alignas(32) double box[4];
+  alignas(32) double ub[4];
+  alignas(32) double dir[3][4];
+};
+
+namespace lanes {
+[[gnu::target("avx2"), gnu::always_inline]] inline __m256d coord(const std::array<Vec3<double>, 3>* const tri[4], int v,
+                                                                  int k) {
+  return _mm256_set_pd((*tri[3])[v][k], (*tri[2])[v][k], (*tri[1])[v][k], (*tri[0])[v][k]);
+}
+[[gnu::target("avx2"), gnu::always_inline]] inline __m256d le(__m256d a, __m256d b) { return _mm256_cmp_pd(a, b, _CMP_LE_OQ); }
+[[gnu::target("avx2"), gnu::always_inline]] inline __m256d ge(__m256d a, __m256d b) { return _mm256_cmp_pd(a, b, _CMP_GE_OQ); }
+[[gnu::target("avx2"), gnu::always_inline]] inline __m256d gt(__m256d a, __m256d b) { return _mm256_cmp_pd(a, b, _CMP_GT_OQ); }
+[[gnu::target("avx2"), gnu::always_inline]] inline __m256d mul(__m256d a, __m256d b) { return _mm256_mul_pd(a, b); }
+[[gnu::target("avx2"), gnu::always_inline]] inline __m256d add(__m256d a, __m256d b) { return _mm256_add_pd(a, b); }
+[[gnu::target("avx2"), gnu::always_inline]] inline __m256d sub(__m256d a, __m256d b) { return _mm256_sub_pd(a, b); }
+/// (a0 b0 + a1 b1) + a2 b2, as dot().
+[[gnu::target("avx2"), gnu::always_inline]] inline __m256d dot3(const __m256d a[3], const __m256d b[3]) {
+  return add(add(mul(a[0], b[0]), mul(a[1], b[1])), mul(a[2], b[2]));
+}
+}  // namespace lanes
+
+/// The box bounds of four triangles (lane i: triangle_box_lb(*tri[i], p)); the triangles' vertices
+/// are loaded into `v` (v[vertex][axis]) for upper_bounds4.
+[[gnu::target("avx2")]] inline void box_bounds4(const std::array<Vec3<double>, 3>* const tri[4], const Vec3<double>& p,
+                                                __m256d v[3][3], Lanes4& out) {
+  using namespace lanes;
+  __m256d s = _mm256_setzero_pd();
+  for (int k = 0; k < 3; ++k) {
+    for (int j = 0; j < 3; ++j) v[j][k] = coord(tri, j, k);
+    const __m256d lo = _mm256_min_pd(_mm256_min_pd(v[0][k], v[1][k]), v[2][k]);
+    const __m256d hi = _mm256_max_pd(_mm256_max_pd(v[0][k], v[1][k]), v[2][k]);
+    const __m256d pk = _mm256_set1_pd(p[k]);
+    const __m256d g = _mm256_max_pd(_mm256_max_pd(sub(lo, pk), sub(pk, hi)), _mm256_setzero_pd());
+    s = add(s, mul(g, g));
+  }
+  const __m256d lb = sub(mul(s, _mm256_set1_pd(1 - 0x1p-49)), _mm256_set1_pd(0x1p-1070));
+  _mm256_store_pd(out.box, _mm256_max_pd(lb, _mm256_setzero_pd()));
+}
+
+/// The upper bounds of the four triangles box_bounds4 loaded (lane i: upper_bound(*tri[i], p, &dir)).
+[[gnu::target("avx2")]] inline void upper_bounds4(const __m256d v[3][3], const Vec3<double>& p, Lanes4& out) {
+  using namespace lanes;
+  const __m256d zero = _mm256_setzero_pd(), one = _mm256_set1_pd(1);
+  __m256d P[3], ab[3], ac[3], ap[3], bp[3], cp[3];
+  for (int k = 0; k < 3; ++k) {
+    P[k] = _mm256_set1_pd(p[k]);
+    ab[k] = sub(v[1][k], v[0][k]), ac[k] = sub(v[2][k], v[0][k]), ap[k] = sub(P[k], v[0][k]);
+    bp[k] = sub(P[k], v[1][k]), cp[k] = sub(P[k], v[2][k]);
+  }
+  const __m256d d1 = dot3(ab, ap), d2 = dot3(ac, ap), d3 = dot3(ab, bp), d4 = dot3(ac, bp), d5 = dot3(ab, cp),
+                d6 = dot3(ac, cp);
+  const __m256d vc = sub(mul(d1, d4), mul(d3, d2)), vb = sub(mul(d5, d2), mul(d1, d6)), va = sub(mul(d3, d6), mul(d5, d4));
+  const __m256d d43 = sub(d4, d3), d56 = sub(d5, d6);
+  // The scalar chain of regions, last first: each earlier test that holds overrides the later ones.
+  const __m256d sum3 = add(add(va, vb), vc);
+  __m256d V = _mm256_div_pd(vb, sum3), W = _mm256_div_pd(vc, sum3);  // face
+  const __m256d w_bc = _mm256_div_pd(d43, add(d43, d56));
+  const __m256d c_bc = _mm256_and_pd(_mm256_and_pd(le(va, zero), ge(d43, zero)), ge(d56, zero));
+  V = _mm256_blendv_pd(V, sub(one, w_bc), c_bc), W = _mm256_blendv_pd(W, w_bc, c_bc);
+  const __m256d c_ac = _mm256_and_pd(_mm256_and_pd(le(vb, zero), ge(d2, zero)), le(d6, zero));
+  V = _mm256_blendv_pd(V, zero, c_ac), W = _mm256_blendv_pd(W, _mm256_div_pd(d2, sub(d2, d6)), c_ac);
+  const __m256d c_ab = _mm256_and_pd(_mm256_and_pd(le(vc, zero), ge(d1, zero)), le(d3, zero));
+  V = _mm256_blendv_pd(V, _mm256_div_pd(d1, sub(d1, d3)), c_ab), W = _mm256_blendv_pd(W, zero, c_ab);
+  const __m256d c_c = _mm256_and_pd(ge(d6, zero), le(d5, d6));
+  V = _mm256_blendv_pd(V, zero, c_c), W = _mm256_blendv_pd(W, one, c_c);
+  const __m256d c_b = _mm256_and_pd(ge(d3, zero), le(d4, d3));
+  V = _mm256_blendv_pd(V, one, c_b), W = _mm256_blendv_pd(W, zero, c_b);
+  const __m256d c_a = _mm256_and_pd(le(d1, zero), le(d2, zero));
+  V = _mm256_blendv_pd(V, zero, c_a), W = _mm256_blendv_pd(W, zero, c_a);
+  V = _mm256_and_pd(V, ge(V, zero));  // !(v >= 0): 0 (NaN too)
+  W = _mm256_and_pd(W, ge(W, zero));
+  const __m256d sum = add(V, W);
+  const __m256d scale = _mm256_div_pd(_mm256_set1_pd(1 - 0x1p-49), sum);
+  const __m256d big = gt(sum, _mm256_set1_pd(1 - 0x1p-50));
+  V = _mm256_blendv_pd(V, mul(V, scale), big), W = _mm256_blendv_pd(W, mul(W, scale), big);
+  const __m256d sign = _mm256_set1_pd(-0.0), ulp50 = _mm256_set1_pd(0x1p-50);
+  __m256d e2 = zero, delta = zero;
+  for (int k = 0; k < 3; ++k) {
+    const __m256d q = add(add(v[0][k], mul(V, ab[k])), mul(W, ac[k]));
+    const __m256d mag = add(add(_mm256_andnot_pd(sign, v[0][k]), mul(V, _mm256_andnot_pd(sign, ab[k]))),
+                            mul(W, _mm256_andnot_pd(sign, ac[k])));
+    delta = add(delta, mul(mag, ulp50));
+    const __m256d d = sub(P[k], q);
+    _mm256_store_pd(out.dir[k], d);
+    e2 = add(e2, mul(d, d));
+  }
+  const __m256d up = _mm256_set1_pd(1 + 0x1p-50);
+  const __m256d r = add(add(mul(_mm256_sqrt_pd(e2), up), mul(delta, up)), _mm256_set1_pd(0x1p-520));
+  _mm256_store_pd(out.ub, mul(mul(r, r), up));
 }
 
 /// A rigorous lower bound of the squared distance from p to a triangle, for any direction e: every

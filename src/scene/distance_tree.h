@@ -48,6 +48,7 @@ enum DistanceAblation : unsigned {
   kAblateOrder = 2,  ///< batches in input order instead of Morton order
   kAblateHint = 4,   ///< no first bound from the previous answer
   kAblateLower = 8,  ///< the ball pass on every triangle whose box is within U (no lower bound along a direction)
+  kAblateLanes = 16, ///< the wide first pass's leaves one triangle at a time instead of four in AVX2 lanes
 };
 void set_distance_ablation(unsigned flags);
 [[nodiscard]] unsigned distance_ablation();

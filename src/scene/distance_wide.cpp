@@ -56,6 +56,34 @@ struct LeafVisit {
   void prefetch(std::uint32_t first) const { __builtin_prefetch(&t.tris[first]); }
 };
 
+/// The same visit on the AVX2 path, four triangles at a time (distance_bounds.h, box_bounds4 and
+/// upper_bounds4: each lane bit for bit the scalar bound): the box bounds of a group first, the
+/// upper bounds only when one of its boxes is within U, then the lanes in slot order exactly as
+/// the scalar visit takes them (U lowered by each, later lanes tested against the lowered U).
+struct LeafVisitLanes : LeafVisit {
+  [[gnu::target("avx2")]] bool operator()(std::uint32_t first, std::uint32_t count) {
+    const std::uint32_t end = first + count;
+    for (std::uint32_t s = first; s < end; s += 4) {
+      const std::uint32_t n = std::min<std::uint32_t>(4, end - s);
+      const std::array<Vec3<double>, 3>* tri[4];
+      for (std::uint32_t i = 0; i < 4; ++i) tri[i] = &t.tris[s + std::min(i, n - 1)];  // a short group repeats its last
+      __m256d v[3][3];
+      Lanes4 b;
+      box_bounds4(tri, p, v, b);
+      const int within = _mm256_movemask_pd(_mm256_cmp_pd(_mm256_load_pd(b.box), _mm256_set1_pd(U), _CMP_LE_OQ)) &
+                         ((1 << n) - 1);
+      if (!within) continue;
+      upper_bounds4(v, p, b);
+      for (int i = 0; i < int(n); ++i) {
+        if (!(within >> i & 1) || b.box[i] > U) continue;
+        visited.push_back({s + std::uint32_t(i), b.box[i], {b.dir[0][i], b.dir[1][i], b.dir[2][i]}});
+        if (b.ub[i] < U) U = b.ub[i], thr = box_threshold(U);
+      }
+    }
+    return false;
+  }
+};
+
 /// The SSE box test of four children (the loop's `test(node, tmax, t)`: the mask of the children
 /// with f <= thr and their f).
 struct Box4 {
@@ -90,7 +118,9 @@ struct Box8 {
   }
 };
 
-[[gnu::target("avx2")]] void run8(const Bvh8& w, const Vec3<double>& p, LeafVisit& leaf) {
+/// The leaf: LeafVisitLanes, or LeafVisit (the ablation's "-leaf lanes").
+template <class Leaf>
+[[gnu::target("avx2")]] void run8(const Bvh8& w, const Vec3<double>& p, Leaf& leaf) {
   Box8 test;
   for (int k = 0; k < 3; ++k) test.pl[k] = _mm256_set1_ps(bvh_float_down(p[k])), test.ph[k] = _mm256_set1_ps(bvh_float_up(p[k]));
   const float& thr = leaf.thr;
@@ -110,8 +140,9 @@ bool wide_first_bound(const DistanceTree& t, const Vec3<double>& p, double& U, s
   constexpr double kRange = 0x1p100;
   if (!(std::abs(p.x) <= kRange && std::abs(p.y) <= kRange && std::abs(p.z) <= kRange)) return false;
   float thr = box_threshold(U);
-  LeafVisit leaf{t, p, U, thr, visited};
-  if (!t.wide8.empty()) run8(t.wide8, p, leaf);
+  LeafVisitLanes leaf{{t, p, U, thr, visited}};
+  if (!t.wide8.empty() && !(distance_ablation() & kAblateLanes)) run8(t.wide8, p, leaf);
+  else if (!t.wide8.empty()) run8(t.wide8, p, static_cast<LeafVisit&>(leaf));
   else if (!t.wide4.empty()) run4(t.wide4, p, leaf);
   else return false;
   return true;

@@ -50,7 +50,8 @@ std::vector<DistanceMethod> distance_methods(const mesh::Mesh& m, const ExactMes
     const std::pair<const char*, unsigned> parts[] = {{"-wide tree", kAblateWide},
                                                       {"-morton order", kAblateOrder},
                                                       {"-previous hint", kAblateHint},
-                                                      {"-lower bound", kAblateLower}};
+                                                      {"-lower bound", kAblateLower},
+                                                      {"-leaf lanes", kAblateLanes}};
     for (const auto& [name, flag] : parts) {
       ms.push_back({std::string("rayproof") + name, [c, flag](std::span<const Vec3<double>> p, std::span<std::uint32_t> t,
                                                              std::span<double> d) {
