@@ -33,18 +33,21 @@ std::vector<DistanceMethod> distance_methods(const mesh::Mesh& m, const ExactMes
                                              bool ablation) {
   std::vector<DistanceMethod> ms;
   const ExactMesh* c = &cm;
-  ms.push_back({"rayproof", [c](std::span<const Vec3<double>> p, std::span<std::uint32_t> t, std::span<double> d) {
-                  thread_local std::vector<ClosestPoint> r;
-                  r.resize(p.size());
-                  c->closest_points(p, r, false, 1);
-                  for (std::size_t i = 0; i < p.size(); ++i) t[i] = r[i].triangle, d[i] = r[i].distance;
-                }});
-  ms.push_back({"rayproof+side", [c](std::span<const Vec3<double>> p, std::span<std::uint32_t> t, std::span<double> d) {
-                  thread_local std::vector<ClosestPoint> r;
-                  r.resize(p.size());
-                  c->closest_points(p, r, true, 1);
-                  for (std::size_t i = 0; i < p.size(); ++i) t[i] = r[i].triangle, d[i] = r[i].distance;
-                }});
+  // rayproof's batch call, one thread or `threads` (its own split of the batch, in Morton order).
+  auto batch = [c](bool side) {
+    return [c, side](std::span<const Vec3<double>> p, std::span<std::uint32_t> t, std::span<double> d, int threads) {
+      thread_local std::vector<ClosestPoint> r;
+      r.resize(p.size());
+      c->closest_points(p, r, side, threads);
+      for (std::size_t i = 0; i < p.size(); ++i) t[i] = r[i].triangle, d[i] = r[i].distance;
+    };
+  };
+  for (const bool side : {false, true}) {
+    auto b = batch(side);
+    ms.push_back({side ? "rayproof+side" : "rayproof",
+                  [b](std::span<const Vec3<double>> p, std::span<std::uint32_t> t, std::span<double> d) { b(p, t, d, 1); },
+                  b});
+  }
   if (ablation) {
     using namespace rayproof::scene::detail;
     const std::pair<const char*, unsigned> parts[] = {{"-wide tree", kAblateWide},
@@ -107,6 +110,7 @@ DistanceSetResult time_distance_set(const mesh::Mesh& m, const ExactMesh& cm, st
   auto run = [&](DistanceMethod& mt) {
     if (threads <= 1) return mt.run(pts, mt.tri, mt.dist);
     const std::span<const Vec3<double>> all(pts);
+    if (mt.run_threads) return arena.execute([&] { mt.run_threads(all, mt.tri, mt.dist, threads); });
     const std::size_t chunk = std::max<std::size_t>(1024, pts.size() / (std::size_t(threads) * 8));
     arena.execute([&] {
       tbb::parallel_for(tbb::blocked_range<std::size_t>(0, pts.size(), chunk), [&](const tbb::blocked_range<std::size_t>& r) {

@@ -20,6 +20,10 @@ namespace rayproof::scene::compare {
 struct DistanceMethod {
   std::string name;
   std::function<void(std::span<const Vec3<double>>, std::span<std::uint32_t>, std::span<double>)> run;
+  /// Optional: the method's own batch call on every point at `threads` threads, as a user makes it
+  /// (rayproof's closest_points); without it, more than one thread runs `run` on chunks of points.
+  std::function<void(std::span<const Vec3<double>>, std::span<std::uint32_t>, std::span<double>, int threads)>
+      run_threads{};
   std::vector<double> rates{};  ///< Mpoints/s per run
   std::vector<std::uint32_t> tri{};  ///< the last run's triangles
   std::vector<double> dist{};  ///< and distances
