@@ -15,7 +15,9 @@
 #include "scene/compare/contains_compare.h"
 #include "scene/compare/crossings_compare.h"
 #include "scene/compare/distance_compare.h"
+#include "scene/compare/embree_build.h"
 #include "scene/compare/isa.h"
+#include "registry/registry.h"
 #include "scene/scene.h"
 #include "scene/watertight.h"
 
@@ -180,4 +182,49 @@ TEST(BenchCompetitors, MeshPeersLeaveTbbsThreadCountAlone) {
   ASSERT_EQ(c.size(), 1u);
   ASSERT_TRUE(d[0].run && c[0].run && a.run);
   EXPECT_EQ(tbb::global_control::active_value(tbb::global_control::max_allowed_parallelism), before);
+}
+
+// `bench --embree-tree`: Embree's rtcBuildBVH builds the binary tree that Accel collapses and
+// traverses. Certified's answers are exact, so on either tree every ray gets the same triangle and
+// t; robust misses nothing on either (its promise rests on the boxes holding their triangles).
+TEST(BenchCompetitors, EmbreesTreeUnderOurLoopGivesTheSameAnswers) {
+  std::string why;
+  BvhBuildOptions eo{BvhBuilder::sah, 4};
+  eo.binary = compare::embree_binary_builder(8, 4, &why);
+  if (!compare::have_embree()) {
+    EXPECT_FALSE(eo.binary);
+    EXPECT_FALSE(why.empty());
+    GTEST_SKIP() << "built without Embree";
+  }
+  ASSERT_TRUE(eo.binary);
+  Scene s;
+  add_mesh(s, bumpy_sphere(20000));
+  const Accel ours(s, BvhBuildOptions{BvhBuilder::sah, 4}), theirs(s, eo);
+  const auto rays = some_rays(s, 6000);
+  const SceneMethod certified = find_scene_method("certified", registry::all_methods());
+  std::size_t hits = 0;
+  for (const Ray<double>& r : rays) {
+    const PrimHit a = ours.closest(r, certified), b = theirs.closest(r, certified);
+    ASSERT_EQ(a.prim, b.prim);
+    if (a.prim != PrimHit::kNoPrim) ASSERT_EQ(a.t, b.t);
+    ASSERT_EQ(ours.any(r, certified), theirs.any(r, certified));
+    hits += a.prim != PrimHit::kNoPrim;
+  }
+  EXPECT_GT(hits, rays.size() / 4);
+  // Every triangle lands in exactly one leaf of Embree's tree.
+  std::vector<int> seen(s.mesh.triangles.size(), 0);
+  for (const auto& p : theirs.leaf_prims())
+    if (p.id != PrimHit::kNoPrim) ASSERT_EQ(seen.at(p.id)++, 0);
+  EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), std::ptrdiff_t(seen.size()));
+  // And it is Embree's tree, not ours again: the leaves hold the triangles in another order.
+  std::vector<std::uint32_t> ids_ours, ids_theirs;
+  for (const auto& p : ours.leaf_prims()) ids_ours.push_back(p.id);
+  for (const auto& p : theirs.leaf_prims()) ids_theirs.push_back(p.id);
+  EXPECT_NE(ids_ours, ids_theirs);
+  // The hook is what builds it: one that throws stops the build.
+  BvhBuildOptions failing;
+  failing.binary = [](const std::vector<BvhBox>&, const std::vector<Vec3<float>>&) -> Bvh {
+    throw std::runtime_error("binary builder called");
+  };
+  EXPECT_THROW(Accel(s, failing), std::runtime_error);
 }

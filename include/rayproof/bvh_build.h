@@ -38,6 +38,7 @@
 #include <array>
 #include <cstdint>
 #include <cstring>
+#include <functional>
 #include <limits>
 #include <numeric>
 #include <span>
@@ -72,6 +73,11 @@ struct BvhBuildOptions {
   float group_cost = 2;
   /// The wide tree's collapse (users of build_bvh alone ignore it; Accel follows it).
   BvhCollapse collapse = BvhCollapse::automatic;
+  /// Optional, for Accel: builds the binary tree instead of `builder` from the primitives' boxes
+  /// (rounded outwards; a node's box must hold its primitives' boxes) and centres, as build_bvh
+  /// returns it (an inner node's children at index and index + 1 after it, leaves of at most
+  /// 2 * max_leaf primitives). `rayproof bench --embree-tree` passes Embree's rtcBuildBVH here.
+  std::function<Bvh(const std::vector<BvhBox>&, const std::vector<Vec3<float>>&)> binary{};
 };
 
 /// One group test's cost as the SAH builder uses it (1 when leaf_group is 1).

@@ -90,7 +90,7 @@ void Accel::build(const std::vector<BvhBox>& boxes, const std::vector<Vec3<float
   const BvhNodes asked = nodes == BvhNodes::automatic ? bvh_nodes_from_env() : nodes;
   const BvhCollapse collapse = bvh_collapse_choice(opt.collapse);
   // Subtrees in parallel on TBB's threads (the arena of the caller).
-  Bvh bin = build_bvh(boxes, centers, opt, [](std::size_t n, const auto& f) {
+  Bvh bin = opt.binary ? opt.binary(boxes, centers) : build_bvh(boxes, centers, opt, [](std::size_t n, const auto& f) {
     tbb::parallel_for(std::size_t(0), n, [&](std::size_t i) { f(i); });
   });
   // The wide tree of the path (eight-wide for AVX2, four-wide for SSE). Every leaf on a group

@@ -12,6 +12,7 @@
 
 #include "rayproof/bvh_packet.h"
 #include "scene/compare/competitors.h"
+#include "scene/compare/embree_build.h"
 #include "scene/compare/isa.h"
 #include "scene/scene_caster.h"
 #include "scene/watertight.h"
@@ -182,6 +183,37 @@ void bench_scene(const SceneBenchOptions& opt, const Scene& s, const std::string
       for (std::size_t i = 0; i < h.size(); ++i) out[i] = h[i].prim != PrimHit::kNoPrim;
     };
     check_same(name + " packet8", [&](bool c, auto& out) { hits_of(false, c, out); }, [&](bool c, auto& out) { hits_of(true, c, out); });
+  }
+  // Our traversal on our tree and on Embree's (same collapse, leaves and loop; only the binary
+  // tree's splits differ), each through the scene BVH.
+  if (opt.embree_tree) {
+    std::string why;
+    BvhBuildOptions eo{BvhBuilder::sah, 4};
+    eo.binary = embree_binary_builder(2 * eo.max_leaf, eo.leaf_group, &why);
+    if (!eo.binary) notes.push_back("--embree-tree: " + why);
+    std::optional<Accel> accel_e;
+    if (eo.binary) build_arena.execute([&] { accel_e.emplace(s, eo); });
+    for (const auto& [name, m] : methods) {
+      if (m.fast == FastKernel::none || !accel_e) continue;
+      for (const Accel* a : {&accel, static_cast<const Accel*>(&*accel_e)}) {
+        const SceneCaster caster(*a, m);
+        BenchRow row;
+        row.mesh = mesh_name, row.method = name + (a == &accel ? " @ our tree" : " @ embree tree");
+        row.build_s = a->build_seconds();
+        row.bytes = caster.bytes_read_per_primitive(), row.bytes_held = caster.bytes_per_primitive();
+        std::vector<CastHit> hits;
+        std::vector<std::uint8_t> flags;
+        measure(row, 0, true, [&](const std::vector<Ray<double>>& rays, bool closest, int t) {
+          if (closest) hits.resize(rays.size()), caster.closest(rays, hits, t);
+          else flags.resize(rays.size()), caster.any(rays, flags, t);
+        });
+        if (closed) {
+          std::vector<CastHit> lh(leak.size());
+          caster.closest(leak, lh, threads);
+          set_leaks(row.method, std::count_if(lh.begin(), lh.end(), [](const CastHit& h) { return !h.hit(); }), leak.size());
+        }
+      }
+    }
   }
   double embree_build[2] = {-1, -1};
   for (auto& c : make_competitors(s, opt.competitors, threads)) {

@@ -54,6 +54,10 @@ struct SceneBenchOptions {
   std::string competitors = "embree,embree-robust,cgal-epick,cgal-epeck";
   int repeat = 3;
   int width = 640, height = 480;  ///< primary rays: this image of the default view (scenes without a camera)
+  /// Also each compiled method through the scene BVH twice, on our binary tree and on Embree's
+  /// (rtcBuildBVH, embree_build.h), both collapsed and traversed by rayproof: "NAME @ our tree" and
+  /// "NAME @ embree tree" rows.
+  bool embree_tree = false;
 };
 
 /// Runs every method (`methods`: the names as the user gave them, resolved by find_scene_method)
