@@ -14,7 +14,6 @@
 #include <fmt/core.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <filesystem>
 #include <functional>
@@ -35,8 +34,6 @@ namespace {
 
 using scene::compare::DistanceMethod;
 using scene::compare::DistanceSetResult;
-
-double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
 
 struct BenchDistanceOptions {
   std::vector<std::string> meshes;
@@ -104,15 +101,12 @@ int run_bench_distance(BenchDistanceOptions opt) {
       fmt::print(stderr, "{}: {}: {}\n", me, path, e.what());
       return 2;
     }
-    const double t0 = now();
-    (void)cm->distance(m.vertices[m.triangles[0][0]]);  // builds the distance tree
-    const double build = now() - t0;
-    const double t1 = now();
     std::vector<std::string> notes;
-    std::vector<DistanceMethod> ms = scene::compare::distance_methods(m, *cm, notes, opt.ablation);
+    scene::compare::DistanceBuilds builds;
+    std::vector<DistanceMethod> ms = scene::compare::timed_distance_methods(m, *cm, notes, opt.ablation, builds);
     for (const auto& note : notes) fmt::print("  {}\n", note);
     fmt::print("\n{}: {} triangles; rayproof distance tree built in {:.3f} s; competitors built in {:.3f} s\n", path,
-               m.triangles.size(), build, now() - t1);
+               m.triangles.size(), builds.tree_s, builds.methods_s);
     std::mt19937_64 rng(2024);
     const scene::compare::DistancePointSets sets = scene::compare::distance_point_sets(m, opt.points, rng);
     print_set("uniform in the box grown by 20%", ms, scene::compare::time_distance_set(m, *cm, ms, sets.uniform, opt.repeat, opt.threads));

@@ -103,6 +103,17 @@ DistancePointSets distance_point_sets(const mesh::Mesh& m, std::size_t n, std::m
   return s;
 }
 
+std::vector<DistanceMethod> timed_distance_methods(const mesh::Mesh& m, const ExactMesh& cm,
+                                                   std::vector<std::string>& notes, bool ablation,
+                                                   DistanceBuilds& builds) {
+  const double t0 = now();
+  if (!m.triangles.empty()) (void)cm.distance(m.vertices[m.triangles[0][0]]);  // builds the distance tree
+  const double t1 = now();
+  std::vector<DistanceMethod> ms = distance_methods(m, cm, notes, ablation);
+  builds.tree_s = t1 - t0, builds.methods_s = now() - t1;
+  return ms;
+}
+
 DistanceSetResult time_distance_set(const mesh::Mesh& m, const ExactMesh& cm, std::vector<DistanceMethod>& ms,
                                     const std::vector<Vec3<double>>& pts, int repeat, int threads) {
   for (auto& mt : ms) mt.rates.clear(), mt.tri.assign(pts.size(), 0), mt.dist.assign(pts.size(), 0);

@@ -36,6 +36,16 @@ struct DistanceMethod {
 [[nodiscard]] std::vector<DistanceMethod> distance_methods(const mesh::Mesh& m, const ExactMesh& cm,
                                                            std::vector<std::string>& notes, bool ablation = false);
 
+/// The seconds the bench's set-up took: cm's distance tree (built by its first query) and
+/// distance_methods (the competitors' structures).
+struct DistanceBuilds {
+  double tree_s = 0, methods_s = 0;
+};
+/// distance_methods after building cm's distance tree, both timed into `builds`.
+[[nodiscard]] std::vector<DistanceMethod> timed_distance_methods(const mesh::Mesh& m, const ExactMesh& cm,
+                                                                 std::vector<std::string>& notes, bool ablation,
+                                                                 DistanceBuilds& builds);
+
 /// The mesh of `bench distance`: a file, or for "generated" the 1.31M-triangle bumpy sphere
 /// (scene::bumpy_sphere(2^20), as bench contains). Throws mesh::MeshError for a bad file.
 [[nodiscard]] mesh::Mesh distance_bench_mesh(const std::string& path);
