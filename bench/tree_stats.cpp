@@ -1,5 +1,6 @@
 /// Wide-tree quality: the eight-wide tree of the greedy collapse (collapse_wide)
-/// beside the SAH-optimal one (collapse_wide_sah) over the same binary tree: nodes, children per
+/// beside the SAH-optimal one (collapse_wide_sah) over the same binary tree, and (with Embree) the
+/// SAH collapse of Embree's binary tree (rtcBuildBVH, scene/compare/embree_build.h): nodes, children per
 /// node, leaves, the collapse's cost model, and per ray the node visits, leaf visits, leaf groups
 /// and triangles tested, for closest and any hit on primary and random rays. The counts come
 /// from the wide traversal loop itself (the double box test, conservative as robust and certified
@@ -20,6 +21,7 @@
 #include "rayproof/bvh_wide.h"
 #include "rayproof/bvh_wide_sah.h"
 #include "rayproof/bvh_wide_stats.h"
+#include "scene/compare/embree_build.h"
 #include "scene/scene.h"
 #include "scene/watertight.h"
 
@@ -105,6 +107,12 @@ int main(int argc, char** argv) {
   const auto [greedy, greedy_s] = timed([&](Bvh&& b) { return collapse_wide<8>(std::move(b), boxes); });
   const auto [sah, sah_s] = timed([&](Bvh&& b) { return collapse_wide_sah<8>(std::move(b), boxes, k); });
   std::printf("collapse time: greedy %.1f ms, sah %.1f ms\n", 1e3 * greedy_s, 1e3 * sah_s);
+  // Embree's binary tree (binned SAH, blocks of four, leaves of up to eight), collapsed as ours.
+  std::string why;
+  const auto embree_binary = compare::embree_binary_builder(2 * opt.max_leaf, opt.leaf_group, &why);
+  Bvh8 embree;
+  if (embree_binary) embree = collapse_wide_sah<8>(embree_binary(boxes, centers), boxes, k);
+  else std::printf("no Embree tree: %s\n", why.c_str());
   // Primary rays: a pinhole camera on the +z side of the box looking at its centre (a square grid);
   // random rays: origins uniform in the box, directions uniform on the sphere.
   const Vec3<double> lo{all.lo[0], all.lo[1], all.lo[2]}, hi{all.hi[0], all.hi[1], all.hi[2]};
@@ -127,11 +135,12 @@ int main(int argc, char** argv) {
               primary.size(), random.size(), k.node_cost, k.group_cost, k.leaf_group, k.max_merge);
   std::printf("%-7s %8s %9s %8s %8s | %-7s %6s %6s %6s %6s | %-7s %6s %6s %6s %6s\n", "collapse", "nodes", "children", "leaves",
               "cost", "per ray", "nodes", "leaves", "groups", "tris", "", "nodes", "leaves", "groups", "tris");
-  for (const auto* w : {&greedy, &sah}) {
+  for (const auto* w : {&greedy, &sah, static_cast<const Bvh8*>(&embree)}) {
+    if (w->nodes.empty()) continue;
     std::size_t leaves = 0;
     for (const auto& n : w->nodes)
       for (int i = 0; i < 8; ++i) leaves += (n.valid >> i & 1) && n.count[i];
-    const char* name = w == &greedy ? "greedy" : "sah";
+    const char* name = w == &greedy ? "greedy" : w == &sah ? "sah" : "embree";
     const Counts pc = count<BvhQuery::closest>(*w, s, primary), rc = count<BvhQuery::closest>(*w, s, random);
     const Counts pa = count<BvhQuery::any>(*w, s, primary), ra = count<BvhQuery::any>(*w, s, random);
     std::printf("%-8s %8zu %9.2f %8zu %8.2f\n", name, w->nodes.size(), wide_fullness(*w), leaves, wide_sah_cost(*w, k));
