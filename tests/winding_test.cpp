@@ -283,6 +283,99 @@ TEST(Winding, TuningChangesNoAnswer) {
   EXPECT_GT(surface, 10);
 }
 
+/// The sphere of `level` less every `step`-th triangle (holes spread over it), and the removed ones.
+std::pair<Shape, std::vector<Tri>> holed_sphere(int level, std::size_t step) {
+  Shape s = sphere(level);
+  std::vector<Tri> removed;
+  for (std::size_t k = 0; k < s.t.size(); k += step) removed.push_back(s.t[k]), s.t.erase(s.t.begin() + std::ptrdiff_t(k));
+  return {s, removed};
+}
+
+TEST(Winding, CapsFieldChangesNoAnswer) {
+  // A batch of 4096 points or more tabulates the caps (CapsField); a mesh built without the field answers
+  // every point the same, on random points, points near the surface and points near the holes' caps.
+  const auto [s, removed] = holed_sphere(4, 23);
+  ASSERT_GE(removed.size(), 16u);  // caps of 16 triangles or more get a field
+  auto& tuning = rayproof::scene::detail::winding_tuning();
+  const auto saved = tuning;
+  const ExactMesh fast = make(s);
+  tuning.caps_field = false;
+  const ExactMesh plain = make(s);
+  tuning = saved;
+  std::mt19937_64 rng(17);
+  std::vector<Vec3<double>> pts = probe_points(s, rng, 6000);
+  std::normal_distribution<double> off(0, 1e-3);
+  for (const Tri& t : removed)  // near each hole's cap: its centroid moved a little, and exactly
+    for (int k = 0; k < 12; ++k) {
+      const double f = k == 0 ? 0 : 1;
+      pts.push_back({(s.v[t[0]].x + s.v[t[1]].x + s.v[t[2]].x) / 3 + f * off(rng),
+                     (s.v[t[0]].y + s.v[t[1]].y + s.v[t[2]].y) / 3 + f * off(rng),
+                     (s.v[t[0]].z + s.v[t[1]].z + s.v[t[2]].z) / 3 + f * off(rng)});
+    }
+  std::vector<Side> a(pts.size()), b(pts.size());
+  fast.contains(pts, a, 1);
+  plain.contains(pts, b, 2);
+  int inside = 0, outside = 0;
+  for (std::size_t i = 0; i < pts.size(); ++i) {
+    EXPECT_EQ(a[i], b[i]) << pts[i].x << " " << pts[i].y << " " << pts[i].z;
+    EXPECT_EQ(a[i], fast.contains(pts[i])) << i;  // one point after the batch: the field again
+    inside += a[i] == Side::inside, outside += a[i] == Side::outside;
+  }
+  EXPECT_GT(inside, 500);
+  EXPECT_GT(outside, 2000);
+}
+
+TEST(Winding, CapsFieldAndGradientBoundsHoldAgainstTheBruteForce) {
+  // The removed triangles of a holed sphere as a soup: the field's value at any point of its box is within its
+  // bound of the brute force, and w moves by at most gradient_bound * |p - x0| within a ball no triangle meets.
+  const auto [s, removed] = holed_sphere(3, 5);
+  const rayproof::scene::detail::WindingTree tree(s.v, removed, 6);
+  const rayproof::scene::detail::CapsField field(tree, {-1.2, -1.2, -1.2}, {1.2, 1.2, 1.2}, 4096);
+  EXPECT_GT(field.valued_cells(), 100u);
+  std::mt19937_64 rng(23);
+  std::uniform_real_distribution<double> u(-1.2, 1.2), small(-1, 1);
+  int valued = 0, tight = 0, balls = 0;
+  for (int i = 0; i < 3000; ++i) {
+    const Vec3<double> p{u(rng), u(rng), u(rng)};
+    const WindingValue ref = rayproof::winding_brute_force(s.v, removed, p);
+    double w = 0, bound = 0;
+    if (field.value(p, &w, &bound)) {
+      ++valued;
+      ASSERT_FALSE(ref.surface);
+      EXPECT_LE(std::fabs(w - ref.w), bound + ref.bound) << p.x << " " << p.y << " " << p.z;
+      tight += bound < 0.25;
+    }
+    const double h = 0.02 + 0.2 * std::fabs(small(rng));
+    const double grad = tree.gradient_bound(p, h);
+    if (!std::isfinite(grad)) continue;
+    ++balls;
+    for (int k = 0; k < 4; ++k) {
+      Vec3<double> d{small(rng), small(rng), small(rng)};
+      const double n = std::sqrt(d.x * d.x + d.y * d.y + d.z * d.z);
+      const double r = h * std::fabs(small(rng)) / n;
+      const Vec3<double> q{p.x + d.x * r, p.y + d.y * r, p.z + d.z * r};
+      const WindingValue wq = rayproof::winding_brute_force(s.v, removed, q);
+      ASSERT_FALSE(wq.surface);
+      EXPECT_LE(std::fabs(wq.w - ref.w), grad * r * 1.001 + wq.bound + ref.bound);
+    }
+  }
+  EXPECT_GT(valued, 2000);
+  EXPECT_GT(tight, 1500);
+  EXPECT_GT(balls, 1000);
+  // Where the bound is nearly reached: one small triangle seen along its normal from x0, p moved h towards
+  // it. w changes by about 2 A h / (4 pi D^3) there, the bound is 2 A h / (4 pi (D - h)^3): within 10%.
+  const std::vector<Vec3<double>> v{{0, 0, 0}, {1e-3, 0, 0}, {0, 1e-3, 0}};
+  const std::vector<Tri> one{{0, 1, 2}};
+  const rayproof::scene::detail::WindingTree single(v, one, 1);
+  for (const double dist : {0.5, 1.0, 4.0}) {
+    const Vec3<double> x0{3e-4, 3e-4, dist}, q{3e-4, 3e-4, dist * 0.99};
+    const double change = std::fabs(rayproof::winding_brute_force(v, one, q).w - rayproof::winding_brute_force(v, one, x0).w);
+    const double bound = single.gradient_bound(x0, dist * 0.01) * dist * 0.01;
+    EXPECT_LE(change, bound) << dist;
+    EXPECT_GT(change, 0.9 * bound) << dist;
+  }
+}
+
 TEST(Winding, ClosedMeshesGiveIntegers) {
   const Shape c = cube();
   const ExactMesh exact = make(c);

@@ -2,6 +2,7 @@
 /// What a rayproof::ExactMesh holds (internal to rayproof_scene_certified): packed copies of the
 /// vertices and triangles, the closure report, the bounding box and the BVH over the copies.
 #include <array>
+#include <atomic>
 #include <memory>
 #include <mutex>
 #include <cstdint>
@@ -41,6 +42,13 @@ struct ExactMeshState {
   /// (its exact integer winding number) and a tree over the caps alone.
   std::unique_ptr<ExactMeshState> capped;
   std::unique_ptr<WindingTree> caps;
+  /// The caps' winding number over an octree of capped's box (winding_field.cpp): built by the
+  /// first batch of contains large enough for it to pay (prepare_caps_field), then read by every
+  /// winding_side.
+  bool caps_field = false;  ///< WindingTuning::caps_field when the caps were built
+  mutable std::once_flag field_once;
+  mutable std::unique_ptr<CapsField> field_owned;
+  mutable std::atomic<const CapsField*> field{nullptr};
   /// The closest-point tree (distance.cpp), built by the first distance query.
   mutable std::once_flag distance_once;
   mutable std::shared_ptr<const DistanceTree> distance;
@@ -56,6 +64,8 @@ struct PointQuery {
 [[nodiscard]] PointQuery query_point(const ExactMeshState& s, const Vec3<double>& p);
 /// Builds s.capped and s.caps when the caps close the mesh (winding_caps.cpp).
 void build_caps(ExactMeshState& s);
+/// Builds s.field once, for caps of 16 triangles or more (winding_caps.cpp; thread-safe).
+void prepare_caps_field(const ExactMeshState& s);
 /// The winding rule's side of a finite p (winding_caps.cpp).
 [[nodiscard]] Side winding_side(const ExactMeshState& s, const Vec3<double>& p);
 

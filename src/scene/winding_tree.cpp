@@ -72,11 +72,23 @@
 //    2^-400 (no underflow of g^2) and a bound below 8 pi (else the node is opened: the bound would
 //    not decide anything).
 //
+// 4. How fast w changes (CapsField, winding_field.cpp). For p off a triangle t, with r = x - p,
+//    grad_p (n . r / |r|^3) = (3 (n . r^) r^ - n) / |r|^3, whose length is sqrt(1 + 3 (n . r^)^2)
+//    / |r|^3 <= 2 / |r|^3. So on a ball (x0, h) that every point of t is at least g > 0 away from,
+//    |grad Omega_t| <= 2 area_t / g^3, and the segment from x0 to any p of the ball crosses no
+//    triangle: w is smooth along it and |w(p) - w(x0)| <= |p - x0| sum 2 area_t / (4 pi g_t^3).
+//    A node of ball (c, r) is at least g = |c - x0| - r - h away; gradient_bound takes a node whole
+//    where g >= r (or g > 0 at a leaf) with area_up for its area, else opens it, and at a leaf takes
+//    each triangle alone: g_t the larger of its plane's and its own ball's distance less h (the
+//    plane's with the rounding of the normal bounded as in triangle_reach). d is rounded down and
+//    r, h up as in section 2b.
+//
 // 3. The sum. Recursive summation of k terms errs by at most gamma_{k-1} sum |Omega_i|; dividing by
 //    the rounded 4 pi adds 2.1u |w|; every bound is scaled by (1 + 2^-40) to cover its own
 //    rounding. WindingSum::value() returns w and the total.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 #include <stdexcept>
 
@@ -90,9 +102,7 @@ constexpr double kU = 0x1p-53;
 constexpr double kUp = 1.0 + 0x1p-40;    // rounds a computed bound up
 constexpr double kDown = 1.0 - 0x1p-40;  // rounds a computed distance down
 
-/// A triangle whose double bound exceeds this (p within about 1e-6 relative of its plane and
-/// edges) is evaluated again in MPFR, whose bound is tighter by 2^75 or more.
-constexpr double kLooseTriangle = 0x1p-36;
+constexpr double kLooseTriangle = kLooseSolidAngle;
 
 /// |x| = 0 or 2^-300 <= |x| <= 2^300: products of three such differences neither underflow nor overflow.
 inline bool in_window(double x) {
@@ -395,6 +405,101 @@ WindingValue WindingTree::refine(const Vec3<double>& p, Done&& done) const {
     far_sum -= it.omega, far_err -= it.err;
     open(it.node);
   }
+}
+
+namespace {
+/// A rigorous upper bound on a triangle's area, and a lower bound g on the distance from the
+/// ball (x0, h) to it (g <= 0: it may meet the ball). Section 4.
+struct TriangleReach {
+  double area_up, g;
+};
+inline TriangleReach triangle_reach(const std::array<Vec3<double>, 3>& T, const Vec3<double>& x0, double h) {
+  const Vec3<double>&a = T[0], &b = T[1], &c = T[2];
+  const double e1x = b.x - a.x, e1y = b.y - a.y, e1z = b.z - a.z;
+  const double e2x = c.x - a.x, e2y = c.y - a.y, e2z = c.z - a.z;
+  const double nx = e1y * e2z - e1z * e2y, ny = e1z * e2x - e1x * e2z, nz = e1x * e2y - e1y * e2x;
+  const double nn = nx * nx + ny * ny + nz * nz, ln = std::sqrt(nn);
+  const double m1 = std::max({std::fabs(e1x), std::fabs(e1y), std::fabs(e1z)});
+  const double m2 = std::max({std::fabs(e2x), std::fabs(e2y), std::fabs(e2z)});
+  const double lp = 3 * m1 * m2 * (1 + 4 * kU);  // >= |e1| |e2| >= twice the area
+  // As the leaves' area_up of section 2b, for one triangle.
+  const double area_up = ((nn >= 0x1p-1000 ? 0.5 * ln * (1 + 8 * kU) + 8 * kU * lp : 0.5 * lp) + 0x1p-1000) * kUp;
+  // The triangle's ball about its vertex mean.
+  const double cx = (a.x + b.x + c.x) / 3, cy = (a.y + b.y + c.y) / 3, cz = (a.z + b.z + c.z) / 3;
+  double r2 = 0;
+  for (const Vec3<double>* v : {&a, &b, &c}) {
+    const double dx = v->x - cx, dy = v->y - cy, dz = v->z - cz;
+    r2 = std::max(r2, dx * dx + dy * dy + dz * dz);
+  }
+  const double ox = cx - x0.x, oy = cy - x0.y, oz = cz - x0.z;
+  const double g_ball = (std::sqrt(ox * ox + oy * oy + oz * oz) * kDown - std::sqrt(r2) * kUp - h) * kDown;
+  // The plane: |N . (x0 - a)| / |N| with N the exact normal. Each of the computed n's components
+  // is within 5u (|e1_j e2_k| + |e1_k e2_j|) <= 10u m1 m2 of N's (the edges' own rounding
+  // included), v = x0 - a within u relative; so |n . v - N . v_exact| <= 64u m1 m2 mv, and
+  // |N| <= |n| + 18u m1 m2.
+  const double vx = x0.x - a.x, vy = x0.y - a.y, vz = x0.z - a.z;
+  const double mv = std::max({std::fabs(vx), std::fabs(vy), std::fabs(vz)});
+  const double dot = std::fabs(nx * vx + ny * vy + nz * vz);
+  double g_plane = -1;
+  if (nn >= 0x1p-1000 && std::isfinite(dot)) {
+    const double num = (dot - 64 * kU * m1 * m2 * mv) * kDown;
+    const double den = (ln + 18 * kU * m1 * m2) * kUp;
+    g_plane = (num / den * kDown - h) * kDown;
+  }
+  return {area_up, std::max(g_ball, g_plane)};
+}
+}  // namespace
+
+double WindingTree::gradient_bound(const Vec3<double>& x0, double h, double tau, std::vector<std::uint32_t>* near,
+                                   std::size_t max_near) const {
+  constexpr double kInf = std::numeric_limits<double>::infinity();
+  constexpr double k4Pi = 4 * std::numbers::pi;
+  if (nodes_.empty()) return 0;
+  double sum = 0;  // of 2 area_up / g^3, each rounded up
+  double terms = 0;
+  // A term is taken when its share of the spread, 2 A h / (4 pi g^3), is at most tau (any share
+  // without a near list); otherwise the node is opened and a leaf's triangle goes to the list.
+  const double share = near ? tau * k4Pi / (2 * h) : kInf;  // 2 A h / (4 pi g^3) <= tau  <=>  A / g^3 <= share
+  auto near_triangle = [&](std::uint32_t i) {
+    if (!near || near->size() >= max_near) return false;
+    near->push_back(i);
+    return true;
+  };
+  std::uint32_t stack[128];
+  int top = 0;
+  stack[top++] = 0;
+  while (top > 0) {
+    const Node& nd = nodes_[stack[--top]];
+    const double dx = nd.c[0] - x0.x, dy = nd.c[1] - x0.y, dz = nd.c[2] - x0.z;
+    const double d = std::sqrt(dx * dx + dy * dy + dz * dz) * kDown;
+    const double g = (d - nd.r * kUp - h) * kDown;
+    const bool leaf = nd.count != 0;
+    if (g >= 0x1p-300 && (leaf || g >= nd.r) && nd.area_up / (g * g * g) <= share) {
+      sum += 2 * nd.area_up / (g * g * g) * (kUp * kUp);
+      terms += 1;
+      continue;
+    }
+    if (!(g == g)) return kInf;
+    if (leaf) {
+      // Each triangle alone: its distance from the ball is at least the larger of its plane's and
+      // its own ball's distance from it.
+      for (std::uint32_t i = nd.first; i < nd.first + nd.count; ++i) {
+        const TriangleReach t = triangle_reach(tris_[i], x0, h);
+        if (t.g >= 0x1p-300 && t.area_up / (t.g * t.g * t.g) <= share) {
+          sum += 2 * t.area_up / (t.g * t.g * t.g) * (kUp * kUp);
+          terms += 1;
+        } else if (!near_triangle(i)) {
+          return kInf;
+        }
+      }
+      continue;
+    }
+    if (top + 2 > 128) throw std::logic_error("WindingTree: stack overflow");
+    stack[top++] = nd.first;
+    stack[top++] = nd.first + 1;
+  }
+  // A sum of k nonnegative terms errs by at most gamma_k relative; the division by 4 pi by 2u more.
+  return sum / k4Pi * (1 + (terms + 4) * 1.01 * kU) * kUp;
 }
 
 WindingValue WindingTree::eval(const Vec3<double>& p, double beta) const {

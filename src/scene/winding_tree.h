@@ -20,6 +20,9 @@ struct SolidAngle {
   int status = 0;
 };
 
+/// A triangle whose double bound exceeds this (p within about 1e-6 relative of its plane and
+/// edges) is evaluated again in MPFR, whose bound is tighter by 2^75 or more.
+inline constexpr double kLooseSolidAngle = 0x1p-36;
 /// The solid angle of triangle abc at p in double with its rounding bound (status 0 or 1).
 [[nodiscard]] SolidAngle solid_angle_double(const Vec3<double>& a, const Vec3<double>& b, const Vec3<double>& c,
                                             const Vec3<double>& p);
@@ -63,8 +66,39 @@ struct WindingTuning {
   bool compact_caps = true;
   /// Triangles per leaf of the caps' tree (the full tree keeps 6).
   std::size_t caps_leaf = 6;
+  /// The caps' winding number tabulated over an octree with a bound per cell (CapsField), read
+  /// before the caps' tree is refined per point.
+  bool caps_field = true;
 };
 [[nodiscard]] WindingTuning& winding_tuning();
+
+class WindingTree;
+/// The caps' winding number tabulated over an octree of the capped mesh's box (winding_field.cpp):
+/// per leaf cell a value w0 at its centre and a bound e with |w_caps(p) - w0| <= e for every p in
+/// the closed cell, or no value (a cap meets the cell). Built once with the caps.
+class CapsField {
+ public:
+  /// Cells up to `max_cells` in all, subdivided while their bound exceeds 1/16 or a cap is near.
+  CapsField(const WindingTree& caps, const Vec3<double>& lo, const Vec3<double>& hi, std::size_t max_cells);
+  /// The caps' winding number at p from its cell: the tabulated far part plus the cell's near
+  /// triangles evaluated at p, with its bound; false outside the box, in a cell without a value,
+  /// or when a near triangle needs more than double (p within rounding of its plane).
+  bool value(const Vec3<double>& p, double* w, double* bound) const;
+  [[nodiscard]] std::size_t cells() const { return cells_.size(); }
+  [[nodiscard]] std::size_t valued_cells() const { return valued_; }
+
+ private:
+  struct Cell {
+    double w0 = 0, e = 0;     ///< the far part at the centre, and its bound over the cell
+    std::int32_t child = -2;  ///< first of 8 children; -1 a leaf with a value; -2 a leaf without
+    std::uint32_t near_first = 0, near_count = 0;  ///< in near_
+  };
+  const WindingTree* caps_;
+  Vec3<double> lo_, hi_;
+  std::vector<std::uint32_t> near_;  ///< the cells' near triangles (leaf order of caps_)
+  std::vector<Cell> cells_;
+  std::size_t valued_ = 0;
+};
 
 /// A binary tree over the triangles with per-node moments (Barill et al. 2018, first order: area
 /// vector and first moment about the node's centre) and a bounding ball.
@@ -95,6 +129,16 @@ class WindingTree {
   [[nodiscard]] WindingValue value_against(const Vec3<double>& p, double offset) const;
   template <class Done>
   [[nodiscard]] WindingValue refine(const Vec3<double>& p, Done&& done) const;
+  /// An upper bound on |grad w_far| over the ball (x0, h), w_far the winding number of this tree's
+  /// triangles less the `near` ones (section 4 of winding_tree.cpp): |w_far(p) - w_far(x0)| <=
+  /// bound * |p - x0| for p in the ball. A triangle is near when it may meet the ball, or when its
+  /// share of bound * h would exceed tau: its leaf-order index is appended to `near` (at most
+  /// max_near of them; +inf when there would be more, or without a list).
+  [[nodiscard]] double gradient_bound(const Vec3<double>& x0, double h, double tau = 0,
+                                      std::vector<std::uint32_t>* near = nullptr, std::size_t max_near = 0) const;
+  /// Triangle i in leaf order (the indices gradient_bound lists).
+  [[nodiscard]] const std::array<Vec3<double>, 3>& leaf_triangle(std::uint32_t i) const { return tris_[i]; }
+  [[nodiscard]] std::size_t triangle_count() const { return tris_.size(); }
   static constexpr double kQMax = 0.5;
 
  private:

@@ -93,7 +93,8 @@ struct OpenRun {
   bool closed = false;
   std::array<std::size_t, 4> sides{};  ///< tally by Side
   std::vector<OpenRow> rows;           ///< rows[0]: the open mesh, default build, one thread
-  double brute = 0;  ///< brute force, best Mpoints/s
+  double first_batch = 0;  ///< seconds of the default build's first batch (which tabulates the caps: CapsField)
+  double brute = 0;        ///< brute force, best Mpoints/s
   std::size_t brute_points = 0, compared = 0, wrong = 0, inside = 0;  ///< against the brute force where |w - 1/2| >= 1e-6
 };
 [[nodiscard]] OpenRun time_open_mesh(const std::string& path, const std::string& closed_path, std::size_t points, int repeat,
