@@ -86,9 +86,12 @@ void load_exact_mesh_state(ExactMeshState& s, const VertexArray& v, const IndexA
   s.accel.emplace(ref, BvhBuildOptions{});
   const auto& leaves = s.accel->leaf_prims();
   s.slots.assign(leaves.size(), {Vec3<double>{0, 0, 0}, Vec3<double>{0, 0, 0}, Vec3<double>{0, 0, 0}});
-  for (std::size_t j = 0; j < leaves.size(); ++j)
+  s.slot_ids.resize(leaves.size());
+  for (std::size_t j = 0; j < leaves.size(); ++j) {
+    s.slot_ids[j] = leaves[j].id;
     if (leaves[j].id != scene::PrimHit::kNoPrim)
       for (int k = 0; k < 3; ++k) s.slots[j][k] = s.vertices[leaves[j].v[k]];
+  }
 }
 
 }  // namespace rayproof::scene::detail

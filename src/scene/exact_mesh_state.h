@@ -36,6 +36,9 @@ struct ExactMeshState {
   /// The triangles' vertices in the BVH's leaf order (slot j: leaf_prims()[j]; padding slots
   /// zero), read contiguously by the point query instead of through the vertex indices.
   std::vector<std::array<Vec3<double>, 3>> slots;
+  /// Slot j's triangle number (leaf_prims()[j].id, 4 bytes a slot: 16 slots a cache line), read
+  /// for the crossings' candidates and prefetched with the leaf.
+  std::vector<std::uint32_t> slot_ids;
   /// The generalized winding number's tree: built for meshes that are not closed and oriented.
   std::unique_ptr<WindingTree> tree;
   /// The winding rule's fast path (winding_caps.cpp): the mesh closed by caps over its boundary
