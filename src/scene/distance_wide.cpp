@@ -75,7 +75,7 @@ struct LeafVisitLanes : LeafVisit {
       if (!within) continue;
       upper_bounds4(v, p, b);
       for (int i = 0; i < int(n); ++i) {
-        if (!(within >> i & 1) || b.box[i] > U) continue;
+        if (!(b.box[i] <= U)) continue;  // U only falls: implies the lane's bit in `within` (NaN fails both)
         visited.push_back({s + std::uint32_t(i), b.box[i], {b.dir[0][i], b.dir[1][i], b.dir[2][i]}});
         if (b.ub[i] < U) U = b.ub[i], thr = box_threshold(U);
       }

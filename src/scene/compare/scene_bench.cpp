@@ -138,6 +138,21 @@ void bench_scene(const SceneBenchOptions& opt, const Scene& s, const std::string
       if (rows[i].method == name && rows[i].path == path) rows[i].leaks = misses, rows[i].leak_rays = std::int64_t(n);
   };
 
+  // One caster's row: its rays timed (at most `cap` of each set, 0: all), then its leaks.
+  auto time_caster = [&](BenchRow& row, const SceneCaster& caster, std::size_t cap) {
+    std::vector<CastHit> hits;
+    std::vector<std::uint8_t> flags;
+    measure(row, cap, true, [&](const std::vector<Ray<double>>& rays, bool closest, int t) {
+      if (closest) hits.resize(rays.size()), caster.closest(rays, hits, t);
+      else flags.resize(rays.size()), caster.any(rays, flags, t);
+    });
+    if (!closed) return;
+    const std::vector<Ray<double>> lr = subset(leak, cap);
+    std::vector<CastHit> lh(lr.size());
+    caster.closest(lr, lh, threads);
+    set_leaks(row.method, std::count_if(lh.begin(), lh.end(), [](const CastHit& h) { return !h.hit(); }), lr.size());
+  };
+
   for (const auto& [name, m] : methods) {
     const std::size_t cap = m.fast == FastKernel::none ? opt.slow_rays : 0;
     // float, robust and certified on a triangle mesh: through the public MeshCaster (its own BVH,
@@ -149,19 +164,9 @@ void bench_scene(const SceneBenchOptions& opt, const Scene& s, const std::string
     row.mesh = mesh_name, row.method = name;
     row.build_s = caster->public_api() ? caster->build_seconds() : accel.build_seconds();
     row.bytes = caster->bytes_read_per_primitive(), row.bytes_held = caster->bytes_per_primitive();
-    std::vector<CastHit> hits;
-    std::vector<std::uint8_t> flags;
-    measure(row, cap, true, [&](const std::vector<Ray<double>>& rays, bool closest, int t) {
-      if (closest) hits.resize(rays.size()), caster->closest(rays, hits, t);
-      else flags.resize(rays.size()), caster->any(rays, flags, t);
-    });
-    if (closed) {
-      const std::vector<Ray<double>> lr = subset(leak, cap);
-      std::vector<CastHit> lh(lr.size());
-      caster->closest(lr, lh, threads);
-      set_leaks(name, std::count_if(lh.begin(), lh.end(), [](const CastHit& h) { return !h.hit(); }), lr.size());
-    }
+    time_caster(row, *caster, cap);
     if (m.fast == FastKernel::none) continue;  // registry methods: single rays only
+    std::vector<std::uint8_t> flags;
     // The packet path: eight rays at a time through the scene BVH (built as MeshCaster's).
     row.build_s = accel.build_seconds();
     std::vector<PrimHit> ph;
@@ -201,17 +206,7 @@ void bench_scene(const SceneBenchOptions& opt, const Scene& s, const std::string
         row.mesh = mesh_name, row.method = name + (a == &accel ? " @ our tree" : " @ embree tree");
         row.build_s = a->build_seconds();
         row.bytes = caster.bytes_read_per_primitive(), row.bytes_held = caster.bytes_per_primitive();
-        std::vector<CastHit> hits;
-        std::vector<std::uint8_t> flags;
-        measure(row, 0, true, [&](const std::vector<Ray<double>>& rays, bool closest, int t) {
-          if (closest) hits.resize(rays.size()), caster.closest(rays, hits, t);
-          else flags.resize(rays.size()), caster.any(rays, flags, t);
-        });
-        if (closed) {
-          std::vector<CastHit> lh(leak.size());
-          caster.closest(leak, lh, threads);
-          set_leaks(row.method, std::count_if(lh.begin(), lh.end(), [](const CastHit& h) { return !h.hit(); }), leak.size());
-        }
+        time_caster(row, caster, 0);
       }
     }
   }
