@@ -362,6 +362,23 @@ TEST(Winding, CapsFieldAndGradientBoundsHoldAgainstTheBruteForce) {
   EXPECT_GT(valued, 2000);
   EXPECT_GT(tight, 1500);
   EXPECT_GT(balls, 1000);
+  // Built where a sample's points are (a slab): points in the slab get values within their bounds, points
+  // elsewhere below the top two levels none.
+  std::vector<Vec3<double>> sample;
+  for (int i = 0; i < 4000; ++i) sample.push_back({u(rng), u(rng), 0.8 + 0.1 * std::fabs(small(rng))});
+  const rayproof::scene::detail::CapsField sampled(tree, {-1.2, -1.2, -1.2}, {1.2, 1.2, 1.2}, 4096, sample);
+  int in_slab = 0, outside_slab = 0;
+  for (int i = 0; i < 2000; ++i) {
+    const bool slab = i % 2 == 0;
+    const Vec3<double> p = slab ? sample[std::size_t(i)] : Vec3<double>{u(rng), u(rng), -0.9 + 0.1 * std::fabs(small(rng))};
+    double w = 0, bound = 0;
+    if (!sampled.value(p, &w, &bound)) continue;
+    const WindingValue ref = rayproof::winding_brute_force(s.v, removed, p);
+    EXPECT_LE(std::fabs(w - ref.w), bound + ref.bound) << p.x << " " << p.y << " " << p.z;
+    (slab ? in_slab : outside_slab) += 1;
+  }
+  EXPECT_GT(in_slab, 800);
+  EXPECT_EQ(outside_slab, 0);
   // Where the bound is nearly reached: one small triangle seen along its normal from x0, p moved h towards
   // it. w changes by about 2 A h / (4 pi D^3) there, the bound is 2 A h / (4 pi (D - h)^3): within 10%.
   const std::vector<Vec3<double>> v{{0, 0, 0}, {1e-3, 0, 0}, {0, 1e-3, 0}};

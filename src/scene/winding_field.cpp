@@ -9,6 +9,7 @@
 // cell's half-diagonal h). A point then costs a descent of the octree, its cell's near triangles
 // and one comparison; cells without a value, and points whose margin is below their bound, go to
 // the caps' tree as before.
+#include <algorithm>
 #include <cmath>
 #include <deque>
 
@@ -53,20 +54,33 @@ bool near_sum(const WindingTree& caps, const std::uint32_t* ids, std::size_t n, 
 
 }  // namespace
 
-CapsField::CapsField(const WindingTree& caps, const Vec3<double>& lo, const Vec3<double>& hi, std::size_t max_cells)
+CapsField::CapsField(const WindingTree& caps, const Vec3<double>& lo, const Vec3<double>& hi, std::size_t max_cells,
+                     std::span<const Vec3<double>> sample)
     : caps_(&caps), lo_(lo), hi_(hi) {
   struct Pending {
     std::uint32_t cell;
     Vec3<double> a, b;
     int depth;
+    std::size_t pb, pe;  ///< the sample points in the cell: pts[pb, pe)
   };
+  // The sample (at most 65536 points, evenly strided) in the box, partitioned down the octree.
+  std::vector<Vec3<double>> pts, scratch;
+  const std::size_t stride = sample.size() > 65536 ? (sample.size() + 65535) / 65536 : 1;
+  for (std::size_t i = 0; i < sample.size(); i += stride) {
+    const Vec3<double>& p = sample[i];
+    if (lo.x <= p.x && p.x <= hi.x && lo.y <= p.y && p.y <= hi.y && lo.z <= p.z && p.z <= hi.z) pts.push_back(p);
+  }
+  const bool sampled = !sample.empty();
   std::deque<Pending> queue;
   std::vector<std::uint32_t> near;
   cells_.emplace_back();
-  queue.push_back({0, lo, hi, 0});
+  queue.push_back({0, lo, hi, 0, 0, pts.size()});
   while (!queue.empty()) {
     const Pending c = queue.front();
     queue.pop_front();
+    // With a sample, cells below the top two levels that hold none of its points are left without
+    // a value: the budget goes where the points are (a later point there goes to the caps' tree).
+    if (sampled && c.depth >= 2 && c.pb == c.pe) continue;
     const Vec3<double> x0 = mid(c.a, c.b);
     if (!(std::isfinite(x0.x) && std::isfinite(x0.y) && std::isfinite(x0.z))) continue;  // no value
     // h >= the distance from x0 to every point of the closed cell (each offset within an ulp).
@@ -81,8 +95,18 @@ CapsField::CapsField(const WindingTree& caps, const Vec3<double>& lo, const Vec3
       const auto first = std::int32_t(cells_.size());
       cells_[c.cell].child = first;
       cells_.resize(cells_.size() + 8);
+      // The cell's points by octant, with the comparisons of value()'s descent.
+      std::size_t start[9] = {};
+      auto octant = [&](const Vec3<double>& p) { return (p.x > x0.x) | (p.y > x0.y) << 1 | (p.z > x0.z) << 2; };
+      for (std::size_t i = c.pb; i < c.pe; ++i) ++start[octant(pts[i]) + 1];
+      for (int o = 0; o < 8; ++o) start[o + 1] += start[o];
+      scratch.resize(c.pe - c.pb);
+      std::size_t fill[8];
+      for (int o = 0; o < 8; ++o) fill[o] = start[o];
+      for (std::size_t i = c.pb; i < c.pe; ++i) scratch[fill[octant(pts[i])]++] = pts[i];
+      std::copy(scratch.begin(), scratch.end(), pts.begin() + std::ptrdiff_t(c.pb));
       for (int o = 0; o < 8; ++o) {
-        Pending k{std::uint32_t(first + o), c.a, c.b, c.depth + 1};
+        Pending k{std::uint32_t(first + o), c.a, c.b, c.depth + 1, c.pb + start[o], c.pb + start[o + 1]};
         (o & 1 ? k.a.x : k.b.x) = x0.x;
         (o & 2 ? k.a.y : k.b.y) = x0.y;
         (o & 4 ? k.a.z : k.b.z) = x0.z;

@@ -78,8 +78,11 @@ class WindingTree;
 /// the closed cell, or no value (a cap meets the cell). Built once with the caps.
 class CapsField {
  public:
-  /// Cells up to `max_cells` in all, subdivided while their bound exceeds 1/16 or a cap is near.
-  CapsField(const WindingTree& caps, const Vec3<double>& lo, const Vec3<double>& hi, std::size_t max_cells);
+  /// Cells up to `max_cells` in all, subdivided while the far part's spread is large or a cell has
+  /// many near triangles; with a `sample` of points (the first batch's), only cells that hold some
+  /// of them are subdivided or valued below the top two levels.
+  CapsField(const WindingTree& caps, const Vec3<double>& lo, const Vec3<double>& hi, std::size_t max_cells,
+            std::span<const Vec3<double>> sample = {});
   /// The caps' winding number at p from its cell: the tabulated far part plus the cell's near
   /// triangles evaluated at p, with its bound; false outside the box, in a cell without a value,
   /// or when a near triangle needs more than double (p within rounding of its plane).
