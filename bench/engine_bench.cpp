@@ -8,11 +8,7 @@
 /// thread CPU time. Each round gives each variant's time over Embree's; the table shows the
 /// median and range over the rounds of Embree's time over ours (the bench's "ratio": > 1 is faster
 /// than Embree). It measures the engine (nodes, stack, memory) without the product's leaf kernels.
-/// Run: engine_bench mesh.off [rounds] [rays] [only]  (default 7 rounds, 40000 rays per set)
-/// `only` (embree, none, or a variant's name): no timing, one pass of that engine over both sets,
-/// closest then any hit, and nothing printed; for counting under valgrind's cachegrind (this
-/// machine has no hardware counters), the per-ray cost being a run's count less `none`'s
-/// (docs/speed.md).
+/// Run: engine_bench mesh.off [rounds] [rays]  (default 7 rounds, 40000 rays per set)
 #include <embree3/rtcore.h>
 
 #include <algorithm>
@@ -158,7 +154,7 @@ double query(const Variant& v, const Ray<double>& r, bool closest) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  if (argc < 2) return std::fprintf(stderr, "usage: engine_bench mesh.off [rounds] [rays] [only]\n"), 2;
+  if (argc < 2) return std::fprintf(stderr, "usage: engine_bench mesh.off [rounds] [rays]\n"), 2;
   if (!cpu_has_avx2()) return std::fprintf(stderr, "engine_bench: needs AVX2\n"), 1;
   const int rounds = argc > 2 ? std::max(1, std::atoi(argv[2])) : 7;
   const std::size_t nrays = argc > 3 ? std::size_t(std::max(1, std::atoi(argv[3]))) : 40000;
@@ -225,21 +221,6 @@ int main(int argc, char** argv) {
   std::normal_distribution<double> nd;
   for (std::size_t i = 0; i < nrays; ++i)
     random.push_back({lo + Vec3<double>{u(rng) * ext.x, u(rng) * ext.y, u(rng) * ext.z}, Vec3<double>{nd(rng), nd(rng), nd(rng)}});
-  if (argc > 4) {  // one engine, one pass, no output (cachegrind)
-    const std::string only = argv[4];
-    const auto it = std::find_if(vs.begin(), vs.end(), [&](const Variant& v) { return only == v.name; });
-    if (only != "embree" && only != "none" && it == vs.end())
-      return std::fprintf(stderr, "engine_bench: unknown engine '%s' (embree, none or a variant)\n", only.c_str()), 2;
-    double acc = 0;
-    for (const auto* set : {&primary, &random})
-      for (bool closest : {true, false})
-        for (const auto& r : *set)
-          if (only == "embree") acc += embree(r, closest);
-          else if (only != "none") acc += query(*it, r, closest);
-    sink = sink + acc;
-    rtcReleaseScene(sc), rtcReleaseDevice(dev);
-    return 0;
-  }
   std::printf("%s: %zu triangles, %d rounds, %zu primary / %zu random rays; Embree time over ours (median [range])\n", argv[1], n,
               rounds, primary.size(), random.size());
   for (const auto* set : {&primary, &random})
