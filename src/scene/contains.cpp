@@ -262,17 +262,8 @@ void ExactMesh::contains(const double* xyz, std::size_t n, std::size_t stride, s
     throw MeshInputError("ExactMesh::contains: stride of " + str(stride) + " bytes (need a multiple of 8, at least 24)");
   const auto* base = reinterpret_cast<const std::byte*>(xyz);
   // The winding rule: batches of 4096 points or more tabulate the caps once, where their points
-  // are (winding_field.cpp; a strided sample of at most 65536 of them).
-  if (s_->rule == ContainsRule::winding && n >= 4096 && !s_->field.load(std::memory_order_acquire)) {
-    std::vector<Vec3<double>> sample;
-    const std::size_t step = (n + 65535) / 65536;
-    for (std::size_t i = 0; i < n; i += step) {
-      Vec3<double> p;
-      std::memcpy(&p, base + i * stride, sizeof p);
-      if (finite(p)) sample.push_back(p);
-    }
-    scene::detail::prepare_caps_field(*s_, sample);
-  }
+  // are (winding_field.cpp).
+  if (s_->rule == ContainsRule::winding && n >= 4096) scene::detail::prepare_caps_field(*s_, base, n, stride);
   scene::detail::for_each_batch_range(n, threads, 2048, 1024, [&](std::size_t b, std::size_t e) {
     for (std::size_t i = b; i < e; ++i) {
       Vec3<double> p;

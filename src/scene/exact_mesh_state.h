@@ -68,9 +68,9 @@ struct PointQuery {
 [[nodiscard]] PointQuery query_point(const ExactMeshState& s, const Vec3<double>& p);
 /// Builds s.capped and s.caps when the caps close the mesh (winding_caps.cpp).
 void build_caps(ExactMeshState& s);
-/// Builds s.field once, for caps of 16 triangles or more, its cells spent where the `sample`'s
-/// points are (winding_caps.cpp; thread-safe).
-void prepare_caps_field(const ExactMeshState& s, std::span<const Vec3<double>> sample);
+/// Builds s.field once, for caps of 16 triangles or more, its cells spent where a batch's points
+/// are (n points of 3 doubles, `stride` bytes apart; winding_caps.cpp; thread-safe).
+void prepare_caps_field(const ExactMeshState& s, const std::byte* xyz, std::size_t n, std::size_t stride);
 /// The winding rule's side of a finite p (winding_caps.cpp).
 [[nodiscard]] Side winding_side(const ExactMeshState& s, const Vec3<double>& p);
 

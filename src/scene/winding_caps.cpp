@@ -159,9 +159,20 @@ void build_caps(ExactMeshState& s) {
   finish_caps(s, std::move(st), verts, std::move(tris), std::move(caps));
 }
 
-void prepare_caps_field(const ExactMeshState& s, std::span<const Vec3<double>> sample) {
-  if (!s.caps || !s.capped || s.caps->triangle_count() < 16 || !s.caps_field) return;
+void prepare_caps_field(const ExactMeshState& s, const std::byte* xyz, std::size_t n, std::size_t stride) {
+  // Checked before the sample is drawn: batches on meshes without a field copy nothing.
+  if (!s.caps || !s.capped || s.caps->triangle_count() < 16 || !s.caps_field ||
+      s.field.load(std::memory_order_acquire))
+    return;
   std::call_once(s.field_once, [&] {
+    // The sample: at most 65536 of the finite points, evenly strided.
+    std::vector<Vec3<double>> sample;
+    const std::size_t step = (n + 65535) / 65536;
+    for (std::size_t i = 0; i < n; i += step) {
+      Vec3<double> p;
+      std::memcpy(&p, xyz + i * stride, sizeof p);
+      if (std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z)) sample.push_back(p);
+    }
     // 8 cells per cap triangle, from 4096 to 65536, spent where the sample's points are: about
     // 0.1 s for the 1079 cap triangles of elephant-with-holes (docs/contains.md).
     const std::size_t cells = std::clamp<std::size_t>(8 * s.caps->triangle_count(), 4096, 65536);

@@ -63,13 +63,10 @@ CapsField::CapsField(const WindingTree& caps, const Vec3<double>& lo, const Vec3
     int depth;
     std::size_t pb, pe;  ///< the sample points in the cell: pts[pb, pe)
   };
-  // The sample (at most 65536 points, evenly strided) in the box, partitioned down the octree.
+  // The sample's points in the box (the caller strides it), partitioned down the octree.
   std::vector<Vec3<double>> pts, scratch;
-  const std::size_t stride = sample.size() > 65536 ? (sample.size() + 65535) / 65536 : 1;
-  for (std::size_t i = 0; i < sample.size(); i += stride) {
-    const Vec3<double>& p = sample[i];
+  for (const Vec3<double>& p : sample)
     if (lo.x <= p.x && p.x <= hi.x && lo.y <= p.y && p.y <= hi.y && lo.z <= p.z && p.z <= hi.z) pts.push_back(p);
-  }
   const bool sampled = !sample.empty();
   std::deque<Pending> queue;
   std::vector<std::uint32_t> near;
