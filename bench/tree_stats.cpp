@@ -5,6 +5,16 @@
 /// and triangles tested, for closest and any hit on primary and random rays. The counts come
 /// from the wide traversal loop itself (the double box test, conservative as robust and certified
 /// traverse) with a plain double Möller–Trumbore leaf test, so they measure the tree, not a kernel.
+///
+/// Memory: the leaves are aligned to groups of four as Accel lays them out (leaf_simd.h), and each
+/// ray's reads are the scene BVH's: every line of each eight-wide node tested (256 bytes, four
+/// lines) and every line of each leaf group tested (TriGroup, 160 bytes). `lines` counts the
+/// distinct 64-byte lines a ray reads; `L1` and `L2` count those that miss in a simulated cache
+/// kept warm from ray to ray in the set's order (least recently used, 32 KiB 8-way L1 and 512 KiB
+/// 8-way L2 of 64-byte lines, as on a Zen core): the cache misses of one thread tracing the set,
+/// modelled, since this machine's VM gives perf no counters. The trees compared are ours and
+/// Embree's at quality medium, high, and high with spatial splits (duplicated triangles counted in
+/// `tris`, and in the wide tree's size).
 /// Run: tree_stats [mesh.off | generated[:N]] [rays] [node_cost] [max_merge]  (default: generated 2^20
 /// triangles, 20000 rays per set, BvhCollapseCosts' defaults)
 #include <algorithm>
@@ -22,6 +32,7 @@
 #include "rayproof/bvh_wide_sah.h"
 #include "rayproof/bvh_wide_stats.h"
 #include "scene/compare/embree_build.h"
+#include "scene/leaf_simd.h"
 #include "scene/scene.h"
 #include "scene/watertight.h"
 
@@ -31,8 +42,41 @@ using namespace rayproof::scene;
 namespace {
 
 struct Counts {
-  double nodes = 0, leaves = 0, groups = 0, tris = 0;
+  double nodes = 0, leaves = 0, groups = 0, tris = 0, lines = 0, l1 = 0, l2 = 0;
 };
+
+/// A set-associative cache of 64-byte lines, least recently used out (way 0 the most recent).
+class CacheModel {
+ public:
+  CacheModel(std::size_t bytes, std::size_t ways) : ways_(ways), sets_(bytes / 64 / ways), tag_(sets_ * ways, ~0ull) {}
+  /// True on a miss; the line is then the set's most recent.
+  bool miss(std::uint64_t line) {
+    std::uint64_t* set = &tag_[(line % sets_) * ways_];
+    std::size_t w = 0;
+    while (w < ways_ && set[w] != line) ++w;
+    const bool missed = w == ways_;
+    for (std::size_t i = std::min(w, ways_ - 1); i > 0; --i) set[i] = set[i - 1];
+    set[0] = line;
+    return missed;
+  }
+
+ private:
+  std::size_t ways_, sets_;
+  std::vector<std::uint64_t> tag_;
+};
+
+/// An eight-wide tree with its leaves aligned to groups of four, as Accel lays them out:
+/// old_of[slot] is the prim_ids entry a leaf slot holds (kPadLane for padding).
+struct Aligned {
+  Bvh8 w;
+  std::vector<std::uint32_t> old_of;
+};
+
+Aligned align(Bvh8 w) {
+  Aligned a{std::move(w), {}};
+  a.old_of = scene::detail::align_leaf_slots(std::span(a.w.nodes), scene::detail::kLanes);
+  return a;
+}
 
 /// Double Möller–Trumbore: t of a crossing in (tmin, tmax), or -1.
 double mt(const Triangle<double>& tr, const Ray<double>& r) {
@@ -50,28 +94,46 @@ double mt(const Triangle<double>& tr, const Ray<double>& r) {
 }
 
 template <BvhQuery Q>
-Counts count(const Bvh8& w, const Scene& s, const std::vector<Ray<double>>& rays) {
+Counts count(const Aligned& a, const Scene& s, const std::vector<Ray<double>>& rays) {
+  const Bvh8& w = a.w;
   Counts c;
+  CacheModel l1(32 << 10, 8), l2(512 << 10, 8);
+  constexpr std::uint64_t kGroupBase = std::uint64_t(1) << 40;  // the groups' array, apart from the nodes'
+  std::vector<std::uint64_t> lines;
   for (const Ray<double>& ray : rays) {
     const BvhRay<double> br(ray, BvhTraversal::conservative);
     double tmax = std::numeric_limits<double>::infinity();
+    lines.clear();
     auto test = [&](const Bvh8Node& n, double tm, double* t) {
       c.nodes += 1;
+      const auto at = std::uint64_t(&n - w.nodes.data()) * sizeof(Bvh8Node);
+      for (std::uint64_t b = 0; b < sizeof(Bvh8Node); b += 64) lines.push_back((at + b) / 64);
       return rayproof::detail::wide_test_double<true>(n, br, 0.0, tm, t);
     };
     auto leaf = [&](std::uint32_t first, std::uint32_t n) {
-      c.leaves += 1, c.groups += double((n + 3) / 4), c.tris += n;
+      c.leaves += 1, c.groups += double((n + 3) / 4);
+      for (std::uint32_t g = first / 4; g <= (first + n - 1) / 4; ++g) {
+        const std::uint64_t at = kGroupBase + std::uint64_t(g) * sizeof(scene::detail::TriGroup);
+        for (std::uint64_t l = at / 64; l <= (at + sizeof(scene::detail::TriGroup) - 1) / 64; ++l) lines.push_back(l);
+      }
       bool hit = false;
       for (std::uint32_t j = first; j < first + n; ++j) {
-        const double t = mt(s.triangle(w.prim_ids[j]), ray);
+        if (a.old_of[j] == scene::detail::kPadLane) continue;
+        c.tris += 1;
+        const double t = mt(s.triangle(w.prim_ids[a.old_of[j]]), ray);
         if (t >= 0 && t <= tmax) hit = true, tmax = Q == BvhQuery::closest ? t : tmax;
       }
       return hit;
     };
     rayproof::detail::wide_traverse_loop<Bvh8, double, Q>(w, test, [&] { return tmax; }, leaf);
+    // The cache sees the reads in order (a line read twice by one ray hits the second time).
+    for (const std::uint64_t l : lines)
+      if (l1.miss(l)) c.l1 += 1, c.l2 += l2.miss(l);
+    std::sort(lines.begin(), lines.end());
+    c.lines += double(std::unique(lines.begin(), lines.end()) - lines.begin());
   }
   const double n = double(std::max<std::size_t>(1, rays.size()));
-  return {c.nodes / n, c.leaves / n, c.groups / n, c.tris / n};
+  return {c.nodes / n, c.leaves / n, c.groups / n, c.tris / n, c.lines / n, c.l1 / n, c.l2 / n};
 }
 
 }  // namespace
@@ -107,12 +169,28 @@ int main(int argc, char** argv) {
   const auto [greedy, greedy_s] = timed([&](Bvh&& b) { return collapse_wide<8>(std::move(b), boxes); });
   const auto [sah, sah_s] = timed([&](Bvh&& b) { return collapse_wide_sah<8>(std::move(b), boxes, k); });
   std::printf("collapse time: greedy %.1f ms, sah %.1f ms\n", 1e3 * greedy_s, 1e3 * sah_s);
-  // Embree's binary tree (binned SAH, blocks of four, leaves of up to eight), collapsed as ours.
-  std::string why;
-  const auto embree_binary = compare::embree_binary_builder(2 * opt.max_leaf, opt.leaf_group, &why);
-  Bvh8 embree;
-  if (embree_binary) embree = collapse_wide_sah<8>(embree_binary(boxes, centers), boxes, k);
-  else std::printf("no Embree tree: %s\n", why.c_str());
+  // Embree's binary trees (binned SAH at quality medium and high, and high with spatial splits;
+  // blocks of four, leaves of up to eight), collapsed as ours.
+  std::vector<std::pair<std::string, Aligned>> trees;
+  trees.emplace_back("greedy", align(greedy));
+  trees.emplace_back("sah", align(sah));
+  for (const auto q : {compare::EmbreeTreeQuality::medium, compare::EmbreeTreeQuality::high,
+                       compare::EmbreeTreeQuality::high_splits}) {
+    std::string why;
+    const auto embree_binary = compare::embree_binary_builder(2 * opt.max_leaf, opt.leaf_group, &why, q,
+                                                              [&s](std::uint32_t i) { return s.triangle(i); });
+    if (!embree_binary) {
+      std::printf("no Embree tree: %s\n", why.c_str());
+      break;
+    }
+    const auto t0 = std::chrono::steady_clock::now();
+    Bvh bin_e = embree_binary(boxes, centers);
+    const double build_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    const std::size_t refs = bin_e.prim_ids.size();
+    trees.emplace_back(std::string("embree-") + compare::to_string(q), align(collapse_wide_sah<8>(std::move(bin_e), boxes, k)));
+    std::printf("embree %s: binary build %.1f ms, %zu triangle references for %zu triangles\n", compare::to_string(q),
+                1e3 * build_s, refs, s.size());
+  }
   // Primary rays: a pinhole camera on the +z side of the box looking at its centre (a square grid);
   // random rays: origins uniform in the box, directions uniform on the sphere.
   const Vec3<double> lo{all.lo[0], all.lo[1], all.lo[2]}, hi{all.hi[0], all.hi[1], all.hi[2]};
@@ -133,23 +211,23 @@ int main(int argc, char** argv) {
     random.push_back({lo + Vec3<double>{u(rng) * ext.x, u(rng) * ext.y, u(rng) * ext.z}, Vec3<double>{nd(rng), nd(rng), nd(rng)}});
   std::printf("%s: %zu triangles; %zu primary, %zu random rays; costs: node %.1f, group %.1f (of %u), merge up to %u\n", mesh.c_str(), s.size(),
               primary.size(), random.size(), k.node_cost, k.group_cost, k.leaf_group, k.max_merge);
-  std::printf("%-7s %8s %9s %8s %8s | %-7s %6s %6s %6s %6s | %-7s %6s %6s %6s %6s\n", "collapse", "nodes", "children", "leaves",
-              "cost", "per ray", "nodes", "leaves", "groups", "tris", "", "nodes", "leaves", "groups", "tris");
-  for (const auto* w : {&greedy, &sah, static_cast<const Bvh8*>(&embree)}) {
-    if (w->nodes.empty()) continue;
+  std::printf("%-18s %8s %9s %8s %8s\n", "tree", "nodes", "children", "leaves", "cost");
+  std::printf("  per ray: %-20s %-7s %6s %6s %6s %6s %6s %6s %6s\n", "", "rays", "nodes", "leaves", "groups", "tris", "lines",
+              "L1", "L2");
+  for (const auto& [name, a] : trees) {
+    const Bvh8& w = a.w;
     std::size_t leaves = 0;
-    for (const auto& n : w->nodes)
+    for (const auto& n : w.nodes)
       for (int i = 0; i < 8; ++i) leaves += (n.valid >> i & 1) && n.count[i];
-    const char* name = w == &greedy ? "greedy" : w == &sah ? "sah" : "embree";
-    const Counts pc = count<BvhQuery::closest>(*w, s, primary), rc = count<BvhQuery::closest>(*w, s, random);
-    const Counts pa = count<BvhQuery::any>(*w, s, primary), ra = count<BvhQuery::any>(*w, s, random);
-    std::printf("%-8s %8zu %9.2f %8zu %8.2f\n", name, w->nodes.size(), wide_fullness(*w), leaves, wide_sah_cost(*w, k));
-    auto row = [&](const char* what, const Counts& a, const Counts& b) {
-      std::printf("  %-6s %-15s primary %6.2f %6.2f %6.2f %6.2f | random %6.2f %6.2f %6.2f %6.2f\n", name, what, a.nodes, a.leaves,
-                  a.groups, a.tris, b.nodes, b.leaves, b.groups, b.tris);
+    std::printf("%-18s %8zu %9.2f %8zu %8.2f\n", name.c_str(), w.nodes.size(), wide_fullness(w), leaves, wide_sah_cost(w, k));
+    auto row = [&](const char* what, const char* set, const Counts& x) {
+      std::printf("  %-18s %-9s %-7s %6.2f %6.2f %6.2f %6.2f %6.2f %6.2f %6.2f\n", name.c_str(), what, set, x.nodes, x.leaves,
+                  x.groups, x.tris, x.lines, x.l1, x.l2);
     };
-    row("closest", pc, rc);
-    row("any", pa, ra);
+    row("closest", "primary", count<BvhQuery::closest>(a, s, primary));
+    row("closest", "random", count<BvhQuery::closest>(a, s, random));
+    row("any", "primary", count<BvhQuery::any>(a, s, primary));
+    row("any", "random", count<BvhQuery::any>(a, s, random));
   }
   return 0;
 }

@@ -228,3 +228,57 @@ TEST(BenchCompetitors, EmbreesTreeUnderOurLoopGivesTheSameAnswers) {
   };
   EXPECT_THROW(Accel(s, failing), std::runtime_error);
 }
+
+// Embree's builder with spatial splits (quality high and its splitPrimitive callback): a long
+// triangle is cut into pieces, each in a leaf whose box holds only its piece. The pieces' boxes
+// are rounded outwards from a double clip with a margin for its rounding, so the conservative
+// traversal still finds every crossing: certified gives every ray the same triangle and t on this
+// tree as on ours, including rays aimed at points of the long triangles, and every triangle sits in
+// at least one leaf, some in several.
+TEST(BenchCompetitors, EmbreesSpatialSplitsKeepEveryAnswer) {
+  if (!compare::have_embree()) GTEST_SKIP() << "built without Embree";
+  EXPECT_THROW((void)compare::embree_binary_builder(8, 4, nullptr, compare::EmbreeTreeQuality::high_splits),
+               std::invalid_argument);
+  // A bumpy sphere with long slivers across its box (the triangles splits are for).
+  mesh::Mesh m = bumpy_sphere(4000);
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-1.2, 1.2);
+  std::vector<Triangle<double>> slivers;
+  for (int i = 0; i < 64; ++i) {
+    const Vec3<double> a{u(rng), u(rng), u(rng)}, b{u(rng), u(rng), u(rng)}, c = a + Vec3<double>{0.01 * u(rng), 0.02, 0.01};
+    const auto base = std::uint32_t(m.vertices.size());
+    m.vertices.insert(m.vertices.end(), {a, b, c});
+    m.triangles.push_back({base, base + 1, base + 2});
+    slivers.push_back({a, b, c});
+  }
+  Scene s;
+  add_mesh(s, m);
+  BvhBuildOptions eo{BvhBuilder::sah, 4};
+  eo.binary = compare::embree_binary_builder(8, 4, nullptr, compare::EmbreeTreeQuality::high_splits,
+                                             [&s](std::uint32_t i) { return s.triangle(i); });
+  const Accel ours(s, BvhBuildOptions{BvhBuilder::sah, 4}), theirs(s, eo);
+  std::vector<int> seen(s.mesh.triangles.size(), 0);
+  for (const auto& p : theirs.leaf_prims())
+    if (p.id != PrimHit::kNoPrim) ++seen.at(p.id);
+  EXPECT_EQ(std::count(seen.begin(), seen.end(), 0), 0);
+  EXPECT_GT(std::count_if(seen.begin(), seen.end(), [](int n) { return n > 1; }), 8);
+  std::vector<Ray<double>> rays = some_rays(s, 3000);
+  std::uniform_real_distribution<double> w(0, 1);
+  for (const Triangle<double>& t : slivers)
+    for (int k = 0; k < 40; ++k) {
+      const double a = w(rng), b = w(rng) * (1 - a);
+      const Vec3<double> at = t.p0 + (t.p1 - t.p0) * a + (t.p2 - t.p0) * b;
+      const Vec3<double> o{u(rng) * 3, u(rng) * 3, u(rng) * 3};
+      rays.push_back({o, at - o});
+    }
+  const SceneMethod certified = find_scene_method("certified", registry::all_methods());
+  std::size_t hits = 0;
+  for (const Ray<double>& r : rays) {
+    const PrimHit a = ours.closest(r, certified), b = theirs.closest(r, certified);
+    ASSERT_EQ(a.prim, b.prim);
+    if (a.prim != PrimHit::kNoPrim) ASSERT_EQ(a.t, b.t);
+    ASSERT_EQ(ours.any(r, certified), theirs.any(r, certified));
+    hits += a.prim != PrimHit::kNoPrim;
+  }
+  EXPECT_GT(hits, rays.size() / 3);
+}

@@ -169,14 +169,17 @@ std::string bench_table(const std::vector<BenchRow>& rows) {
   const auto idx = index_rows(rows);
   // B/tri read: what the method's queries read (nodes, leaf groups or records, vertices); held: all
   // its structures hold (MeshCaster and scene::Accel keep the leaf records for every method).
-  std::string t = fmt::format("{:<20} {:<18} {:<8} {:<8} {:<8} {:>8} {:>10} {:>10} {:>9} {:>10} {:>10} {:>7} {:>14}\n", "mesh",
-                              "method", "rays", "query", "path", "count", "Mrays/s 1t", "speed-up", "build s", "x embree-r",
+  // The method column is as wide as its longest name (at least 18: `--embree-tree` adds "@ tree").
+  std::size_t mw = 18;
+  for (const auto& r : rows) mw = std::max(mw, r.method.size());
+  std::string t = fmt::format("{:<20} {:<{}} {:<8} {:<8} {:<8} {:>8} {:>10} {:>10} {:>9} {:>10} {:>10} {:>7} {:>14}\n", "mesh",
+                              "method", mw, "rays", "query", "path", "count", "Mrays/s 1t", "speed-up", "build s", "x embree-r",
                               "B/tri read", "held", "leaks");
   for (const auto& r : rows) {
     const auto er = idx.find({r.mesh, "embree-robust", r.rays, r.query, r.path});
     const bool has_er = er != idx.end() && er->second->mrays > 0;
-    t += fmt::format("{:<20} {:<18} {:<8} {:<8} {:<8} {:>8} {:>10.3f} {:>10} {:>9.3f} {:>10} {:>10} {:>7} {:>14}\n", r.mesh, r.method,
-                     r.rays, r.query, r.path, r.n, r.mrays,
+    t += fmt::format("{:<20} {:<{}} {:<8} {:<8} {:<8} {:>8} {:>10.3f} {:>10} {:>9.3f} {:>10} {:>10} {:>7} {:>14}\n", r.mesh,
+                     r.method, mw, r.rays, r.query, r.path, r.n, r.mrays,
                      r.scaled_threads > 0 && r.mrays > 0 ? fmt::format("{:.2f}x/{}t", r.mrays_scaled / r.mrays, r.scaled_threads) : "-",
                      r.build_s, has_er ? fixed(r.mrays / er->second->mrays, 3) : "-", r.bytes < 0 ? "-" : fixed(r.bytes, 1),
                      r.bytes_held < 0 ? "-" : fixed(r.bytes_held, 1), r.leaks < 0 ? "-" : fmt::format("{}/{}", r.leaks, r.leak_rays));

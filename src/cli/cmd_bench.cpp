@@ -151,8 +151,8 @@ Run add_bench(CLI::App& app) {
   sub->add_option("--slow-rays", opt->measure.slow_rays, "Rays per set for registry (non-compiled) methods")->capture_default_str();
   sub->add_option("--leak-rays", opt->measure.leak_rays, "At most this many leak rays")->capture_default_str();
   sub->add_flag("--embree-tree", opt->measure.embree_tree,
-                "Also each compiled method through the scene BVH on our binary tree and on Embree's (rtcBuildBVH), "
-                "both collapsed and traversed by rayproof");
+                "Also each compiled method through the scene BVH on our binary tree and on Embree's (rtcBuildBVH at "
+                "quality medium, high, and high with spatial splits), all collapsed and traversed by rayproof");
   sub->add_option("--width", opt->measure.width, "Primary rays: image width (scenes without a camera)")
       ->capture_default_str()->check(CLI::Range(1, 1 << 14));
   sub->add_option("--height", opt->measure.height, "Primary rays: image height (scenes without a camera)")

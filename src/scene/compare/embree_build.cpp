@@ -3,11 +3,16 @@
 // rayproof's layout (children of an inner node side by side after it, leaves' primitives in
 // prim_ids). Every box comes from Embree's setNodeBounds, which are unions of the primitives'
 // boxes given to it (ours, rounded outwards): float min and max, exact, so each node's box still
-// holds its primitives and the conservative traversal's proof is unchanged.
+// holds its primitives and the conservative traversal's proof is unchanged. With spatial splits
+// (quality high_splits) a primitive's box is cut by Embree's planes: split_primitive clips the
+// triangle in double and rounds the clipped part's box outwards (with a margin for the clip's own
+// rounding), so each piece's box still holds that piece of the triangle.
 #include "scene/compare/embree_build.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
+#include <limits>
 #include <stdexcept>
 
 #ifdef RAYPROOF_HAVE_EMBREE
@@ -56,10 +61,80 @@ void* create_leaf(RTCThreadLocalAllocator alloc, const RTCBuildPrimitive* prims,
   return n;
 }
 
-Bvh build(const std::vector<BvhBox>& boxes, unsigned max_leaf, unsigned block) {
+struct SplitContext {
+  const EmbreeTriangleOf* triangle_of = nullptr;
+};
+
+/// A float at or below x (at or above when `up`), for outward rounding.
+float outward(double x, bool up) {
+  const auto f = static_cast<float>(x);
+  if (up) return double(f) >= x ? f : std::nextafter(f, std::numeric_limits<float>::infinity());
+  return double(f) <= x ? f : std::nextafter(f, -std::numeric_limits<float>::infinity());
+}
+
+/// Embree's splitPrimitive: the piece of the primitive's triangle on each side of the plane
+/// x[dim] = position, as boxes rounded outwards, each within the primitive's current box (itself a
+/// piece's box). A side without a piece gets an empty box (lower above upper) reduced to a point on
+/// the plane, inside the current box, so Embree's bookkeeping stays finite.
+void split_primitive(const RTCBuildPrimitive* prim, unsigned dim, float position, RTCBounds* left, RTCBounds* right,
+                     void* user) {
+  const auto& ctx = *static_cast<const SplitContext*>(user);
+  const Triangle<double> t = (*ctx.triangle_of)(prim->primID);
+  const Vec3<double> v[3] = {t.p0, t.p1, t.p2};
+  const double pos = position;
+  // The clipped polygon's points on each side: vertices on it, and each edge's crossing of the
+  // plane. A crossing computed in double is off by at most a few ulps of the largest coordinate:
+  // `margin` covers it (8 ulps of double of the triangle's largest magnitude).
+  double lo[2][3], hi[2][3];
+  bool any[2] = {false, false};
+  for (int s = 0; s < 2; ++s)
+    for (int k = 0; k < 3; ++k) lo[s][k] = std::numeric_limits<double>::infinity(), hi[s][k] = -lo[s][k];
+  double big = 0;
+  for (const auto& p : v)
+    for (int k = 0; k < 3; ++k) big = std::max(big, std::abs(p[k]));
+  const double margin = 8 * std::numeric_limits<double>::epsilon() * big;
+  auto add = [&](int side, const Vec3<double>& p, double pad) {
+    any[side] = true;
+    for (int k = 0; k < 3; ++k) lo[side][k] = std::min(lo[side][k], p[k] - pad), hi[side][k] = std::max(hi[side][k], p[k] + pad);
+  };
+  for (int i = 0; i < 3; ++i) {
+    const Vec3<double>& a = v[i];
+    const Vec3<double>& b = v[(i + 1) % 3];
+    if (a[dim] <= pos) add(0, a, 0);
+    if (a[dim] >= pos) add(1, a, 0);
+    if ((a[dim] < pos && b[dim] > pos) || (a[dim] > pos && b[dim] < pos)) {
+      const double s = (pos - a[dim]) / (b[dim] - a[dim]);
+      const Vec3<double> c = a + (b - a) * s;
+      add(0, c, margin), add(1, c, margin);
+    }
+  }
+  const float cur_lo[3] = {prim->lower_x, prim->lower_y, prim->lower_z};
+  const float cur_hi[3] = {prim->upper_x, prim->upper_y, prim->upper_z};
+  for (int s = 0; s < 2; ++s) {
+    float l[3], h[3];
+    for (int k = 0; k < 3; ++k) {
+      l[k] = std::max(cur_lo[k], outward(lo[s][k], false));
+      h[k] = std::min(cur_hi[k], outward(hi[s][k], true));
+    }
+    if (s == 0) h[dim] = std::min(h[dim], position);
+    else l[dim] = std::max(l[dim], position);
+    bool empty = !any[s];
+    for (int k = 0; k < 3; ++k) empty = empty || l[k] > h[k];
+    if (empty)
+      for (int k = 0; k < 3; ++k) l[k] = h[k] = k == int(dim) ? position : cur_lo[k];
+    RTCBounds& out = s == 0 ? *left : *right;
+    out.lower_x = l[0], out.lower_y = l[1], out.lower_z = l[2];
+    out.upper_x = h[0], out.upper_y = h[1], out.upper_z = h[2];
+  }
+}
+
+Bvh build(const std::vector<BvhBox>& boxes, unsigned max_leaf, unsigned block, EmbreeTreeQuality quality,
+          const EmbreeTriangleOf& triangle_of) {
   Bvh out;
   if (boxes.empty()) return out;
-  std::vector<RTCBuildPrimitive> prims(boxes.size());
+  const bool splits = quality == EmbreeTreeQuality::high_splits;
+  // Spatial splits add primitives; Embree uses the array's spare capacity for them.
+  std::vector<RTCBuildPrimitive> prims(splits ? 2 * boxes.size() : boxes.size());
   BvhBox all;
   for (std::size_t i = 0; i < boxes.size(); ++i) {
     const BvhBox& b = boxes[i];
@@ -69,7 +144,7 @@ Bvh build(const std::vector<BvhBox>& boxes, unsigned max_leaf, unsigned block) {
   RTCDevice device = new_embree_device();
   RTCBVH bvh = rtcNewBVH(device);
   RTCBuildArguments args = rtcDefaultBuildArguments();
-  args.buildQuality = RTC_BUILD_QUALITY_MEDIUM;
+  args.buildQuality = quality == EmbreeTreeQuality::medium ? RTC_BUILD_QUALITY_MEDIUM : RTC_BUILD_QUALITY_HIGH;
   args.maxBranchingFactor = 2;
   args.maxDepth = 1024;
   args.sahBlockSize = block;
@@ -77,8 +152,10 @@ Bvh build(const std::vector<BvhBox>& boxes, unsigned max_leaf, unsigned block) {
   args.maxLeafSize = std::min(max_leaf, kMaxLeaf);
   args.bvh = bvh;
   args.primitives = prims.data();
-  args.primitiveCount = prims.size();
+  args.primitiveCount = boxes.size();
   args.primitiveArrayCapacity = prims.size();
+  SplitContext ctx{&triangle_of};
+  if (splits) args.splitPrimitive = split_primitive, args.userPtr = &ctx;
   args.createNode = create_node;
   args.setNodeChildren = set_children;
   args.setNodeBounds = set_bounds;
@@ -115,7 +192,7 @@ Bvh build(const std::vector<BvhBox>& boxes, unsigned max_leaf, unsigned block) {
   }
   rtcReleaseBVH(bvh);
   rtcReleaseDevice(device);
-  if (out.prim_ids.size() != boxes.size())
+  if (splits ? out.prim_ids.size() < boxes.size() : out.prim_ids.size() != boxes.size())
     throw std::runtime_error("rtcBuildBVH: " + std::to_string(out.prim_ids.size()) + " primitives in the leaves of " +
                              std::to_string(boxes.size()));
   return out;
@@ -124,16 +201,27 @@ Bvh build(const std::vector<BvhBox>& boxes, unsigned max_leaf, unsigned block) {
 }  // namespace
 #endif
 
-std::function<Bvh(const std::vector<BvhBox>&, const std::vector<Vec3<float>>&)> embree_binary_builder(unsigned max_leaf,
-                                                                                                      unsigned block,
-                                                                                                      std::string* why) {
+const char* to_string(EmbreeTreeQuality q) {
+  switch (q) {
+    case EmbreeTreeQuality::medium: return "medium";
+    case EmbreeTreeQuality::high: return "high";
+    case EmbreeTreeQuality::high_splits: return "high+splits";
+  }
+  return "?";
+}
+
+std::function<Bvh(const std::vector<BvhBox>&, const std::vector<Vec3<float>>&)> embree_binary_builder(
+    unsigned max_leaf, unsigned block, std::string* why, EmbreeTreeQuality quality, EmbreeTriangleOf triangle_of) {
+  if (quality == EmbreeTreeQuality::high_splits && !triangle_of)
+    throw std::invalid_argument("embree_binary_builder: spatial splits need the triangles");
 #ifdef RAYPROOF_HAVE_EMBREE
   (void)why;
-  return [max_leaf, block](const std::vector<BvhBox>& boxes, const std::vector<Vec3<float>>&) {
-    return build(boxes, max_leaf, block);
+  return [max_leaf, block, quality, triangle_of = std::move(triangle_of)](const std::vector<BvhBox>& boxes,
+                                                                           const std::vector<Vec3<float>>&) {
+    return build(boxes, max_leaf, block, quality, triangle_of);
   };
 #else
-  (void)max_leaf, (void)block;
+  (void)max_leaf, (void)block, (void)quality, (void)triangle_of;
   if (why) *why = "rayproof was built without Embree";
   return {};
 #endif

@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <chrono>
 #include <map>
+#include <memory>
 #include <optional>
 #include <random>
 
@@ -192,22 +193,32 @@ void bench_scene(const SceneBenchOptions& opt, const Scene& s, const std::string
   // Our traversal on our tree and on Embree's (same collapse, leaves and loop; only the binary
   // tree's splits differ), each through the scene BVH.
   if (opt.embree_tree) {
-    std::string why;
-    BvhBuildOptions eo{BvhBuilder::sah, 4};
-    eo.binary = embree_binary_builder(2 * eo.max_leaf, eo.leaf_group, &why);
-    if (!eo.binary) notes.push_back("--embree-tree: " + why);
-    std::optional<Accel> accel_e;
-    if (eo.binary) build_arena.execute([&] { accel_e.emplace(s, eo); });
+    // Embree's builder at quality medium (its default), high, and high with spatial splits.
+    std::vector<std::pair<std::string, std::unique_ptr<Accel>>> trees;
+    for (const EmbreeTreeQuality q : {EmbreeTreeQuality::medium, EmbreeTreeQuality::high, EmbreeTreeQuality::high_splits}) {
+      std::string why;
+      BvhBuildOptions eo{BvhBuilder::sah, 4};
+      eo.binary = embree_binary_builder(2 * eo.max_leaf, eo.leaf_group, &why, q,
+                                        [&s](std::uint32_t i) { return s.triangle(i); });
+      if (!eo.binary) {
+        notes.push_back("--embree-tree: " + why);
+        break;
+      }
+      const std::string tree = q == EmbreeTreeQuality::medium ? "embree tree" : std::string("embree ") + to_string(q);
+      build_arena.execute([&] { trees.emplace_back(tree, std::make_unique<Accel>(s, eo)); });
+    }
     for (const auto& [name, m] : methods) {
-      if (m.fast == FastKernel::none || !accel_e) continue;
-      for (const Accel* a : {&accel, static_cast<const Accel*>(&*accel_e)}) {
-        const SceneCaster caster(*a, m);
+      if (m.fast == FastKernel::none || trees.empty()) continue;
+      auto time_on = [&](const Accel& a, const std::string& tree) {
+        const SceneCaster caster(a, m);
         BenchRow row;
-        row.mesh = mesh_name, row.method = name + (a == &accel ? " @ our tree" : " @ embree tree");
-        row.build_s = a->build_seconds();
+        row.mesh = mesh_name, row.method = name + " @ " + tree;
+        row.build_s = a.build_seconds();
         row.bytes = caster.bytes_read_per_primitive(), row.bytes_held = caster.bytes_per_primitive();
         time_caster(row, caster, 0);
-      }
+      };
+      time_on(accel, "our tree");
+      for (const auto& [tree, a] : trees) time_on(*a, tree);
     }
   }
   double embree_build[2] = {-1, -1};
