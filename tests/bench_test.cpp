@@ -435,3 +435,15 @@ TEST(BenchCli, EmbreeCappedAtAvx2BesideItsDefaultDevice) {
     }
   EXPECT_NE(r.out.find("(packet8)"), std::string::npos) << r.out;
 }
+
+// The open meshes' first-batch line, from known timings: the best batch's time is the points over
+// the printed rate, and "more than" is the difference of the two printed times.
+TEST(BenchText, FirstBatchLineFromKnownTimings) {
+  EXPECT_EQ(first_batch_line(0.16, 20000, 0.3333),
+            "the first batch took 0.160 s, 0.100 s more than the best batch after it (0.060 s at 0.3333 Mpoints/s)");
+  EXPECT_EQ(first_batch_line(0.05, 20000, 0.25),
+            "the first batch took 0.050 s, no more than the best batch after it (0.080 s at 0.2500 Mpoints/s)");
+  EXPECT_EQ(first_batch_line(0.08, 20000, 0.25),
+            "the first batch took 0.080 s, no more than the best batch after it (0.080 s at 0.2500 Mpoints/s)");
+  EXPECT_EQ(first_batch_line(1.0, 20000, 0), "");
+}

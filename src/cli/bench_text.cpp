@@ -244,4 +244,15 @@ std::string bench_json(const std::vector<BenchRow>& rows, const std::vector<Benc
   return out + "]\n";
 }
 
+std::string first_batch_line(double first_s, std::size_t points, double best_mpts) {
+  if (!(best_mpts > 0)) return {};
+  // The rate as printed, so that the reader can redo the division.
+  const std::string rate = fmt::format("{:.4f}", best_mpts);
+  const double best_s = double(points) / (std::stod(rate) * 1e6);
+  const std::string first = fmt::format("{:.3f}", first_s), best = fmt::format("{:.3f}", best_s);
+  const double more = std::stod(first) - std::stod(best);
+  const std::string how = more > 0 ? fmt::format("{:.3f} s more than", more) : std::string("no more than");
+  return fmt::format("the first batch took {} s, {} the best batch after it ({} s at {} Mpoints/s)", first, how, best, rate);
+}
+
 }  // namespace rayproof::cli

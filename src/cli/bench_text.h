@@ -2,6 +2,7 @@
 /// What `rayproof bench` prints: the throughput table, the builds, and the targets (speed against
 /// Embree, two-thread scaling, build time, bytes per triangle, leaks) with a verdict each. Kept apart from the command so that a test can build them from known numbers;
 /// every verdict is decided on the number as printed beside it.
+#include <cstddef>
 #include <cstdint>
 #include <string>
 #include <utility>
@@ -67,5 +68,12 @@ struct BenchTarget {
 /// "competitors": [{"name", "isa", "kernel", "how"}]}}.
 [[nodiscard]] std::string bench_json(const std::vector<BenchRow>& rows, const std::vector<BenchTarget>& targets,
                                      const BenchIsa* isa = nullptr);
+
+/// `bench contains --open`'s line on the first batch of `points` points on an open mesh (the one
+/// that may tabulate the caps' field): "the first batch took 0.160 s, 0.100 s more than the best
+/// batch after it (0.060 s at 0.3333 Mpoints/s)", the best batch's time computed from its rate as
+/// printed; "..., no more than the best batch after it (...)" when it was not slower. Empty when
+/// the best rate is not positive.
+[[nodiscard]] std::string first_batch_line(double first_s, std::size_t points, double best_mpts);
 
 }  // namespace rayproof::cli
