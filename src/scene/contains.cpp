@@ -203,9 +203,6 @@ PointQuery query_point(const ExactMeshState& s, const Vec3<double>& p) {
 namespace {
 
 bool finite(const Vec3<double>& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
-bool in_box(const scene::detail::ExactMeshState& s, const Vec3<double>& p) {
-  return s.lo.x <= p.x && p.x <= s.hi.x && s.lo.y <= p.y && p.y <= s.hi.y && s.lo.z <= p.z && p.z <= s.hi.z;
-}
 
 }  // namespace
 

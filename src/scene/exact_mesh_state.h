@@ -58,6 +58,9 @@ struct ExactMeshState {
   mutable std::shared_ptr<const DistanceTree> distance;
 };
 
+/// p in the closed bounding box of the mesh's used vertices.
+[[nodiscard]] inline bool in_box(const ExactMeshState& s, const Vec3<double>& p) { return in_closed_box(s.lo, s.hi, p); }
+
 /// The side of p through the perturbed ray: the winding number (nonzero rule) and crossing count.
 struct PointQuery {
   bool surface = false;

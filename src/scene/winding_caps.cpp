@@ -29,10 +29,6 @@ std::uint32_t find(std::vector<std::uint32_t>& parent, std::uint32_t x) {
   return x;
 }
 
-bool in_box(const ExactMeshState& s, const Vec3<double>& p) {
-  return s.lo.x <= p.x && p.x <= s.hi.x && s.lo.y <= p.y && p.y <= s.hi.y && s.lo.z <= p.z && p.z <= s.hi.z;
-}
-
 /// The capped mesh (mesh + caps, closed) and the caps' tree.
 void finish_caps(ExactMeshState& s, std::unique_ptr<ExactMeshState> st, const std::vector<Vec3<double>>& verts,
                  std::vector<std::array<std::uint32_t, 3>> tris, std::vector<std::array<std::uint32_t, 3>> caps) {

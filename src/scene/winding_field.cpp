@@ -66,7 +66,7 @@ CapsField::CapsField(const WindingTree& caps, const Vec3<double>& lo, const Vec3
   // The sample's points in the box (the caller strides it), partitioned down the octree.
   std::vector<Vec3<double>> pts, scratch;
   for (const Vec3<double>& p : sample)
-    if (lo.x <= p.x && p.x <= hi.x && lo.y <= p.y && p.y <= hi.y && lo.z <= p.z && p.z <= hi.z) pts.push_back(p);
+    if (in_closed_box(lo, hi, p)) pts.push_back(p);
   const bool sampled = !sample.empty();
   std::deque<Pending> queue;
   std::vector<std::uint32_t> near;
@@ -92,15 +92,14 @@ CapsField::CapsField(const WindingTree& caps, const Vec3<double>& lo, const Vec3
       const auto first = std::int32_t(cells_.size());
       cells_[c.cell].child = first;
       cells_.resize(cells_.size() + 8);
-      // The cell's points by octant, with the comparisons of value()'s descent.
+      // The cell's points by octant, as value() descends.
       std::size_t start[9] = {};
-      auto octant = [&](const Vec3<double>& p) { return (p.x > x0.x) | (p.y > x0.y) << 1 | (p.z > x0.z) << 2; };
-      for (std::size_t i = c.pb; i < c.pe; ++i) ++start[octant(pts[i]) + 1];
+      for (std::size_t i = c.pb; i < c.pe; ++i) ++start[octant_of(pts[i], x0) + 1];
       for (int o = 0; o < 8; ++o) start[o + 1] += start[o];
       scratch.resize(c.pe - c.pb);
       std::size_t fill[8];
       for (int o = 0; o < 8; ++o) fill[o] = start[o];
-      for (std::size_t i = c.pb; i < c.pe; ++i) scratch[fill[octant(pts[i])]++] = pts[i];
+      for (std::size_t i = c.pb; i < c.pe; ++i) scratch[fill[octant_of(pts[i], x0)]++] = pts[i];
       std::copy(scratch.begin(), scratch.end(), pts.begin() + std::ptrdiff_t(c.pb));
       for (int o = 0; o < 8; ++o) {
         Pending k{std::uint32_t(first + o), c.a, c.b, c.depth + 1, c.pb + start[o], c.pb + start[o + 1]};
@@ -126,16 +125,16 @@ CapsField::CapsField(const WindingTree& caps, const Vec3<double>& lo, const Vec3
 }
 
 bool CapsField::value(const Vec3<double>& p, double* w, double* bound) const {
-  if (!(lo_.x <= p.x && p.x <= hi_.x && lo_.y <= p.y && p.y <= hi_.y && lo_.z <= p.z && p.z <= hi_.z)) return false;
+  if (!in_closed_box(lo_, hi_, p)) return false;
   Vec3<double> a = lo_, b = hi_;
   std::uint32_t i = 0;
   while (cells_[i].child >= 0) {
     // The same midpoints as the build: p is in the closed box of the child it descends to.
     const Vec3<double> m = mid(a, b);
-    int o = 0;
-    if (p.x > m.x) o |= 1, a.x = m.x; else b.x = m.x;
-    if (p.y > m.y) o |= 2, a.y = m.y; else b.y = m.y;
-    if (p.z > m.z) o |= 4, a.z = m.z; else b.z = m.z;
+    const int o = octant_of(p, m);
+    (o & 1 ? a.x : b.x) = m.x;
+    (o & 2 ? a.y : b.y) = m.y;
+    (o & 4 ? a.z : b.z) = m.z;
     i = std::uint32_t(cells_[i].child + o);
   }
   const Cell& c = cells_[i];

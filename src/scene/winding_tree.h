@@ -72,6 +72,18 @@ struct WindingTuning {
 };
 [[nodiscard]] WindingTuning& winding_tuning();
 
+/// p in the closed box [lo, hi] (false for NaN).
+[[nodiscard]] inline bool in_closed_box(const Vec3<double>& lo, const Vec3<double>& hi, const Vec3<double>& p) {
+  return lo.x <= p.x && p.x <= hi.x && lo.y <= p.y && p.y <= hi.y && lo.z <= p.z && p.z <= hi.z;
+}
+
+/// The octant of p about a cell's midpoint m: bit 0, 1, 2 set when p is above m in x, y, z. The
+/// caps' field splits its sample and descends with this one comparison, so that a point is always
+/// in the closed box of the child it descends to.
+[[nodiscard]] inline int octant_of(const Vec3<double>& p, const Vec3<double>& m) {
+  return int(p.x > m.x) | int(p.y > m.y) << 1 | int(p.z > m.z) << 2;
+}
+
 class WindingTree;
 /// The caps' winding number tabulated over an octree of the capped mesh's box (winding_field.cpp):
 /// per leaf cell a value w0 at its centre and a bound e with |w_caps(p) - w0| <= e for every p in
