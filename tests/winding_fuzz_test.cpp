@@ -77,6 +77,8 @@ TEST(WindingFuzz, LibraryAnswersPass) {
   for (auto n : r.kind_meshes) kinds += n > 0;
   EXPECT_GE(kinds, 5u);
   EXPECT_EQ(r.failures(), 0u);
+  EXPECT_GT(r.batch_meshes, 0u);
+  EXPECT_EQ(r.batch_points, r.batch_meshes * rayproof::verify::kWindingBatchCompared);
   for (const auto& f : r.findings) ADD_FAILURE() << f.what << "\n" << f.off;
   // The same seed draws the same campaign.
   const auto again = run_winding_fuzz(short_campaign());
@@ -123,6 +125,23 @@ TEST(WindingFuzz, CatchesAMissedSurface) {
   const auto r = run_winding_fuzz(opt);
   EXPECT_EQ(r.wrong_surfaces, r.surface_points);
   EXPECT_GT(r.wrong_surfaces, 0u);
+}
+
+TEST(WindingFuzz, CatchesABatchThatDiffersFromSinglePoints) {
+  auto opt = short_campaign();
+  // The batch flips the side of every eighth point it answers inside or outside.
+  opt.batch = [](const rayproof::ExactMesh& m, std::span<const rayproof::Vec3<double>> p, std::span<Side> out) {
+    m.contains(p, out, 1);
+    for (std::size_t k = 0; k < out.size(); k += 8)
+      if (out[k] == Side::inside || out[k] == Side::outside) out[k] = out[k] == Side::inside ? Side::outside : Side::inside;
+  };
+  const auto r = run_winding_fuzz(opt);
+  EXPECT_GT(r.batch_differ, r.batch_points / 8 / 2);
+  EXPECT_LE(r.batch_differ, r.batch_points / 8);
+  EXPECT_EQ(r.wrong_sides, 0u);
+  bool named = false;
+  for (const auto& f : r.findings) named = named || f.what.find("the batch says") != std::string::npos;
+  EXPECT_TRUE(named);
 }
 
 }  // namespace

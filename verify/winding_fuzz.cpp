@@ -277,6 +277,29 @@ WindingFuzzResult run_winding_fuzz(const WindingFuzzOptions& opt) {
       res.bound_misses += v.bound_miss, res.wrong_sides += v.wrong_side, res.wrong_surfaces += v.wrong_surface;
       if (!v.what.empty()) record(s, p, fmt::format("{} mesh: {}", to_string(kind), v.what));
     }
+    // (d) Every fourth open mesh: a batch large enough to tabulate the caps' field, against the
+    // same points asked alone before it was built.
+    if (kind != WindingMeshKind::closed && res.meshes % 4 == 0) {
+      std::vector<Vec3<double>> pts(kWindingBatch);
+      std::vector<Side> alone(kWindingBatchCompared), batch(kWindingBatch);
+      for (std::size_t k = 0; k < kWindingBatch; ++k) pts[k] = random_point(rng, s, int(k), lo, hi);
+      try {
+        for (std::size_t k = 0; k < kWindingBatchCompared; ++k) alone[k] = m->contains(pts[k]);
+        if (opt.batch) opt.batch(*m, pts, batch);
+        else m->contains(pts, batch, 1);
+      } catch (const std::exception& ex) {
+        ++res.errors;
+        record(s, pts.front(), fmt::format("the batch threw: {}", ex.what()));
+        continue;
+      }
+      ++res.batch_meshes, res.batch_points += kWindingBatchCompared;
+      for (std::size_t k = 0; k < kWindingBatchCompared; ++k)
+        if (batch[k] != alone[k]) {
+          ++res.batch_differ;
+          record(s, pts[k], fmt::format("{} mesh: the batch says {}, the point alone {}", to_string(kind), to_string(batch[k]),
+                                        to_string(alone[k])));
+        }
+    }
   }
   res.seconds = elapsed();
   return res;

@@ -14,6 +14,10 @@
 ///  (b) contains(p) is the reference's side (inside where w > 1/2) wherever the reference keeps
 ///      |w - 1/2| >= 1e-6 (points nearer are counted and skipped);
 ///  (c) surface exactly where the reference's exact test says p lies on a triangle (both answers).
+/// Every fourth mesh that is not closed also gets a batch: 4096 more points of the same kinds in one
+/// batch call of contains, which (with caps of 16 triangles or more) tabulates the caps' field over
+/// them and answers through it; the first 512 are asked alone before it: (d) the batch's side
+/// equals the side the same point got alone, before the field existed.
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -26,6 +30,9 @@
 namespace rayproof::verify {
 
 /// The kinds of random mesh, in the order of WindingFuzzResult::kind_meshes.
+/// The batch of (d), and how many of its points are also asked alone and compared.
+inline constexpr std::size_t kWindingBatch = 4096, kWindingBatchCompared = 512;
+
 enum class WindingMeshKind { closed, holes, crack, flipped, overlap, soup };
 inline constexpr std::size_t kWindingMeshKinds = 6;
 [[nodiscard]] const char* to_string(WindingMeshKind k);
@@ -53,6 +60,8 @@ struct WindingFuzzOptions {
   /// means ExactMesh::winding_value and ExactMesh::contains.
   std::function<WindingValue(const ExactMesh&, const Vec3<double>&)> value;
   std::function<Side(const ExactMesh&, const Vec3<double>&)> contains;
+  /// The batch under test, for (d): empty means ExactMesh::contains on the span, one thread.
+  std::function<void(const ExactMesh&, std::span<const Vec3<double>>, std::span<Side>)> batch;
 };
 
 struct WindingFuzzFinding {
@@ -66,10 +75,12 @@ struct WindingFuzzResult {
   std::size_t kind_meshes[kWindingMeshKinds] = {};
   std::uint64_t points = 0, surface_points = 0, near_half = 0;
   std::uint64_t bound_misses = 0, wrong_sides = 0, wrong_surfaces = 0;
+  std::uint64_t batch_meshes = 0, batch_points = 0;  ///< batch_points: compared with the points alone
+  std::uint64_t batch_differ = 0;  ///< (d): the batch's side is not the side the point got alone
   std::uint64_t errors = 0;  ///< a constructor or a query threw on a valid mesh and point
   double seconds = 0;
   std::vector<WindingFuzzFinding> findings;  ///< the first few
-  [[nodiscard]] std::uint64_t failures() const { return bound_misses + wrong_sides + wrong_surfaces + errors; }
+  [[nodiscard]] std::uint64_t failures() const { return bound_misses + wrong_sides + wrong_surfaces + batch_differ + errors; }
 };
 
 [[nodiscard]] WindingFuzzResult run_winding_fuzz(const WindingFuzzOptions& opt);

@@ -22,6 +22,8 @@ int run_winding_fuzz_cli(const FuzzCliOptions& o) {
              "bound misses", "wrong side", "wrong surface", "errors");
   fmt::print("{:>8} {:>10} {:>8} {:>9} {:>13} {:>11} {:>14} {:>7}\n", r.meshes, r.points, r.surface_points, r.near_half,
              r.bound_misses, r.wrong_sides, r.wrong_surfaces, r.errors);
+  fmt::print("batches: {} meshes, {} points, {} sides that differ from the point asked alone\n", r.batch_meshes,
+             r.batch_points, r.batch_differ);
   std::string kinds;
   for (std::size_t k = 0; k < verify::kWindingMeshKinds; ++k)
     kinds += fmt::format("{}{} {}", k ? ", " : "", verify::to_string(verify::WindingMeshKind(k)), r.kind_meshes[k]);
