@@ -73,15 +73,11 @@ Vec3<double> closest_on_triangle(const Vec3<double>& p, const Vec3<double>& a, c
   return a + ab * (vb * den) + ac * (vc * den);
 }
 
+/// The Embree scene with the double mesh the callback measures against.
 struct EmbreeHeld {
-  RTCDevice device = nullptr;
-  RTCScene scene = nullptr;
+  std::shared_ptr<EmbreeMesh> mesh;
   std::vector<Vec3<double>> v;
   std::vector<std::array<std::uint32_t, 3>> t;
-  ~EmbreeHeld() {
-    if (scene) rtcReleaseScene(scene);
-    if (device) rtcReleaseDevice(device);
-  }
 };
 
 struct QueryResult {
@@ -110,18 +106,7 @@ bool point_query_callback(RTCPointQueryFunctionArguments* args) {
 DistanceCompetitor make_embree_point_query(const std::vector<Vec3<double>>& v, const std::vector<std::array<std::uint32_t, 3>>& t) {
   auto e = std::make_shared<EmbreeHeld>();
   e->v = v, e->t = t;
-  e->device = new_embree_device();
-  e->scene = rtcNewScene(e->device);
-  RTCGeometry g = rtcNewGeometry(e->device, RTC_GEOMETRY_TYPE_TRIANGLE);
-  auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0, RTC_FORMAT_FLOAT3, 3 * sizeof(float), v.size()));
-  for (std::size_t i = 0; i < v.size(); ++i) vb[3 * i] = float(v[i].x), vb[3 * i + 1] = float(v[i].y), vb[3 * i + 2] = float(v[i].z);
-  auto* ib = static_cast<unsigned*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), t.size()));
-  for (std::size_t i = 0; i < t.size(); ++i) ib[3 * i] = t[i][0], ib[3 * i + 1] = t[i][1], ib[3 * i + 2] = t[i][2];
-  rtcSetGeometryPointQueryFunction(g, point_query_callback);
-  rtcCommitGeometry(g);
-  rtcAttachGeometry(e->scene, g);
-  rtcReleaseGeometry(g);
-  rtcCommitScene(e->scene);
+  e->mesh = make_embree_mesh(v, t, RTC_SCENE_FLAG_NONE, point_query_callback);
   DistanceCompetitor c{"embree", "", nullptr};
   c.run = [e](std::span<const Vec3<double>> pts, std::span<std::uint32_t> tri, std::span<double> dist) {
     for (std::size_t i = 0; i < pts.size(); ++i) {
@@ -132,7 +117,7 @@ DistanceCompetitor make_embree_point_query(const std::vector<Vec3<double>>& v, c
       QueryResult r{e.get(), pts[i]};
       RTCPointQueryContext ctx;
       rtcInitPointQueryContext(&ctx);
-      rtcPointQuery(e->scene, &q, &ctx, nullptr, &r);
+      rtcPointQuery(e->mesh->scene, &q, &ctx, nullptr, &r);
       tri[i] = r.prim;
       dist[i] = std::sqrt(r.d2);
     }

@@ -32,9 +32,11 @@ struct EmbreeMesh {
 /// caller's thread either way; only its own build (not a judged figure here) uses TBB's threads.
 inline RTCDevice new_embree_device() { return rtcNewDevice(nullptr); }
 
-/// The mesh's triangles in one geometry; `flags` set on the scene before it is committed.
+/// The mesh's triangles in one geometry (vertices rounded to float); `flags` set on the scene before
+/// it is committed, and `point_query` (when given) as the geometry's point-query callback.
 inline std::shared_ptr<EmbreeMesh> make_embree_mesh(const std::vector<Vec3<double>>& v,
-                                                    const std::vector<std::array<std::uint32_t, 3>>& t, RTCSceneFlags flags) {
+                                                    const std::vector<std::array<std::uint32_t, 3>>& t, RTCSceneFlags flags,
+                                                    RTCPointQueryFunction point_query = nullptr) {
   auto e = std::make_shared<EmbreeMesh>();
   e->device = new_embree_device();
   e->scene = rtcNewScene(e->device);
@@ -44,6 +46,7 @@ inline std::shared_ptr<EmbreeMesh> make_embree_mesh(const std::vector<Vec3<doubl
   for (std::size_t i = 0; i < v.size(); ++i) vb[3 * i] = float(v[i].x), vb[3 * i + 1] = float(v[i].y), vb[3 * i + 2] = float(v[i].z);
   auto* ib = static_cast<unsigned*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0, RTC_FORMAT_UINT3, 3 * sizeof(unsigned), t.size()));
   for (std::size_t i = 0; i < t.size(); ++i) ib[3 * i] = t[i][0], ib[3 * i + 1] = t[i][1], ib[3 * i + 2] = t[i][2];
+  if (point_query) rtcSetGeometryPointQueryFunction(g, point_query);
   rtcCommitGeometry(g);
   rtcAttachGeometry(e->scene, g);
   rtcReleaseGeometry(g);
