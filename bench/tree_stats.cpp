@@ -29,6 +29,7 @@
 
 #include "rayproof/bvh_build.h"
 #include "rayproof/bvh_wide.h"
+#include "rayproof/bvh_wide_quantized.h"
 #include "rayproof/bvh_wide_sah.h"
 #include "rayproof/bvh_wide_stats.h"
 #include "scene/compare/embree_build.h"
@@ -93,9 +94,11 @@ double mt(const Triangle<double>& tr, const Ray<double>& r) {
   return dot(e2, q) * inv;
 }
 
-template <BvhQuery Q>
-Counts count(const Aligned& a, const Scene& s, const std::vector<Ray<double>>& rays) {
-  const Bvh8& w = a.w;
+/// Per ray on an eight-wide tree, full (Bvh8) or compressed (Bvh8Q: 128-byte nodes, two lines),
+/// whose leaf slots old_of maps to prim_ids entries.
+template <BvhQuery Q, class Tree>
+Counts count(const Tree& w, const std::vector<std::uint32_t>& old_of, const Scene& s, const std::vector<Ray<double>>& rays) {
+  using Node = typename Tree::Node;
   Counts c;
   CacheModel l1(32 << 10, 8), l2(512 << 10, 8);
   constexpr std::uint64_t kGroupBase = std::uint64_t(1) << 40;  // the groups' array, apart from the nodes'
@@ -104,10 +107,10 @@ Counts count(const Aligned& a, const Scene& s, const std::vector<Ray<double>>& r
     const BvhRay<double> br(ray, BvhTraversal::conservative);
     double tmax = std::numeric_limits<double>::infinity();
     lines.clear();
-    auto test = [&](const Bvh8Node& n, double tm, double* t) {
+    auto test = [&](const Node& n, double tm, double* t) {
       c.nodes += 1;
-      const auto at = std::uint64_t(&n - w.nodes.data()) * sizeof(Bvh8Node);
-      for (std::uint64_t b = 0; b < sizeof(Bvh8Node); b += 64) lines.push_back((at + b) / 64);
+      const auto at = std::uint64_t(&n - w.nodes.data()) * sizeof(Node);
+      for (std::uint64_t b = 0; b < sizeof(Node); b += 64) lines.push_back((at + b) / 64);
       return rayproof::detail::wide_test_double<true>(n, br, 0.0, tm, t);
     };
     auto leaf = [&](std::uint32_t first, std::uint32_t n) {
@@ -118,14 +121,14 @@ Counts count(const Aligned& a, const Scene& s, const std::vector<Ray<double>>& r
       }
       bool hit = false;
       for (std::uint32_t j = first; j < first + n; ++j) {
-        if (a.old_of[j] == scene::detail::kPadLane) continue;
+        if (old_of[j] == scene::detail::kPadLane) continue;
         c.tris += 1;
-        const double t = mt(s.triangle(w.prim_ids[a.old_of[j]]), ray);
+        const double t = mt(s.triangle(w.prim_ids[old_of[j]]), ray);
         if (t >= 0 && t <= tmax) hit = true, tmax = Q == BvhQuery::closest ? t : tmax;
       }
       return hit;
     };
-    rayproof::detail::wide_traverse_loop<Bvh8, double, Q>(w, test, [&] { return tmax; }, leaf);
+    rayproof::detail::wide_traverse_loop<Tree, double, Q>(w, test, [&] { return tmax; }, leaf);
     // The cache sees the reads in order (a line read twice by one ray hits the second time).
     for (const std::uint64_t l : lines)
       if (l1.miss(l)) c.l1 += 1, c.l2 += l2.miss(l);
@@ -134,6 +137,75 @@ Counts count(const Aligned& a, const Scene& s, const std::vector<Ray<double>>& r
   }
   const double n = double(std::max<std::size_t>(1, rays.size()));
   return {c.nodes / n, c.leaves / n, c.groups / n, c.tris / n, c.lines / n, c.l1 / n, c.l2 / n};
+}
+
+/// Per ray on the binary tree, in the order of bvh_traverse_impl (rayproof/bvh_traverse.h: both
+/// children's boxes tested, the nearer first, entries beyond tmax dropped when popped), which has
+/// no hook for its node reads. `nodes` counts inner nodes visited (two box tests each); the lines
+/// are those of the two children's 32-byte nodes and of each triangle tested, taken as a 40-byte
+/// record in leaf order (a leaf group's share per triangle); `groups` is zero (the binary tree has
+/// none).
+template <BvhQuery Q>
+Counts count_binary(const Bvh& bin, const Scene& s, const std::vector<Ray<double>>& rays) {
+  Counts c;
+  CacheModel l1(32 << 10, 8), l2(512 << 10, 8);
+  constexpr std::uint64_t kRecordBase = std::uint64_t(1) << 40;
+  std::vector<std::uint64_t> lines;
+  const double inf = std::numeric_limits<double>::infinity();
+  for (const Ray<double>& ray : rays) {
+    const BvhRay<double> br(ray, BvhTraversal::conservative);
+    double tmax = inf;
+    lines.clear();
+    struct Entry {
+      std::uint32_t node;
+      double t;
+    };
+    std::vector<Entry> stack;
+    std::uint32_t n = 0;
+    bool done = br.enter<true>(bin.nodes[0].box, 0.0, tmax) == inf;
+    while (!done) {
+      const BvhNode& node = bin.nodes[n];
+      bool next = false;
+      if (node.is_leaf()) {
+        c.leaves += 1;
+        bool hit = false;
+        for (std::uint32_t i = node.index; i < node.index + node.count; ++i) {
+          c.tris += 1;
+          const std::uint64_t at = kRecordBase + std::uint64_t(i) * 40;
+          for (std::uint64_t l = at / 64; l <= (at + 39) / 64; ++l) lines.push_back(l);
+          const double t = mt(s.triangle(bin.prim_ids[i]), ray);
+          if (t >= 0 && t <= tmax) hit = true, tmax = Q == BvhQuery::closest ? t : tmax;
+        }
+        if (hit && Q == BvhQuery::any) break;
+      } else {
+        c.nodes += 1;
+        const std::uint32_t a = node.index, b = a + 1;
+        for (std::uint64_t l = std::uint64_t(a) * 32 / 64; l <= (std::uint64_t(b) * 32 + 31) / 64; ++l) lines.push_back(l);
+        const double ta = br.enter<true>(bin.nodes[a].box, 0.0, tmax), tb = br.enter<true>(bin.nodes[b].box, 0.0, tmax);
+        if (ta != inf && tb != inf) {
+          stack.push_back(ta <= tb ? Entry{b, tb} : Entry{a, ta});
+          n = ta <= tb ? a : b, next = true;
+        } else if (ta != inf || tb != inf) {
+          n = ta != inf ? a : b, next = true;
+        }
+      }
+      while (!next) {
+        if (stack.empty()) {
+          done = true;
+          break;
+        }
+        const Entry e = stack.back();
+        stack.pop_back();
+        if (Q != BvhQuery::closest || e.t <= tmax) n = e.node, next = true;
+      }
+    }
+    for (const std::uint64_t l : lines)
+      if (l1.miss(l)) c.l1 += 1, c.l2 += l2.miss(l);
+    std::sort(lines.begin(), lines.end());
+    c.lines += double(std::unique(lines.begin(), lines.end()) - lines.begin());
+  }
+  const double k = double(std::max<std::size_t>(1, rays.size()));
+  return {c.nodes / k, c.leaves / k, 0, c.tris / k, c.lines / k, c.l1 / k, c.l2 / k};
 }
 
 }  // namespace
@@ -172,6 +244,7 @@ int main(int argc, char** argv) {
   // Embree's binary trees (binned SAH at quality medium and high, and high with spatial splits;
   // blocks of four, leaves of up to eight), collapsed as ours.
   std::vector<std::pair<std::string, Aligned>> trees;
+  Bvh embree_bin;  // Embree's binary tree at quality medium, before the collapse
   trees.emplace_back("greedy", align(greedy));
   trees.emplace_back("sah", align(sah));
   for (const auto q : {compare::EmbreeTreeQuality::medium, compare::EmbreeTreeQuality::high,
@@ -187,6 +260,7 @@ int main(int argc, char** argv) {
     Bvh bin_e = embree_binary(boxes, centers);
     const double build_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const std::size_t refs = bin_e.prim_ids.size();
+    if (q == compare::EmbreeTreeQuality::medium) embree_bin = bin_e;
     trees.emplace_back(std::string("embree-") + compare::to_string(q), align(collapse_wide_sah<8>(std::move(bin_e), boxes, k)));
     std::printf("embree %s: binary build %.1f ms, %zu triangle references for %zu triangles\n", compare::to_string(q),
                 1e3 * build_s, refs, s.size());
@@ -224,10 +298,33 @@ int main(int argc, char** argv) {
       std::printf("  %-18s %-9s %-7s %6.2f %6.2f %6.2f %6.2f %6.2f %6.2f %6.2f\n", name.c_str(), what, set, x.nodes, x.leaves,
                   x.groups, x.tris, x.lines, x.l1, x.l2);
     };
-    row("closest", "primary", count<BvhQuery::closest>(a, s, primary));
-    row("closest", "random", count<BvhQuery::closest>(a, s, random));
-    row("any", "primary", count<BvhQuery::any>(a, s, primary));
-    row("any", "random", count<BvhQuery::any>(a, s, random));
+    row("closest", "primary", count<BvhQuery::closest>(w, a.old_of, s, primary));
+    row("closest", "random", count<BvhQuery::closest>(w, a.old_of, s, random));
+    row("any", "primary", count<BvhQuery::any>(w, a.old_of, s, primary));
+    row("any", "random", count<BvhQuery::any>(w, a.old_of, s, random));
+    // The same tree with compressed nodes (as Accel quantizes it above 8 MiB of full nodes).
+    if (name != "sah" && name != "embree-medium") continue;
+    if (const auto qt = quantize_wide(w)) {
+      const std::string qn = name + " compressed";
+      std::printf("%-18s %8zu\n", qn.c_str(), qt->nodes.size());
+      auto qrow = [&](const char* what, const char* set, const Counts& x) {
+        std::printf("  %-18s %-9s %-7s %6.2f %6.2f %6.2f %6.2f %6.2f %6.2f %6.2f\n", qn.c_str(), what, set, x.nodes, x.leaves,
+                    x.groups, x.tris, x.lines, x.l1, x.l2);
+      };
+      qrow("closest", "primary", count<BvhQuery::closest>(*qt, a.old_of, s, primary));
+      qrow("closest", "random", count<BvhQuery::closest>(*qt, a.old_of, s, random));
+    }
+  }
+  // The binary trees before the collapse (ours and Embree's at quality medium).
+  for (const auto* b : {&bin, static_cast<const Bvh*>(&embree_bin)}) {
+    if (b->nodes.empty()) continue;
+    const char* bn = b == &bin ? "ours binary" : "embree binary";
+    std::printf("%-18s %8zu\n", bn, b->nodes.size());
+    for (const auto& [set, rays] : {std::pair<const char*, const std::vector<Ray<double>>*>{"primary", &primary}, {"random", &random}}) {
+      const Counts x = count_binary<BvhQuery::closest>(*b, s, *rays);
+      std::printf("  %-18s %-9s %-7s %6.2f %6.2f %6.2f %6.2f %6.2f %6.2f %6.2f\n", bn, "closest", set, x.nodes, x.leaves, x.groups,
+                  x.tris, x.lines, x.l1, x.l2);
+    }
   }
   return 0;
 }
