@@ -160,6 +160,70 @@ TEST(TriTri, CertifiedEqualsExactOnEveryFamily) {
   EXPECT_GT(undecided, 0u);  // the extreme family needs the fallback
 }
 
+/// Whether they share a point, zero-area triangles included: certified == CGAL on every family,
+/// the construction's answer where it has one, meets(class) for two triangles of positive area,
+/// every vertex order and the swap; try_tritri_meets undecided or equal.
+TEST(TriTri, MeetsEqualsExactOnEveryFamily) {
+  int degenerate_meeting = 0, degenerate_apart = 0;
+  for (const gen::TriTriFamily& f : gen::tritri_families()) {
+    SCOPED_TRACE(f.name);
+    for (const gen::TriPair& p : gen::generate_tritri(f, count_for(f.name) / 2, kSeed)) {
+      const bool ex = exact::tritri_meets(p.a, p.b);
+      if (p.expected_meets) {
+        ASSERT_EQ(ex, *p.expected_meets) << show(p.a, p.b);
+      }
+      const TriTri c = certified::tritri(p.a, p.b);
+      if (c == TriTri::degenerate) (ex ? degenerate_meeting : degenerate_apart) += 1;
+      else ASSERT_EQ(ex, meets(c)) << show(p.a, p.b);
+      const std::optional<bool> fast = certified::try_tritri_meets(p.a, p.b);
+      if (fast) {
+        ASSERT_EQ(*fast, ex) << show(p.a, p.b);
+      }
+      for (const T& a : orders(p.a))
+        for (const T& b : orders(p.b)) {
+          ASSERT_EQ(certified::tritri_meets(a, b), ex) << show(a, b);
+          ASSERT_EQ(certified::tritri_meets(b, a), ex) << show(b, a);
+        }
+    }
+  }
+  EXPECT_GT(degenerate_meeting, 50);
+  EXPECT_GT(degenerate_apart, 50);
+}
+
+TEST(TriTri, MeetsZeroAreaHandCases) {
+  const T point_in{{1, 1, 0}, {1, 1, 0}, {1, 1, 0}}, point_out{{1, 1, 1}, {1, 1, 1}, {1, 1, 1}};
+  const T through{{1, 1, -1}, {1, 1, 1}, {1, 1, 0}}, beside{{5, 5, -1}, {5, 5, 1}, {5, 5, 0}};
+  const T on_edge_line{{-2, 0, 0}, {-1, 0, 0}, {0, 0, 0}}, before_edge{{-3, 0, 0}, {-2, 0, 0}, {-1, 0, 0}};
+  const T in_plane_across{{-1, 1, 0}, {1, 1, 0}, {3, 1, 0}}, in_plane_apart{{-3, 1, 0}, {-2, 1, 0}, {-1, 1, 0}};
+  const T crossing_segment{{1, 0, -1}, {1, 0, 1}, {1, 0, 0}}, skew_segment{{0, 0, 1}, {2, 0, 1}, {4, 0, 1}};
+  const struct {
+    const char* what;
+    T a, b;
+    bool want;
+  } cases[] = {
+      {"point in the face", point_in, kBase, true},     {"point above", point_out, kBase, false},
+      {"segment through", through, kBase, true},        {"segment beside", beside, kBase, false},
+      {"segment to the vertex", on_edge_line, kBase, true}, {"segment short of the vertex", before_edge, kBase, false},
+      {"segment across, in plane", in_plane_across, kBase, true}, {"segment apart, in plane", in_plane_apart, kBase, false},
+      {"point on a segment", T{{1, 0, 0}, {1, 0, 0}, {1, 0, 0}}, crossing_segment, true},
+      {"segments crossing", crossing_segment, T{{0, 0, 0}, {2, 0, 0}, {1, 0, 0}}, true},
+      {"segments skew", crossing_segment, T{{0, 1, 0}, {2, 1, 0}, {1, 1, 0}}, false},
+      {"segments in one plane, lines cross beyond one", T{{0, 0, 0}, {1, 0, 0}, {2, 0, 0}},
+       T{{3, -1, 0}, {3, 1, 0}, {3, 0, 0}}, false},
+      {"segments on one line, apart", before_edge, T{{0, 0, 0}, {1, 0, 0}, {2, 0, 0}}, false},
+      {"segments on one line, touching", on_edge_line, T{{0, 0, 0}, {1, 0, 0}, {2, 0, 0}}, true},
+      {"parallel segments", skew_segment, T{{0, 0, 0}, {2, 0, 0}, {4, 0, 0}}, false},
+      {"points equal", point_in, point_in, true},       {"points apart", point_in, point_out, false},
+  };
+  for (const auto& c : cases) {
+    SCOPED_TRACE(c.what);
+    EXPECT_EQ(certified::tritri(c.a, c.b), TriTri::degenerate);
+    EXPECT_EQ(certified::tritri_meets(c.a, c.b), c.want);
+    EXPECT_EQ(exact::tritri_meets(c.a, c.b), c.want);
+    EXPECT_EQ(certified::try_tritri_meets(c.a, c.b), std::optional<bool>(c.want));
+  }
+}
+
 /// Every class occurs among the families (so the comparison above exercises each).
 TEST(TriTri, FamiliesCoverEveryClass) {
   std::array<int, kTriTriNames.size()> seen{};

@@ -11,6 +11,7 @@
 #include <CGAL/Simple_cartesian.h>
 #include <CGAL/intersections.h>
 
+#include <utility>
 #include <vector>
 
 #include "rayproof/verify/exact.h"
@@ -63,6 +64,35 @@ TriTri tritri(const Triangle<double>& a, const Triangle<double>& b) {
     if (!s->is_degenerate() && in_relative_interior(ta, m) && in_relative_interior(tb, m)) return TriTri::crossing;
   }
   return TriTri::touching;
+}
+
+namespace {
+
+/// A zero-area triangle's points: the segment between the two vertices farthest apart, or a point.
+bool as_segment(const Tri& t, Segment& s) {
+  const Point &a = t[0], &b = t[1], &c = t[2];
+  const Q ab = CGAL::squared_distance(a, b), bc = CGAL::squared_distance(b, c), ca = CGAL::squared_distance(c, a);
+  if (ab >= bc && ab >= ca) s = Segment(a, b);
+  else if (bc >= ca) s = Segment(b, c);
+  else s = Segment(c, a);
+  return !s.is_degenerate();
+}
+
+}  // namespace
+
+bool tritri_meets(const Triangle<double>& a, const Triangle<double>& b) {
+  if (!triangle_finite(a) || !triangle_finite(b)) return false;
+  Tri ta(point(a.p0), point(a.p1), point(a.p2)), tb(point(b.p0), point(b.p1), point(b.p2));
+  if (!ta.is_degenerate() && !tb.is_degenerate()) return CGAL::do_intersect(ta, tb);
+  if (!ta.is_degenerate()) std::swap(ta, tb);  // ta is zero-area from here
+  Segment sa, sb;
+  const bool seg_a = as_segment(ta, sa);
+  if (!tb.is_degenerate()) return seg_a ? CGAL::do_intersect(sa, tb) : tb.has_on(ta[0]);
+  const bool seg_b = as_segment(tb, sb);
+  if (seg_a && seg_b) return CGAL::do_intersect(sa, sb);
+  if (seg_a) return sa.has_on(tb[0]);
+  if (seg_b) return sb.has_on(ta[0]);
+  return ta[0] == tb[0];
 }
 
 }  // namespace rayproof::exact

@@ -14,6 +14,7 @@
 ///      sign(D . (Y - X)) = orient3d(p_a, p_b, q_c, q_d) * sign(t_b - t_a) * sign(s_d - s_c)
 ///    (docs/tritri.md derives it), so the ends of I_a and I_b compare by signs alone.
 #include <optional>
+#include <utility>
 
 #include "rayproof/orient.h"
 #include "rayproof/triangle_common.h"
@@ -151,6 +152,135 @@ std::optional<TriTri> classify(S& sg, const Triangle<double>& ta, const Triangle
   };
   if (straddles(t) && straddles(s) && pos > 0 && neg > 0) return TriTri::crossing;
   return TriTri::touching;
+}
+
+// ---- contact for any finite pair, zero-area triangles included ----
+
+/// A triangle as the point set it is: a point (n = 1), a segment (n = 2: its two extreme vertices),
+/// or a triangle of positive area (n = 3).
+struct Simplex {
+  int n = 3;
+  Vec3<double> v[3];
+};
+
+/// An axis along which a and b differ (a != b), and whether x lies between them on it.
+inline int varying_axis(const Vec3<double>& a, const Vec3<double>& b) { return a.x != b.x ? 0 : (a.y != b.y ? 1 : 2); }
+inline bool between(const Vec3<double>& a, const Vec3<double>& b, const Vec3<double>& x, int k) {
+  return (a[k] <= x[k] && x[k] <= b[k]) || (b[k] <= x[k] && x[k] <= a[k]);
+}
+
+template <class S>
+Simplex reduce(S& sg, const Vec3<double>& p0, const Vec3<double>& p1, const Vec3<double>& p2) {
+  if (!zero_area(sg, p0, p1, p2)) return {3, {p0, p1, p2}};
+  if (p0 == p1 && p1 == p2) return {1, {p0, p0, p0}};
+  // Collinear: the extremes along an axis on which the three are not all equal are the segment's ends.
+  const int k = p0 == p1 ? varying_axis(p0, p2) : varying_axis(p0, p1);
+  const Vec3<double>* lo = &p0;
+  const Vec3<double>* hi = &p0;
+  for (const Vec3<double>* p : {&p1, &p2}) {
+    if ((*p)[k] < (*lo)[k]) lo = p;
+    if ((*p)[k] > (*hi)[k]) hi = p;
+  }
+  return {2, {*lo, *hi, *hi}};
+}
+
+/// The coordinate plane (u, v) on which triangle t projects with orient2d != 0, and that sign.
+template <class S>
+int projection(S& sg, const Vec3<double> (&t)[3], int& u, int& v) {
+  for (int k : {2, 0, 1}) {
+    u = (k + 1) % 3;
+    v = (k + 2) % 3;
+    const int o = sg.o2(t[0][u], t[0][v], t[1][u], t[1][v], t[2][u], t[2][v]);
+    if (o != 0) return o;
+  }
+  return 0;
+}
+
+/// Point x of t's plane in the closed triangle t (positive area).
+template <class S>
+bool point_in_triangle(S& sg, const Vec3<double> (&t)[3], const Vec3<double>& x) {
+  int u, v;
+  const int o = projection(sg, t, u, v);
+  for (int e = 0; e < 3; ++e) {
+    const Vec3<double>&p = t[e], &q = t[(e + 1) % 3];
+    if (o * sg.o2(p[u], p[v], q[u], q[v], x[u], x[v]) < 0) return false;
+  }
+  return true;
+}
+
+/// Closed segments [a, b] and [c, d] (a != b, c != d) share a point.
+template <class S>
+bool segments_meet(S& sg, const Vec3<double>& a, const Vec3<double>& b, const Vec3<double>& c, const Vec3<double>& d) {
+  if (sg.o3(a, b, c, d) != 0) return false;  // not coplanar
+  const bool c_on = zero_area(sg, a, b, c), d_on = zero_area(sg, a, b, d);
+  if (c_on && d_on) {  // one line: overlap along an axis on which [a, b] varies
+    const int k = varying_axis(a, b);
+    const double lo1 = a[k] < b[k] ? a[k] : b[k], hi1 = a[k] < b[k] ? b[k] : a[k];
+    const double lo2 = c[k] < d[k] ? c[k] : d[k], hi2 = c[k] < d[k] ? d[k] : c[k];
+    return !(hi1 < lo2 || hi2 < lo1);
+  }
+  // One plane, not one line: a projection one-to-one on it, then each segment's ends on the closed
+  // opposite sides of the other's line.
+  const Vec3<double> t[3] = {a, b, c_on ? d : c};
+  int u, v;
+  projection(sg, t, u, v);
+  const int d1 = sg.o2(a[u], a[v], b[u], b[v], c[u], c[v]), d2 = sg.o2(a[u], a[v], b[u], b[v], d[u], d[v]);
+  const int d3 = sg.o2(c[u], c[v], d[u], d[v], a[u], a[v]), d4 = sg.o2(c[u], c[v], d[u], d[v], b[u], b[v]);
+  return d1 * d2 <= 0 && d3 * d4 <= 0;
+}
+
+/// Closed segment [a, b] (a != b) and closed triangle t (positive area) share a point.
+template <class S>
+bool segment_meets_triangle(S& sg, const Vec3<double>& a, const Vec3<double>& b, const Vec3<double> (&t)[3]) {
+  const int sa = sg.o3(t[0], t[1], t[2], a), sb = sg.o3(t[0], t[1], t[2], b);
+  if (sa * sb > 0) return false;
+  if (sa == 0 && sb == 0) {  // coplanar: separating axes are t's edges and the segment's line
+    int u, v;
+    const int o = projection(sg, t, u, v);
+    for (int e = 0; e < 3; ++e) {
+      const Vec3<double>&p = t[e], &q = t[(e + 1) % 3];
+      if (o * sg.o2(p[u], p[v], q[u], q[v], a[u], a[v]) < 0 && o * sg.o2(p[u], p[v], q[u], q[v], b[u], b[v]) < 0)
+        return false;
+    }
+    int side[3];
+    for (int i = 0; i < 3; ++i) side[i] = sg.o2(a[u], a[v], b[u], b[v], t[i][u], t[i][v]);
+    return !one_strict_side(side);
+  }
+  if (sa == 0) return point_in_triangle(sg, t, a);
+  if (sb == 0) return point_in_triangle(sg, t, b);
+  // The segment crosses the plane inside: the line's point is in t when the three volumes with
+  // t's edges are not of mixed strict signs.
+  int w[3];
+  for (int e = 0; e < 3; ++e) w[e] = sg.o3(a, b, t[e], t[(e + 1) % 3]);
+  const bool pos = w[0] > 0 || w[1] > 0 || w[2] > 0, neg = w[0] < 0 || w[1] < 0 || w[2] < 0;
+  return !(pos && neg);
+}
+
+/// The closed point sets share a point: any finite pair, zero-area triangles as segments or points.
+template <class S>
+std::optional<bool> meets(S& sg, const Triangle<double>& ta, const Triangle<double>& tb) {
+  if (!triangle_finite(ta) || !triangle_finite(tb)) return false;
+  Simplex A = reduce(sg, ta.p0, ta.p1, ta.p2), B = reduce(sg, tb.p0, tb.p1, tb.p2);
+  if (sg.unknown) return std::nullopt;
+  if (A.n > B.n) std::swap(A, B);
+  bool r = false;
+  if (A.n == 3) {
+    const std::optional<TriTri> c = classify(sg, ta, tb);
+    if (!c) return std::nullopt;
+    return rayproof::meets(*c);
+  }
+  if (A.n == 1) {
+    const Vec3<double>& x = A.v[0];
+    if (B.n == 1) r = x == B.v[0];
+    else if (B.n == 2) r = zero_area(sg, B.v[0], B.v[1], x) && between(B.v[0], B.v[1], x, varying_axis(B.v[0], B.v[1]));
+    else r = sg.o3(B.v[0], B.v[1], B.v[2], x) == 0 && point_in_triangle(sg, B.v, x);
+  } else if (B.n == 2) {
+    r = segments_meet(sg, A.v[0], A.v[1], B.v[0], B.v[1]);
+  } else {
+    r = segment_meets_triangle(sg, A.v[0], A.v[1], B.v);
+  }
+  if (sg.unknown) return std::nullopt;
+  return r;
 }
 
 }  // namespace rayproof::certified::tritri_detail

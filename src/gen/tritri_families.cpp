@@ -31,8 +31,12 @@ using detail::sub;
 using LTri = std::array<I3, 3>;
 
 struct LPair {
-  LTri a, b;
+  LPair() = default;
+  LPair(const LTri& a_, const LTri& b_, std::optional<TriTri> e, std::optional<bool> m = std::nullopt)
+      : a(a_), b(b_), expected(e), expected_meets(m) {}
+  LTri a{}, b{};
   std::optional<TriTri> expected;
+  std::optional<bool> expected_meets;
 };
 
 bool flat(const LTri& t) { return detail::collinear(t[0], t[1], t[2]); }
@@ -88,7 +92,10 @@ Placed place(Rng& r, LPair lp, int e) {
     return o;
   };
   Placed p;
-  p.pair = {{out(lp.a[0]), out(lp.a[1]), out(lp.a[2])}, {out(lp.b[0]), out(lp.b[1]), out(lp.b[2])}, lp.expected};
+  p.pair = {{out(lp.a[0]), out(lp.a[1]), out(lp.a[2])}, {out(lp.b[0]), out(lp.b[1]), out(lp.b[2])}, lp.expected,
+            lp.expected_meets};
+  if (!p.pair.expected_meets && p.pair.expected && *p.pair.expected != TriTri::degenerate)
+    p.pair.expected_meets = meets(*p.pair.expected);
   for (int i = 0; i < 3; ++i)
     if (perm[i] == 2) p.z_axis = i;
   return p;
@@ -208,6 +215,44 @@ LPair degenerate(Rng& r) {
   return {a, rand_triangle(r, 20), TriTri::degenerate};
 }
 
+/// A zero-area triangle built against a triangle b in z = 0: a point inside b, a segment through
+/// b's interior, a segment in b's plane across b's edge, a segment from b's vertex away from it,
+/// two segments through one point; or apart: a segment crossing b's plane one lattice step outside
+/// b, two segments in one plane whose lines cross beyond one's end.
+LPair degenerate_contact(Rng& r) {
+  const LTri b = scaled(base_triangle(r, 18), 8);
+  const I3 q{(b[0][0] + b[1][0] + 2 * b[2][0]) / 4, (b[0][1] + b[1][1] + 2 * b[2][1]) / 4, 0};  // inside b
+  I3 v = rand_ivec(r, 16);
+  if (v[2] == 0) v[2] = 1;
+  switch (r.irange(0, 6)) {
+    case 0: return {{q, q, q}, b, TriTri::degenerate, true};
+    case 1: return {{sub(q, v), add(q, v), q}, b, TriTri::degenerate, true};
+    case 2: {
+      const I3 out{q[0] + 2 * r.sym_int(16), -r.range(2, i64{1} << 16) * 2, 0};  // below the x axis: outside b
+      return {{q, out, I3{(q[0] + out[0]) / 2, (q[1] + out[1]) / 2, 0}}, b, TriTri::degenerate, true};
+    }
+    case 3: {
+      const I3 w{r.sym_int(16), r.sym_int(16), r.range(1, i64{1} << 16)};  // upwards from b's vertex
+      return {{b[2], add(b[2], w), add(b[2], mul(w, 2))}, b, TriTri::degenerate, true};
+    }
+    case 4: {
+      I3 w = rand_ivec(r, 16);
+      if (detail::collinear(I3{0, 0, 0}, v, w)) w = add(w, I3{1, 0, 0});
+      return {{sub(q, v), add(q, v), q}, {sub(q, w), add(q, w), add(q, mul(w, 2))}, TriTri::degenerate, true};
+    }
+    case 5: {  // in one plane, b's line crosses a's line beyond a's end: apart
+      I3 w = rand_ivec(r, 16);
+      if (detail::collinear(I3{0, 0, 0}, v, w)) w = add(w, I3{1, 0, 0});
+      const I3 c = add(q, mul(v, 3));
+      return {{sub(q, v), add(q, v), q}, {sub(c, w), add(c, w), c}, TriTri::degenerate, false};
+    }
+    default: {
+      const I3 miss{q[0], -1, 0};  // one step below b's edge on the x axis
+      return {{sub(miss, v), add(miss, v), miss}, b, TriTri::degenerate, false};
+    }
+  }
+}
+
 // ---- families ----
 
 Vec3<double> sym3(Rng& r) {
@@ -215,7 +260,7 @@ Vec3<double> sym3(Rng& r) {
   return {x, y, z};
 }
 
-TriPair random_pair(Rng& r) { return {{sym3(r), sym3(r), sym3(r)}, {sym3(r), sym3(r), sym3(r)}, std::nullopt}; }
+TriPair random_pair(Rng& r) { return {{sym3(r), sym3(r), sym3(r)}, {sym3(r), sym3(r), sym3(r)}, std::nullopt, std::nullopt}; }
 
 /// A thin triangle (P, Q, (P + Q)/2 + 2^-k w), k in [20, 50], and a triangle around its middle.
 TriPair sliver(Rng& r) {
@@ -224,7 +269,7 @@ TriPair sliver(Rng& r) {
   const Vec3<double> M = 0.5 * (P + Q);
   const Vec3<double> C = M + eps * w;
   const Vec3<double> d0 = sym3(r), d1 = sym3(r), d2 = sym3(r);
-  return {{P, Q, C}, {M + d0, M + d1, M + d2}, std::nullopt};
+  return {{P, Q, C}, {M + d0, M + d1, M + d2}, std::nullopt, std::nullopt};
 }
 
 int std_scale(Rng& r) { return r.irange(-30, 8); }
@@ -248,6 +293,7 @@ TriPair near_coplanar_from(Rng& r, int k) {
     Vec3<double>& v = r.coin() ? p.pair.b.p2 : p.pair.b.p0;
     v[p.z_axis] = lift(v[p.z_axis], k);
     p.pair.expected = std::nullopt;
+    p.pair.expected_meets = std::nullopt;
   }
   return p.pair;
 }
@@ -307,6 +353,8 @@ const std::vector<Entry>& entries() {
       {{"extreme", "exact contacts and separations scaled by 2^600 or 2^-600 (beyond the expansions' window)"}, nullptr, extreme},
       {{"degenerate", "a zero-area triangle (collinear or coincident vertices) against a triangle"}, degenerate,
        nullptr},
+      {{"degenerate_contact", "a zero-area triangle built to meet the other (a point on it, a segment through it) or to miss it by one step"},
+       degenerate_contact, nullptr},
   };
   return e;
 }

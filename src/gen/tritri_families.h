@@ -23,6 +23,7 @@ namespace rayproof::gen {
 struct TriPair {
   Triangle<double> a, b;
   std::optional<TriTri> expected;  ///< the exact class, where the construction fixes it
+  std::optional<bool> expected_meets;  ///< whether they share a point, where the construction fixes it
 };
 
 struct TriTriFamily {

@@ -31,6 +31,24 @@ namespace rayproof::certified {
   return tritri_detail::classify(signs, a, b);
 }
 
+/// Header-only: whether the closed triangles share a point, from the filtered signs, or
+/// std::nullopt (undecided). Defined for zero-area triangles too (as the segment or point they
+/// are); for two triangles of positive area it is meets(try_tritri(a, b)). NaN or infinite: false.
+[[nodiscard]] inline std::optional<bool> try_tritri_meets(const Triangle<double>& a, const Triangle<double>& b) {
+  auto o3 = [](const Vec3<double>& p, const Vec3<double>& q, const Vec3<double>& r, const Vec3<double>& s) {
+    return orient::orient3d(p, q, r, s);
+  };
+  auto o2 = [](double au, double av, double bu, double bv, double pu, double pv) {
+    return orient::orient2d(au, av, bu, bv, pu, pv);
+  };
+  tritri_detail::Signs<decltype(o3), decltype(o2)> signs{o3, o2};
+  return tritri_detail::meets(signs, a, b);
+}
+
+/// Compiled (rayproof::certified): whether the closed triangles share a point, exact, always
+/// decided; zero-area triangles included (the answer their class, degenerate, does not give).
+[[nodiscard]] bool tritri_meets(const Triangle<double>& a, const Triangle<double>& b);
+
 /// Compiled (rayproof::certified): the exact class, always decided.
 [[nodiscard]] TriTri tritri(const Triangle<double>& a, const Triangle<double>& b);
 

@@ -47,5 +47,8 @@ namespace rayproof::exact {
 /// Triangle_3 with an exact kernel (verify/exact_tritri.cpp): independent of the sign-based
 /// classifier of rayproof/certified/tritri.h, which is judged against it.
 [[nodiscard]] TriTri tritri(const Triangle<double>& a, const Triangle<double>& b);
+/// Whether the closed triangles share a point, zero-area ones included (as CGAL's Segment_3 or
+/// Point_3): CGAL's do_intersect / has_on on the exact kernel. NaN or infinite: false.
+[[nodiscard]] bool tritri_meets(const Triangle<double>& a, const Triangle<double>& b);
 
 }  // namespace rayproof::exact
