@@ -328,6 +328,40 @@ TEST(TriTriKernels, EasyPairsRight) {
   EXPECT_FALSE(tritri_intersect(kBase, T{{0, 0, 1}, {4, 0, 1}, {0, 4, 1}}));
 }
 
+/// Guigue–Devillers decides by signs alone: where its arithmetic is exact (small integer coordinates:
+/// every orient3d and orient2d is exact in double) it must be exactly right, on every sign pattern
+/// (shared vertices and edges, vertices on faces, coplanar pairs are common on a 9^3 grid). This
+/// checks its permutations and its coplanar branch. Möller divides, so it is not held to this.
+TEST(TriTriKernels, GuigueDevillersExactOnSmallIntegers) {
+  gen::Rng rng(kSeed + 2);
+  auto point = [&] {
+    const double x = static_cast<double>(rng.range(-4, 4)), y = static_cast<double>(rng.range(-4, 4)),
+                 z = static_cast<double>(rng.range(-4, 4));
+    return V{x, y, z};
+  };
+  std::array<int, kTriTriNames.size()> seen{};
+  int checked = 0;
+  for (int i = 0; i < 20000 && checked < 6000; ++i) {
+    T a{point(), point(), point()}, b{point(), point(), point()};
+    if (rng.coin()) b.p0 = a.p1;  // shared vertices and edges more often
+    if (rng.chance(1, 4)) b.p1 = a.p2;
+    if (rng.chance(1, 3)) {  // coplanar more often: b in a's plane z = a.z when a is flat in z
+      a.p1.z = a.p0.z;
+      a.p2.z = a.p0.z;
+      b.p0.z = b.p1.z = b.p2.z = a.p0.z;
+    }
+    const TriTri ex = certified::tritri(a, b);
+    if (ex == TriTri::degenerate) continue;
+    ++checked;
+    ++seen[static_cast<std::size_t>(ex)];
+    ASSERT_EQ(tritri_guigue_devillers(a, b), meets(ex)) << show(a, b) << to_string(ex);
+    const Triangle<float> fa = to_float(a), fb = to_float(b);
+    ASSERT_EQ(tritri_guigue_devillers(fa, fb), meets(ex)) << show(a, b) << to_string(ex);
+  }
+  EXPECT_EQ(checked, 6000);
+  for (std::size_t c = 0; c + 2 < seen.size(); ++c) EXPECT_GT(seen[c], 20) << kTriTriNames[c];
+}
+
 /// Wrong answers per family (printed; docs/tritri.md's table is this output). Asserted only where
 /// it must hold and what was observed: both kernels fail in float on the shared-edge and
 /// vertex-on-face families, never on far-apart or clearly crossing pairs.
