@@ -39,7 +39,7 @@ int make_lone_first(Vec3<T> (&p)[3], T (&s)[3]) {
   };
   for (int flip : {1, -1}) {
     for (int r = 0; r < 3; ++r) {
-      const T a = flip * s[r], b = flip * s[(r + 1) % 3], c = flip * s[(r + 2) % 3];
+      const T f = static_cast<T>(flip), a = f * s[r], b = f * s[(r + 1) % 3], c = f * s[(r + 2) % 3];
       if ((a > T(0) && b <= T(0) && c <= T(0)) || (a == T(0) && b < T(0) && c < T(0))) {
         rotate(r);
         if (flip < 0)
