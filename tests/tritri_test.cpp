@@ -89,8 +89,9 @@ TEST(TriTri, HandWrittenCasesEveryClass) {
     const std::optional<TriTri> f = certified::try_tritri(h.a, h.b);
     ASSERT_TRUE(f.has_value());  // small integers: the filter decides
     EXPECT_EQ(*f, h.want);
-    // Extreme magnitudes: the same classes (GMP decides what the expansions cannot).
-    for (int e : {600, -600}) {
+    // Extreme magnitudes, subnormal coordinates too: the same classes (GMP decides what the
+    // expansions cannot).
+    for (int e : {600, -600, 1000, -1065}) {
       auto s = [e](V v) { return V{std::ldexp(v.x, e), std::ldexp(v.y, e), std::ldexp(v.z, e)}; };
       EXPECT_EQ(certified::tritri(map(h.a, s), map(h.b, s)), h.want) << e;
     }
