@@ -242,6 +242,31 @@ TEST(TriTri, MeetsZeroAreaHandCases) {
   }
 }
 
+/// Pairs on a 7^3 integer grid, biased to share vertices and planes: every sign pattern of the
+/// classifier (zeros everywhere, collinear and coincident vertices) against CGAL, class and contact.
+TEST(TriTri, CertifiedEqualsExactOnSmallIntegerGrid) {
+  gen::Rng rng(kSeed + 3);
+  auto point = [&] {
+    const double x = static_cast<double>(rng.range(-3, 3)), y = static_cast<double>(rng.range(-3, 3)),
+                 z = static_cast<double>(rng.range(-3, 3));
+    return V{x, y, z};
+  };
+  std::array<int, kTriTriNames.size()> seen{};
+  for (int i = 0; i < 1500; ++i) {
+    T a{point(), point(), point()}, b{point(), point(), point()};
+    if (rng.coin()) b.p0 = a.p1;
+    if (rng.chance(1, 4)) b.p1 = a.p2;
+    if (rng.chance(1, 3)) {
+      a.p1.z = a.p2.z = b.p0.z = b.p1.z = b.p2.z = a.p0.z;
+    }
+    const TriTri ex = exact::tritri(a, b);
+    ++seen[static_cast<std::size_t>(ex)];
+    ASSERT_EQ(certified::tritri(a, b), ex) << show(a, b);
+    ASSERT_EQ(certified::tritri_meets(a, b), exact::tritri_meets(a, b)) << show(a, b);
+  }
+  for (std::size_t c = 0; c + 1 < seen.size(); ++c) EXPECT_GT(seen[c], 10) << kTriTriNames[c];
+}
+
 /// Every class occurs among the families (so the comparison above exercises each).
 TEST(TriTri, FamiliesCoverEveryClass) {
   std::array<int, kTriTriNames.size()> seen{};
