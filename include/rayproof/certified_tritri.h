@@ -30,6 +30,8 @@ struct Signs {
   O2 o2f;
   bool unknown = false;
   int o3(const Vec3<double>& a, const Vec3<double>& b, const Vec3<double>& c, const Vec3<double>& d) {
+    // Two equal points (a shared vertex of a mesh): exactly 0, without the expansions' proof of it.
+    if (a == b || a == c || a == d || b == c || b == d || c == d) return 0;
     const int s = o3f(a, b, c, d);
     if (s == orient::kUnknown) unknown = true;
     return s == orient::kUnknown ? 0 : s;
