@@ -54,7 +54,7 @@ bool zero_area(S& sg, const Vec3<double>& p0, const Vec3<double>& p1, const Vec3
   return true;
 }
 
-/// Both signs strictly one way.
+/// All three signs strictly one way (all > 0 or all < 0).
 inline bool one_strict_side(const int (&s)[3]) {
   return (s[0] > 0 && s[1] > 0 && s[2] > 0) || (s[0] < 0 && s[1] < 0 && s[2] < 0);
 }
