@@ -7,3 +7,4 @@
 #include "rayproof/plane.h"
 #include "rayproof/sphere.h"
 #include "rayproof/triangle.h"
+#include "rayproof/tritri.h"

@@ -1,6 +1,7 @@
 // rayproof::certified: certified::intersect on a contact of every kind that only exact signs decide
 // (an edge, a tangent, a graze, a rim), each built so that its t is an exact double.
 #include <rayproof/certified/intersect.h>
+#include <rayproof/certified/tritri.h>
 
 #include <cmath>
 #include <cstdio>
@@ -42,7 +43,14 @@ int check_certified() {
   failures += expect("box", box.contact, box.t, Contact::graze, 1);
   const auto disk = certified::intersect(Ray<double>{V{3, 4, 2}, V{0, 0, -1}}, Disk<double>{V{0, 0, 0}, V{0, 0, 1}, 5});
   failures += expect("disk", disk.contact, disk.t, Contact::rim, 2);
-  std::printf("certified: 6 kinds checked, %d failures\n", failures);
+  // Triangle/triangle: a vertex exactly on the other's face, at 2^600 (GMP decides the signs).
+  const double s = std::ldexp(1.0, 600);
+  const Triangle<double> ta{V{0, 0, 0}, V{4 * s, 0, 0}, V{0, 4 * s, 0}}, tb{V{s, s, 0}, V{s, s, s}, V{2 * s, s, s}};
+  if (certified::tritri(ta, tb) != TriTri::touching) {
+    std::printf("certified: tritri gave %s, want touching\n", to_string(certified::tritri(ta, tb)).data());
+    ++failures;
+  }
+  std::printf("certified: 6 kinds and a triangle pair checked, %d failures\n", failures);
   return failures + check_certified_sample();
 }
 

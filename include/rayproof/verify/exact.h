@@ -32,6 +32,7 @@
 #include "rayproof/ray.h"
 #include "rayproof/sphere.h"
 #include "rayproof/triangle_common.h"
+#include "rayproof/tritri_class.h"
 
 namespace rayproof::exact {
 
@@ -41,5 +42,13 @@ namespace rayproof::exact {
 [[nodiscard]] Hit<double> intersect(const Ray<double>& ray, const Box<double>& box);
 [[nodiscard]] Hit<double> intersect(const Ray<double>& ray, const Disk<double>& disk);
 [[nodiscard]] TriangleHit<double> intersect(const Ray<double>& ray, const Triangle<double>& triangle);
+
+/// The exact class of two triangles (docs/tritri.md), from CGAL's do_intersect and intersection on
+/// Triangle_3 with an exact kernel (verify/exact_tritri.cpp): independent of the sign-based
+/// classifier of rayproof/certified/tritri.h, which is judged against it.
+[[nodiscard]] TriTri tritri(const Triangle<double>& a, const Triangle<double>& b);
+/// Whether the closed triangles share a point, zero-area ones included (as CGAL's Segment_3 or
+/// Point_3): CGAL's do_intersect / has_on on the exact kernel. NaN or infinite: false.
+[[nodiscard]] bool tritri_meets(const Triangle<double>& a, const Triangle<double>& b);
 
 }  // namespace rayproof::exact
