@@ -122,6 +122,7 @@ nlohmann::json result_json(const verify::CheckResult& r) {
 
 
 int run_check(const CheckCliOptions& o) {
+  if (!o.contains.empty()) return run_contains_check(o);
   if (!o.caster.empty()) return run_caster_check(o);
   // The kernel under test: exactly one of --exec, --plugin, --method.
   const std::size_t named =
@@ -384,6 +385,24 @@ Run add_check(CLI::App& app) {
       ->check(CLI::Range(std::size_t{1}, std::size_t{100000000}))
       ->capture_default_str();
   sub->add_option("--caster-sets", o->caster_sets, "Ray sets: leak, graze, face, surface, random, extreme, invalid (default: all)")
+      ->delimiter(',')->allow_extra_args(false);
+  sub->add_option("--contains", o->contains,
+                  "NAME=COMMAND: a containment function judged on --mesh: it reads the mesh, then batches of points, "
+                  "and answers 0 (outside), 1 (inside) or 2 (surface) per point (docs/check.md); repeatable");
+  sub->add_option("--contains-rule", o->contains_rule, "The rule the answers are judged by: automatic, nonzero, parity, winding")
+      ->capture_default_str();
+  sub->add_option("--contains-timeout", o->contains_timeout, "Seconds the function may take per answer line")
+      ->capture_default_str();
+  sub->add_option("--contains-batch", o->contains_batch, "Points per batch sent to the function")
+      ->check(CLI::Range(std::size_t{1}, std::size_t{1000000}))
+      ->capture_default_str();
+  sub->add_option("--contains-points", o->contains_points, "Random points per mesh (the other sets follow the mesh)")
+      ->capture_default_str();
+  sub->add_option("--contains-max-per-set", o->contains_max_per_set, "Points per set at most (evenly subsampled)")
+      ->check(CLI::Range(std::size_t{1}, std::size_t{100000000}))
+      ->capture_default_str();
+  sub->add_option("--contains-sets", o->contains_sets,
+                  "Point sets: vertex, edge, face, nudged, thin, far, random, invalid (default: all)")
       ->delimiter(',')->allow_extra_args(false);
   return [o] { return run_check(*o); };
 }

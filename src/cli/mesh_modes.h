@@ -35,6 +35,11 @@ struct CheckCliOptions {
   double caster_timeout = 10;
   std::size_t caster_batch = 1024, caster_rays = 2000, caster_max_per_set = 20000;
   std::vector<std::string> caster_sets;
+  std::vector<std::string> contains;  ///< --contains NAME=COMMAND: containment functions on --mesh (check_contains.cpp)
+  std::string contains_rule = "automatic";
+  double contains_timeout = 10;
+  std::size_t contains_batch = 1024, contains_points = 1000, contains_max_per_set = 1000;
+  std::vector<std::string> contains_sets;
 };
 
 
@@ -71,6 +76,7 @@ struct SpawnOptions {
 /// The mesh modes (check_mesh.cpp, fuzz_mesh.cpp, spawn_mesh_cli.cpp).
 int run_mesh_check(const CheckCliOptions& o, const Method& kernel);
 int run_caster_check(const CheckCliOptions& o);
+int run_contains_check(const CheckCliOptions& o);
 int run_mesh_fuzz_cli(const FuzzCliOptions& o);
 /// fuzz --distance: closest points against a brute force in rationals (verify/distance_fuzz.h).
 int run_distance_fuzz_cli(const FuzzCliOptions& o);
