@@ -93,6 +93,18 @@ struct ContainsJudge::State {
     }
   }
 
+  /// Whether the generalized winding number at p cannot be separated from 1/2: its certified
+  /// interval (winding_value) refined, while it holds 1/2, from a coarse bound down to the direct
+  /// evaluation of every triangle, still holds 1/2. The coarse steps are what make a function that
+  /// is wrong on many points affordable: most intervals leave 1/2 at once.
+  [[nodiscard]] bool near_half(const Vec3<double>& p) const {
+    for (double tolerance : {0x1p-3, 0x1p-12, 0.0}) {
+      const WindingValue w = mesh.winding_value(p, tolerance);
+      if (w.surface || !(std::fabs(w.w - 0.5) <= w.bound)) return false;
+    }
+    return true;
+  }
+
   /// The references of points [b, e) into ref (the rule's sides; on closed oriented meshes the
   /// winding number and whether the rules differ).
   void reference(std::span<const Vec3<double>> points, std::size_t b, std::size_t e, std::vector<Reference>& ref,
@@ -217,8 +229,7 @@ ContainsTally ContainsJudge::judge(const ContainsPoints& points, std::span<const
           if (!readable(a) || a.side == 2 || (side != Side::inside && side != Side::outside) ||
               (a.side == 1) == (side == Side::inside))
             continue;
-          const WindingValue w = s.mesh.winding_value(points.points[i], 0);
-          ref[i].near_half = !w.surface && std::fabs(w.w - 0.5) <= w.bound;
+          ref[i].near_half = s.near_half(points.points[i]);
         }
       });
     for (std::size_t i = b; i < e; ++i) {
