@@ -105,6 +105,29 @@ TEST(CheckContainsCli, HangAndGarbageAreReportedAndTheRunGoesOn) {
   EXPECT_NE(r.out.find("garbage set=random mesh="), std::string::npos) << r.out;
 }
 
+// A program that answers each point as it reads it, on a batch whose answers overflow a pipe: its
+// answers are read while the batch is written (else both sides wait on full pipes until the timeout).
+TEST(CheckContainsCli, AProgramAnsweringAsItReadsALargeBatchDoesNotDeadlock) {
+  const auto mesh = write_file("cube.off", kCube);
+  const auto script = write_file("stream.py", R"(import sys
+n = 0
+for line in iter(sys.stdin.readline, ""):
+    if line.startswith("points"):
+        n = int(line.split()[1])
+    elif n > 0:
+        print(0, flush=True)
+        n -= 1
+)");
+  const auto r = run_rayproof("check --contains 'stream=/usr/bin/python3 " + script.string() + "' --mesh " +
+                              mesh.string() +
+                              " --contains-points 60000 --contains-max-per-set 60000 --contains-sets random "
+                              "--contains-batch 60000 --contains-timeout 5");
+  EXPECT_EQ(count_of(r.out, "stream", "points"), 60000u) << r.out << r.err;
+  EXPECT_EQ(count_of(r.out, "stream", "failures"), 0u) << r.out;
+  EXPECT_EQ(count_of(r.out, "stream", "outside_called_inside"), 0u) << r.out;
+  EXPECT_EQ(r.out.find("event:"), std::string::npos) << r.out;
+}
+
 // --json holds the counts the text prints, under the same keys.
 TEST(CheckContainsCli, JsonHoldsTheCountsOfTheText) {
   if (!have_numpy()) GTEST_SKIP() << "/usr/bin/python3 has no numpy";

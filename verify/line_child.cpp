@@ -7,7 +7,9 @@
 
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <cerrno>
+#include <climits>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -44,12 +46,42 @@ std::string LineChild::start(const std::string& command, const std::string& head
 }
 
 std::string LineChild::send(const std::string& s, double timeout) {
-  const auto deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(timeout));
-  switch (proc::write_all(ch_.to, s.data(), s.size(), deadline)) {
-    case proc::Io::ok: return "";
-    case proc::Io::timeout: return fmt::format("timed out: did not read its input for {} s", timeout);
-    default: return ended();
+  // Written in pieces of at most PIPE_BUF bytes when the pipe has room, while the program's answers
+  // are read into buf_ as they come: a program that answers each line as it reads it fills its
+  // output pipe during a large batch, and would wait for us while we wait for it. The timeout
+  // runs from the last byte that moved either way.
+  const auto span = std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(timeout));
+  auto deadline = Clock::now() + span;
+  bool output_open = true;
+  for (std::size_t at = 0; at < s.size();) {
+    const double left = std::chrono::duration<double>(deadline - Clock::now()).count();
+    if (left <= 0) return fmt::format("timed out: did not read its input for {} s", timeout);
+    pollfd pf[2] = {{ch_.to, POLLOUT, 0}, {output_open ? ch_.from : -1, POLLIN, 0}};
+    const int pr = ::poll(pf, 2, static_cast<int>(std::ceil(std::min(left, 1e6) * 1000)));
+    if (pr < 0 && errno == EINTR) continue;
+    if (pr < 0) return ended();
+    if (pr == 0) return fmt::format("timed out: did not read its input for {} s", timeout);
+    if (pf[1].revents & (POLLIN | POLLHUP | POLLERR)) {
+      char tmp[1 << 14];
+      const ssize_t r = ::read(ch_.from, tmp, sizeof tmp);
+      if (r > 0) {
+        buf_.append(tmp, static_cast<std::size_t>(r));
+        deadline = Clock::now() + span;
+        if (buf_.size() > (std::size_t{1} << 24)) return "unreadable answer: 16 MiB written before reading its input";
+      } else if (r == 0 || (errno != EINTR && errno != EAGAIN)) {
+        output_open = false;  // its output closed: the write below tells whether it is gone
+      }
+    }
+    if (pf[0].revents & (POLLERR | POLLHUP)) return ended();
+    if (pf[0].revents & POLLOUT) {
+      const ssize_t w = ::write(ch_.to, s.data() + at, std::min<std::size_t>(PIPE_BUF, s.size() - at));
+      if (w < 0 && (errno == EINTR || errno == EAGAIN)) continue;
+      if (w <= 0) return ended();
+      at += static_cast<std::size_t>(w);
+      deadline = Clock::now() + span;
+    }
   }
+  return "";
 }
 
 std::string LineChild::line(std::string& out, double timeout) {

@@ -18,7 +18,9 @@ class LineChild {
   /// Starts `command` and writes `head`; "" when done, else how it failed.
   std::string start(const std::string& command, const std::string& head, double timeout);
   [[nodiscard]] bool running() const { return ch_.pid > 0; }
-  /// "" when `s` is written; else how the program failed.
+  /// "" when `s` is written; else how the program failed. The program's output is read (kept for
+  /// line()) while `s` is written, so one that answers as it reads does not block on a full pipe;
+  /// the timeout runs from the last byte that moved.
   std::string send(const std::string& s, double timeout);
   /// One answer line into `out`: "", or how the program failed.
   std::string line(std::string& out, double timeout);
