@@ -13,6 +13,7 @@
 #include "rayproof/scene/exact_mesh.h"
 #include "rayproof/scene/winding.h"
 #include "rayproof/verify/contains_check.h"
+#include "rayproof/verify/contains_gtest.h"
 
 namespace rayproof {
 namespace {
@@ -364,6 +365,15 @@ TEST(ContainsCheck, ThrowingOnInvalidPointsAndBadOptions) {
   const ContainsTally e = verify::check_contains(outside, empty.view(), verify::ContainsCheckOptions{});
   EXPECT_EQ(e.findings(), 0u) << verify::summary_text(e);
   EXPECT_GT(e.points, 0u);
+}
+
+TEST(ContainsCheck, GoogleTestMacroPassesTheExactFunctionAndExplainsAWrongOne) {
+  const OwnedMesh m = tetrahedron();
+  const ExactMesh mesh(VertexArray(&m.v[0].x, m.v.size()), IndexArray{m.f[0].data(), m.f.size()});
+  EXPECT_CONTAINS_MATCHES_EXACT(exact_function(mesh), m.view());
+  const ::testing::AssertionResult wrong = gtest::contains_matches_exact(naive_parity(m), m.view());
+  EXPECT_FALSE(wrong);
+  EXPECT_NE(std::string(wrong.message()).find(" mesh=thin-tetrahedron point "), std::string::npos) << wrong.message();
 }
 
 TEST(ContainsCheck, ReproducerPrintsThePointExactly) {
