@@ -85,6 +85,11 @@ TEST(CheckContainsCli, ExampleWrappingRayproofContainsHasNoFinding) {
   EXPECT_EQ(count_of(r.out, "exact", "findings"), 0u) << r.out;
   EXPECT_EQ(count_of(r.out, "exact", "surface_said_surface"), count_of(r.out, "exact", "surface")) << r.out;
   EXPECT_NE(r.out.find("function 'exact' answered all"), std::string::npos) << r.out;
+  const auto f = run_rayproof("check --contains 'exact=/usr/bin/python3 " + example("rayproof_contains.py") + " " +
+                              RAYPROOF_BIN + "' --mesh " + mesh.string() +
+                              " --contains-points 100 --contains-precision float --contains-sets nudged,random");
+  EXPECT_EQ(f.status, 0) << f.err << f.out;
+  EXPECT_NE(f.out.find("rule automatic, float precision"), std::string::npos) << f.out;
 }
 
 TEST(CheckContainsCli, HangAndGarbageAreReportedAndTheRunGoesOn) {
@@ -164,6 +169,7 @@ TEST(CheckContainsCli, BadUsageIsRefused) {
   EXPECT_EQ(run_rayproof("check --contains x=cat --contains-rule majority --mesh " + mesh.string()).status, 2);
   EXPECT_EQ(run_rayproof("check --contains x=cat --contains-sets nope --mesh " + mesh.string()).status, 2);
   EXPECT_EQ(run_rayproof("check --contains x=cat --contains-timeout 0 --mesh " + mesh.string()).status, 2);
+  EXPECT_EQ(run_rayproof("check --contains x=cat --contains-precision half --mesh " + mesh.string()).status, 2);
   const auto nonzero = run_rayproof("check --contains x=cat --contains-rule nonzero --mesh " + open.string());
   EXPECT_EQ(nonzero.status, 2);
   EXPECT_NE(nonzero.err.find("not closed"), std::string::npos) << nonzero.err;

@@ -238,6 +238,31 @@ TEST(ContainsCheck, SurfaceSetsLieOnTheSurfaceAndNudgedPointsOff) {
   }
 }
 
+// precision float32: every point is a float (the nudges are float ulps: off the cube's surface),
+// and the counts still equal the brute-force tally.
+TEST(ContainsCheck, FloatPrecisionGivesFloatPointsNudgedByFloatUlps) {
+  const OwnedMesh m = cube();
+  verify::ContainsCheckOptions opt;
+  opt.precision = verify::ContainsPrecision::float32;
+  const auto pts = verify::contains_points(m.view(), opt);
+  std::size_t nudged = 0;
+  for (std::size_t i = 0; i < pts.points.size(); ++i) {
+    const Vec3<double>& p = pts.points[i];
+    const bool is_float = (std::isnan(p.x) || double(float(p.x)) == p.x) && (std::isnan(p.y) || double(float(p.y)) == p.y) &&
+                          (std::isnan(p.z) || double(float(p.z)) == p.z);
+    EXPECT_TRUE(is_float) << i;
+    if (pts.names[pts.set[i]] != "nudged") continue;
+    ++nudged;
+    EXPECT_FALSE(brute(m, p).surface) << i;  // a float ulp off, and still a float (above)
+  }
+  EXPECT_GT(nudged, 0u);
+  const ExactMesh mesh(VertexArray(&m.v[0].x, m.v.size()), IndexArray{m.f[0].data(), m.f.size()});
+  const Judged exact = run(m, exact_function(mesh), opt);
+  EXPECT_EQ(exact.tally.findings(), 0u) << verify::summary_text(exact.tally);
+  const Judged naive = run(m, naive_parity(m), opt);
+  expect_counts_equal(naive.tally, brute_tally(m, true, ContainsRule::automatic, naive.points, naive.answers), "float");
+}
+
 TEST(ContainsCheck, NaiveParityCountsEqualTheBruteForceTally) {
   for (const OwnedMesh& m : {cube(), tetrahedron(), overlap()}) {
     const Judged r = run(m, naive_parity(m));

@@ -28,7 +28,10 @@ constexpr const char* kSets[] = {"vertex", "edge", "face", "nudged", "thin", "fa
 struct SetBuilder {
   ContainsPoints& out;
   std::size_t cap;
+  bool float32 = false;  ///< round every point to float
   void add(const char* name, std::vector<Vec3<double>> points) {
+    if (float32)
+      for (Vec3<double>& p : points) p = {double(float(p.x)), double(float(p.y)), double(float(p.z))};
     std::set<std::array<std::uint64_t, 3>> seen;
     std::erase_if(points, [&](const Vec3<double>& p) {
       return !seen.insert({std::bit_cast<std::uint64_t>(p.x), std::bit_cast<std::uint64_t>(p.y),
@@ -72,7 +75,12 @@ ContainsPoints contains_points(const ContainsMesh& mesh, const ContainsCheckOpti
     for (auto i : f)
       if (i >= V.size()) throw MeshInputError(fmt::format("triangle index {} out of range ({} vertices)", i, V.size()));
   ContainsPoints out;
-  SetBuilder b{out, std::max<std::size_t>(opt.max_points_per_set, 1)};
+  const bool float32 = opt.precision == ContainsPrecision::float32;
+  SetBuilder b{out, std::max<std::size_t>(opt.max_points_per_set, 1), float32};
+  // One ulp of the function's precision from x towards `to`.
+  auto nudge = [float32](double x, double to) {
+    return float32 ? double(std::nextafter(float(x), float(to))) : std::nextafter(x, to);
+  };
   std::mt19937_64 rng(opt.seed);
   Vec3<double> lo{kInf, kInf, kInf}, hi = -lo;
   for (const auto& f : F)
@@ -139,7 +147,7 @@ ContainsPoints contains_points(const ContainsMesh& mesh, const ContainsCheckOpti
           Vec3<double> p = (*pts)[i];
           for (int axis = 0; axis < 3; ++axis) {
             const double c = component(dir, axis);
-            if (std::fabs(c) >= 0.1 * big) component(p, axis) = std::nextafter(component(p, axis), way * c * kInf);
+            if (std::fabs(c) >= 0.1 * big) component(p, axis) = nudge(component(p, axis), way * c * kInf);
           }
           nudged.push_back(p);
         }

@@ -90,12 +90,14 @@ ContainsRule rule_named(const std::string& name) {
 }
 
 py::dict check_contains(py::function fn, py::handle vertices, py::handle triangles, const std::string& rule,
-                        std::size_t random_points, std::size_t max_points_per_set, std::uint64_t seed,
+                        const std::string& precision, std::size_t random_points, std::size_t max_points_per_set, std::uint64_t seed,
                         std::optional<std::vector<std::string>> sets, std::size_t batch, std::size_t reproducers,
                         std::optional<py::handle> points, const std::string& mesh_name, int threads) {
   const MeshArrays arrays = mesh_arrays(vertices, triangles);
   verify::ContainsCheckOptions opt;
   opt.rule = rule_named(rule);
+  if (precision == "float") opt.precision = verify::ContainsPrecision::float32;
+  else if (precision != "double") throw py::value_error(fmt::format("precision: '{}' is neither 'float' nor 'double'", precision));
   if (batch == 0) throw py::value_error("batch: must be at least 1");
   opt.random_points = random_points;
   opt.max_points_per_set = max_points_per_set;
@@ -172,8 +174,8 @@ void bind_check_contains(py::module_& m) {
 fn(points) takes an (n, 3) float64 array and returns n answers: 0 outside, 1 inside, optionally 2
 on the surface (ints, bools or integral floats; anything else is garbage). The answers are judged
 by `rule` ('automatic', 'nonzero', 'parity', 'winding'; as Mesh.contains). The points: rayproof's
-sets (vertex, edge, face, nudged, thin, far, random, invalid; `sets` picks some), or points=(n, 3)
-array. An exception fn raises fails that batch's points (failures, or invalid_failures on points
+sets (vertex, edge, face, nudged, thin, far, random, invalid; `sets` picks some; precision='float'
+rounds them to float and nudges by float ulps, for a float32 function), or points=(n, 3) array. An exception fn raises fails that batch's points (failures, or invalid_failures on points
 with a NaN or infinity) and the run goes on.
 
 Returns a dict of counts ()" + count_keys(std::string_view("Returns a dict of counts (").size()) + R"(),
@@ -181,7 +183,7 @@ the rule that answered, per-set counts (`sets`), one-line `reproducers`, `notes`
 judge_seconds, contains_seconds (rayproof's own contains on the same points) and cost_ratio.
 docs/check.md explains each count.)";
   m.def("check_contains", &check_contains, py::arg("fn"), py::arg("vertices"), py::arg("triangles"), py::kw_only(),
-        py::arg("rule") = "automatic", py::arg("random_points") = 1000, py::arg("max_points_per_set") = 1000,
+        py::arg("rule") = "automatic", py::arg("precision") = "double", py::arg("random_points") = 1000, py::arg("max_points_per_set") = 1000,
         py::arg("seed") = 1, py::arg("sets") = py::none(), py::arg("batch") = 4096, py::arg("reproducers") = 5,
         py::arg("points") = py::none(), py::arg("mesh_name") = "mesh", py::arg("threads") = 0, doc.c_str());
 }

@@ -120,6 +120,23 @@ def test_rules_on_overlapping_shells():
     assert rayproof.check_contains(parity, v, f, rule="parity", random_points=300)["findings"] == 0
 
 
+def test_float_precision_gives_float_points():
+    v, f = cube()
+    seen = []
+
+    def fn(p):
+        seen.append(p.copy())
+        return exact(v, f)(p)
+
+    res = rayproof.check_contains(fn, v, f, precision="float", random_points=100)
+    assert res["findings"] == 0
+    p = np.vstack(seen)
+    finite = np.isfinite(p)
+    assert (p[finite] == p[finite].astype(np.float32).astype(np.float64)).all()
+    with pytest.raises(ValueError, match="precision"):
+        rayproof.check_contains(fn, v, f, precision="half")
+
+
 def test_keys_and_bad_arguments():
     v, f = cube()
     res = rayproof.check_contains(exact(v, f), v, f, points=np.array([[0.5, 0.5, 0.5]]))

@@ -90,6 +90,11 @@ int run_contains_check(const CheckCliOptions& o) {
     fmt::print(stderr, "rayproof check: --contains-timeout must be a positive number of seconds\n");
     return 2;
   }
+  if (o.contains_precision == "float") opt.precision = verify::ContainsPrecision::float32;
+  else if (o.contains_precision != "double") {
+    fmt::print(stderr, "rayproof check: --contains-precision '{}' is neither float nor double\n", o.contains_precision);
+    return 2;
+  }
   opt.rule = *rule;
   opt.seed = o.seed;
   opt.random_points = o.contains_points;
@@ -124,9 +129,9 @@ int run_contains_check(const CheckCliOptions& o) {
   bool any_finding = false;
   nlohmann::json json_runs = nlohmann::json::array();
   if (!o.json)
-    fmt::print("rayproof check --contains: rule {}; each point's side judged against rayproof's exact contains "
-               "(docs/check.md)\n",
-               o.contains_rule);
+    fmt::print("rayproof check --contains: rule {}, {} precision; each point's side judged against rayproof's exact "
+               "contains (docs/check.md)\n",
+               o.contains_rule, o.contains_precision);
   for (const auto& m : meshes) {
     const verify::ContainsMesh contains_mesh{m.mesh.vertices, m.mesh.triangles, m.name};
     verify::ContainsPoints points;

@@ -391,6 +391,9 @@ Run add_check(CLI::App& app) {
                   "and answers 0 (outside), 1 (inside) or 2 (surface) per point (docs/check.md); repeatable");
   sub->add_option("--contains-rule", o->contains_rule, "The rule the answers are judged by: automatic, nonzero, parity, winding")
       ->capture_default_str();
+  sub->add_option("--contains-precision", o->contains_precision,
+                  "The function's precision: float (points rounded to float, nudged by float ulps) or double")
+      ->capture_default_str();
   sub->add_option("--contains-timeout", o->contains_timeout, "Seconds the function may take per answer line")
       ->capture_default_str();
   sub->add_option("--contains-batch", o->contains_batch, "Points per batch sent to the function")

@@ -36,7 +36,7 @@ struct CheckCliOptions {
   std::size_t caster_batch = 1024, caster_rays = 2000, caster_max_per_set = 20000;
   std::vector<std::string> caster_sets;
   std::vector<std::string> contains;  ///< --contains NAME=COMMAND: containment functions on --mesh (check_contains.cpp)
-  std::string contains_rule = "automatic";
+  std::string contains_rule = "automatic", contains_precision = "double";
   double contains_timeout = 10;
   std::size_t contains_batch = 1024, contains_points = 1000, contains_max_per_set = 1000;
   std::vector<std::string> contains_sets;

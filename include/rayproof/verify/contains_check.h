@@ -32,6 +32,9 @@
 /// least a tenth of the largest), `thin` (points
 /// through and just beyond the thinnest parts, along triangles' normals), `far` (points from 10 to
 /// 1e300 mesh sizes away), `random` (uniform in the mesh's box, enlarged by a tenth), `invalid`.
+/// With precision float32 every point is rounded to float (a coordinate beyond float's range
+/// becomes infinite: an invalid point) and nudged by one float ulp; the mesh is judged as given
+/// (give a float function a mesh of floats).
 ///
 /// Thread safety: the function is called from the calling thread only, batch by batch; the
 /// judgement runs on TBB threads. Bad mesh arrays throw MeshInputError (rayproof/scene/mesh_caster.h);
@@ -62,8 +65,13 @@ struct ContainsMesh {
   std::string name = "mesh";  ///< shown in reproducers
 };
 
+/// The precision of the function under test: a float32 function (Open3D's, Embree's) is given
+/// points rounded to float (nudged one float ulp), and judged on them as rounded.
+enum class ContainsPrecision : std::uint8_t { float32, float64 };
+
 struct ContainsCheckOptions {
   ContainsRule rule = ContainsRule::automatic;  ///< the rule the answers are judged by
+  ContainsPrecision precision = ContainsPrecision::float64;  ///< of the points made (contains_points)
   std::size_t random_points = 1000;
   std::size_t max_points_per_set = 1000;  ///< larger sets are subsampled (evenly, deterministic)
   std::uint64_t seed = 1;
