@@ -9,11 +9,9 @@
 #include <optional>
 
 #include "cli/mesh_modes.h"
-#include "cli/scene_input.h"
 #include "mesh/mesh.h"
 #include "rayproof/verify/contains_check.h"
 #include "verify/contains_exec.h"
-#include "verify/mesh_check.h"
 
 namespace rayproof::cli {
 
@@ -23,14 +21,9 @@ struct NamedContainsFunction {
   std::string name, command;
 };
 
-struct ContainsMeshInput {
-  std::string name;
-  mesh::Mesh mesh;
-};
-
 /// One function's run on one mesh, as `--json` prints it: every count (by its key), the rule,
 /// per-set counts and costs, events, reproducers and notes.
-nlohmann::json contains_run_json(const NamedContainsFunction& fn, const ContainsMeshInput& mesh, const verify::ContainsTally& tally,
+nlohmann::json contains_run_json(const NamedContainsFunction& fn, const JudgedMesh& mesh, const verify::ContainsTally& tally,
                         const verify::ExecContainsRun& run) {
   auto ratio = [](double judge, double contains) { return contains > 0 ? nlohmann::json(judge / contains) : nullptr; };
   nlohmann::json sets = nlohmann::json::object();
@@ -102,26 +95,9 @@ int run_contains_check(const CheckCliOptions& o) {
   opt.reproducers = o.reproducers;
   opt.sets = o.contains_sets;
 
-  std::vector<ContainsMeshInput> meshes;
-  for (const auto& name : o.mesh) {
-    if (name == "generated") {
-      verify::MeshFuzzOptions gen_opt;
-      gen_opt.seed = o.seed;
-      for (std::size_t i = 0; i < o.meshes; ++i) {
-        verify::MeshUnderTest mt = verify::generated_mesh(gen_opt, i);
-        meshes.push_back({mt.name, std::move(mt.mesh)});
-      }
-      continue;
-    }
-    try {
-      meshes.push_back({name, mesh::read_mesh(name)});
-      fmt::print(stderr, "rayproof check: {}: {} triangles{}\n", name, meshes.back().mesh.triangles.size(),
-                 reader_note(name));
-    } catch (const std::exception& e) {
-      fmt::print(stderr, "rayproof check: {}\n", e.what());
-      return 2;
-    }
-  }
+  const auto judged = judged_meshes(o);
+  if (!judged) return 2;
+  const std::vector<JudgedMesh>& meshes = *judged;
 
   verify::ExecContainsOptions exec_opt;
   exec_opt.timeout_seconds = o.contains_timeout;

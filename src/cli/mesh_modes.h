@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "cli/user_kernels.h"
+#include "mesh/mesh.h"
 #include "methods/method.h"
 
 namespace rayproof::cli {
@@ -75,6 +76,14 @@ struct SpawnOptions {
 
 /// The mesh modes (check_mesh.cpp, fuzz_mesh.cpp, spawn_mesh_cli.cpp).
 int run_mesh_check(const CheckCliOptions& o, const Method& kernel);
+/// A mesh judged by check --caster or --contains: a file's, or one of fuzz --mesh's generated ones.
+struct JudgedMesh {
+  std::string name;
+  mesh::Mesh mesh;
+};
+/// The meshes of --mesh (files, and `generated` as --meshes generated meshes of seed --seed), each
+/// file's size noted on stderr; nothing (the error printed) when a file cannot be read.
+std::optional<std::vector<JudgedMesh>> judged_meshes(const CheckCliOptions& o);
 int run_caster_check(const CheckCliOptions& o);
 int run_contains_check(const CheckCliOptions& o);
 int run_mesh_fuzz_cli(const FuzzCliOptions& o);
