@@ -1,11 +1,13 @@
-/// rayproof.check_contains: a user's containment function (a Python function over a numpy array
-/// of points) judged on a mesh against rayproof's exact contains, through verify::ContainsJudge
-/// (include/rayproof/verify/contains_check.h): the same point sets, counts and reproducers as
-/// `rayproof check --contains` and the C++ API.
+/// rayproof.check_contains and rayproof.check_distance: a user's containment or distance function
+/// (a Python function over a numpy array of points) judged on a mesh against rayproof's exact
+/// answers, through verify::ContainsJudge and verify::DistanceJudge
+/// (include/rayproof/verify/contains_check.h, distance_check.h): the same point sets, counts and
+/// reproducers as `rayproof check --contains` / `--distance` and the C++ API.
 #include <pybind11/stl.h>
 
 #include <fmt/core.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -13,6 +15,7 @@
 #include "bindings.h"
 #include "rayproof/scene/mesh_caster.h"
 #include "rayproof/verify/contains_check.h"
+#include "rayproof/verify/distance_check.h"
 
 namespace rayproof::python {
 
@@ -153,17 +156,124 @@ py::dict check_contains(py::function fn, py::handle vertices, py::handle triangl
 
 /// The counters' keys, comma-separated, in lines of at most 100 characters, the first of them
 /// after `first_line_used` characters (for the docstring).
-std::string count_keys(std::size_t first_line_used) {
+template <class Table>
+std::string count_keys(const Table& table, std::size_t first_line_used) {
   std::string text;
   std::size_t line = first_line_used;
-  for (const verify::ContainsCounter& counter : verify::kContainsCounters) {
-    const bool last = &counter == &verify::kContainsCounters[std::size(verify::kContainsCounters) - 1];
+  for (const auto& counter : table) {
+    const bool last = &counter == &table[std::size(table) - 1];
     const std::string word = std::string(counter.key) + (last ? "" : ",");
     if (!text.empty() && line + 1 + word.size() > 100) text += "\n", line = 0;
     else if (!text.empty()) text += " ", ++line;
     text += word, line += word.size();
   }
   return text;
+}
+
+/// The function's n distances (a result of the wrong shape or type throws: a failure).
+void read_distances(py::handle obj, std::span<double> out) {
+  py::array a;
+  try {
+    a = py::module_::import("numpy").attr("asarray")(obj);
+  } catch (py::error_already_set& e) {
+    throw std::runtime_error(fmt::format("the function's result is not an array ({})", e.what()));
+  }
+  const char k = a.dtype().kind();
+  if (!(k == 'f' || k == 'i' || k == 'u'))
+    throw std::runtime_error(fmt::format("the function's result has dtype {}, not numbers",
+                                         py::str(a.dtype()).cast<std::string>()));
+  if (a.ndim() != 1 || static_cast<std::size_t>(a.shape(0)) != out.size())
+    throw std::runtime_error(fmt::format("the function's result has shape {}, expected ({},)",
+                                         py::str(a.attr("shape")).cast<std::string>(), out.size()));
+  const auto d = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(a);
+  if (!d) throw std::runtime_error("the function's result cannot be read as numbers");
+  std::copy(d.data(), d.data() + out.size(), out.begin());
+}
+
+py::dict distance_dict(const verify::DistanceTally& tally) {
+  py::dict d;
+  for (const verify::DistanceCounter& counter : verify::kDistanceCounters)
+    d[py::str(std::string(counter.key))] = verify::count_of(tally, counter);
+  d["signed"] = tally.signed_distance;
+  d["rel_tol"] = tally.rel_tol;
+  d["max_rel_error"] = tally.max_rel_error;
+  py::dict sets;
+  for (const auto& s : tally.sets) {
+    py::dict e;
+    e["points"] = s.points;
+    e["findings"] = s.findings;
+    e["cost_ratio"] = ratio(s.judge_seconds, s.contains_seconds);
+    sets[py::str(s.set)] = e;
+  }
+  d["sets"] = sets;
+  py::list reps;
+  for (const auto& r : tally.reproducers) reps.append(r.line);
+  d["reproducers"] = reps;
+  d["notes"] = tally.notes;
+  d["judge_seconds"] = tally.judge_seconds;
+  d["closest_seconds"] = tally.closest_seconds;
+  d["cost_ratio"] = ratio(tally.judge_seconds, tally.closest_seconds);
+  return d;
+}
+
+py::dict check_distance(py::function fn, py::handle vertices, py::handle triangles, bool signed_distance,
+                        double rel_tol, std::size_t random_points, std::size_t max_points_per_set, std::uint64_t seed,
+                        std::optional<std::vector<std::string>> sets, std::size_t batch, std::size_t reproducers,
+                        std::optional<py::handle> points, const std::string& mesh_name, int threads) {
+  const MeshArrays arrays = mesh_arrays(vertices, triangles);
+  verify::DistanceCheckOptions opt;
+  if (!(rel_tol >= 0) || !std::isfinite(rel_tol)) throw py::value_error("rel_tol: must be a finite number >= 0");
+  if (batch == 0) throw py::value_error("batch: must be at least 1");
+  opt.signed_distance = signed_distance;
+  opt.rel_tol = rel_tol;
+  opt.random_points = random_points;
+  opt.max_points_per_set = max_points_per_set;
+  opt.seed = seed;
+  if (sets) opt.sets = *sets;
+  opt.batch = batch;
+  opt.reproducers = reproducers;
+  opt.threads = threads;
+  const verify::ContainsMesh mesh{arrays.vertices, arrays.triangles, mesh_name};
+  std::optional<py::error_already_set> interrupt;
+  const verify::DistanceFunction distance = [&](std::span<const Vec3<double>> p, std::span<double> d) {
+    try {
+      read_distances(fn(points_array(p)), d);
+    } catch (py::error_already_set& e) {
+      const std::string what = e.what();
+      if (is_interrupt(e)) interrupt.emplace(std::move(e));
+      throw std::runtime_error(what);
+    }
+  };
+  verify::ContainsPoints point_set;
+  std::optional<verify::DistanceJudge> judge;
+  try {
+    if (points && !points->is_none()) {
+      const Rows r = rows_of(*points, "points", 3, false);
+      for (std::size_t i = 0; i < r.rows; ++i) point_set.points.push_back({r.row(i)[0], r.row(i)[1], r.row(i)[2]});
+      point_set.set.assign(point_set.points.size(), 0);
+      point_set.names = {"user"};
+    } else {
+      py::gil_scoped_release unlocked;
+      point_set = verify::distance_points(mesh, opt);
+    }
+    py::gil_scoped_release unlocked;
+    judge.emplace(mesh);
+  } catch (const MeshInputError& e) {
+    throw py::value_error(std::string("vertices/triangles: ") + e.what());
+  } catch (const std::invalid_argument& e) {
+    throw py::value_error(e.what());
+  }
+  std::vector<verify::DistanceAnswer> answers(point_set.points.size());
+  std::string error;
+  verify::run_distance(distance, point_set.points, opt.batch, answers, error);
+  if (interrupt) throw std::move(*interrupt);
+  verify::DistanceTally tally;
+  {
+    py::gil_scoped_release unlocked;
+    tally = judge->judge(point_set, answers, opt);
+  }
+  if (!error.empty()) tally.notes.push_back("the function raised: " + error);
+  return distance_dict(tally);
 }
 
 }  // namespace
@@ -178,7 +288,7 @@ sets (vertex, edge, face, nudged, thin, far, random, invalid; `sets` picks some;
 rounds them to float and nudges by float ulps, for a float32 function), or points=(n, 3) array. An exception fn raises fails that batch's points (failures, or invalid_failures on points
 with a NaN or infinity) and the run goes on.
 
-Returns a dict of counts ()" + count_keys(std::string_view("Returns a dict of counts (").size()) + R"(),
+Returns a dict of counts ()" + count_keys(verify::kContainsCounters, std::string_view("Returns a dict of counts (").size()) + R"(),
 the rule that answered, per-set counts (`sets`), one-line `reproducers`, `notes`, and the cost:
 judge_seconds, contains_seconds (rayproof's own contains on the same points) and cost_ratio.
 docs/check.md explains each count.)";
@@ -186,6 +296,24 @@ docs/check.md explains each count.)";
         py::arg("rule") = "automatic", py::arg("precision") = "double", py::arg("random_points") = 1000, py::arg("max_points_per_set") = 1000,
         py::arg("seed") = 1, py::arg("sets") = py::none(), py::arg("batch") = 4096, py::arg("reproducers") = 5,
         py::arg("points") = py::none(), py::arg("mesh_name") = "mesh", py::arg("threads") = 0, doc.c_str());
+
+  static const std::string distance_doc = R"(Judge a distance (or signed distance) function on a mesh against exact arithmetic.
+
+fn(points) takes an (n, 3) float64 array and returns n distances (signed=True: negative inside, 0
+on the surface; nan for a point with a NaN or infinity). Each answer is judged against rayproof's
+exact distance correctly rounded: more than 1 ulp off and more than rel_tol relatively is a finding.
+The points: the sets of check_contains (`sets` picks some), or points=(n, 3) array. An exception fn
+raises fails that batch's points and the run goes on.
+
+Returns a dict of counts ()" + count_keys(verify::kDistanceCounters, std::string_view("Returns a dict of counts (").size()) + R"(),
+signed, rel_tol, max_rel_error, per-set counts (`sets`), one-line `reproducers`, `notes`, and the
+cost: judge_seconds, closest_seconds (rayproof's own closest points on the same points) and
+cost_ratio. docs/check.md explains each count.)";
+  m.def("check_distance", &check_distance, py::arg("fn"), py::arg("vertices"), py::arg("triangles"), py::kw_only(),
+        py::arg("signed") = false, py::arg("rel_tol") = 0.0, py::arg("random_points") = 1000,
+        py::arg("max_points_per_set") = 1000, py::arg("seed") = 1, py::arg("sets") = py::none(),
+        py::arg("batch") = 4096, py::arg("reproducers") = 5, py::arg("points") = py::none(),
+        py::arg("mesh_name") = "mesh", py::arg("threads") = 0, distance_doc.c_str());
 }
 
 }  // namespace rayproof::python

@@ -41,6 +41,11 @@ struct CheckCliOptions {
   double contains_timeout = 10;
   std::size_t contains_batch = 1024, contains_points = 1000, contains_max_per_set = 1000;
   std::vector<std::string> contains_sets;
+  std::vector<std::string> distance;  ///< --distance NAME=COMMAND: distance functions on --mesh (check_distance.cpp)
+  bool distance_signed = false;
+  double distance_rel_tol = 0, distance_timeout = 10;
+  std::size_t distance_batch = 1024, distance_points = 1000, distance_max_per_set = 1000;
+  std::vector<std::string> distance_sets;
 };
 
 
@@ -86,6 +91,7 @@ struct JudgedMesh {
 std::optional<std::vector<JudgedMesh>> judged_meshes(const CheckCliOptions& o);
 int run_caster_check(const CheckCliOptions& o);
 int run_contains_check(const CheckCliOptions& o);
+int run_distance_check(const CheckCliOptions& o);
 int run_mesh_fuzz_cli(const FuzzCliOptions& o);
 /// fuzz --distance: closest points against a brute force in rationals (verify/distance_fuzz.h).
 int run_distance_fuzz_cli(const FuzzCliOptions& o);
