@@ -2,110 +2,31 @@
 // (verify/caster_exec.h; docs/check.md, "Whole casters").
 #include "verify/caster_exec.h"
 
-#include <poll.h>
-#include <signal.h>
-#include <unistd.h>
-
 #include <fmt/core.h>
 
 #include <cerrno>
-#include <chrono>
-#include <cmath>
-#include <cstdio>
 #include <cstdlib>
-#include <cstring>
-#include <mutex>
 
-#include "methods/child_process.h"
+#include "verify/line_child.h"
 
 namespace rayproof::verify {
 
 namespace {
 
-using Clock = proc::Clock;
 constexpr std::size_t kMaxFailures = 20;
 
-std::string num(double x) {
-  if (std::isnan(x)) return "nan";
-  if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
-  return fmt::format("{}", x);
-}
+std::string num(double x) { return protocol_number(x); }
 
-std::string printable(const std::string& s) {
-  std::string out;
-  for (char c : s.substr(0, 60)) out += (static_cast<unsigned char>(c) < 32 || c == 127) ? '?' : c;
-  return s.size() > 60 ? out + "..." : out;
-}
-
-/// One running caster: the child, its unread output.
-class Running {
+/// One running caster: the line child, fed the mesh first.
+class Running : public LineChild {
  public:
-  ~Running() { stop(true); }
   std::string start(const std::string& command, const CasterMesh& mesh, double timeout) {
-    proc::SpawnOptions so;
-    so.own_process_group = true;
-    if (auto why = proc::spawn("/bin/sh", {"/bin/sh", "-c", command}, so, ch_); !why.empty()) return why;
-    buf_.clear();
     std::string head = fmt::format("rayproof-caster 1\nvertices {}\n", mesh.vertices.size());
     for (const auto& v : mesh.vertices) head += fmt::format("{} {} {}\n", num(v.x), num(v.y), num(v.z));
     head += fmt::format("triangles {}\n", mesh.triangles.size());
     for (const auto& f : mesh.triangles) head += fmt::format("{} {} {}\n", f[0], f[1], f[2]);
-    return send(head, timeout);
+    return LineChild::start(command, head, timeout);
   }
-  [[nodiscard]] bool running() const { return ch_.pid > 0; }
-  /// "" when written; else how the caster failed.
-  std::string send(const std::string& s, double timeout) {
-    const auto deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(timeout));
-    switch (proc::write_all(ch_.to, s.data(), s.size(), deadline)) {
-      case proc::Io::ok: return "";
-      case proc::Io::timeout: return fmt::format("timed out: did not read its input for {} s", timeout);
-      default: return ended();
-    }
-  }
-  /// One answer line; "" and the line, or how the caster failed.
-  std::string line(std::string& out, double timeout) {
-    auto deadline = Clock::now() + std::chrono::duration<double>(timeout);
-    for (;;) {
-      const auto nl = buf_.find('\n');
-      if (nl != std::string::npos) {
-        out = buf_.substr(0, nl);
-        buf_.erase(0, nl + 1);
-        return "";
-      }
-      if (buf_.size() > (1u << 16)) return "unreadable answer: a line longer than 65536 bytes";
-      const double left = std::chrono::duration<double>(deadline - Clock::now()).count();
-      if (left <= 0) return fmt::format("timed out: no answer for {} s", timeout);
-      pollfd pf{ch_.from, POLLIN, 0};
-      const int pr = ::poll(&pf, 1, static_cast<int>(std::ceil(std::min(left, 1e6) * 1000)));
-      if (pr < 0 && errno == EINTR) continue;
-      if (pr == 0) return fmt::format("timed out: no answer for {} s", timeout);
-      char tmp[1 << 14];
-      const ssize_t r = ::read(ch_.from, tmp, sizeof tmp);
-      if (r < 0 && (errno == EINTR || errno == EAGAIN)) continue;
-      if (r <= 0) return ended();
-      buf_.append(tmp, static_cast<std::size_t>(r));
-    }
-  }
-  std::string stop(bool kill) {
-    if (!running()) return "";
-    return proc::end(ch_, kill, true);
-  }
-
- private:
-  std::string ended() {
-    const std::string how = proc::end(ch_, false, true);
-    if (how.rfind("killed", 0) == 0) return "crashed (" + how + ")";
-    // /bin/sh reports a command killed by signal N as status 128 + N when it did not exec it.
-    int code = 0;
-    if (std::sscanf(how.c_str(), "exited with status %d", &code) == 1 && code > 128 && code < 128 + NSIG) {
-      const char* name = ::strsignal(code - 128);
-      return fmt::format("crashed (signal {}{}; the shell's status {})", code - 128,
-                         name ? fmt::format(", {}", name) : std::string(), code);
-    }
-    return "exited early (" + how + ")";
-  }
-  proc::Child ch_;
-  std::string buf_;
 };
 
 }  // namespace
@@ -126,8 +47,7 @@ bool parse_caster_answer(const std::string& line, double& t, long long& triangle
 
 ExecCasterRun run_exec_caster(const std::string& command, const CasterMesh& mesh, const CasterRays& rays,
                               const ExecCasterOptions& opt) {
-  static std::once_flag sigpipe;
-  std::call_once(sigpipe, [] { ::signal(SIGPIPE, SIG_IGN); });  // a caster that dies while we write must not kill us
+  ignore_sigpipe();  // a caster that dies while we write must not kill us
   ExecCasterRun run;
   const std::size_t n = rays.rays.size();
   run.answers.assign(n, CasterAnswer{});

@@ -4,12 +4,15 @@
 #include <pybind11/numpy.h>
 #include <pybind11/pybind11.h>
 
+#include <array>
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
 #include "io/case_file.h"
 #include "methods/method.h"
+#include "rayproof/vec3.h"
 
 namespace rayproof::python {
 
@@ -54,6 +57,17 @@ void bind_classify(py::module_& m);
 void bind_cast(py::module_& m);
 void bind_check(py::module_& m);
 void bind_load_mesh(py::module_& m);
+/// A mesh's vertex and triangle arrays, checked (dtype, shape, indices in range: ValueError naming
+/// the row) and copied (check_caster.cpp; the judges' bindings use it).
+struct MeshArrays {
+  std::vector<Vec3<double>> vertices;
+  std::vector<std::array<std::uint32_t, 3>> triangles;
+};
+[[nodiscard]] MeshArrays mesh_arrays(py::handle vertices, py::handle triangles);
+/// Whether a Python exception is KeyboardInterrupt or SystemExit (to be raised again, not counted).
+[[nodiscard]] bool is_interrupt(const py::error_already_set& e);
+
 void bind_check_caster(py::module_& m);
+void bind_check_contains(py::module_& m);
 
 }  // namespace rayproof::python

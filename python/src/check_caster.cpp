@@ -18,10 +18,6 @@ namespace rayproof::python {
 
 namespace {
 
-bool is_interrupt(const py::error_already_set& e) {
-  return e.matches(PyExc_KeyboardInterrupt) || e.matches(PyExc_SystemExit);
-}
-
 py::array_t<double> rays_array(std::span<const Vec3<double>> v) {
   py::array_t<double> a({static_cast<py::ssize_t>(v.size()), py::ssize_t(3)});
   double* p = a.mutable_data();
@@ -77,22 +73,9 @@ py::dict check_caster(py::function fn, py::handle vertices, py::handle triangles
                       std::uint64_t seed, std::optional<std::vector<std::string>> sets, std::size_t batch,
                       std::size_t reproducers, std::optional<py::tuple> rays, const std::string& mesh_name,
                       int threads) {
-  const py::array v = checked_array(vertices, "vertices", 3, false, DtypeRule::real);
-  const py::array ix = checked_array(triangles, "triangles", 3, false, DtypeRule::integer);
-  const auto vd = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(v);
-  const auto id = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(ix);
-  if (!vd || !id) throw py::error_already_set();
-  const std::size_t nv = static_cast<std::size_t>(vd.shape(0)), nt = static_cast<std::size_t>(id.shape(0));
-  std::vector<Vec3<double>> verts(nv);
-  for (std::size_t i = 0; i < nv; ++i) verts[i] = {vd.data()[3 * i], vd.data()[3 * i + 1], vd.data()[3 * i + 2]};
-  std::vector<std::array<std::uint32_t, 3>> tris(nt);
-  for (std::size_t i = 0; i < nt; ++i)
-    for (std::size_t k = 0; k < 3; ++k) {
-      const std::int64_t x = id.data()[3 * i + k];
-      if (x < 0 || static_cast<std::uint64_t>(x) >= nv)
-        throw py::value_error(fmt::format("triangles: row {} has vertex index {} outside [0, {})", i, x, nv));
-      tris[i][k] = static_cast<std::uint32_t>(x);
-    }
+  const MeshArrays arrays = mesh_arrays(vertices, triangles);
+  const auto& verts = arrays.vertices;
+  const auto& tris = arrays.triangles;
   verify::CasterCheckOptions opt;
   if (precision == "float") opt.precision = verify::CasterPrecision::float32;
   else if (precision == "double") opt.precision = verify::CasterPrecision::float64;
@@ -192,6 +175,31 @@ std::string count_keys(std::size_t first_line_used) {
 }
 
 }  // namespace
+
+bool is_interrupt(const py::error_already_set& e) {
+  return e.matches(PyExc_KeyboardInterrupt) || e.matches(PyExc_SystemExit);
+}
+
+MeshArrays mesh_arrays(py::handle vertices, py::handle triangles) {
+  const py::array v = checked_array(vertices, "vertices", 3, false, DtypeRule::real);
+  const py::array ix = checked_array(triangles, "triangles", 3, false, DtypeRule::integer);
+  const auto vd = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(v);
+  const auto id = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(ix);
+  if (!vd || !id) throw py::error_already_set();
+  const std::size_t nv = static_cast<std::size_t>(vd.shape(0)), nt = static_cast<std::size_t>(id.shape(0));
+  MeshArrays out;
+  out.vertices.resize(nv);
+  for (std::size_t i = 0; i < nv; ++i) out.vertices[i] = {vd.data()[3 * i], vd.data()[3 * i + 1], vd.data()[3 * i + 2]};
+  out.triangles.resize(nt);
+  for (std::size_t i = 0; i < nt; ++i)
+    for (std::size_t k = 0; k < 3; ++k) {
+      const std::int64_t x = id.data()[3 * i + k];
+      if (x < 0 || static_cast<std::uint64_t>(x) >= nv)
+        throw py::value_error(fmt::format("triangles: row {} has vertex index {} outside [0, {})", i, x, nv));
+      out.triangles[i][k] = static_cast<std::uint32_t>(x);
+    }
+  return out;
+}
 
 void bind_check_caster(py::module_& m) {
   static const std::string doc = R"(Judge a whole ray caster on a mesh against exact arithmetic.

@@ -130,4 +130,5 @@ PYBIND11_MODULE(rayproof, m) {
   bind_check(m);
   bind_load_mesh(m);
   bind_check_caster(m);
+  bind_check_contains(m);
 }

@@ -23,14 +23,9 @@ struct NamedCaster {
   std::string name, command;
 };
 
-struct CasterMeshInput {
-  std::string name;
-  mesh::Mesh mesh;
-};
-
 /// One caster's run on one mesh, as `--json` prints it: every count of the tally shown (by its
 /// key), per-set counts, events, reproducers and notes.
-nlohmann::json run_json(const NamedCaster& caster, const CasterMeshInput& mesh, const verify::CasterTally& tally,
+nlohmann::json run_json(const NamedCaster& caster, const JudgedMesh& mesh, const verify::CasterTally& tally,
                         const verify::ExecCasterRun& run) {
   nlohmann::json sets = nlohmann::json::object();
   for (const auto& s : tally.sets) sets[s.set] = {{"rays", s.rays}, {"findings", s.findings}, {"false_miss", s.false_miss}};
@@ -45,6 +40,30 @@ nlohmann::json run_json(const NamedCaster& caster, const CasterMeshInput& mesh, 
 }
 
 }  // namespace
+
+std::optional<std::vector<JudgedMesh>> judged_meshes(const CheckCliOptions& o) {
+  std::vector<JudgedMesh> meshes;
+  for (const auto& name : o.mesh) {
+    if (name == "generated") {
+      verify::MeshFuzzOptions gen_opt;
+      gen_opt.seed = o.seed;
+      for (std::size_t i = 0; i < o.meshes; ++i) {
+        verify::MeshUnderTest mt = verify::generated_mesh(gen_opt, i);
+        meshes.push_back({mt.name, std::move(mt.mesh)});
+      }
+      continue;
+    }
+    try {
+      meshes.push_back({name, mesh::read_mesh(name)});
+      fmt::print(stderr, "rayproof check: {}: {} triangles{}\n", name, meshes.back().mesh.triangles.size(),
+                 reader_note(name));
+    } catch (const std::exception& e) {
+      fmt::print(stderr, "rayproof check: {}\n", e.what());
+      return std::nullopt;
+    }
+  }
+  return meshes;
+}
 
 int run_caster_check(const CheckCliOptions& o) {
   std::vector<NamedCaster> casters;
@@ -83,26 +102,9 @@ int run_caster_check(const CheckCliOptions& o) {
   opt.reproducers = o.reproducers;
   opt.sets = o.caster_sets;
 
-  std::vector<CasterMeshInput> meshes;
-  for (const auto& name : o.mesh) {
-    if (name == "generated") {
-      verify::MeshFuzzOptions gen_opt;
-      gen_opt.seed = o.seed;
-      for (std::size_t i = 0; i < o.meshes; ++i) {
-        verify::MeshUnderTest mt = verify::generated_mesh(gen_opt, i);
-        meshes.push_back({mt.name, std::move(mt.mesh)});
-      }
-      continue;
-    }
-    try {
-      meshes.push_back({name, mesh::read_mesh(name)});
-      fmt::print(stderr, "rayproof check: {}: {} triangles{}\n", name, meshes.back().mesh.triangles.size(),
-                 reader_note(name));
-    } catch (const std::exception& e) {
-      fmt::print(stderr, "rayproof check: {}\n", e.what());
-      return 2;
-    }
-  }
+  const auto judged = judged_meshes(o);
+  if (!judged) return 2;
+  const std::vector<JudgedMesh>& meshes = *judged;
 
   verify::ExecCasterOptions exec_opt;
   exec_opt.timeout_seconds = o.caster_timeout;

@@ -122,6 +122,8 @@ nlohmann::json result_json(const verify::CheckResult& r) {
 
 
 int run_check(const CheckCliOptions& o) {
+  if (!o.distance.empty()) return run_distance_check(o);
+  if (!o.contains.empty()) return run_contains_check(o);
   if (!o.caster.empty()) return run_caster_check(o);
   // The kernel under test: exactly one of --exec, --plugin, --method.
   const std::size_t named =
@@ -384,6 +386,48 @@ Run add_check(CLI::App& app) {
       ->check(CLI::Range(std::size_t{1}, std::size_t{100000000}))
       ->capture_default_str();
   sub->add_option("--caster-sets", o->caster_sets, "Ray sets: leak, graze, face, surface, random, extreme, invalid (default: all)")
+      ->delimiter(',')->allow_extra_args(false);
+  sub->add_option("--contains", o->contains,
+                  "NAME=COMMAND: a containment function judged on --mesh: it reads the mesh, then batches of points, "
+                  "and answers 0 (outside), 1 (inside) or 2 (surface) per point (docs/check.md); repeatable");
+  sub->add_option("--contains-rule", o->contains_rule, "The rule the answers are judged by: automatic, nonzero, parity, winding")
+      ->capture_default_str();
+  sub->add_option("--contains-precision", o->contains_precision,
+                  "The function's precision: float (points rounded to float, nudged by float ulps) or double")
+      ->capture_default_str();
+  sub->add_option("--contains-timeout", o->contains_timeout, "Seconds the function may take per answer line")
+      ->capture_default_str();
+  sub->add_option("--contains-batch", o->contains_batch, "Points per batch sent to the function")
+      ->check(CLI::Range(std::size_t{1}, std::size_t{1000000}))
+      ->capture_default_str();
+  sub->add_option("--contains-points", o->contains_points, "Random points per mesh (the other sets follow the mesh)")
+      ->capture_default_str();
+  sub->add_option("--contains-max-per-set", o->contains_max_per_set, "Points per set at most (evenly subsampled)")
+      ->check(CLI::Range(std::size_t{1}, std::size_t{100000000}))
+      ->capture_default_str();
+  sub->add_option("--contains-sets", o->contains_sets,
+                  "Point sets: vertex, edge, face, nudged, thin, far, random, invalid (default: all)")
+      ->delimiter(',')->allow_extra_args(false);
+  sub->add_option("--distance", o->distance,
+                  "NAME=COMMAND: a distance function judged on --mesh: it reads the mesh, then batches of points, and "
+                  "answers one distance per point (docs/check.md); repeatable");
+  sub->add_flag("--distance-signed", o->distance_signed,
+                "The function answers signed distances (negative inside, 0 on the surface)");
+  sub->add_option("--distance-rel-tol", o->distance_rel_tol,
+                  "Relative error forgiven beyond 1 ulp (0: every answer more than 1 ulp off is a finding)")
+      ->capture_default_str();
+  sub->add_option("--distance-timeout", o->distance_timeout, "Seconds the function may take per answer line")
+      ->capture_default_str();
+  sub->add_option("--distance-batch", o->distance_batch, "Points per batch sent to the function")
+      ->check(CLI::Range(std::size_t{1}, std::size_t{1000000}))
+      ->capture_default_str();
+  sub->add_option("--distance-points", o->distance_points, "Random points per mesh (the other sets follow the mesh)")
+      ->capture_default_str();
+  sub->add_option("--distance-max-per-set", o->distance_max_per_set, "Points per set at most (evenly subsampled)")
+      ->check(CLI::Range(std::size_t{1}, std::size_t{100000000}))
+      ->capture_default_str();
+  sub->add_option("--distance-sets", o->distance_sets,
+                  "Point sets: vertex, edge, face, nudged, thin, far, random, invalid (default: all)")
       ->delimiter(',')->allow_extra_args(false);
   return [o] { return run_check(*o); };
 }

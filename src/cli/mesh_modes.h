@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "cli/user_kernels.h"
+#include "mesh/mesh.h"
 #include "methods/method.h"
 
 namespace rayproof::cli {
@@ -35,6 +36,16 @@ struct CheckCliOptions {
   double caster_timeout = 10;
   std::size_t caster_batch = 1024, caster_rays = 2000, caster_max_per_set = 20000;
   std::vector<std::string> caster_sets;
+  std::vector<std::string> contains;  ///< --contains NAME=COMMAND: containment functions on --mesh (check_contains.cpp)
+  std::string contains_rule = "automatic", contains_precision = "double";
+  double contains_timeout = 10;
+  std::size_t contains_batch = 1024, contains_points = 1000, contains_max_per_set = 1000;
+  std::vector<std::string> contains_sets;
+  std::vector<std::string> distance;  ///< --distance NAME=COMMAND: distance functions on --mesh (check_distance.cpp)
+  bool distance_signed = false;
+  double distance_rel_tol = 0, distance_timeout = 10;
+  std::size_t distance_batch = 1024, distance_points = 1000, distance_max_per_set = 1000;
+  std::vector<std::string> distance_sets;
 };
 
 
@@ -70,7 +81,17 @@ struct SpawnOptions {
 
 /// The mesh modes (check_mesh.cpp, fuzz_mesh.cpp, spawn_mesh_cli.cpp).
 int run_mesh_check(const CheckCliOptions& o, const Method& kernel);
+/// A mesh judged by check --caster or --contains: a file's, or one of fuzz --mesh's generated ones.
+struct JudgedMesh {
+  std::string name;
+  mesh::Mesh mesh;
+};
+/// The meshes of --mesh (files, and `generated` as --meshes generated meshes of seed --seed), each
+/// file's size noted on stderr; nothing (the error printed) when a file cannot be read.
+std::optional<std::vector<JudgedMesh>> judged_meshes(const CheckCliOptions& o);
 int run_caster_check(const CheckCliOptions& o);
+int run_contains_check(const CheckCliOptions& o);
+int run_distance_check(const CheckCliOptions& o);
 int run_mesh_fuzz_cli(const FuzzCliOptions& o);
 /// fuzz --distance: closest points against a brute force in rationals (verify/distance_fuzz.h).
 int run_distance_fuzz_cli(const FuzzCliOptions& o);

@@ -1,0 +1,193 @@
+#pragma once
+/// Someone else's distance or signed distance function judged exactly on a mesh: the judgement of
+/// `rayproof check --distance` and of Python's rayproof.check_distance (link rayproof::caster_check:
+/// CGAL, GMP, MPFR, TBB).
+///
+///   auto mine = [&](std::span<const Vec3<double>> points, std::span<double> d) { ... };
+///   const verify::DistanceTally tally = verify::check_distance(mine, {vertices, triangles});
+///
+/// The function answers, per point, the distance to the mesh (the union of its closed triangles),
+/// or with `signed_distance` the signed distance (negative inside, 0 on the surface, positive
+/// outside; the side as rayproof's contains gives it under the automatic rule). The reference is
+/// rayproof's ExactMesh::closest_point: the exact distance correctly rounded (docs/distance.md).
+/// Errors are counted in double ulps of the answer against that rounded exact value, and, against
+/// the user's relative tolerance `rel_tol`, relatively: a finding is an answer more than 1 ulp off
+/// and more than rel_tol * |exact| off (rel_tol 0: every answer more than 1 ulp off).
+///
+/// The points are the containment judge's sets (contains_points, rayproof/verify/contains_check.h):
+/// surface points (exact distance 0), one ulp off them, thin parts, far, random and invalid points.
+/// An invalid point (NaN or infinite coordinate) has no distance: NaN is the answer; a number there
+/// is a finding (invalid_number), and so is a failure on one.
+///
+/// Thread safety: the function is called from the calling thread only, batch by batch; the
+/// judgement runs on TBB threads. Bad mesh arrays throw MeshInputError.
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <memory>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "rayproof/verify/contains_check.h"
+
+namespace rayproof::verify {
+
+/// distance(points, distance_out): one answer per point.
+using DistanceFunction = std::function<void(std::span<const Vec3<double>>, std::span<double>)>;
+
+struct DistanceCheckOptions {
+  bool signed_distance = false;  ///< the function answers signed distances
+  double rel_tol = 0;            ///< relative error allowed beyond 1 ulp (0: none)
+  std::size_t random_points = 1000;
+  std::size_t max_points_per_set = 1000;  ///< larger sets are subsampled (evenly, deterministic)
+  std::uint64_t seed = 1;
+  std::vector<std::string> sets;  ///< empty: every set (contains_points' names)
+  std::size_t batch = 4096;       ///< points per call of the function
+  std::size_t reproducers = 5;    ///< kept per kind of finding
+  int threads = 0;                ///< judgement threads (0: TBB's default)
+};
+
+/// A function's answer to one point.
+struct DistanceAnswer {
+  double distance = std::numeric_limits<double>::quiet_NaN();
+  bool failed = false;  ///< the function threw (or its process died) on this point's batch
+};
+
+/// The counts of a judgement (what each one counts: kDistanceCounters).
+struct DistanceCounts {
+  std::uint64_t points = 0, surface = 0;
+  std::uint64_t over_1ulp = 0, over_tolerance = 0, max_ulps = 0;
+  std::uint64_t wrong_sign = 0, surface_nonzero = 0;
+  std::uint64_t garbage = 0, failures = 0;
+  std::uint64_t invalid_points = 0, invalid_number = 0, invalid_failures = 0;
+  /// Every counted finding: the sum of the counters marked `finding`.
+  [[nodiscard]] constexpr std::uint64_t findings() const;
+};
+
+/// One counter of a DistanceTally: its name, meaning and use, written down once (text, JSON and
+/// Python's dict are made from kDistanceCounters, in order).
+struct DistanceCounter {
+  std::string_view key;
+  std::uint64_t DistanceCounts::*member = nullptr;  ///< null for `findings`
+  bool finding = false;
+  bool maximum = false;  ///< merged as the largest value (else added up)
+  std::string_view meaning = {};
+};
+
+inline constexpr DistanceCounter kDistanceCounters[] = {
+    {.key = "points", .member = &DistanceCounts::points, .meaning = "judged (every point given)"},
+    {.key = "surface", .member = &DistanceCounts::surface, .meaning = "exactly on the surface: exact distance 0"},
+    {.key = "over_1ulp",
+     .member = &DistanceCounts::over_1ulp,
+     .meaning = "a number more than 1 ulp (double) from the correctly rounded exact (signed) distance"},
+    {.key = "over_tolerance",
+     .member = &DistanceCounts::over_tolerance,
+     .finding = true,
+     .meaning = "of them, more than rel_tol * |exact| off too (rel_tol 0: all of them)"},
+    {.key = "max_ulps",
+     .member = &DistanceCounts::max_ulps,
+     .maximum = true,
+     .meaning = "the largest error in ulps over the numbers answered at valid points"},
+    {.key = "wrong_sign",
+     .member = &DistanceCounts::wrong_sign,
+     .finding = true,
+     .meaning = "signed: a nonzero answer of the wrong sign (negative outside, positive inside)"},
+    {.key = "surface_nonzero",
+     .member = &DistanceCounts::surface_nonzero,
+     .finding = true,
+     .meaning = "a nonzero number at a surface point (exact distance 0)"},
+    {.key = "garbage",
+     .member = &DistanceCounts::garbage,
+     .finding = true,
+     .meaning = "no distance at a valid point: NaN, or a negative number when unsigned"},
+    {.key = "failures",
+     .member = &DistanceCounts::failures,
+     .finding = true,
+     .meaning = "none on a valid point: the function threw (or crashed, hung, wrote an unreadable line)"},
+    {.key = "invalid_points",
+     .member = &DistanceCounts::invalid_points,
+     .meaning = "a point with a NaN or infinite coordinate: it has no distance (NaN is the answer)"},
+    {.key = "invalid_number",
+     .member = &DistanceCounts::invalid_number,
+     .finding = true,
+     .meaning = "a number (not NaN) answered at an invalid point"},
+    {.key = "invalid_failures",
+     .member = &DistanceCounts::invalid_failures,
+     .finding = true,
+     .meaning = "none on an invalid point: the function failed (it must not throw or crash on them)"},
+    {.key = "findings", .meaning = "every counted finding: the sum of the counts above marked as findings"},
+};
+
+constexpr std::uint64_t DistanceCounts::findings() const {
+  std::uint64_t sum = 0;
+  for (const DistanceCounter& counter : kDistanceCounters)
+    if (counter.finding) sum += this->*counter.member;
+  return sum;
+}
+
+/// Every counter of DistanceCounts is in kDistanceCounters once, and `findings` once.
+constexpr bool every_distance_counter_once_in_table() {
+  std::size_t derived = 0;
+  for (std::size_t i = 0; i < std::size(kDistanceCounters); ++i) {
+    if (!kDistanceCounters[i].member) ++derived;
+    for (std::size_t j = 0; j < i; ++j)
+      if (kDistanceCounters[i].key == kDistanceCounters[j].key ||
+          (kDistanceCounters[i].member && kDistanceCounters[i].member == kDistanceCounters[j].member))
+        return false;
+  }
+  return derived == 1 && (std::size(kDistanceCounters) - 1) * sizeof(std::uint64_t) == sizeof(DistanceCounts);
+}
+static_assert(every_distance_counter_once_in_table());
+
+[[nodiscard]] constexpr std::uint64_t count_of(const DistanceCounts& counts, const DistanceCounter& counter) {
+  return counter.member ? counts.*counter.member : counts.findings();
+}
+
+/// What check_distance and DistanceJudge::judge find.
+struct DistanceTally : DistanceCounts {
+  bool signed_distance = false;
+  double rel_tol = 0;
+  double max_rel_error = 0;  ///< the largest relative error over the numbers answered at valid, off-surface points
+  std::vector<ContainsSetCounts> sets;  ///< points, findings and the cost per set
+  std::vector<ContainsReproducer> reproducers;
+  std::vector<std::string> notes;
+  double judge_seconds = 0;     ///< the judgement (the reference and the tally; the function excluded)
+  double closest_seconds = 0;   ///< rayproof's ExactMesh::closest_points on the same points, timed in the same run
+};
+
+/// The exact reference on a mesh, built once; judge() may be called many times.
+class DistanceJudge {
+ public:
+  explicit DistanceJudge(const ContainsMesh& mesh);
+  ~DistanceJudge();
+  DistanceJudge(DistanceJudge&&) noexcept;
+  DistanceJudge& operator=(DistanceJudge&&) noexcept;
+  /// Judges answers[i] to points.points[i] (sizes must match; std::invalid_argument otherwise).
+  [[nodiscard]] DistanceTally judge(const ContainsPoints& points, std::span<const DistanceAnswer> answers,
+                                    const DistanceCheckOptions& opt = {}) const;
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
+
+/// The point sets of a distance judgement: contains_points with the options' counts and sets.
+[[nodiscard]] ContainsPoints distance_points(const ContainsMesh& mesh, const DistanceCheckOptions& opt = {});
+
+/// distance_points, the function called batch by batch (an exception fails that batch), judge.
+[[nodiscard]] DistanceTally check_distance(const DistanceFunction& fn, const ContainsMesh& mesh,
+                                           const DistanceCheckOptions& opt = {});
+/// The same on points you give (the `set` of every point "user").
+[[nodiscard]] DistanceTally check_distance(const DistanceFunction& fn, const ContainsMesh& mesh,
+                                           std::span<const Vec3<double>> points, const DistanceCheckOptions& opt = {});
+
+/// Runs the function on the points batch by batch: an exception marks the batch's points failed.
+void run_distance(const DistanceFunction& fn, std::span<const Vec3<double>> points, std::size_t batch,
+                  std::span<DistanceAnswer> out, std::string& error);
+
+/// The counts as text, per-set lines with their cost ratio, then the reproducers.
+[[nodiscard]] std::string summary_text(const DistanceTally& tally);
+
+}  // namespace rayproof::verify
