@@ -105,27 +105,61 @@ void query(const PairMesh& tree, const BvhBox& q, std::vector<std::uint32_t>& st
   }
 }
 
+/// All three points strictly on one side of the plane of (p0, p1, p2) (exact signs).
+bool one_side(const Vec3<double>& p0, const Vec3<double>& p1, const Vec3<double>& p2, const Vec3<double>& x,
+              const Vec3<double>& y, const Vec3<double>& z) {
+  const int s = certified::orient3d_exact(p0, p1, p2, x);
+  if (s == 0) return false;
+  return certified::orient3d_exact(p0, p1, p2, y) == s && certified::orient3d_exact(p0, p1, p2, z) == s;
+}
+
+/// The closed segment [x, y] (x != y) meets the closed triangle t (positive area): the certified
+/// classifier's segment test on exact signs (no zero-area proof of the segment as a triangle).
+bool segment_meets(const Vec3<double>& x, const Vec3<double>& y, const Vec3<double>* t) {
+  auto o3 = [](const Vec3<double>& p, const Vec3<double>& q, const Vec3<double>& r, const Vec3<double>& w) {
+    return certified::orient3d_exact(p, q, r, w);
+  };
+  auto o2 = [](double au, double av, double bu, double bv, double pu, double pv) {
+    return certified::orient2d_exact(au, av, bu, bv, pu, pv);
+  };
+  certified::tritri_detail::Signs<decltype(o3), decltype(o2)> sg{o3, o2};
+  const Vec3<double> tri[3] = {t[0], t[1], t[2]};
+  return certified::tritri_detail::segment_meets_triangle(sg, x, y, tri);
+}
+
 /// Whether triangles i and j (i != j, both of positive area) of one mesh intersect beyond the
-/// vertices they share by index (the header's rule).
+/// vertices they share by index (the header's rule). Exact plane-side signs settle the common
+/// cases first (apart, not coplanar); the certified tests decide the rest.
 bool self_pair_intersects(const PairMesh& m, std::uint32_t i, std::uint32_t j) {
   const std::uint32_t* a = &m.idx[3 * i];
   const std::uint32_t* b = &m.idx[3 * j];
-  int shared = 0, ka = -1, kb = -1;
-  for (int x = 0; x < 3; ++x)
-    for (int y = 0; y < 3; ++y)
-      if (a[x] == b[y]) ++shared, ka = x, kb = y;
-  const Triangle<double> ta = m.tri(i), tb = m.tri(j);
-  if (shared == 0) return certified::tritri_meets(ta, tb);
-  if (shared >= 2) return certified::tritri(ta, tb) == TriTri::coplanar_overlap;
+  const Vec3<double>* pa = &m.v[3 * i];
+  const Vec3<double>* pb = &m.v[3 * j];
+  int shared = 0, ka = -1, kb = -1, b_only = -1;
+  for (int y = 0; y < 3; ++y) {
+    bool in_a = false;
+    for (int x = 0; x < 3; ++x)
+      if (a[x] == b[y]) ++shared, ka = x, kb = y, in_a = true;
+    if (!in_a) b_only = y;
+  }
+  if (shared == 0) {
+    if (one_side(pa[0], pa[1], pa[2], pb[0], pb[1], pb[2]) || one_side(pb[0], pb[1], pb[2], pa[0], pa[1], pa[2]))
+      return false;
+    return certified::tritri_meets(m.tri(i), m.tri(j));
+  }
+  if (shared >= 2) {
+    // Not coplanar: they meet in the shared edge alone.
+    if (shared == 2 && certified::orient3d_exact(pa[0], pa[1], pa[2], pb[b_only]) != 0) return false;
+    return certified::tritri(m.tri(i), m.tri(j)) == TriTri::coplanar_overlap;
+  }
   // One shared vertex: a point in both other than it exists exactly when the edge of one opposite
   // the shared vertex meets the other triangle (the nearer of the two exits of a ray from the
   // shared vertex through such a point lies on an opposite edge and in both triangles).
-  const Vec3<double>& a1 = m.v[3 * i + (ka + 1) % 3];
-  const Vec3<double>& a2 = m.v[3 * i + (ka + 2) % 3];
-  const Vec3<double>& b1 = m.v[3 * j + (kb + 1) % 3];
-  const Vec3<double>& b2 = m.v[3 * j + (kb + 2) % 3];
-  return certified::tritri_meets(Triangle<double>{b1, b2, b2}, ta) ||
-         certified::tritri_meets(Triangle<double>{a1, a2, a2}, tb);
+  const Vec3<double>& a1 = pa[(ka + 1) % 3];
+  const Vec3<double>& a2 = pa[(ka + 2) % 3];
+  const Vec3<double>& b1 = pb[(kb + 1) % 3];
+  const Vec3<double>& b2 = pb[(kb + 2) % 3];
+  return segment_meets(b1, b2, pa) || segment_meets(a1, a2, pb);
 }
 
 /// Triangles in blocks of a fixed size (not of the thread count): each block's pairs are found on
