@@ -162,6 +162,49 @@ bool self_pair_intersects(const PairMesh& m, std::uint32_t i, std::uint32_t j) {
   return segment_meets(b1, b2, pa) || segment_meets(a1, a2, pb);
 }
 
+/// Two nodes of one tree whose triangles are paired (a == b: the pairs within one node).
+struct NodePair {
+  std::uint32_t a, b;
+};
+/// Levels of the simultaneous descent expanded on the calling thread into tasks (each level about
+/// triples their number: a few hundred tasks for the threads).
+constexpr int kTaskLevels = 6;
+
+/// One step of the descent of the tree against itself: a node with itself gives its children with
+/// themselves and with each other; two nodes with overlapping boxes give the larger one's children
+/// with the other; leaves give their triangles' pairs whose boxes overlap (each unordered pair of
+/// distinct triangles once over the whole descent).
+template <class Push, class Emit>
+void self_step(const PairMesh& m, NodePair t, Push&& push, Emit&& emit) {
+  const auto& nodes = m.bvh.nodes;
+  const auto& ids = m.bvh.prim_ids;
+  const BvhNode& A = nodes[t.a];
+  if (t.a == t.b) {
+    if (A.is_leaf()) {
+      for (std::uint32_t k = A.index; k < A.index + A.count; ++k)
+        for (std::uint32_t l = k + 1; l < A.index + A.count; ++l)
+          if (overlap(m.box[ids[k]], m.box[ids[l]])) emit(ids[k], ids[l]);
+    } else {
+      push(NodePair{A.index, A.index}), push(NodePair{A.index + 1, A.index + 1}), push(NodePair{A.index, A.index + 1});
+    }
+    return;
+  }
+  const BvhNode& B = nodes[t.b];
+  if (!overlap(A.box, B.box)) return;
+  if (A.is_leaf() && B.is_leaf()) {
+    for (std::uint32_t k = A.index; k < A.index + A.count; ++k) {
+      const BvhBox& bk = m.box[ids[k]];
+      if (!overlap(bk, B.box)) continue;
+      for (std::uint32_t l = B.index; l < B.index + B.count; ++l)
+        if (overlap(bk, m.box[ids[l]])) emit(ids[k], ids[l]);
+    }
+  } else if (B.is_leaf() || (!A.is_leaf() && A.box.half_area() >= B.box.half_area())) {
+    push(NodePair{A.index, t.b}), push(NodePair{A.index + 1, t.b});
+  } else {
+    push(NodePair{t.a, B.index}), push(NodePair{t.a, B.index + 1});
+  }
+}
+
 /// Triangles in blocks of a fixed size (not of the thread count): each block's pairs are found on
 /// one thread in order, and the blocks are joined in order, so the output does not depend on threads.
 constexpr std::size_t kBlock = 512;
@@ -203,16 +246,40 @@ auto parallel(int threads) {
 std::vector<TrianglePair> self_intersections(const VertexArray& vertices, const IndexArray& indices,
                                              const IntersectOptions& opt) {
   const PairMesh m = load("mesh", vertices, indices, true, parallel(opt.threads));
-  return run_blocks(m.size(), opt.threads, [&](std::uint32_t i, std::vector<std::uint32_t>& stack, auto& row) {
-    if (m.zero_area[i]) {
-      row.push_back({i, i, opt.classes ? TriTri::degenerate : TriTri::invalid});
-      return;
+  std::vector<TrianglePair> pairs;
+  for (std::uint32_t i = 0; i < m.size(); ++i)
+    if (m.zero_area[i]) pairs.push_back({i, i, opt.classes ? TriTri::degenerate : TriTri::invalid});
+  const auto test = [&](std::uint32_t p, std::uint32_t q, std::vector<TrianglePair>& out) {
+    const std::uint32_t i = std::min(p, q), j = std::max(p, q);
+    if (m.zero_area[i] || m.zero_area[j] || !self_pair_intersects(m, i, j)) return;
+    out.push_back({i, j, opt.classes ? certified::tritri(m.tri(i), m.tri(j)) : TriTri::invalid});
+  };
+  if (!m.bvh.empty()) {
+    // The top levels one after the other, into tasks; then the tasks on the threads.
+    std::vector<NodePair> tasks{{0, 0}}, next;
+    for (int level = 0; level < kTaskLevels && !tasks.empty(); ++level) {
+      next.clear();
+      for (const NodePair& t : tasks)
+        self_step(m, t, [&](NodePair c) { next.push_back(c); }, [&](std::uint32_t p, std::uint32_t q) { test(p, q, pairs); });
+      tasks.swap(next);
     }
-    query(m, m.box[i], stack, [&](std::uint32_t j) {
-      if (j <= i || m.zero_area[j] || !self_pair_intersects(m, i, j)) return;
-      row.push_back({i, j, opt.classes ? certified::tritri(m.tri(i), m.tri(j)) : TriTri::invalid});
+    std::vector<std::vector<TrianglePair>> found(tasks.size());
+    scene::detail::for_each_batch_range(tasks.size(), opt.threads, 2, 1, [&](std::size_t t0, std::size_t t1) {
+      std::vector<NodePair> stack;
+      for (std::size_t t = t0; t < t1; ++t) {
+        stack.assign(1, tasks[t]);
+        while (!stack.empty()) {
+          const NodePair top = stack.back();
+          stack.pop_back();
+          self_step(m, top, [&](NodePair c) { stack.push_back(c); },
+                    [&](std::uint32_t p, std::uint32_t q) { test(p, q, found[t]); });
+        }
+      }
     });
-  });
+    for (const auto& f : found) pairs.insert(pairs.end(), f.begin(), f.end());
+  }
+  std::sort(pairs.begin(), pairs.end());
+  return pairs;
 }
 
 std::vector<TrianglePair> intersecting_pairs(const MeshArrays& a, const MeshArrays& b, const IntersectOptions& opt) {
