@@ -52,3 +52,14 @@ def test_equals_the_cli(tmp_path):
     assert len(p) > 0
     assert run_cli("intersect", path) == ["{} {}".format(i, j) for i, j in p]
     assert run_cli("intersect", path, "--count") == [str(len(p))]
+
+
+def test_empty_mesh_and_bad_vertices():
+    m = rayproof.Mesh(np.zeros((0, 3)), np.zeros((0, 3), dtype=np.int64))
+    assert m.self_intersections().shape == (0, 2) and m.intersecting_pairs(m).shape == (0, 2)
+    try:
+        rayproof.Mesh(np.array([[0, 0, 0], [1, 0, 0], [np.nan, 1, 0]]), np.array([[0, 1, 2]]))
+    except ValueError as e:
+        assert "NaN or infinite" in str(e)
+    else:
+        raise AssertionError("a NaN vertex was accepted")
