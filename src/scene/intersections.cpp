@@ -113,6 +113,13 @@ bool one_side(const Vec3<double>& p0, const Vec3<double>& p1, const Vec3<double>
   return certified::orient3d_exact(p0, p1, p2, y) == s && certified::orient3d_exact(p0, p1, p2, z) == s;
 }
 
+/// The segment (x, y) strictly on one side of the plane of (p0, p1, p2) (exact signs).
+bool segment_off_plane(const Vec3<double>& p0, const Vec3<double>& p1, const Vec3<double>& p2, const Vec3<double>& x,
+                       const Vec3<double>& y) {
+  const int s = certified::orient3d_exact(p0, p1, p2, x);
+  return s != 0 && certified::orient3d_exact(p0, p1, p2, y) == s;
+}
+
 /// The closed segment [x, y] (x != y) meets the closed triangle t (positive area): the certified
 /// classifier's segment test on exact signs (no zero-area proof of the segment as a triangle).
 bool segment_meets(const Vec3<double>& x, const Vec3<double>& y, const Vec3<double>* t) {
@@ -159,6 +166,9 @@ bool self_pair_intersects(const PairMesh& m, std::uint32_t i, std::uint32_t j) {
   const Vec3<double>& a2 = pa[(ka + 2) % 3];
   const Vec3<double>& b1 = pb[(kb + 1) % 3];
   const Vec3<double>& b2 = pb[(kb + 2) % 3];
+  // The edge of b opposite v strictly on one side of a's plane puts all of b but v strictly on that
+  // side: nothing beyond v in common (two signs settle most pairs of a smooth mesh); likewise a.
+  if (segment_off_plane(pa[0], pa[1], pa[2], b1, b2) || segment_off_plane(pb[0], pb[1], pb[2], a1, a2)) return false;
   return segment_meets(b1, b2, pa) || segment_meets(a1, a2, pb);
 }
 
