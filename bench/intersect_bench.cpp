@@ -4,7 +4,7 @@
 // and, when the build found FCL (libfcl-dev), rayproof::intersecting_pairs against FCL's mesh-mesh
 // collision (OBBRSS trees, every contact) on two meshes. Prints the pairs each finds, the pairs that
 // differ and the time ratio. A plain program (bench only: PMP is not in the tool's libraries).
-//   intersect_bench [MESH_DIR] [--repeat N]
+//   intersect_bench [MESH_DIR] [--repeat N] [--big]   (--big: also the generated 1.31M-triangle sphere)
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Polygon_mesh_processing/self_intersections.h>
 #include <CGAL/Surface_mesh.h>
@@ -17,6 +17,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <string>
@@ -152,8 +153,10 @@ void pair_row(const std::string& name, const mesh::Mesh& a, const mesh::Mesh& b,
 int main(int argc, char** argv) {
   std::string dir = RAYPROOF_BENCH_MESH_DIR;
   int repeat = 3;
+  bool big = false;
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--repeat") == 0 && i + 1 < argc) repeat = std::max(1, std::atoi(argv[++i]));
+    else if (std::strcmp(argv[i], "--big") == 0) big = true;
     else dir = argv[i];
   }
   fmt::print("one thread; best of {} (CGAL best of {})\n", repeat, std::max(1, repeat / 2));
@@ -168,9 +171,10 @@ int main(int argc, char** argv) {
   mesh::Mesh two = sphere;
   append(two, moved(sphere, {0.6, 0.2, 0.1}));
   meshes.push_back({"bumpy sphere + shifted copy", two});
+  if (big) meshes.push_back({"bumpy sphere 1.31M", scene::bumpy_sphere(std::size_t(1) << 20)});
   for (const auto& [name, m] : meshes) self_row(name, m, repeat);
   for (const auto& [name, m] : meshes) {
-    if (name == "bumpy sphere + shifted copy") continue;
+    if (name == "bumpy sphere + shifted copy" || name == "bumpy sphere 1.31M") continue;
     double lo[3] = {1e300, 1e300, 1e300}, hi[3] = {-1e300, -1e300, -1e300};
     for (const auto& v : m.vertices)
       for (int k = 0; k < 3; ++k) lo[k] = std::min(lo[k], v[k]), hi[k] = std::max(hi[k], v[k]);
