@@ -1,6 +1,7 @@
 // Self-intersections and contact pairs (rayproof/scene/intersections.h, docs/intersect.md): a BVH
-// over the triangles' float boxes rounded outwards, each triangle's box queried against it, each
-// candidate decided by the certified triangle/triangle tests.
+// over the triangles' float boxes rounded outwards, descended against itself (one mesh) or queried
+// with each triangle's box of the other mesh (two meshes); each candidate decided by exact signs
+// and the certified triangle/triangle tests.
 #include "rayproof/scene/intersections.h"
 
 #include <algorithm>
