@@ -13,6 +13,7 @@
 #include "bindings.h"
 #include "rayproof/scene/exact_mesh.h"
 #include "rayproof/scene/distance.h"
+#include "rayproof/scene/intersections.h"
 #include "rayproof/scene/mesh_caster.h"
 
 namespace rayproof::python {
@@ -174,6 +175,39 @@ class PyMesh {
     out["points"] = pts, out["triangles"] = tri, out["barycentric"] = bary, out["distance"] = dist;
     if (side) out["side"] = sides;
     return out;
+  }
+
+  /// self_intersections() / intersecting_pairs(): rayproof/scene/intersections.h on the private
+  /// copies, the GIL released; (k, 2) int64 pairs, sorted (docs/intersect.md).
+  [[nodiscard]] MeshArrays arrays() const {
+    return {VertexArray(vertices_.data(), vertices()), IndexArray{indices_.data(), triangles()}};
+  }
+  static py::array_t<std::int64_t> pair_array(const std::vector<TrianglePair>& p) {
+    py::array_t<std::int64_t> out({static_cast<py::ssize_t>(p.size()), py::ssize_t(2)});
+    std::int64_t* o = out.mutable_data();
+    for (std::size_t k = 0; k < p.size(); ++k) o[2 * k] = p[k].i, o[2 * k + 1] = p[k].j;
+    return out;
+  }
+  py::array_t<std::int64_t> self_intersections(int threads) const {
+    std::vector<TrianglePair> p;
+    IntersectOptions opt;
+    opt.threads = threads;
+    {
+      py::gil_scoped_release unlocked;
+      const MeshArrays a = arrays();
+      p = ::rayproof::self_intersections(a.vertices, a.indices, opt);
+    }
+    return pair_array(p);
+  }
+  py::array_t<std::int64_t> intersecting_pairs(const PyMesh& other, int threads) const {
+    std::vector<TrianglePair> p;
+    IntersectOptions opt;
+    opt.threads = threads;
+    {
+      py::gil_scoped_release unlocked;
+      p = ::rayproof::intersecting_pairs(arrays(), other.arrays(), opt);
+    }
+    return pair_array(p);
   }
 
   /// winding(): on a closed oriented mesh the exact winding number per point (int32; INT32_MIN on
@@ -481,6 +515,15 @@ A ray with a NaN or infinite component or a zero direction has no crossing (clos
            "'touch_offsets', 'touch_ray', 'touch_t', 'touch_t2', 'touch_prim', 'touch_classes', 'touch_codes' "
            "(edge or vertex: a silhouette point; coplanar: the ray along a triangle from touch_t to touch_t2). "
            "A crossing counts when tmin <= t <= tmax. The GIL is released. docs/contains.md, 'Crossings'.")
+      .def("self_intersections", &PyMesh::self_intersections, "threads"_a = 0,
+           "The pairs of triangles that intersect, exact, as CGAL Polygon_mesh_processing::self_intersections "
+           "defines them: a (k, 2) int64 array of triangle numbers (i < j), sorted. Triangles that share a vertex "
+           "index count only where they meet beyond it; sharing an edge (two indices), only where they are "
+           "coplanar and overlap with positive area; equal coordinates under other indices are not shared. A "
+           "zero-area triangle i is the row (i, i) and is in no other row. The GIL is released. docs/intersect.md.")
+      .def("intersecting_pairs", &PyMesh::intersecting_pairs, "other"_a, "threads"_a = 0,
+           "The pairs (i of this mesh, j of other) of closed triangles that share a point, exact: a (k, 2) int64 "
+           "array, sorted (zero-area triangles as the segments or points they are). The GIL is released.")
       .def_property_readonly("oriented", &PyMesh::oriented,
                              "Whether the mesh is closed and oriented (integer winding numbers defined).")
       .def_property_readonly("closed", &PyMesh::is_closed, "Whether every edge is used by an even number of triangles.")

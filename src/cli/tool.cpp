@@ -48,6 +48,7 @@ void add_commands(CLI::App& app, Commands& out) {
   add(add_advise(app));
   add(add_contains(app));
   add(add_distance(app));
+  add(add_intersect(app));
 }
 
 int rayproof_main(int argc, char** argv) {

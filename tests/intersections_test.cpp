@@ -1,0 +1,181 @@
+// rayproof/scene/intersections.h: exact pairs on constructed meshes (cubes overlapping, touching
+// with and without shared indices, a folded sheet, shared-vertex wedges, zero-area triangles), the
+// BVH's pairs equal to a brute force over every pair, and the same output for any thread count.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <limits>
+#include <vector>
+
+#include "intersect_meshes.h"
+#include "scene/watertight.h"
+
+namespace {
+
+using namespace rayproof;
+using namespace rayproof::testing;
+using P = std::vector<TrianglePair>;
+
+TEST(SelfIntersections, ClosedCubeHasNone) {
+  EXPECT_TRUE(self_of(box({0, 0, 0}, {2, 2, 2})).empty());
+  EXPECT_TRUE(self_of(scene::bumpy_sphere(500)).empty());
+}
+
+TEST(SelfIntersections, OverlappingCubes) {
+  mesh::Mesh m = box({0, 0, 0}, {2, 2, 2});
+  append(m, box({1, 1, 1}, {2, 2, 2}));
+  const P got = self_of(m);
+  EXPECT_EQ(got, brute_self(m));
+  EXPECT_FALSE(got.empty());
+  for (const auto& p : got) EXPECT_TRUE(p.i < 12 && p.j >= 12) << p.i << ' ' << p.j;  // each cube alone is clean
+}
+
+TEST(SelfIntersections, TouchingAtAFaceWithDifferentIndicesIntersect) {
+  mesh::Mesh m = box({0, 0, 0}, {2, 2, 2});
+  append(m, box({2, 0, 0}, {2, 2, 2}));  // equal coordinates on x = 2, other indices
+  const P got = self_of(m);
+  EXPECT_EQ(got, brute_self(m));
+  // The two faces on x = 2 (triangles 10, 11 of the first, 8, 9 of the second) overlap, and the
+  // side faces touch along the contact square's edges.
+  for (auto [i, j] : {std::pair{10u, 20u}, {10u, 21u}, {11u, 20u}, {11u, 21u}})
+    EXPECT_NE(std::find(got.begin(), got.end(), TrianglePair{i, j}), got.end()) << i << ' ' << j;
+  EXPECT_GT(got.size(), 4u);
+}
+
+TEST(SelfIntersections, WeldedBoxSharingIndicesHasNone) {
+  // Two unit cubes side by side sharing the four vertices of the common square (by index), the
+  // square itself left out: a closed 2 x 1 x 1 box whose triangles meet only along shared indices.
+  mesh::Mesh m;
+  for (int k = 0; k < 12; ++k) m.vertices.push_back({double(k % 3), double((k / 3) % 2), double(k / 6)});
+  const auto v = [](int x, int y, int z) { return std::uint32_t(x + 3 * y + 6 * z); };
+  for (int x = 0; x < 2; ++x) {
+    m.triangles.push_back({v(x, 0, 0), v(x, 1, 0), v(x + 1, 0, 0)});
+    m.triangles.push_back({v(x + 1, 0, 0), v(x, 1, 0), v(x + 1, 1, 0)});
+    m.triangles.push_back({v(x, 0, 1), v(x + 1, 0, 1), v(x, 1, 1)});
+    m.triangles.push_back({v(x + 1, 0, 1), v(x + 1, 1, 1), v(x, 1, 1)});
+    m.triangles.push_back({v(x, 0, 0), v(x + 1, 0, 0), v(x, 0, 1)});
+    m.triangles.push_back({v(x + 1, 0, 0), v(x + 1, 0, 1), v(x, 0, 1)});
+    m.triangles.push_back({v(x, 1, 0), v(x, 1, 1), v(x + 1, 1, 0)});
+    m.triangles.push_back({v(x + 1, 1, 0), v(x, 1, 1), v(x + 1, 1, 1)});
+  }
+  m.triangles.push_back({v(0, 0, 0), v(0, 0, 1), v(0, 1, 0)});
+  m.triangles.push_back({v(0, 1, 0), v(0, 0, 1), v(0, 1, 1)});
+  m.triangles.push_back({v(2, 0, 0), v(2, 1, 0), v(2, 0, 1)});
+  m.triangles.push_back({v(2, 1, 0), v(2, 1, 1), v(2, 0, 1)});
+  EXPECT_TRUE(self_of(m).empty());
+  EXPECT_TRUE(brute_self(m).empty());
+  // The same with the middle vertices duplicated (other indices, equal coordinates): the triangles
+  // of the two halves now touch along x = 1 and are reported.
+  mesh::Mesh split = m;
+  for (int k : {1, 4, 7, 10}) split.vertices.push_back(m.vertices[std::size_t(k)]);
+  for (std::size_t t = 8; t < 16; ++t)
+    for (auto& x : split.triangles[t])
+      if (x % 3 == 1) x = 12 + x / 3;
+  const P got = self_of(split);
+  EXPECT_EQ(got, brute_self(split));
+  EXPECT_FALSE(got.empty());
+}
+
+TEST(SelfIntersections, SharedEdgeCountsOnlyWhenCoplanarOverlap) {
+  mesh::Mesh m;
+  m.vertices = {{0, 0, 0}, {4, 0, 0}, {2, 2, 0}, {2, 1, 0}, {2, -2, 0}, {2, 1, 1}};
+  m.triangles = {{0, 1, 2}, {1, 0, 3}, {1, 0, 4}, {1, 0, 5}};
+  // 0-1: coplanar, same side (overlap); 0-2: opposite sides (a fold line of a flat sheet); 0-3:
+  // not coplanar; 1-2 opposite sides; 1-3 not coplanar; 2-3 not coplanar.
+  EXPECT_EQ(self_of(m), (P{{0, 1}}));
+  EXPECT_EQ(brute_self(m), (P{{0, 1}}));
+  // A duplicate triangle (three shared indices) overlaps itself with positive area: reported.
+  m.triangles.push_back({2, 0, 1});
+  EXPECT_EQ(self_of(m), (P{{0, 1}, {0, 4}, {1, 4}}));
+}
+
+TEST(SelfIntersections, SharedVertexCountsBeyondIt) {
+  mesh::Mesh m;
+  m.vertices = {{0, 0, 0}, {4, 0, 0}, {0, 4, 0}, {1, 1, 0}, {2, 1, 0}, {-1, -1, 0}, {-1, -2, 0},
+                {1, 1, 1}, {1, 1, -1}, {-1, 0, 1}, {-1, 1, 1}};
+  m.triangles = {{0, 1, 2},    // 0
+                 {0, 3, 4},    // 1: coplanar, inside 0's wedge
+                 {0, 5, 6},    // 2: coplanar, only the vertex in common
+                 {0, 7, 8},    // 3: pierces 0 along a segment from the shared vertex
+                 {0, 9, 10}};  // 4: touches only at the shared vertex
+  const P want{{0, 1}, {0, 3}, {1, 3}};
+  EXPECT_EQ(self_of(m), want);
+  EXPECT_EQ(brute_self(m), want);
+}
+
+TEST(SelfIntersections, FoldedSheet) {
+  const mesh::Mesh m = folded_sheet(6, 3);
+  const P got = self_of(m);
+  EXPECT_EQ(got, brute_self(m));
+  EXPECT_GT(got.size(), 36u);
+}
+
+TEST(SelfIntersections, ZeroAreaTrianglesOnlyWithThemselves) {
+  mesh::Mesh m = box({0, 0, 0}, {2, 2, 2});
+  m.vertices.push_back({1, 1, 1});
+  m.vertices.push_back({3, 3, 3});
+  m.triangles.push_back({8, 9, 9});  // a segment from the centre out through the corner (2, 2, 2)
+  m.triangles.push_back({0, 7, 8});  // collinear: the cube's diagonal
+  EXPECT_EQ(self_of(m), (P{{12, 12}, {13, 13}}));
+  EXPECT_EQ(brute_self(m), (P{{12, 12}, {13, 13}}));
+  IntersectOptions opt;
+  opt.classes = true;
+  for (const auto& p : self_of(m, opt)) EXPECT_EQ(p.cls, TriTri::degenerate);
+}
+
+TEST(SelfIntersections, EqualsBruteForceOnLatticeSoups) {
+  for (std::uint32_t seed = 1; seed <= 6; ++seed) {
+    const mesh::Mesh m = lattice_soup(150, seed % 2 ? 40 : 400, seed);
+    const P got = self_of(m);
+    EXPECT_EQ(got, brute_self(m)) << "seed " << seed;
+    EXPECT_GT(got.size(), 10u);
+  }
+}
+
+TEST(SelfIntersections, SameOutputForEveryThreadCount) {
+  mesh::Mesh m = scene::bumpy_sphere(3000);
+  mesh::Mesh copy = m;
+  for (auto& v : copy.vertices) v = v + Vec3<double>{0.3, 0.2, 0.1};
+  append(m, copy);
+  IntersectOptions one, two;
+  one.threads = 1, two.threads = 2;
+  one.classes = two.classes = true;
+  const P a = self_of(m, one), b = self_of(m, two);
+  ASSERT_EQ(a, b);
+  ASSERT_FALSE(a.empty());
+  EXPECT_TRUE(std::is_sorted(a.begin(), a.end()));
+  for (std::size_t k = 0; k < a.size(); ++k) {
+    EXPECT_EQ(a[k].cls, b[k].cls);
+    EXPECT_TRUE(meets(a[k].cls)) << a[k].i << ' ' << a[k].j;
+  }
+}
+
+TEST(IntersectingPairs, TwoMeshesEqualBruteForce) {
+  const mesh::Mesh a = box({0, 0, 0}, {2, 2, 2});
+  for (const mesh::Mesh& b : {box({1, 1, 1}, {2, 2, 2}), box({2, 0, 0}, {2, 2, 2}), box({2, 2, 2}, {1, 1, 1}),
+                              box({3, 0, 0}, {1, 1, 1}), lattice_soup(60, 30, 7)}) {
+    const P got = intersecting_pairs(arrays_of(a), arrays_of(b));
+    EXPECT_EQ(got, brute_pairs(a, b));
+  }
+  // Touching at one corner: the three triangles at (2, 2, 2) of a against those at b's corner.
+  EXPECT_FALSE(intersecting_pairs(arrays_of(a), arrays_of(box({2, 2, 2}, {1, 1, 1}))).empty());
+  EXPECT_TRUE(intersecting_pairs(arrays_of(a), arrays_of(box({2.5, 0, 0}, {1, 1, 1}))).empty());
+  // A soup against itself: every triangle meets itself (no adjacency between two meshes).
+  const mesh::Mesh s = lattice_soup(80, 50, 3);
+  const P self_pairs = intersecting_pairs(arrays_of(s), arrays_of(s));
+  EXPECT_EQ(self_pairs, brute_pairs(s, s));
+}
+
+TEST(IntersectingPairs, BadInputIsAnError) {
+  mesh::Mesh a = box({0, 0, 0}, {1, 1, 1});
+  mesh::Mesh bad = a;
+  bad.triangles.push_back({0, 1, 99});
+  EXPECT_THROW((void)intersecting_pairs(arrays_of(a), arrays_of(bad)), MeshInputError);
+  EXPECT_THROW((void)self_of(bad), MeshInputError);
+  bad = a;
+  bad.vertices[3].y = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_THROW((void)self_of(bad), MeshInputError);
+  EXPECT_TRUE(self_of(mesh::Mesh{{{0, 0, 0}}, {}}).empty());
+}
+
+}  // namespace
