@@ -59,11 +59,11 @@ void bind_check(py::module_& m);
 void bind_load_mesh(py::module_& m);
 /// A mesh's vertex and triangle arrays, checked (dtype, shape, indices in range: ValueError naming
 /// the row) and copied (check_caster.cpp; the judges' bindings use it).
-struct MeshArrays {
+struct CheckedMesh {
   std::vector<Vec3<double>> vertices;
   std::vector<std::array<std::uint32_t, 3>> triangles;
 };
-[[nodiscard]] MeshArrays mesh_arrays(py::handle vertices, py::handle triangles);
+[[nodiscard]] CheckedMesh checked_mesh(py::handle vertices, py::handle triangles);
 /// Whether a Python exception is KeyboardInterrupt or SystemExit (to be raised again, not counted).
 [[nodiscard]] bool is_interrupt(const py::error_already_set& e);
 

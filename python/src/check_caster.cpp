@@ -73,7 +73,7 @@ py::dict check_caster(py::function fn, py::handle vertices, py::handle triangles
                       std::uint64_t seed, std::optional<std::vector<std::string>> sets, std::size_t batch,
                       std::size_t reproducers, std::optional<py::tuple> rays, const std::string& mesh_name,
                       int threads) {
-  const MeshArrays arrays = mesh_arrays(vertices, triangles);
+  const CheckedMesh arrays = checked_mesh(vertices, triangles);
   const auto& verts = arrays.vertices;
   const auto& tris = arrays.triangles;
   verify::CasterCheckOptions opt;
@@ -180,14 +180,14 @@ bool is_interrupt(const py::error_already_set& e) {
   return e.matches(PyExc_KeyboardInterrupt) || e.matches(PyExc_SystemExit);
 }
 
-MeshArrays mesh_arrays(py::handle vertices, py::handle triangles) {
+CheckedMesh checked_mesh(py::handle vertices, py::handle triangles) {
   const py::array v = checked_array(vertices, "vertices", 3, false, DtypeRule::real);
   const py::array ix = checked_array(triangles, "triangles", 3, false, DtypeRule::integer);
   const auto vd = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(v);
   const auto id = py::array_t<std::int64_t, py::array::c_style | py::array::forcecast>::ensure(ix);
   if (!vd || !id) throw py::error_already_set();
   const std::size_t nv = static_cast<std::size_t>(vd.shape(0)), nt = static_cast<std::size_t>(id.shape(0));
-  MeshArrays out;
+  CheckedMesh out;
   out.vertices.resize(nv);
   for (std::size_t i = 0; i < nv; ++i) out.vertices[i] = {vd.data()[3 * i], vd.data()[3 * i + 1], vd.data()[3 * i + 2]};
   out.triangles.resize(nt);

@@ -96,7 +96,7 @@ py::dict check_contains(py::function fn, py::handle vertices, py::handle triangl
                         const std::string& precision, std::size_t random_points, std::size_t max_points_per_set, std::uint64_t seed,
                         std::optional<std::vector<std::string>> sets, std::size_t batch, std::size_t reproducers,
                         std::optional<py::handle> points, const std::string& mesh_name, int threads) {
-  const MeshArrays arrays = mesh_arrays(vertices, triangles);
+  const CheckedMesh arrays = checked_mesh(vertices, triangles);
   verify::ContainsCheckOptions opt;
   opt.rule = rule_named(rule);
   if (precision == "float") opt.precision = verify::ContainsPrecision::float32;
@@ -220,7 +220,7 @@ py::dict check_distance(py::function fn, py::handle vertices, py::handle triangl
                         double rel_tol, std::size_t random_points, std::size_t max_points_per_set, std::uint64_t seed,
                         std::optional<std::vector<std::string>> sets, std::size_t batch, std::size_t reproducers,
                         std::optional<py::handle> points, const std::string& mesh_name, int threads) {
-  const MeshArrays arrays = mesh_arrays(vertices, triangles);
+  const CheckedMesh arrays = checked_mesh(vertices, triangles);
   verify::DistanceCheckOptions opt;
   if (!(rel_tol >= 0) || !std::isfinite(rel_tol)) throw py::value_error("rel_tol: must be a finite number >= 0");
   if (batch == 0) throw py::value_error("batch: must be at least 1");
