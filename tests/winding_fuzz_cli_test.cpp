@@ -52,8 +52,11 @@ TEST(WindingFuzzCli, TimedCampaignFindsNothing) {
   std::istringstream row(r.out.substr(r.out.find('\n', head) + 1));
   unsigned long long meshes = 0, points = 0, surface = 0, near = 0, misses = 9, sides = 9, surfaces = 9, errors = 9;
   ASSERT_TRUE(row >> meshes >> points >> surface >> near >> misses >> sides >> surfaces >> errors) << r.out;
-  EXPECT_GT(meshes, 10u);
+  // Every fourth open mesh also tabulates the caps' field over a batch of 4096 points: under the
+  // sanitizers 3 s hold about 8 meshes (more than 100 in a Release build).
+  EXPECT_GE(meshes, 4u);
   EXPECT_EQ(points, meshes * 28);
+  EXPECT_NE(r.out.find(" points, 0 sides that differ from the point asked alone\n"), std::string::npos) << r.out;
   EXPECT_GT(surface, 0u);
   EXPECT_LE(surface + near, points);
   EXPECT_EQ(misses + sides + surfaces + errors, 0u) << r.out;
