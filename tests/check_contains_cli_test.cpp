@@ -19,41 +19,15 @@ namespace {
 using testing::run_rayproof;
 using testing::write_file;
 
-const std::string kCube = R"(OFF
-8 12 0
-0 0 0
-1 0 0
-0 1 0
-1 1 0
-0 0 1
-1 0 1
-0 1 1
-1 1 1
-3 0 2 3
-3 0 3 1
-3 4 5 7
-3 4 7 6
-3 0 1 5
-3 0 5 4
-3 2 6 7
-3 2 7 3
-3 0 4 6
-3 0 6 2
-3 1 3 7
-3 1 7 5
-)";
+const std::string& kCube = testing::kUnitCubeOff;
 
 std::string example(const char* name) { return std::string(RAYPROOF_DATA_DIR) + "/../examples/contains/" + name; }
 
-bool have_numpy() { return std::system("/usr/bin/python3 -c 'import numpy' >/dev/null 2>&1") == 0; }
+using testing::have_numpy;
 
-/// The value of `key` in the text summary of function `fn` (the first mesh it ran on).
+/// The value of `key` in the summary of function `fn` (the first mesh it ran on).
 std::size_t count_of(const std::string& out, const std::string& fn, const std::string& key) {
-  const auto at = out.find("function '" + fn + "'");
-  if (at == std::string::npos) return std::size_t(-1);
-  const auto k = out.find("\n" + key + " ", at);
-  if (k == std::string::npos) return std::size_t(-1);
-  return std::stoul(out.substr(out.find_first_not_of(' ', k + key.size() + 1)));
+  return testing::summary_count(out, "function '" + fn + "'", key);
 }
 
 TEST(CheckContainsCli, ExampleParityIsCaughtAndTheNanCrashIsReported) {

@@ -68,4 +68,42 @@ inline RunResult run_rayproof(const std::string& args, const std::string& stdin_
   return run_program(RAYPROOF_BIN, args, stdin_text, prefix);
 }
 
+/// The unit cube [0, 1]^3 as an OFF file, 12 outward-facing triangles (the CLI judges' tests).
+inline const std::string kUnitCubeOff = R"(OFF
+8 12 0
+0 0 0
+1 0 0
+0 1 0
+1 1 0
+0 0 1
+1 0 1
+0 1 1
+1 1 1
+3 0 2 3
+3 0 3 1
+3 4 5 7
+3 4 7 6
+3 0 1 5
+3 0 5 4
+3 2 6 7
+3 2 7 3
+3 0 4 6
+3 0 6 2
+3 1 3 7
+3 1 7 5
+)";
+
+/// Whether /usr/bin/python3 imports numpy (the Python examples need it).
+inline bool have_numpy() { return std::system("/usr/bin/python3 -c 'import numpy' >/dev/null 2>&1") == 0; }
+
+/// The value of `key` in a `check` text summary, in the block that `block` opens (e.g. "caster 'mt'",
+/// "function 'np'": the first mesh it ran on); size_t(-1) when either is missing.
+inline std::size_t summary_count(const std::string& out, const std::string& block, const std::string& key) {
+  const auto at = out.find(block);
+  if (at == std::string::npos) return std::size_t(-1);
+  const auto k = out.find("\n" + key + " ", at);
+  if (k == std::string::npos) return std::size_t(-1);
+  return std::stoul(out.substr(out.find_first_not_of(' ', k + key.size() + 1)));
+}
+
 }  // namespace rayproof::testing
