@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstdint>
 #include <filesystem>
 #include <random>
 #include <string>
@@ -265,10 +266,14 @@ TEST(Orient, FilterAndExpansionsAgreeWithGmpOnNearDegenerateInputs) {
     for (int k = 0; k < int(rng() % 3); ++k) p.z = std::nextafter(p.z, (rng() & 1) ? 1e300 : -1e300);
     if (i % 4 == 0) c = {std::ldexp(u(rng), -1000), std::ldexp(u(rng), 900), 0};  // a huge exponent spread
     const int o3 = rayproof::orient::orient3d(a, b, c, p), g3 = certified::orient3d_gmp(a, b, c, p);
-    if (o3 != rayproof::orient::kUnknown) EXPECT_EQ(o3, g3) << i;
+    if (o3 != rayproof::orient::kUnknown) {
+      EXPECT_EQ(o3, g3) << i;
+    }
     EXPECT_EQ(certified::orient3d_exact(a, b, c, p), g3) << i;
     const int o2 = rayproof::orient::orient2d(a.x, a.y, b.x, b.y, c.x, c.y), g2 = certified::orient2d_gmp(a.x, a.y, b.x, b.y, c.x, c.y);
-    if (o2 != rayproof::orient::kUnknown) EXPECT_EQ(o2, g2) << i;
+    if (o2 != rayproof::orient::kUnknown) {
+      EXPECT_EQ(o2, g2) << i;
+    }
     EXPECT_EQ(certified::orient2d_exact(a.x, a.y, b.x, b.y, c.x, c.y), g2) << i;
     zeros += g2 == 0;
   }
@@ -277,6 +282,52 @@ TEST(Orient, FilterAndExpansionsAgreeWithGmpOnNearDegenerateInputs) {
   EXPECT_EQ(certified::orient3d_exact({0, 0, 0}, {0x1p600, 0, 0}, {0, 0x1p-600, 0}, {0, 0, 0x1p-1074}), 1);
   EXPECT_EQ(certified::orient2d_exact(0, 0, 0x1p-1074, 0x1p-1074, 0x1p1000, 0x1p1000), 0);
   (void)zeros;
+}
+
+TEST(Orient, ExactDifferencesStageAgreesWithGmp) {
+  // Points of a common grid (exact differences) at many scales: exactly coplanar and collinear
+  // ones, ones an ulp of the grid off, and random ones; the stack stage must decide each of them
+  // and agree with GMP, and orient3d / orient2d through it too.
+  namespace certified = rayproof::certified;
+  using rayproof::orient::kUnknown;
+  std::mt19937_64 rng(11);
+  int decided3 = 0, decided2 = 0, zeros3 = 0, zeros2 = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const int e = int(rng() % 400) - 200;
+    const double step = std::ldexp(1.0, e);
+    auto g = [&] { return double(std::int64_t(rng() % (std::uint64_t(1) << 31)) - (std::int64_t(1) << 30)) * step; };
+    const Vec3<double> a{g(), g(), g()}, b{g(), g(), g()}, c{g(), g(), g()};
+    Vec3<double> p{g(), g(), g()};
+    if (i % 3 == 0) {  // exactly on the plane of a, b, c when the combination is exact
+      const std::int64_t s = std::int64_t(rng() % 5) - 2, t = std::int64_t(rng() % 5) - 2;
+      p = {a.x + s * (b.x - a.x) + t * (c.x - a.x), a.y + s * (b.y - a.y) + t * (c.y - a.y),
+           a.z + s * (b.z - a.z) + t * (c.z - a.z)};
+    }
+    if (i % 6 == 1) p.z += step * (rng() & 1 ? 1 : -1) * 0x1p-30;  // off the grid: a difference may be inexact
+    const int s3 = rayproof::orient::orient3d_exact_differences(a, b, c, p), g3 = certified::orient3d_gmp(a, b, c, p);
+    if (s3 != kUnknown) {
+      ++decided3;
+      zeros3 += s3 == 0;
+      EXPECT_EQ(s3, g3) << i;
+    }
+    EXPECT_EQ(certified::orient3d_exact(a, b, c, p), g3) << i;
+    const Vec3<double> q = i % 2 ? p : Vec3<double>{a.x + 3 * (b.x - a.x), a.y + 3 * (b.y - a.y), 0};  // collinear
+    const int s2 = rayproof::orient::orient2d_exact_differences(a.x, a.y, b.x, b.y, q.x, q.y),
+              g2 = certified::orient2d_gmp(a.x, a.y, b.x, b.y, q.x, q.y);
+    if (s2 != kUnknown) {
+      ++decided2;
+      zeros2 += s2 == 0;
+      EXPECT_EQ(s2, g2) << i;
+    }
+    EXPECT_EQ(certified::orient2d_exact(a.x, a.y, b.x, b.y, q.x, q.y), g2) << i;
+  }
+  // Most cases are on the grid (the stage decides them), and many of them are exact zeros.
+  EXPECT_GT(decided3, 15000);
+  EXPECT_GT(decided2, 15000);
+  EXPECT_GT(zeros3, 3000);
+  EXPECT_GT(zeros2, 5000);
+  // A difference that is not a double: the stage declines.
+  EXPECT_EQ(rayproof::orient::orient2d_exact_differences(1, 0, 0x1p-60, 0, 3, 1), kUnknown);
 }
 
 /// The winding number of the perturbed ray along +z, over every triangle (no BVH): an independent count.
