@@ -1,4 +1,4 @@
-"""The line protocols of `rayproof check --caster`, `--contains`, `--distance` and `--crossings`
+"""The line protocols of `rayproof check --caster`, `--contains` and `--distance`
 (docs/check.md), read and written for the example programs beside this file: the mesh once, then
 batches of rays or points until `end`. A program that reads stdin to its end exits quietly."""
 import os

@@ -1,5 +1,5 @@
 #pragma once
-/// What the judges of whole functions (casters, containment, distance, crossings: docs/check.md)
+/// What the judges of whole functions (casters, containment, distance: docs/check.md)
 /// share, below their own sets, exact answers and counts:
 /// - run_in_batches: a function of the caller's process called batch by batch, an exception
 ///   failing that batch and kept as a note;

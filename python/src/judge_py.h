@@ -1,6 +1,6 @@
 #pragma once
 /// What the Python bindings of the whole-function judges share (check_caster.cpp,
-/// check_contains.cpp, check_crossings.cpp): items as numpy arrays for the user's function, its
+/// check_contains.cpp): items as numpy arrays for the user's function, its
 /// results read back as columns, the user's exceptions (an interrupt rethrown, any other one a
 /// failed batch), the tally's counters, reproducers and costs as a dict, the docstrings' key lists.
 #include <pybind11/stl.h>

@@ -1,6 +1,6 @@
 #pragma once
-/// What `check --caster`, `--contains`, `--distance` and `--crossings` share (check_caster.cpp,
-/// check_contains.cpp, check_distance.cpp, check_crossings.cpp): NAME=COMMAND specs, the options
+/// What `check --caster`, `--contains` and `--distance` share (check_caster.cpp,
+/// check_contains.cpp, check_distance.cpp): NAME=COMMAND specs, the options
 /// that belong to kernels, a run's JSON fields, its text (header line, summary, events, verdict).
 /// Header-only: the CLI's files compile in unity batches (src/cli/CMakeLists.txt).
 #include <fmt/core.h>

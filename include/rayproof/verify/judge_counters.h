@@ -1,6 +1,6 @@
 #pragma once
 /// The counters every judge of a whole function (caster_check.h, contains_check.h,
-/// distance_check.h, crossings_check.h) declares the same way: one table per judge, one row per
+/// distance_check.h) declares the same way: one table per judge, one row per
 /// count, in which a count's name, meaning and use are written down once. The summary text, the
 /// CLI's JSON, the reports' columns and Python's dicts are made from the table, in its order.
 /// Header-only, no dependencies.
