@@ -26,6 +26,7 @@
 #include "rayproof/scene/contains.h"
 #include "rayproof/scene/mesh_caster.h"
 #include "rayproof/verify/exact.h"
+#include "verify/judge_frame.h"
 
 namespace rayproof::verify {
 
@@ -34,15 +35,9 @@ namespace {
 constexpr double kInf = std::numeric_limits<double>::infinity();
 const TRange kPositive{std::numeric_limits<double>::denorm_min(), kInf};  // crossings at t > 0
 
-std::string num(double x) {
-  if (std::isnan(x)) return "nan";
-  if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
-  return fmt::format("{}", x);  // shortest round-trip
-}
+std::string num(double x) { return exact_number(x); }
 
-std::string ray_text(const Ray<double>& r) {
-  return fmt::format("{} {} {} {} {} {}", num(r.o.x), num(r.o.y), num(r.o.z), num(r.d.x), num(r.d.y), num(r.d.z));
-}
+std::string ray_text(const Ray<double>& r) { return exact_point(r.o) + " " + exact_point(r.d); }
 
 /// What an exact triangle result means for a caster judged at t > 0.
 struct ForwardContact {
@@ -158,16 +153,6 @@ struct ReferenceMesh {
     return {vertices[triangles[i][0]], vertices[triangles[i][1]], vertices[triangles[i][2]]};
   }
 };
-
-/// Adds `part` into `total`, counter by counter (max_ulps: the larger).
-void add_counts(CasterCounts& total, const CasterCounts& part) {
-  for (const CasterCounter& counter : kCasterCounters) {
-    if (!counter.member) continue;
-    std::uint64_t& into = total.*counter.member;
-    const std::uint64_t from = part.*counter.member;
-    into = counter.maximum ? std::max(into, from) : into + from;
-  }
-}
 
 /// What one chunk of rays (a range, in ray order) found. Chunks are judged on TBB threads, each into
 /// its own ChunkTally, and merged in ray order.
@@ -464,20 +449,16 @@ CasterTally merge_chunks(std::vector<ChunkTally>& chunks, const CasterRays& rays
   const std::size_t set_count = rays.names.size();
   CasterTally out;
   std::vector<std::size_t> set_rays(set_count, 0), set_findings(set_count, 0), set_false_miss(set_count, 0);
-  std::vector<std::string> kinds;
-  std::vector<std::size_t> kept_per_kind;
+  KindQuota quota(opt.reproducers);
   for (ChunkTally& chunk : chunks) {
-    add_counts(out, chunk.counts);
+    add_counts(out, chunk.counts, kCasterCounters);
     for (std::size_t k = 0; k < set_count && k < chunk.set_rays.size(); ++k) {
       set_rays[k] += chunk.set_rays[k];
       set_findings[k] += chunk.set_findings[k];
       set_false_miss[k] += chunk.set_false_miss[k];
     }
     for (CasterReproducer& reproducer : chunk.reproducers) {
-      const auto it = std::find(kinds.begin(), kinds.end(), reproducer.kind);
-      const auto at = static_cast<std::size_t>(it - kinds.begin());
-      if (it == kinds.end()) kinds.push_back(reproducer.kind), kept_per_kind.push_back(0);
-      if (kept_per_kind[at]++ < opt.reproducers) out.reproducers.push_back(std::move(reproducer));
+      if (quota.keep(reproducer.kind)) out.reproducers.push_back(std::move(reproducer));
     }
   }
   for (std::size_t k = 0; k < set_count; ++k)

@@ -12,19 +12,12 @@
 #include <vector>
 
 #include "rayproof/verify/caster_check.h"
+#include "verify/judge_frame.h"
 
 namespace rayproof::verify {
 
-struct ExecCasterOptions {
-  double timeout_seconds = 10;  ///< per answer line (the first one of a batch included)
-  std::size_t batch = 1024;     ///< rays per batch
-};
-
-struct ExecCasterRun {
-  std::vector<CasterAnswer> answers;
-  std::vector<std::string> events;  ///< "crashed (killed by signal 11 (Segmentation fault)) ..." per failure
-  std::size_t starts = 0;           ///< times the caster was started
-};
+using ExecCasterOptions = LineBatchOptions;  ///< timeout per answer line, rays per batch
+using ExecCasterRun = ExecRun<CasterAnswer>;
 
 /// Runs `command` on every ray (answers in ray order).
 [[nodiscard]] ExecCasterRun run_exec_caster(const std::string& command, const CasterMesh& mesh, const CasterRays& rays,

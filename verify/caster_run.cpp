@@ -10,48 +10,32 @@
 
 #include "rayproof/float_util.h"
 #include "rayproof/verify/caster_check.h"
+#include "verify/judge_frame.h"
 
 namespace rayproof::verify {
 
 void run_caster(const ClosestCaster& closest, const AnyCaster& any, std::span<const Ray<double>> rays,
                 std::size_t batch, std::span<CasterAnswer> out, std::string& error) {
   if (out.size() != rays.size()) throw std::invalid_argument("run_caster: output size differs from ray count");
-  batch = std::max<std::size_t>(batch, 1);
   std::vector<Vec3<double>> o, d;
   std::vector<double> t;
   std::vector<std::int64_t> tri;
   std::vector<std::uint8_t> occ;
-  for (std::size_t at = 0; at < rays.size(); at += batch) {
-    const std::size_t n = std::min(batch, rays.size() - at);
-    o.resize(n), d.resize(n), t.assign(n, kNaN<double>), tri.assign(n, -2), occ.assign(n, 2);
-    for (std::size_t k = 0; k < n; ++k) o[k] = rays[at + k].o, d[k] = rays[at + k].d;
-    bool failed = false;
-    try {
-      closest(o, d, t, tri);
-    } catch (const std::exception& e) {
-      failed = true;
-      if (error.empty()) error = e.what();
-    } catch (...) {
-      failed = true;
-      if (error.empty()) error = "unknown exception";
-    }
-    bool any_failed = false;
-    if (any) {
-      try {
-        any(o, d, occ);
-      } catch (const std::exception& e) {
-        any_failed = true;
-        if (error.empty()) error = e.what();
-      } catch (...) {
-        any_failed = true;
-      }
-    }
-    for (std::size_t k = 0; k < n; ++k) {
-      CasterAnswer& a = out[at + k];
-      a.t = t[k], a.triangle = tri[k], a.failed = failed || any_failed;
-      a.any = any && !any_failed ? static_cast<std::int8_t>(occ[k] ? 1 : 0) : std::int8_t(-1);
-    }
-  }
+  run_in_batches(
+      rays.size(), batch, error,
+      [&](std::size_t at, std::size_t n) {
+        o.resize(n), d.resize(n), t.assign(n, kNaN<double>), tri.assign(n, -2), occ.assign(n, 2);
+        for (std::size_t k = 0; k < n; ++k) o[k] = rays[at + k].o, d[k] = rays[at + k].d;
+        closest(o, d, t, tri);
+        if (any) any(o, d, occ);  // a failed batch is judged failed: its occlusion answers are not read
+      },
+      [&](std::size_t at, std::size_t n, bool failed) {
+        for (std::size_t k = 0; k < n; ++k) {
+          CasterAnswer& a = out[at + k];
+          a.t = t[k], a.triangle = tri[k], a.failed = failed;
+          a.any = any && !failed ? static_cast<std::int8_t>(occ[k] ? 1 : 0) : std::int8_t(-1);
+        }
+      });
 }
 
 namespace {
@@ -84,15 +68,12 @@ CasterTally check_caster(const ClosestCaster& closest, const CasterMesh& mesh, s
 }
 
 std::string summary_text(const CasterTally& tally) {
-  std::string text;
-  for (const CasterCounter& counter : kCasterCounters)
-    if (shown(tally, counter)) text += fmt::format("{:<18} {}\n", text_label(counter), count_of(tally, counter));
+  std::string text =
+      counters_text(kCasterCounters, tally, 18, [&](const CasterCounter& counter) { return shown(tally, counter); });
   for (const auto& set : tally.sets)
     text += fmt::format("set {:<10} rays {:>7}  findings {:>7}  false_miss {}\n", set.set, set.rays, set.findings,
                         set.false_miss);
-  for (const auto& note : tally.notes) text += "note: " + note + "\n";
-  for (const auto& reproducer : tally.reproducers) text += reproducer.line + "\n";
-  return text;
+  return text + notes_text(tally.notes, tally.reproducers);
 }
 
 }  // namespace rayproof::verify

@@ -15,25 +15,15 @@
 #include <cmath>
 #include <optional>
 #include <stdexcept>
+#include <tuple>
 
 #include "rayproof/scene/exact_mesh.h"
 #include "rayproof/scene/mesh_caster.h"
+#include "verify/judge_frame.h"
 
 namespace rayproof::verify {
 
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-std::string num(double x) {
-  if (std::isnan(x)) return "nan";
-  if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
-  return fmt::format("{}", x);  // the shortest decimal that reads back to the same double
-}
-
-std::string point_text(const Vec3<double>& p) { return fmt::format("{} {} {}", num(p.x), num(p.y), num(p.z)); }
-
-bool finite(const Vec3<double>& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
 
 /// The exact answer at one point.
 struct Reference {
@@ -148,19 +138,15 @@ ContainsTally ContainsJudge::judge(const ContainsPoints& points, std::span<const
   tally.notes = points.notes;
   std::vector<Reference> ref(n);
   std::vector<Side> sides(n), baseline(n);
-  std::vector<std::size_t> kept_per_kind;
-  std::vector<std::string> kinds;
+  KindQuota quota(opt.reproducers);
 
   auto finding = [&](std::uint64_t ContainsCounts::*counter, const char* kind, std::size_t i, const std::string& exact) {
     ++(tally.*counter);
     ++tally.sets[points.set[i]].findings;
-    const auto it = std::find(kinds.begin(), kinds.end(), kind);
-    const auto at = static_cast<std::size_t>(it - kinds.begin());
-    if (it == kinds.end()) kinds.emplace_back(kind), kept_per_kind.push_back(0);
-    if (kept_per_kind[at]++ >= opt.reproducers) return;
+    if (!quota.keep(kind)) return;
     tally.reproducers.push_back({kind, i,
                                  fmt::format("{} set={} mesh={} point {} exact: {} answer: {}", kind,
-                                             points.names[points.set[i]], s.name, point_text(points.points[i]), exact,
+                                             points.names[points.set[i]], s.name, exact_point(points.points[i]), exact,
                                              answer_text(answers[i]))});
   };
   auto exact_text = [&](std::size_t i) {
@@ -215,60 +201,46 @@ ContainsTally ContainsJudge::judge(const ContainsPoints& points, std::span<const
     const std::size_t m = std::min<std::size_t>(n, 64);
     s.mesh.contains(std::span<const Vec3<double>>(points.points).first(m), std::span<Side>(baseline).first(m), 1);
   }
-  for (std::size_t b = 0; b < n;) {
-    std::size_t e = b;
-    while (e < n && points.set[e] == points.set[b]) ++e;
-    ContainsSetCounts& set = tally.sets[points.set[b]];
-    const auto start = Clock::now();
-    s.reference(points.points, b, e, ref, sides, opt.threads);
-    if (winding_rule)  // the disagreements' generalized winding numbers: near 1/2, or decided
-      parallel_range(b, e, opt.threads, [&](std::size_t lo, std::size_t hi) {
-        for (std::size_t i = lo; i < hi; ++i) {
-          const ContainsAnswer& a = answers[i];
-          const Side side = ref[i].side;
-          if (!readable(a) || a.side == 2 || (side != Side::inside && side != Side::outside) ||
-              (a.side == 1) == (side == Side::inside))
-            continue;
-          ref[i].near_half = s.near_half(points.points[i]);
+  std::tie(tally.judge_seconds, tally.contains_seconds) = time_by_set(
+      points.set, tally.sets,
+      [&](std::size_t b, std::size_t e) {
+        s.reference(points.points, b, e, ref, sides, opt.threads);
+        if (winding_rule)  // the disagreements' generalized winding numbers: near 1/2, or decided
+          parallel_range(b, e, opt.threads, [&](std::size_t lo, std::size_t hi) {
+            for (std::size_t i = lo; i < hi; ++i) {
+              const ContainsAnswer& a = answers[i];
+              const Side side = ref[i].side;
+              if (!readable(a) || a.side == 2 || (side != Side::inside && side != Side::outside) ||
+                  (a.side == 1) == (side == Side::inside))
+                continue;
+              ref[i].near_half = s.near_half(points.points[i]);
+            }
+          });
+        for (std::size_t i = b; i < e; ++i) {
+          ++tally.sets[points.set[i]].points;
+          judge_point(i);
         }
+      },
+      [&](std::size_t b, std::size_t e) {
+        s.mesh.contains(std::span<const Vec3<double>>(points.points).subspan(b, e - b),
+                        std::span<Side>(baseline).subspan(b, e - b), opt.threads);
       });
-    for (std::size_t i = b; i < e; ++i) {
-      ++set.points;
-      judge_point(i);
-    }
-    const auto judged = Clock::now();
-    s.mesh.contains(std::span<const Vec3<double>>(points.points).subspan(b, e - b),
-                    std::span<Side>(baseline).subspan(b, e - b), opt.threads);
-    const auto baseline_done = Clock::now();
-    set.judge_seconds += std::chrono::duration<double>(judged - start).count();
-    set.contains_seconds += std::chrono::duration<double>(baseline_done - judged).count();
-    b = e;
-  }
-  for (const ContainsSetCounts& set : tally.sets)
-    tally.judge_seconds += set.judge_seconds, tally.contains_seconds += set.contains_seconds;
   return tally;
 }
 
 void run_contains(const ContainsFunction& fn, std::span<const Vec3<double>> points, std::size_t batch,
                   std::span<ContainsAnswer> out, std::string& error) {
   if (out.size() != points.size()) throw std::invalid_argument("run_contains: output size differs from point count");
-  batch = std::max<std::size_t>(batch, 1);
   std::vector<std::int32_t> side;
-  for (std::size_t at = 0; at < points.size(); at += batch) {
-    const std::size_t n = std::min(batch, points.size() - at);
-    side.assign(n, -1);  // not written: garbage
-    bool failed = false;
-    try {
-      fn(points.subspan(at, n), side);
-    } catch (const std::exception& e) {
-      failed = true;
-      if (error.empty()) error = e.what();
-    } catch (...) {
-      failed = true;
-      if (error.empty()) error = "unknown exception";
-    }
-    for (std::size_t k = 0; k < n; ++k) out[at + k] = {side[k], failed};
-  }
+  run_in_batches(
+      points.size(), batch, error,
+      [&](std::size_t at, std::size_t n) {
+        side.assign(n, -1);  // not written: garbage
+        fn(points.subspan(at, n), side);
+      },
+      [&](std::size_t at, std::size_t n, bool failed) {
+        for (std::size_t k = 0; k < n; ++k) out[at + k] = {side[k], failed};
+      });
 }
 
 namespace {
@@ -300,20 +272,10 @@ ContainsTally check_contains(const ContainsFunction& fn, const ContainsMesh& mes
 }
 
 std::string summary_text(const ContainsTally& tally) {
-  std::string text = fmt::format("{:<22} {}\n", "rule", to_string(tally.rule));
-  for (const ContainsCounter& counter : kContainsCounters)
-    text += fmt::format("{:<22} {}\n", counter.key, count_of(tally, counter));
-  auto ratio = [](double judge, double contains) {
-    return contains > 0 ? fmt::format("{:.2f}x", judge / contains) : std::string("-");
-  };
-  for (const auto& set : tally.sets)
-    text += fmt::format("set {:<8} points {:>7}  findings {:>7}  cost {} of contains\n", set.set, set.points,
-                        set.findings, ratio(set.judge_seconds, set.contains_seconds));
-  text += fmt::format("cost: judging {:.4f} s, rayproof's contains on the same points {:.4f} s: {}\n",
-                      tally.judge_seconds, tally.contains_seconds, ratio(tally.judge_seconds, tally.contains_seconds));
-  for (const auto& note : tally.notes) text += "note: " + note + "\n";
-  for (const auto& reproducer : tally.reproducers) text += reproducer.line + "\n";
-  return text;
+  return fmt::format("{:<22} {}\n", "rule", to_string(tally.rule)) +
+         counters_text(kContainsCounters, tally, 22, [](const auto&) { return true; }) +
+         cost_text(tally.sets, "points", "contains", tally.judge_seconds, tally.contains_seconds) +
+         notes_text(tally.notes, tally.reproducers);
 }
 
 }  // namespace rayproof::verify

@@ -14,34 +14,12 @@
 
 #include "rayproof/verify/contains_check.h"
 #include "rayproof/verify/distance_check.h"
+#include "verify/judge_frame.h"
 
 namespace rayproof::verify {
 
-struct ExecContainsOptions {
-  double timeout_seconds = 10;  ///< per answer line (the first one of a batch included)
-  std::size_t batch = 1024;     ///< points per batch
-};
-
-struct ExecContainsRun {
-  std::vector<ContainsAnswer> answers;
-  std::vector<std::string> events;  ///< one sentence per failure
-  std::size_t starts = 0;           ///< times the program was started
-};
-
-/// A run of a program on points: which points failed, the events, the starts (the answers are the
-/// caller's, through run_exec_points' callback).
-struct ExecPointsRun {
-  std::vector<bool> failed;
-  std::vector<std::string> events;
-  std::size_t starts = 0;
-};
-
-/// Runs `command` on every point under the protocol named `protocol` (its first line: `protocol 1`,
-/// then the mesh and batches of points as docs/check.md says); `answer(line, i)` reads point i's
-/// answer line, false when unreadable (the batch's rest fails).
-[[nodiscard]] ExecPointsRun run_exec_points(const std::string& command, const char* protocol, const ContainsMesh& mesh,
-                                            const ContainsPoints& points, const ExecContainsOptions& opt,
-                                            const std::function<bool(const std::string&, std::size_t)>& answer);
+using ExecContainsOptions = LineBatchOptions;  ///< timeout per answer line, points per batch
+using ExecContainsRun = ExecRun<ContainsAnswer>;
 
 /// Runs `command` on every point (answers in point order).
 [[nodiscard]] ExecContainsRun run_exec_contains(const std::string& command, const ContainsMesh& mesh,
@@ -53,11 +31,7 @@ struct ExecPointsRun {
 /// A distance function that is a program (`rayproof check --distance NAME=COMMAND`): the same
 /// protocol under the name rayproof-distance, one number per answer line (what strtod reads: nan
 /// for an invalid point).
-struct ExecDistanceRun {
-  std::vector<DistanceAnswer> answers;
-  std::vector<std::string> events;
-  std::size_t starts = 0;
-};
+using ExecDistanceRun = ExecRun<DistanceAnswer>;
 [[nodiscard]] ExecDistanceRun run_exec_distance(const std::string& command, const ContainsMesh& mesh,
                                                 const ContainsPoints& points, const ExecContainsOptions& opt = {});
 /// One distance answer line: a number (what strtod reads, blanks after it); false when unreadable.

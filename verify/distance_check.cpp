@@ -9,24 +9,18 @@
 #include <chrono>
 #include <cmath>
 #include <stdexcept>
+#include <tuple>
 
 #include "rayproof/float_util.h"
 #include "rayproof/scene/exact_mesh.h"
 #include "rayproof/scene/mesh_caster.h"
+#include "verify/judge_frame.h"
 
 namespace rayproof::verify {
 
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-std::string num(double x) {
-  if (std::isnan(x)) return "nan";
-  if (std::isinf(x)) return x > 0 ? "inf" : "-inf";
-  return fmt::format("{}", x);  // the shortest decimal that reads back to the same double
-}
-
-bool finite(const Vec3<double>& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
+std::string num(double x) { return exact_number(x); }
 
 }  // namespace
 
@@ -55,16 +49,12 @@ DistanceTally DistanceJudge::judge(const ContainsPoints& points, std::span<const
   tally.rel_tol = opt.rel_tol;
   tally.notes = points.notes;
   std::vector<ClosestPoint> ref(n), baseline(n);
-  std::vector<std::string> kinds;
-  std::vector<std::size_t> kept_per_kind;
+  KindQuota quota(opt.reproducers);
   auto exact_of = [&](std::size_t i) { return opt.signed_distance ? ref[i].signed_distance() : ref[i].distance; };
   auto finding = [&](std::uint64_t DistanceCounts::*counter, const char* kind, std::size_t i, const std::string& extra) {
     ++(tally.*counter);
     ++tally.sets[points.set[i]].findings;
-    const auto it = std::find(kinds.begin(), kinds.end(), kind);
-    const auto at = static_cast<std::size_t>(it - kinds.begin());
-    if (it == kinds.end()) kinds.emplace_back(kind), kept_per_kind.push_back(0);
-    if (kept_per_kind[at]++ >= opt.reproducers) return;
+    if (!quota.keep(kind)) return;
     const Vec3<double>& p = points.points[i];
     const std::string exact = finite(p) ? fmt::format("{} (triangle {}{})", num(exact_of(i)), ref[i].triangle,
                                                       opt.signed_distance ? std::string(", ") + to_string(ref[i].side) : "")
@@ -110,27 +100,21 @@ DistanceTally DistanceJudge::judge(const ContainsPoints& points, std::span<const
     s.mesh.closest_points(std::span<const Vec3<double>>(points.points).first(m), std::span(baseline).first(m),
                           opt.signed_distance, 1);
   }
-  for (std::size_t b = 0; b < n;) {
-    std::size_t e = b;
-    while (e < n && points.set[e] == points.set[b]) ++e;
-    ContainsSetCounts& set = tally.sets[points.set[b]];
-    const auto start = Clock::now();
-    s.mesh.closest_points(std::span<const Vec3<double>>(points.points).subspan(b, e - b),
-                          std::span(ref).subspan(b, e - b), opt.signed_distance, opt.threads);
-    for (std::size_t i = b; i < e; ++i) {
-      ++set.points;
-      judge_point(i);
-    }
-    const auto judged = Clock::now();
-    s.mesh.closest_points(std::span<const Vec3<double>>(points.points).subspan(b, e - b),
-                          std::span(baseline).subspan(b, e - b), opt.signed_distance, opt.threads);
-    const auto done = Clock::now();
-    set.judge_seconds += std::chrono::duration<double>(judged - start).count();
-    set.contains_seconds += std::chrono::duration<double>(done - judged).count();
-    b = e;
-  }
-  for (const ContainsSetCounts& set : tally.sets)
-    tally.judge_seconds += set.judge_seconds, tally.closest_seconds += set.contains_seconds;
+  const auto points_of = [&](std::size_t b, std::size_t e) {
+    return std::span<const Vec3<double>>(points.points).subspan(b, e - b);
+  };
+  std::tie(tally.judge_seconds, tally.closest_seconds) = time_by_set(
+      points.set, tally.sets,
+      [&](std::size_t b, std::size_t e) {
+        s.mesh.closest_points(points_of(b, e), std::span(ref).subspan(b, e - b), opt.signed_distance, opt.threads);
+        for (std::size_t i = b; i < e; ++i) {
+          ++tally.sets[points.set[i]].points;
+          judge_point(i);
+        }
+      },
+      [&](std::size_t b, std::size_t e) {
+        s.mesh.closest_points(points_of(b, e), std::span(baseline).subspan(b, e - b), opt.signed_distance, opt.threads);
+      });
   return tally;
 }
 
@@ -146,23 +130,16 @@ ContainsPoints distance_points(const ContainsMesh& mesh, const DistanceCheckOpti
 void run_distance(const DistanceFunction& fn, std::span<const Vec3<double>> points, std::size_t batch,
                   std::span<DistanceAnswer> out, std::string& error) {
   if (out.size() != points.size()) throw std::invalid_argument("run_distance: output size differs from point count");
-  batch = std::max<std::size_t>(batch, 1);
   std::vector<double> d;
-  for (std::size_t at = 0; at < points.size(); at += batch) {
-    const std::size_t n = std::min(batch, points.size() - at);
-    d.assign(n, kNaN<double>);
-    bool failed = false;
-    try {
-      fn(points.subspan(at, n), d);
-    } catch (const std::exception& e) {
-      failed = true;
-      if (error.empty()) error = e.what();
-    } catch (...) {
-      failed = true;
-      if (error.empty()) error = "unknown exception";
-    }
-    for (std::size_t k = 0; k < n; ++k) out[at + k] = {d[k], failed};
-  }
+  run_in_batches(
+      points.size(), batch, error,
+      [&](std::size_t at, std::size_t n) {
+        d.assign(n, kNaN<double>);
+        fn(points.subspan(at, n), d);
+      },
+      [&](std::size_t at, std::size_t n, bool failed) {
+        for (std::size_t k = 0; k < n; ++k) out[at + k] = {d[k], failed};
+      });
 }
 
 namespace {
@@ -194,22 +171,12 @@ DistanceTally check_distance(const DistanceFunction& fn, const ContainsMesh& mes
 }
 
 std::string summary_text(const DistanceTally& tally) {
-  std::string text = fmt::format("{:<18} {}{}\n", "distance", tally.signed_distance ? "signed" : "unsigned",
-                                 tally.rel_tol > 0 ? fmt::format(", rel_tol {}", tally.rel_tol) : std::string());
-  for (const DistanceCounter& counter : kDistanceCounters)
-    text += fmt::format("{:<18} {}\n", counter.key, count_of(tally, counter));
-  text += fmt::format("{:<18} {:.3g}\n", "max_rel_error", tally.max_rel_error);
-  auto ratio = [](double judge, double base) {
-    return base > 0 ? fmt::format("{:.2f}x", judge / base) : std::string("-");
-  };
-  for (const auto& set : tally.sets)
-    text += fmt::format("set {:<8} points {:>7}  findings {:>7}  cost {} of closest_points\n", set.set, set.points,
-                        set.findings, ratio(set.judge_seconds, set.contains_seconds));
-  text += fmt::format("cost: judging {:.4f} s, rayproof's closest_points on the same points {:.4f} s: {}\n",
-                      tally.judge_seconds, tally.closest_seconds, ratio(tally.judge_seconds, tally.closest_seconds));
-  for (const auto& note : tally.notes) text += "note: " + note + "\n";
-  for (const auto& reproducer : tally.reproducers) text += reproducer.line + "\n";
-  return text;
+  return fmt::format("{:<18} {}{}\n", "distance", tally.signed_distance ? "signed" : "unsigned",
+                     tally.rel_tol > 0 ? fmt::format(", rel_tol {}", tally.rel_tol) : std::string()) +
+         counters_text(kDistanceCounters, tally, 18, [](const auto&) { return true; }) +
+         fmt::format("{:<18} {:.3g}\n", "max_rel_error", tally.max_rel_error) +
+         cost_text(tally.sets, "points", "closest_points", tally.judge_seconds, tally.closest_seconds) +
+         notes_text(tally.notes, tally.reproducers);
 }
 
 }  // namespace rayproof::verify

@@ -15,33 +15,17 @@ import numpy as np
 
 strict = "--strict" in sys.argv
 crash_on_nan = "--crash-on-nan" in sys.argv
-
-
-def read_line(f):
-    line = f.readline()
-    if not line:
-        sys.exit(0)
-    return line.split()
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from rayproof_protocol import answer, batches, read_mesh  # noqa: E402
 
 
 def main():
-    f = sys.stdin
-    head = read_line(f)
-    if head[:2] != ["rayproof-caster", "1"]:
-        sys.exit("not the rayproof caster protocol: %r" % head)
-    nv = int(read_line(f)[1])
-    V = np.array([[float(x) for x in read_line(f)] for _ in range(nv)], dtype=np.float64).reshape(nv, 3)
-    nt = int(read_line(f)[1])
-    T = np.array([[int(x) for x in read_line(f)] for _ in range(nt)], dtype=np.int64).reshape(nt, 3)
+    V, T = read_mesh("rayproof-caster")
+    nt = len(T)
     P0, P1, P2 = V[T[:, 0]], V[T[:, 1]], V[T[:, 2]]
     E1, E2 = P1 - P0, P2 - P0
-    out = sys.stdout
-    while True:
-        words = read_line(f)
-        if words[0] == "end":
-            return
-        n = int(words[1])
-        R = np.array([[float(x) for x in read_line(f)] for _ in range(n)], dtype=np.float64).reshape(n, 6)
+    for R in batches(6):
+        n = len(R)
         if crash_on_nan and np.isnan(R).any():
             os.kill(os.getpid(), signal.SIGSEGV)
         O, D = R[:, :3], R[:, 3:]
@@ -68,8 +52,7 @@ def main():
                 better = tk < best
                 best = np.where(better, tk, best)
                 tri = np.where(better, k + start, tri)
-        out.write("".join("%r %d\n" % (float(a), int(b)) if np.isfinite(a) else "inf -1\n" for a, b in zip(best, tri)))
-        out.flush()
+        answer("%r %d\n" % (float(a), int(b)) if np.isfinite(a) else "inf -1\n" for a, b in zip(best, tri))
 
 
 if __name__ == "__main__":

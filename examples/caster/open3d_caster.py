@@ -7,42 +7,24 @@ each batch of rays with Open3D's cast_rays, one `t triangle` line per ray (`inf 
 
 Open3D runs in this child process: where it aborts (Debian's Embree asserts on a ray with a NaN,
 an infinity or a zero direction), rayproof reports the crash and goes on."""
+import os
 import sys
 
 import numpy as np
 import open3d as o3d
-
-
-def read_line(f):
-    line = f.readline()
-    if not line:
-        sys.exit(0)
-    return line.split()
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from rayproof_protocol import answer, batches, read_mesh  # noqa: E402
 
 
 def main():
-    f = sys.stdin
-    head = read_line(f)
-    if head[:2] != ["rayproof-caster", "1"]:
-        sys.exit("not the rayproof caster protocol: %r" % head)
-    nv = int(read_line(f)[1])
-    V = np.array([[float(x) for x in read_line(f)] for _ in range(nv)], dtype=np.float32).reshape(nv, 3)
-    nt = int(read_line(f)[1])
-    T = np.array([[int(x) for x in read_line(f)] for _ in range(nt)], dtype=np.uint32).reshape(nt, 3)
+    V, T = read_mesh("rayproof-caster", np.float32, np.uint32)
     scene = o3d.t.geometry.RaycastingScene()
     scene.add_triangles(o3d.core.Tensor(V), o3d.core.Tensor(T))
-    out = sys.stdout
-    while True:
-        words = read_line(f)
-        if words[0] == "end":
-            return
-        n = int(words[1])
-        R = np.array([[float(x) for x in read_line(f)] for _ in range(n)], dtype=np.float32).reshape(n, 6)
+    for R in batches(6, np.float32):
         ans = scene.cast_rays(o3d.core.Tensor(R))
         t = ans["t_hit"].numpy()
         ids = ans["primitive_ids"].numpy()
-        out.write("".join("%r %d\n" % (float(a), int(b)) if np.isfinite(a) else "inf -1\n" for a, b in zip(t, ids)))
-        out.flush()
+        answer("%r %d\n" % (float(a), int(b)) if np.isfinite(a) else "inf -1\n" for a, b in zip(t, ids))
 
 
 if __name__ == "__main__":

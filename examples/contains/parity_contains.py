@@ -16,37 +16,21 @@ import sys
 import numpy as np
 
 crash_on_nan = "--crash-on-nan" in sys.argv
-
-
-def read_line(f):
-    line = f.readline()
-    if not line:
-        sys.exit(0)
-    return line.split()
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from rayproof_protocol import answer, batches, read_mesh  # noqa: E402
 
 
 def main():
-    f = sys.stdin
-    head = read_line(f)
-    if head[:2] != ["rayproof-contains", "1"]:
-        sys.exit("not the rayproof contains protocol: %r" % head)
-    nv = int(read_line(f)[1])
-    V = np.array([[float(x) for x in read_line(f)] for _ in range(nv)], dtype=np.float64).reshape(nv, 3)
-    nt = int(read_line(f)[1])
-    T = np.array([[int(x) for x in read_line(f)] for _ in range(nt)], dtype=np.int64).reshape(nt, 3)
+    V, T = read_mesh("rayproof-contains")
+    nt = len(T)
     A, B, C = V[T[:, 0]], V[T[:, 1]], V[T[:, 2]]
 
     def orient(a, b, py, pz):  # (b - a) x (p - a) in the (y, z) plane
         return (b[..., 1] - a[..., 1]) * (pz - a[..., 2]) - (b[..., 2] - a[..., 2]) * (py - a[..., 1])
 
     d = orient(A, B, C[:, 1], C[:, 2])
-    out = sys.stdout
-    while True:
-        words = read_line(f)
-        if words[0] == "end":
-            return
-        n = int(words[1])
-        P = np.array([[float(x) for x in read_line(f)] for _ in range(n)], dtype=np.float64).reshape(n, 3)
+    for P in batches(3):
+        n = len(P)
         if crash_on_nan and np.isnan(P).any():
             os.kill(os.getpid(), signal.SIGSEGV)
         count = np.zeros(n, dtype=np.int64)
@@ -60,8 +44,7 @@ def main():
                 x = u * A[sl, 0] + v * B[sl, 0] + w * C[sl, 0]
                 hit = (d[sl] != 0) & (u >= 0) & (v >= 0) & (w >= 0) & (x > P[:, 0:1])
                 count += hit.sum(axis=1)
-        out.write("".join("%d\n" % (c & 1) for c in count))
-        out.flush()
+        answer("%d\n" % (c & 1) for c in count)
 
 
 if __name__ == "__main__":

@@ -12,49 +12,24 @@ import math
 import os
 import subprocess
 import sys
-import tempfile
 
 ANSWER = {"outside": "0", "inside": "1", "surface": "2"}
-
-
-def read_line(f):
-    line = f.readline()
-    if not line:
-        sys.exit(0)
-    return line.split()
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from rayproof_protocol import OffMesh, answer, batch_words  # noqa: E402
 
 
 def main():
     binary = sys.argv[1] if len(sys.argv) > 1 else os.environ.get("RAYPROOF_BIN", "rayproof")
-    f = sys.stdin
-    head = read_line(f)
-    if head[:2] != ["rayproof-contains", "1"]:
-        sys.exit("not the rayproof contains protocol: %r" % head)
-    nv = int(read_line(f)[1])
-    vertices = [" ".join(read_line(f)) for _ in range(nv)]
-    nt = int(read_line(f)[1])
-    triangles = ["3 " + " ".join(read_line(f)) for _ in range(nt)]
-    with tempfile.TemporaryDirectory() as tmp:
-        mesh = os.path.join(tmp, "mesh.off")
-        with open(mesh, "w") as m:
-            m.write("OFF\n%d %d 0\n%s\n%s\n" % (nv, nt, "\n".join(vertices), "\n".join(triangles)))
-        points_file = os.path.join(tmp, "points.txt")
-        while True:
-            words = read_line(f)
-            if words[0] == "end":
-                return
-            n = int(words[1])
-            points = [read_line(f) for _ in range(n)]
-            valid = [all(math.isfinite(float(x)) for x in p) for p in points]
-            with open(points_file, "w") as pf:
-                pf.write("".join(" ".join(p) + "\n" for p, ok in zip(points, valid) if ok))
-            sides = []
-            if any(valid):
-                run = subprocess.run([binary, "contains", mesh, points_file], capture_output=True, text=True, check=True)
-                sides = run.stdout.split()
-            it = iter(sides)
-            sys.stdout.write("".join((ANSWER[next(it)] if ok else "0") + "\n" for ok in valid))
-            sys.stdout.flush()
+    off = OffMesh("rayproof-contains")
+    for points in batch_words():
+        valid = [all(math.isfinite(float(x)) for x in p) for p in points]
+        off.write_points(p for p, ok in zip(points, valid) if ok)
+        sides = []
+        if any(valid):
+            run = subprocess.run([binary, "contains", off.mesh, off.points], capture_output=True, text=True, check=True)
+            sides = run.stdout.split()
+        it = iter(sides)
+        answer((ANSWER[next(it)] if ok else "0") + "\n" for ok in valid)
 
 
 if __name__ == "__main__":

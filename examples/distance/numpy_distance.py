@@ -9,16 +9,12 @@ nearly equal numbers): rayproof counts both, with reproducers.
 
 It reads the mesh once, then answers each batch of points with one distance per line
 (`nan` for a point with a NaN or an infinity)."""
+import os
 import sys
 
 import numpy as np
-
-
-def read_line(f):
-    line = f.readline()
-    if not line:
-        sys.exit(0)
-    return line.split()
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from rayproof_protocol import answer, batches, read_mesh  # noqa: E402
 
 
 def segment_distance(P, A, B):
@@ -30,23 +26,12 @@ def segment_distance(P, A, B):
 
 
 def main():
-    f = sys.stdin
-    head = read_line(f)
-    if head[:2] != ["rayproof-distance", "1"]:
-        sys.exit("not the rayproof distance protocol: %r" % head)
-    nv = int(read_line(f)[1])
-    V = np.array([[float(x) for x in read_line(f)] for _ in range(nv)], dtype=np.float64).reshape(nv, 3)
-    nt = int(read_line(f)[1])
-    T = np.array([[int(x) for x in read_line(f)] for _ in range(nt)], dtype=np.int64).reshape(nt, 3)
+    V, T = read_mesh("rayproof-distance")
+    nt = len(T)
     A, B, C = V[T[:, 0]], V[T[:, 1]], V[T[:, 2]]
     N = np.cross(B - A, C - A)
-    out = sys.stdout
-    while True:
-        words = read_line(f)
-        if words[0] == "end":
-            return
-        n = int(words[1])
-        P = np.array([[float(x) for x in read_line(f)] for _ in range(n)], dtype=np.float64).reshape(n, 3)
+    for P in batches(3):
+        n = len(P)
         best = np.full(n, np.inf)
         with np.errstate(all="ignore"):
             for start in range(0, nt, 256):  # triangles in chunks: memory n x 256
@@ -62,8 +47,7 @@ def main():
                                    segment_distance(p, c, a))
                 best = np.fmin(best, np.where(inside, plane, edges).min(axis=1))
         best[~np.isfinite(P).all(axis=1)] = np.nan
-        out.write("".join("%r\n" % float(d) for d in best))
-        out.flush()
+        answer("%r\n" % float(d) for d in best)
 
 
 if __name__ == "__main__":

@@ -12,51 +12,25 @@ import math
 import os
 import subprocess
 import sys
-import tempfile
-
-
-
-def read_line(f):
-    line = f.readline()
-    if not line:
-        sys.exit(0)
-    return line.split()
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from rayproof_protocol import OffMesh, answer, batch_words  # noqa: E402
 
 
 def main():
     args = [a for a in sys.argv[1:] if a != "--signed"]
     signed = "--signed" in sys.argv
     binary = args[0] if args else os.environ.get("RAYPROOF_BIN", "rayproof")
-    f = sys.stdin
-    head = read_line(f)
-    if head[:2] != ["rayproof-distance", "1"]:
-        sys.exit("not the rayproof contains protocol: %r" % head)
-    nv = int(read_line(f)[1])
-    vertices = [" ".join(read_line(f)) for _ in range(nv)]
-    nt = int(read_line(f)[1])
-    triangles = ["3 " + " ".join(read_line(f)) for _ in range(nt)]
-    with tempfile.TemporaryDirectory() as tmp:
-        mesh = os.path.join(tmp, "mesh.off")
-        with open(mesh, "w") as m:
-            m.write("OFF\n%d %d 0\n%s\n%s\n" % (nv, nt, "\n".join(vertices), "\n".join(triangles)))
-        points_file = os.path.join(tmp, "points.txt")
-        while True:
-            words = read_line(f)
-            if words[0] == "end":
-                return
-            n = int(words[1])
-            points = [read_line(f) for _ in range(n)]
-            valid = [all(math.isfinite(float(x)) for x in p) for p in points]
-            with open(points_file, "w") as pf:
-                pf.write("".join(" ".join(p) + "\n" for p, ok in zip(points, valid) if ok))
-            lines = []
-            if any(valid):
-                cmd = [binary, "distance", mesh, points_file] + (["--signed"] if signed else [])
-                run = subprocess.run(cmd, capture_output=True, text=True, check=True)
-                lines = run.stdout.splitlines()
-            it = iter(lines)
-            sys.stdout.write("".join((next(it).split()[0] if ok else "nan") + "\n" for ok in valid))
-            sys.stdout.flush()
+    off = OffMesh("rayproof-distance")
+    for points in batch_words():
+        valid = [all(math.isfinite(float(x)) for x in p) for p in points]
+        off.write_points(p for p, ok in zip(points, valid) if ok)
+        lines = []
+        if any(valid):
+            cmd = [binary, "distance", off.mesh, off.points] + (["--signed"] if signed else [])
+            run = subprocess.run(cmd, capture_output=True, text=True, check=True)
+            lines = run.stdout.splitlines()
+        it = iter(lines)
+        answer((next(it).split()[0] if ok else "nan") + "\n" for ok in valid)
 
 
 if __name__ == "__main__":

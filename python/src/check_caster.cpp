@@ -11,6 +11,7 @@
 #include <optional>
 
 #include "bindings.h"
+#include "judge_py.h"
 #include "rayproof/scene/mesh_caster.h"
 #include "rayproof/verify/caster_check.h"
 
@@ -18,40 +19,10 @@ namespace rayproof::python {
 
 namespace {
 
-py::array_t<double> rays_array(std::span<const Vec3<double>> v) {
-  py::array_t<double> a({static_cast<py::ssize_t>(v.size()), py::ssize_t(3)});
-  double* p = a.mutable_data();
-  for (std::size_t i = 0; i < v.size(); ++i) p[3 * i] = v[i].x, p[3 * i + 1] = v[i].y, p[3 * i + 2] = v[i].z;
-  return a;
-}
-
-/// A 1-D numeric array of n values from the function's result (what it returned is named in the error).
-template <class T>
-py::array_t<T, py::array::c_style | py::array::forcecast> column(py::handle obj, std::size_t n, const char* what) {
-  py::array a;
-  try {
-    a = py::module_::import("numpy").attr("asarray")(obj);
-  } catch (py::error_already_set& e) {
-    throw std::runtime_error(fmt::format("the function's {} is not an array ({})", what, e.what()));
-  }
-  const char k = a.dtype().kind();
-  if (!(k == 'f' || k == 'i' || k == 'u' || k == 'b'))
-    throw std::runtime_error(fmt::format("the function's {} has dtype {}, not numbers", what,
-                                         py::str(a.dtype()).cast<std::string>()));
-  if (a.ndim() != 1 || static_cast<std::size_t>(a.shape(0)) != n)
-    throw std::runtime_error(fmt::format("the function's {} has shape {}, expected ({},)", what,
-                                         py::str(a.attr("shape")).cast<std::string>(), n));
-  auto out = py::array_t<T, py::array::c_style | py::array::forcecast>::ensure(a);
-  if (!out) throw std::runtime_error(fmt::format("the function's {} cannot be read as numbers", what));
-  return out;
-}
-
 /// The tally as Python's dict: every counter by its key (in kCasterCounters' order), then per-set
 /// counts, reproducers and notes.
 py::dict result_dict(const verify::CasterTally& tally) {
-  py::dict d;
-  for (const verify::CasterCounter& counter : verify::kCasterCounters)
-    d[py::str(std::string(counter.key))] = verify::count_of(tally, counter);
+  py::dict d = counters_dict(tally, verify::kCasterCounters, [](const auto&) { return true; });
   py::dict sets;
   for (const auto& s : tally.sets) {
     py::dict e;
@@ -61,10 +32,7 @@ py::dict result_dict(const verify::CasterTally& tally) {
     sets[py::str(s.set)] = e;
   }
   d["sets"] = sets;
-  py::list reps;
-  for (const auto& r : tally.reproducers) reps.append(r.line);
-  d["reproducers"] = reps;
-  d["notes"] = tally.notes;
+  add_reproducers_and_notes(d, tally);
   return d;
 }
 
@@ -90,38 +58,29 @@ py::dict check_caster(py::function fn, py::handle vertices, py::handle triangles
   opt.threads = threads;
   const verify::CasterMesh mesh{verts, tris, mesh_name};
 
-  std::optional<py::error_already_set> interrupt;
+  UserCalls user;
   verify::ClosestCaster closest = [&](std::span<const Vec3<double>> o, std::span<const Vec3<double>> d,
                                       std::span<double> t, std::span<std::int64_t> tri) {
-    try {
-      py::object res = fn(rays_array(o), rays_array(d));
-      py::tuple pair;
+    user([&] {
+      py::object res = fn(vec3_array(o), vec3_array(d));
       if (!py::isinstance<py::tuple>(res) && !py::isinstance<py::list>(res))
         throw std::runtime_error("the function returned " + py::str(res.get_type()).cast<std::string>() +
                                  ", expected a pair (t, triangle)");
-      pair = py::tuple(res);
+      const py::tuple pair(res);
       if (pair.size() != 2)
         throw std::runtime_error(fmt::format("the function returned {} values, expected (t, triangle)", pair.size()));
-      const auto tv = column<double>(pair[0], o.size(), "t");
-      const auto iv = column<std::int64_t>(pair[1], o.size(), "triangle");
+      const auto tv = result_column<double>(pair[0], o.size(), "t");
+      const auto iv = result_column<std::int64_t>(pair[1], o.size(), "triangle");
       for (std::size_t i = 0; i < o.size(); ++i) t[i] = tv.data()[i], tri[i] = iv.data()[i];
-    } catch (py::error_already_set& e) {
-      const std::string what = e.what();
-      if (is_interrupt(e)) interrupt.emplace(std::move(e));
-      throw std::runtime_error(what);
-    }
+    });
   };
   verify::AnyCaster any;
   if (any_fn) {
     any = [&](std::span<const Vec3<double>> o, std::span<const Vec3<double>> d, std::span<std::uint8_t> out) {
-      try {
-        const auto a = column<std::int64_t>((*any_fn)(rays_array(o), rays_array(d)), o.size(), "any_fn result");
+      user([&] {
+        const auto a = result_column<std::int64_t>((*any_fn)(vec3_array(o), vec3_array(d)), o.size(), "any_fn result");
         for (std::size_t i = 0; i < o.size(); ++i) out[i] = a.data()[i] != 0;
-      } catch (py::error_already_set& e) {
-        const std::string what = e.what();
-        if (is_interrupt(e)) interrupt.emplace(std::move(e));
-        throw std::runtime_error(what);
-      }
+      });
     };
   }
 
@@ -135,43 +94,16 @@ py::dict check_caster(py::function fn, py::handle vertices, py::handle triangles
     ray_set.set.assign(n, 0);
     ray_set.names = {"user"};
   } else {
-    try {
-      py::gil_scoped_release unlocked;
-      ray_set = verify::caster_rays(mesh, opt);
-    } catch (const MeshInputError& e) {
-      throw py::value_error(e.what());
-    } catch (const std::invalid_argument& e) {
-      throw py::value_error(e.what());
-    }
+    prepare_unlocked([&] { ray_set = verify::caster_rays(mesh, opt); });
   }
   std::vector<verify::CasterAnswer> answers(ray_set.rays.size());
   std::string error;
   verify::run_caster(closest, any, ray_set.rays, opt.batch, answers, error);
-  if (interrupt) throw std::move(*interrupt);
+  user.rethrow_interrupt();
   verify::CasterTally tally;
-  try {
-    py::gil_scoped_release unlocked;
-    tally = verify::CasterJudge(mesh).judge(ray_set, answers, opt);
-  } catch (const MeshInputError& e) {
-    throw py::value_error(std::string("vertices/triangles: ") + e.what());
-  }
+  prepare_unlocked([&] { tally = verify::CasterJudge(mesh).judge(ray_set, answers, opt); });
   if (!error.empty()) tally.notes.push_back("the function raised: " + error);
   return result_dict(tally);
-}
-
-/// The counters' keys, comma-separated, in lines of at most 100 characters, the first of them
-/// after `first_line_used` characters (for the docstring).
-std::string count_keys(std::size_t first_line_used) {
-  std::string text;
-  std::size_t line = first_line_used;
-  for (const verify::CasterCounter& counter : verify::kCasterCounters) {
-    const bool last = &counter == &verify::kCasterCounters[std::size(verify::kCasterCounters) - 1];
-    const std::string word = std::string(counter.key) + (last ? "" : ",");
-    if (!text.empty() && line + 1 + word.size() > 100) text += "\n", line = 0;
-    else if (!text.empty()) text += " ", ++line;
-    text += word, line += word.size();
-  }
-  return text;
 }
 
 }  // namespace
@@ -212,7 +144,7 @@ precision ('double' or 'float') sets the ulps t errors are counted in. The rays:
 directions). An exception fn raises fails that batch's rays (counted in caster_failures, or
 invalid_failures on invalid rays), and the run goes on.
 
-Returns a dict of counts ()" + count_keys(std::string_view("Returns a dict of counts (").size()) + R"(),
+Returns a dict of counts ()" + count_keys(verify::kCasterCounters, std::string_view("Returns a dict of counts (").size()) + R"(),
 per-set counts (`sets`), one-line `reproducers` and `notes`. docs/check.md explains each count.)";
   m.def("check_caster", &check_caster, py::arg("fn"), py::arg("vertices"), py::arg("triangles"), py::kw_only(),
         py::arg("any_fn") = py::none(), py::arg("precision") = "double", py::arg("random_rays") = 2000,

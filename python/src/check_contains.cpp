@@ -13,6 +13,7 @@
 #include <optional>
 
 #include "bindings.h"
+#include "judge_py.h"
 #include "rayproof/scene/mesh_caster.h"
 #include "rayproof/verify/contains_check.h"
 #include "rayproof/verify/distance_check.h"
@@ -21,32 +22,11 @@ namespace rayproof::python {
 
 namespace {
 
-py::array_t<double> points_array(std::span<const Vec3<double>> v) {
-  py::array_t<double> a({static_cast<py::ssize_t>(v.size()), py::ssize_t(3)});
-  double* p = a.mutable_data();
-  for (std::size_t i = 0; i < v.size(); ++i) p[3 * i] = v[i].x, p[3 * i + 1] = v[i].y, p[3 * i + 2] = v[i].z;
-  return a;
-}
-
 /// The function's n answers as int32 sides: integers as they are (garbage beyond 0..2 is the
 /// judge's to count), booleans as 0 and 1, floats that are not integers (NaN, 0.5) or beyond int32
 /// as ContainsAnswer::kNotAnInteger. A result of the wrong shape or type throws (a failure).
 void read_answers(py::handle obj, std::span<std::int32_t> out) {
-  py::array a;
-  try {
-    a = py::module_::import("numpy").attr("asarray")(obj);
-  } catch (py::error_already_set& e) {
-    throw std::runtime_error(fmt::format("the function's result is not an array ({})", e.what()));
-  }
-  const char k = a.dtype().kind();
-  if (!(k == 'f' || k == 'i' || k == 'u' || k == 'b'))
-    throw std::runtime_error(fmt::format("the function's result has dtype {}, not numbers",
-                                         py::str(a.dtype()).cast<std::string>()));
-  if (a.ndim() != 1 || static_cast<std::size_t>(a.shape(0)) != out.size())
-    throw std::runtime_error(fmt::format("the function's result has shape {}, expected ({},)",
-                                         py::str(a.attr("shape")).cast<std::string>(), out.size()));
-  const auto d = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(a);
-  if (!d) throw std::runtime_error("the function's result cannot be read as numbers");
+  const auto d = result_column<double>(obj, out.size(), "result");
   for (std::size_t i = 0; i < out.size(); ++i) {
     const double x = d.data()[i];  // int64 beyond 2^53 rounds, but stays beyond int32: garbage either way
     const bool integer = std::isfinite(x) && x == std::floor(x) && x > std::numeric_limits<std::int32_t>::min() &&
@@ -55,35 +35,26 @@ void read_answers(py::handle obj, std::span<std::int32_t> out) {
   }
 }
 
-std::optional<double> ratio(double judge, double contains) {
-  if (!(contains > 0)) return std::nullopt;
-  return judge / contains;
-}
-
 /// The tally as Python's dict: every counter by its key (in kContainsCounters' order), then the
 /// rule, per-set counts, reproducers, notes and the judgement's cost.
 py::dict result_dict(const verify::ContainsTally& tally) {
-  py::dict d;
-  for (const verify::ContainsCounter& counter : verify::kContainsCounters)
-    d[py::str(std::string(counter.key))] = verify::count_of(tally, counter);
+  py::dict d = counters_dict(tally, verify::kContainsCounters, [](const auto&) { return true; });
   d["rule"] = std::string(to_string(tally.rule));
-  py::dict sets;
-  for (const auto& s : tally.sets) {
-    py::dict e;
-    e["points"] = s.points;
-    e["findings"] = s.findings;
-    e["cost_ratio"] = ratio(s.judge_seconds, s.contains_seconds);
-    sets[py::str(s.set)] = e;
-  }
-  d["sets"] = sets;
-  py::list reps;
-  for (const auto& r : tally.reproducers) reps.append(r.line);
-  d["reproducers"] = reps;
-  d["notes"] = tally.notes;
+  d["sets"] = set_costs_dict(tally.sets);
+  add_reproducers_and_notes(d, tally);
   d["judge_seconds"] = tally.judge_seconds;
   d["contains_seconds"] = tally.contains_seconds;
   d["cost_ratio"] = ratio(tally.judge_seconds, tally.contains_seconds);
   return d;
+}
+
+/// The user's points as one set named "user".
+verify::ContainsPoints user_point_set(py::handle points) {
+  verify::ContainsPoints out;
+  out.points = user_points(points, "points");
+  out.set.assign(out.points.size(), 0);
+  out.names = {"user"};
+  return out;
 }
 
 ContainsRule rule_named(const std::string& name) {
@@ -111,105 +82,40 @@ py::dict check_contains(py::function fn, py::handle vertices, py::handle triangl
   opt.threads = threads;
   const verify::ContainsMesh mesh{arrays.vertices, arrays.triangles, mesh_name};
 
-  std::optional<py::error_already_set> interrupt;
+  UserCalls user;
   const verify::ContainsFunction contains = [&](std::span<const Vec3<double>> p, std::span<std::int32_t> side) {
-    try {
-      read_answers(fn(points_array(p)), side);
-    } catch (py::error_already_set& e) {
-      const std::string what = e.what();
-      if (is_interrupt(e)) interrupt.emplace(std::move(e));
-      throw std::runtime_error(what);
-    }
+    user([&] { read_answers(fn(vec3_array(p)), side); });
   };
-
   verify::ContainsPoints point_set;
   std::optional<verify::ContainsJudge> judge;
-  try {
-    if (points && !points->is_none()) {
-      const Rows r = rows_of(*points, "points", 3, false);
-      for (std::size_t i = 0; i < r.rows; ++i) point_set.points.push_back({r.row(i)[0], r.row(i)[1], r.row(i)[2]});
-      point_set.set.assign(point_set.points.size(), 0);
-      point_set.names = {"user"};
-    } else {
-      py::gil_scoped_release unlocked;
-      point_set = verify::contains_points(mesh, opt);
-    }
-    py::gil_scoped_release unlocked;
+  if (points && !points->is_none()) point_set = user_point_set(*points);
+  prepare_unlocked([&] {
+    if (point_set.names.empty()) point_set = verify::contains_points(mesh, opt);
     judge.emplace(mesh, opt.rule);
-  } catch (const MeshInputError& e) {
-    throw py::value_error(std::string("vertices/triangles: ") + e.what());
-  } catch (const std::invalid_argument& e) {  // MeshNotClosedError, an unknown set
-    throw py::value_error(e.what());
-  }
+  });
   std::vector<verify::ContainsAnswer> answers(point_set.points.size());
   std::string error;
   verify::run_contains(contains, point_set.points, opt.batch, answers, error);
-  if (interrupt) throw std::move(*interrupt);
+  user.rethrow_interrupt();
   verify::ContainsTally tally;
-  {
-    py::gil_scoped_release unlocked;
-    tally = judge->judge(point_set, answers, opt);
-  }
+  prepare_unlocked([&] { tally = judge->judge(point_set, answers, opt); });
   if (!error.empty()) tally.notes.push_back("the function raised: " + error);
   return result_dict(tally);
 }
 
-/// The counters' keys, comma-separated, in lines of at most 100 characters, the first of them
-/// after `first_line_used` characters (for the docstring).
-template <class Table>
-std::string count_keys(const Table& table, std::size_t first_line_used) {
-  std::string text;
-  std::size_t line = first_line_used;
-  for (const auto& counter : table) {
-    const bool last = &counter == &table[std::size(table) - 1];
-    const std::string word = std::string(counter.key) + (last ? "" : ",");
-    if (!text.empty() && line + 1 + word.size() > 100) text += "\n", line = 0;
-    else if (!text.empty()) text += " ", ++line;
-    text += word, line += word.size();
-  }
-  return text;
-}
-
 /// The function's n distances (a result of the wrong shape or type throws: a failure).
 void read_distances(py::handle obj, std::span<double> out) {
-  py::array a;
-  try {
-    a = py::module_::import("numpy").attr("asarray")(obj);
-  } catch (py::error_already_set& e) {
-    throw std::runtime_error(fmt::format("the function's result is not an array ({})", e.what()));
-  }
-  const char k = a.dtype().kind();
-  if (!(k == 'f' || k == 'i' || k == 'u'))
-    throw std::runtime_error(fmt::format("the function's result has dtype {}, not numbers",
-                                         py::str(a.dtype()).cast<std::string>()));
-  if (a.ndim() != 1 || static_cast<std::size_t>(a.shape(0)) != out.size())
-    throw std::runtime_error(fmt::format("the function's result has shape {}, expected ({},)",
-                                         py::str(a.attr("shape")).cast<std::string>(), out.size()));
-  const auto d = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(a);
-  if (!d) throw std::runtime_error("the function's result cannot be read as numbers");
+  const auto d = result_column<double>(obj, out.size(), "result", false);
   std::copy(d.data(), d.data() + out.size(), out.begin());
 }
 
 py::dict distance_dict(const verify::DistanceTally& tally) {
-  py::dict d;
-  for (const verify::DistanceCounter& counter : verify::kDistanceCounters)
-    d[py::str(std::string(counter.key))] = verify::count_of(tally, counter);
+  py::dict d = counters_dict(tally, verify::kDistanceCounters, [](const auto&) { return true; });
   d["signed"] = tally.signed_distance;
   d["rel_tol"] = tally.rel_tol;
   d["max_rel_error"] = tally.max_rel_error;
-  py::dict sets;
-  for (const auto& s : tally.sets) {
-    py::dict e;
-    e["points"] = s.points;
-    e["findings"] = s.findings;
-    e["cost_ratio"] = ratio(s.judge_seconds, s.contains_seconds);
-    sets[py::str(s.set)] = e;
-  }
-  d["sets"] = sets;
-  py::list reps;
-  for (const auto& r : tally.reproducers) reps.append(r.line);
-  d["reproducers"] = reps;
-  d["notes"] = tally.notes;
+  d["sets"] = set_costs_dict(tally.sets);
+  add_reproducers_and_notes(d, tally);
   d["judge_seconds"] = tally.judge_seconds;
   d["closest_seconds"] = tally.closest_seconds;
   d["cost_ratio"] = ratio(tally.judge_seconds, tally.closest_seconds);
@@ -234,44 +140,23 @@ py::dict check_distance(py::function fn, py::handle vertices, py::handle triangl
   opt.reproducers = reproducers;
   opt.threads = threads;
   const verify::ContainsMesh mesh{arrays.vertices, arrays.triangles, mesh_name};
-  std::optional<py::error_already_set> interrupt;
+  UserCalls user;
   const verify::DistanceFunction distance = [&](std::span<const Vec3<double>> p, std::span<double> d) {
-    try {
-      read_distances(fn(points_array(p)), d);
-    } catch (py::error_already_set& e) {
-      const std::string what = e.what();
-      if (is_interrupt(e)) interrupt.emplace(std::move(e));
-      throw std::runtime_error(what);
-    }
+    user([&] { read_distances(fn(vec3_array(p)), d); });
   };
   verify::ContainsPoints point_set;
   std::optional<verify::DistanceJudge> judge;
-  try {
-    if (points && !points->is_none()) {
-      const Rows r = rows_of(*points, "points", 3, false);
-      for (std::size_t i = 0; i < r.rows; ++i) point_set.points.push_back({r.row(i)[0], r.row(i)[1], r.row(i)[2]});
-      point_set.set.assign(point_set.points.size(), 0);
-      point_set.names = {"user"};
-    } else {
-      py::gil_scoped_release unlocked;
-      point_set = verify::distance_points(mesh, opt);
-    }
-    py::gil_scoped_release unlocked;
+  if (points && !points->is_none()) point_set = user_point_set(*points);
+  prepare_unlocked([&] {
+    if (point_set.names.empty()) point_set = verify::distance_points(mesh, opt);
     judge.emplace(mesh);
-  } catch (const MeshInputError& e) {
-    throw py::value_error(std::string("vertices/triangles: ") + e.what());
-  } catch (const std::invalid_argument& e) {
-    throw py::value_error(e.what());
-  }
+  });
   std::vector<verify::DistanceAnswer> answers(point_set.points.size());
   std::string error;
   verify::run_distance(distance, point_set.points, opt.batch, answers, error);
-  if (interrupt) throw std::move(*interrupt);
+  user.rethrow_interrupt();
   verify::DistanceTally tally;
-  {
-    py::gil_scoped_release unlocked;
-    tally = judge->judge(point_set, answers, opt);
-  }
+  prepare_unlocked([&] { tally = judge->judge(point_set, answers, opt); });
   if (!error.empty()) tally.notes.push_back("the function raised: " + error);
   return distance_dict(tally);
 }

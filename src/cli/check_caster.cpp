@@ -7,6 +7,7 @@
 #include <cmath>
 #include <optional>
 
+#include "cli/judge_cli.h"
 #include "cli/mesh_modes.h"
 #include "cli/scene_input.h"
 #include "mesh/mesh.h"
@@ -19,23 +20,15 @@ namespace rayproof::cli {
 
 namespace {
 
-struct NamedCaster {
-  std::string name, command;
-};
-
 /// One caster's run on one mesh, as `--json` prints it: every count of the tally shown (by its
 /// key), per-set counts, events, reproducers and notes.
-nlohmann::json run_json(const NamedCaster& caster, const JudgedMesh& mesh, const verify::CasterTally& tally,
+nlohmann::json run_json(const NamedCommand& caster, const JudgedMesh& mesh, const verify::CasterTally& tally,
                         const verify::ExecCasterRun& run) {
+  nlohmann::json out = judged_run_json("caster", caster, mesh, tally, run.events, run.starts, verify::kCasterCounters,
+                                       [&](const verify::CasterCounter& c) { return verify::shown(tally, c); });
   nlohmann::json sets = nlohmann::json::object();
   for (const auto& s : tally.sets) sets[s.set] = {{"rays", s.rays}, {"findings", s.findings}, {"false_miss", s.false_miss}};
-  nlohmann::json reproducers = nlohmann::json::array();
-  for (const auto& r : tally.reproducers) reproducers.push_back(r.line);
-  nlohmann::json out = {{"caster", caster.name}, {"command", caster.command}, {"mesh", mesh.name},
-                        {"triangles", mesh.mesh.triangles.size()}, {"sets", sets}, {"events", run.events},
-                        {"starts", run.starts}, {"reproducers", reproducers}, {"notes", tally.notes}};
-  for (const verify::CasterCounter& counter : verify::kCasterCounters)
-    if (verify::shown(tally, counter)) out[std::string(counter.key)] = verify::count_of(tally, counter);
+  out["sets"] = sets;
   return out;
 }
 
@@ -66,18 +59,9 @@ std::optional<std::vector<JudgedMesh>> judged_meshes(const CheckCliOptions& o) {
 }
 
 int run_caster_check(const CheckCliOptions& o) {
-  std::vector<NamedCaster> casters;
-  for (const auto& spec : o.caster) {
-    const auto eq = spec.find('=');
-    if (eq == std::string::npos || eq == 0 || eq + 1 == spec.size()) {
-      fmt::print(stderr, "rayproof check: --caster '{}' is not NAME=COMMAND\n", spec);
-      return 2;
-    }
-    casters.push_back({spec.substr(0, eq), spec.substr(eq + 1)});
-  }
-  const std::size_t others = o.user.exec.size() + o.user.plugin.size() + o.user.opencl.size() + o.user.glsl.size() +
-                             (o.method.empty() ? 0 : 1);
-  if (others > 0 || !o.families.empty() || !o.expect.empty() || o.max_ulps) {
+  const auto casters = named_commands(o.caster, "--caster");
+  if (!casters) return 2;
+  if (kernel_options_given(o)) {
     fmt::print(stderr, "rayproof check: --caster takes --mesh, --out and the --caster-* options; --exec, --plugin, "
                        "--glsl, --opencl, --method, --families, --expect and --max-ulps apply to kernels\n");
     return 2;
@@ -92,10 +76,7 @@ int run_caster_check(const CheckCliOptions& o) {
     fmt::print(stderr, "rayproof check: --caster-precision '{}' is neither float nor double\n", o.caster_precision);
     return 2;
   }
-  if (!(o.caster_timeout > 0) || !std::isfinite(o.caster_timeout)) {
-    fmt::print(stderr, "rayproof check: --caster-timeout must be a positive number of seconds\n");
-    return 2;
-  }
+  if (!positive_seconds(o.caster_timeout, "--caster-timeout")) return 2;
   opt.seed = o.seed;
   opt.random_rays = o.caster_rays;
   opt.max_rays_per_set = o.caster_max_per_set;
@@ -116,40 +97,30 @@ int run_caster_check(const CheckCliOptions& o) {
     fmt::print("rayproof check --caster: {} precision; crossings at t > 0 judged against rayproof's certified caster "
                "and exact per-triangle tests (docs/check.md)\n",
                o.caster_precision);
-  for (const auto& m : meshes) {
-    const verify::CasterMesh caster_mesh{m.mesh.vertices, m.mesh.triangles, m.name};
+  struct Prepared {
+    verify::CasterMesh mesh;
     verify::CasterRays rays;
-    std::optional<verify::CasterJudge> judge;
-    try {
-      rays = verify::caster_rays(caster_mesh, opt);
-      judge.emplace(caster_mesh);
-    } catch (const std::exception& e) {
-      fmt::print(stderr, "rayproof check: {}: {}\n", m.name, e.what());
-      return 2;
-    }
-    for (const auto& caster : casters) {
-      fmt::print(stderr, "[caster] {} on {}: {} rays\n", caster.name, m.name, rays.rays.size());
-      const verify::ExecCasterRun run = verify::run_exec_caster(caster.command, caster_mesh, rays, exec_opt);
-      const verify::CasterTally tally = judge->judge(rays, run.answers, opt);
-      any_finding = any_finding || tally.findings() > 0;
-      if (!o.out.empty())
-        report_rows.push_back({caster.name, caster.command, m.name, m.mesh.triangles.size(), tally, run.events});
-      if (o.json) {
-        json_runs.push_back(run_json(caster, m, tally, run));
-        continue;
-      }
-      fmt::print("\ncaster '{}' ({}) on {} ({} triangles): {} rays, started {} time{}\n", caster.name,
-                 caster.command, m.name, m.mesh.triangles.size(), tally.rays, run.starts, run.starts == 1 ? "" : "s");
-      fmt::print("{}", verify::summary_text(tally));
-      for (const auto& e : run.events) fmt::print("event: {}\n", e);
-      if (tally.findings() == 0)
-        fmt::print("caster '{}' answered all {} rays on {} as exact arithmetic does (t within 1 ulp)\n", caster.name,
-                   tally.rays, m.name);
-      else
-        fmt::print("caster '{}' differs from exact on {} of {} rays on {}\n", caster.name, tally.findings(),
-                   tally.rays, m.name);
-    }
-  }
+    verify::CasterJudge judge;
+  };
+  const bool prepared = for_each_mesh_and_function(
+      meshes, *casters,
+      [&](const JudgedMesh& m) {
+        const verify::CasterMesh caster_mesh{m.mesh.vertices, m.mesh.triangles, m.name};
+        return Prepared{caster_mesh, verify::caster_rays(caster_mesh, opt), verify::CasterJudge(caster_mesh)};
+      },
+      [&](const NamedCommand& caster, const JudgedMesh& m, const Prepared& p) {
+        fmt::print(stderr, "[caster] {} on {}: {} rays\n", caster.name, m.name, p.rays.rays.size());
+        const verify::ExecCasterRun run = verify::run_exec_caster(caster.command, p.mesh, p.rays, exec_opt);
+        const verify::CasterTally tally = p.judge.judge(p.rays, run.answers, opt);
+        any_finding = any_finding || tally.findings() > 0;
+        if (!o.out.empty())
+          report_rows.push_back({caster.name, caster.command, m.name, m.mesh.triangles.size(), tally, run.events});
+        if (o.json) json_runs.push_back(run_json(caster, m, tally, run));
+        else
+          print_judged_run({"caster", "rays", caster, m, tally.rays, tally.findings(), run.starts,
+                            verify::summary_text(tally), run.events, " as exact arithmetic does (t within 1 ulp)"});
+      });
+  if (!prepared) return 2;
   if (!o.out.empty()) {
     // rayproof's own casters on the same rays, beside the casters under test.
     for (const auto& m : meshes) {

@@ -40,6 +40,7 @@
 #include <vector>
 
 #include "rayproof/ray.h"
+#include "rayproof/verify/judge_counters.h"
 #include "rayproof/vec3.h"
 
 namespace rayproof::verify {
@@ -111,18 +112,8 @@ struct CasterCounts {
 
 /// One counter of a CasterTally: the one place its name, meaning and use are written down. The
 /// summary text, `rayproof check --caster --json`, the report's columns and Python's dict are made
-/// from kCasterCounters, in its order.
-struct CasterCounter {
-  std::string_view key;  ///< the JSON and Python key; the text and report label unless given below
-  std::uint64_t CasterCounts::*member = nullptr;  ///< null for `findings` (the sum of the findings)
-  bool finding = false;      ///< added into findings()
-  bool maximum = false;      ///< merged as the largest value (else added up)
-  bool occlusion = false;    ///< a count of occlusion answers: in the text and JSON only when any_rays > 0
-  bool report_column = true; ///< a column of `check --caster --out`'s report
-  std::string_view text_label = {};    ///< the summary text's label, when not the key
-  std::string_view column_label = {};  ///< the report's column header, when not the key
-  std::string_view meaning = {};       ///< per ray: the caster's answer that is counted
-};
+/// from kCasterCounters, in its order (rayproof/verify/judge_counters.h).
+using CasterCounter = JudgeCounter<CasterCounts>;
 
 inline constexpr CasterCounter kCasterCounters[] = {
     {.key = "rays", .member = &CasterCounts::rays, .meaning = "judged (every ray given)"},
@@ -207,39 +198,13 @@ inline constexpr CasterCounter kCasterCounters[] = {
     {.key = "findings", .meaning = "every counted finding: the sum of the counts above marked as findings"},
 };
 
-constexpr std::uint64_t CasterCounts::findings() const {
-  std::uint64_t sum = 0;
-  for (const CasterCounter& counter : kCasterCounters)
-    if (counter.finding) sum += this->*counter.member;
-  return sum;
-}
+constexpr std::uint64_t CasterCounts::findings() const { return sum_of_findings(kCasterCounters, *this); }
 
 /// Every counter of CasterCounts is in kCasterCounters once, and `findings` (no member) once: a
 /// counter added to the struct and not to the table does not compile.
-constexpr bool every_counter_once_in_table() {
-  std::size_t derived = 0;
-  for (std::size_t i = 0; i < std::size(kCasterCounters); ++i) {
-    if (!kCasterCounters[i].member) ++derived;
-    for (std::size_t j = 0; j < i; ++j)
-      if (kCasterCounters[i].key == kCasterCounters[j].key ||
-          (kCasterCounters[i].member && kCasterCounters[i].member == kCasterCounters[j].member))
-        return false;
-  }
-  return derived == 1 && (std::size(kCasterCounters) - 1) * sizeof(std::uint64_t) == sizeof(CasterCounts);
-}
+constexpr bool every_counter_once_in_table() { return every_counter_once(kCasterCounters); }
 static_assert(every_counter_once_in_table());
 
-/// The value of a counter in `counts`.
-[[nodiscard]] constexpr std::uint64_t count_of(const CasterCounts& counts, const CasterCounter& counter) {
-  return counter.member ? counts.*counter.member : counts.findings();
-}
-/// The counter's label in the summary text, and in the report's header.
-[[nodiscard]] constexpr std::string_view text_label(const CasterCounter& counter) {
-  return counter.text_label.empty() ? counter.key : counter.text_label;
-}
-[[nodiscard]] constexpr std::string_view column_label(const CasterCounter& counter) {
-  return counter.column_label.empty() ? counter.key : counter.column_label;
-}
 /// Whether the summary text and JSON show the counter (occlusion counts only when asked).
 [[nodiscard]] constexpr bool shown(const CasterCounts& counts, const CasterCounter& counter) {
   return !counter.occlusion || counts.any_rays > 0;

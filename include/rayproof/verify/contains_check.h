@@ -53,6 +53,7 @@
 
 #include "rayproof/scene/contains.h"
 #include "rayproof/vec3.h"
+#include "rayproof/verify/judge_counters.h"
 
 namespace rayproof::verify {
 
@@ -122,13 +123,9 @@ struct ContainsCounts {
 };
 
 /// One counter of a ContainsTally: its name, meaning and use, written down once. The summary text,
-/// `rayproof check --contains --json` and Python's dict are made from kContainsCounters, in order.
-struct ContainsCounter {
-  std::string_view key;  ///< the JSON and Python key, and the text's label
-  std::uint64_t ContainsCounts::*member = nullptr;  ///< null for `findings` (the sum of the findings)
-  bool finding = false;                             ///< added into findings()
-  std::string_view meaning = {};                    ///< per point: what is counted
-};
+/// `rayproof check --contains --json` and Python's dict are made from kContainsCounters, in order
+/// (rayproof/verify/judge_counters.h).
+using ContainsCounter = JudgeCounter<ContainsCounts>;
 
 inline constexpr ContainsCounter kContainsCounters[] = {
     {.key = "points", .member = &ContainsCounts::points, .meaning = "judged (every point given)"},
@@ -193,31 +190,11 @@ inline constexpr ContainsCounter kContainsCounters[] = {
     {.key = "findings", .meaning = "every counted finding: the sum of the counts above marked as findings"},
 };
 
-constexpr std::uint64_t ContainsCounts::findings() const {
-  std::uint64_t sum = 0;
-  for (const ContainsCounter& counter : kContainsCounters)
-    if (counter.finding) sum += this->*counter.member;
-  return sum;
-}
+constexpr std::uint64_t ContainsCounts::findings() const { return sum_of_findings(kContainsCounters, *this); }
 
 /// Every counter of ContainsCounts is in kContainsCounters once, and `findings` once.
-constexpr bool every_contains_counter_once_in_table() {
-  std::size_t derived = 0;
-  for (std::size_t i = 0; i < std::size(kContainsCounters); ++i) {
-    if (!kContainsCounters[i].member) ++derived;
-    for (std::size_t j = 0; j < i; ++j)
-      if (kContainsCounters[i].key == kContainsCounters[j].key ||
-          (kContainsCounters[i].member && kContainsCounters[i].member == kContainsCounters[j].member))
-        return false;
-  }
-  return derived == 1 && (std::size(kContainsCounters) - 1) * sizeof(std::uint64_t) == sizeof(ContainsCounts);
-}
+constexpr bool every_contains_counter_once_in_table() { return every_counter_once(kContainsCounters); }
 static_assert(every_contains_counter_once_in_table());
-
-/// The value of a counter in `counts`.
-[[nodiscard]] constexpr std::uint64_t count_of(const ContainsCounts& counts, const ContainsCounter& counter) {
-  return counter.member ? counts.*counter.member : counts.findings();
-}
 
 /// What check_contains and ContainsJudge::judge find: the counts, per point set, with reproducers
 /// and the judgement's cost beside rayproof's own contains on the same points.

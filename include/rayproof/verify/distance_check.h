@@ -67,14 +67,8 @@ struct DistanceCounts {
 };
 
 /// One counter of a DistanceTally: its name, meaning and use, written down once (text, JSON and
-/// Python's dict are made from kDistanceCounters, in order).
-struct DistanceCounter {
-  std::string_view key;
-  std::uint64_t DistanceCounts::*member = nullptr;  ///< null for `findings`
-  bool finding = false;
-  bool maximum = false;  ///< merged as the largest value (else added up)
-  std::string_view meaning = {};
-};
+/// Python's dict are made from kDistanceCounters, in order; rayproof/verify/judge_counters.h).
+using DistanceCounter = JudgeCounter<DistanceCounts>;
 
 inline constexpr DistanceCounter kDistanceCounters[] = {
     {.key = "points", .member = &DistanceCounts::points, .meaning = "judged (every point given)"},
@@ -120,30 +114,11 @@ inline constexpr DistanceCounter kDistanceCounters[] = {
     {.key = "findings", .meaning = "every counted finding: the sum of the counts above marked as findings"},
 };
 
-constexpr std::uint64_t DistanceCounts::findings() const {
-  std::uint64_t sum = 0;
-  for (const DistanceCounter& counter : kDistanceCounters)
-    if (counter.finding) sum += this->*counter.member;
-  return sum;
-}
+constexpr std::uint64_t DistanceCounts::findings() const { return sum_of_findings(kDistanceCounters, *this); }
 
 /// Every counter of DistanceCounts is in kDistanceCounters once, and `findings` once.
-constexpr bool every_distance_counter_once_in_table() {
-  std::size_t derived = 0;
-  for (std::size_t i = 0; i < std::size(kDistanceCounters); ++i) {
-    if (!kDistanceCounters[i].member) ++derived;
-    for (std::size_t j = 0; j < i; ++j)
-      if (kDistanceCounters[i].key == kDistanceCounters[j].key ||
-          (kDistanceCounters[i].member && kDistanceCounters[i].member == kDistanceCounters[j].member))
-        return false;
-  }
-  return derived == 1 && (std::size(kDistanceCounters) - 1) * sizeof(std::uint64_t) == sizeof(DistanceCounts);
-}
+constexpr bool every_distance_counter_once_in_table() { return every_counter_once(kDistanceCounters); }
 static_assert(every_distance_counter_once_in_table());
-
-[[nodiscard]] constexpr std::uint64_t count_of(const DistanceCounts& counts, const DistanceCounter& counter) {
-  return counter.member ? counts.*counter.member : counts.findings();
-}
 
 /// What check_distance and DistanceJudge::judge find.
 struct DistanceTally : DistanceCounts {

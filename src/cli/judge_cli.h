@@ -1,0 +1,131 @@
+#pragma once
+/// What `check --caster`, `--contains` and `--distance` share (check_caster.cpp,
+/// check_contains.cpp, check_distance.cpp): NAME=COMMAND specs, the options
+/// that belong to kernels, a run's JSON fields, its text (header line, summary, events, verdict).
+/// Header-only: the CLI's files compile in unity batches (src/cli/CMakeLists.txt).
+#include <fmt/core.h>
+
+#include <nlohmann/json.hpp>
+
+#include <cmath>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <type_traits>
+#include <vector>
+
+#include "cli/mesh_modes.h"
+#include "rayproof/verify/judge_counters.h"
+
+namespace rayproof::cli {
+
+/// A judged function that is a program: `--caster NAME=COMMAND`.
+struct NamedCommand {
+  std::string name, command;
+};
+
+/// The NAME=COMMAND specs of `flag`; nothing (the error printed) when one is not.
+inline std::optional<std::vector<NamedCommand>> named_commands(const std::vector<std::string>& specs,
+                                                               std::string_view flag) {
+  std::vector<NamedCommand> out;
+  for (const auto& spec : specs) {
+    const auto eq = spec.find('=');
+    if (eq == std::string::npos || eq == 0 || eq + 1 == spec.size()) {
+      fmt::print(stderr, "rayproof check: {} '{}' is not NAME=COMMAND\n", flag, spec);
+      return std::nullopt;
+    }
+    out.push_back({spec.substr(0, eq), spec.substr(eq + 1)});
+  }
+  return out;
+}
+
+/// Whether an option that applies to kernels was given: --exec, --plugin, --glsl, --opencl,
+/// --method, --families, --expect, --max-ulps.
+inline bool kernel_options_given(const CheckCliOptions& o) {
+  return !o.user.exec.empty() || !o.user.plugin.empty() || !o.user.opencl.empty() || !o.user.glsl.empty() ||
+         !o.method.empty() || !o.families.empty() || !o.expect.empty() || o.max_ulps.has_value();
+}
+
+/// False (the error printed) unless `seconds` is a positive number.
+inline bool positive_seconds(double seconds, std::string_view flag) {
+  if (seconds > 0 && std::isfinite(seconds)) return true;
+  fmt::print(stderr, "rayproof check: {} must be a positive number of seconds\n", flag);
+  return false;
+}
+
+/// judge / baseline in JSON: null without a baseline time.
+inline nlohmann::json ratio_json(double judge_seconds, double baseline_seconds) {
+  return baseline_seconds > 0 ? nlohmann::json(judge_seconds / baseline_seconds) : nlohmann::json(nullptr);
+}
+
+/// Per set, as JSON: points, findings and the cost ratio (sets with judge_seconds and the
+/// baseline's contains_seconds).
+template <class Sets>
+nlohmann::json set_costs_json(const Sets& sets) {
+  nlohmann::json out = nlohmann::json::object();
+  for (const auto& s : sets)
+    out[s.set] = {{"points", s.points}, {"findings", s.findings}, {"cost_ratio", ratio_json(s.judge_seconds, s.contains_seconds)}};
+  return out;
+}
+
+/// One function's run on one mesh as `--json` prints it: `role` (its name), command, mesh,
+/// triangles, events, starts, reproducers, notes, and every counter `shown` by its key. The caller
+/// adds what is its judge's own (sets, rule, costs).
+template <class Tally, class Counts, std::size_t N, class Shown>
+nlohmann::json judged_run_json(std::string_view role, const NamedCommand& fn, const JudgedMesh& mesh, const Tally& tally,
+                               const std::vector<std::string>& events, std::size_t starts,
+                               const verify::JudgeCounter<Counts> (&table)[N], Shown&& shown) {
+  nlohmann::json reproducers = nlohmann::json::array();
+  for (const auto& r : tally.reproducers) reproducers.push_back(r.line);
+  nlohmann::json out = {{std::string(role), fn.name}, {"command", fn.command}, {"mesh", mesh.name},
+                        {"triangles", mesh.mesh.triangles.size()}, {"events", events}, {"starts", starts},
+                        {"reproducers", reproducers}, {"notes", tally.notes}};
+  for (const verify::JudgeCounter<Counts>& counter : table)
+    if (shown(counter)) out[std::string(counter.key)] = verify::count_of(tally, counter);
+  return out;
+}
+
+/// For each mesh: prepare(mesh) gives what its judgement needs (sets, the exact reference; an
+/// exception is printed and ends the run: false), then judge(fn, mesh, prepared) for each function.
+template <class Prepare, class Judge>
+bool for_each_mesh_and_function(const std::vector<JudgedMesh>& meshes, const std::vector<NamedCommand>& functions,
+                                Prepare&& prepare, Judge&& judge) {
+  for (const JudgedMesh& m : meshes) {
+    std::optional<std::invoke_result_t<Prepare&, const JudgedMesh&>> prepared;
+    try {
+      prepared.emplace(prepare(m));
+    } catch (const std::exception& e) {
+      fmt::print(stderr, "rayproof check: {}: {}\n", m.name, e.what());
+      return false;
+    }
+    for (const NamedCommand& fn : functions) judge(fn, m, *prepared);
+  }
+  return true;
+}
+
+/// One run as text: what was judged, the summary, the events, and the verdict (`agreed`, the end
+/// of the sentence when nothing was found).
+struct JudgedRunText {
+  std::string_view role, noun;  ///< "caster", "rays"; "function", "points"
+  const NamedCommand& fn;
+  const JudgedMesh& mesh;
+  std::uint64_t items = 0, findings = 0;
+  std::size_t starts = 0;
+  std::string summary;
+  const std::vector<std::string>& events;
+  std::string agreed;  ///< " as exact arithmetic does"
+};
+
+inline void print_judged_run(const JudgedRunText& r) {
+  fmt::print("\n{} '{}' ({}) on {} ({} triangles): {} {}, started {} time{}\n", r.role, r.fn.name, r.fn.command,
+             r.mesh.name, r.mesh.mesh.triangles.size(), r.items, r.noun, r.starts, r.starts == 1 ? "" : "s");
+  fmt::print("{}", r.summary);
+  for (const auto& e : r.events) fmt::print("event: {}\n", e);
+  if (r.findings == 0)
+    fmt::print("{} '{}' answered all {} {} on {}{}\n", r.role, r.fn.name, r.items, r.noun, r.mesh.name, r.agreed);
+  else
+    fmt::print("{} '{}' differs from exact on {} of {} {} on {}\n", r.role, r.fn.name, r.findings, r.items, r.noun,
+               r.mesh.name);
+}
+
+}  // namespace rayproof::cli
