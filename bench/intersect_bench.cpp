@@ -33,6 +33,7 @@ using namespace rayproof;
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 using SM = CGAL::Surface_mesh<K::Point_3>;
 using Pairs = std::vector<TrianglePair>;
+bool rayproof_only = false;  ///< --rayproof-only: no peers (for profiling)
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -94,6 +95,10 @@ void self_row(const std::string& name, const mesh::Mesh& m, int repeat) {
   Pairs ours, theirs;
   const double t_ours = best_of(repeat, [&] { return self_intersections(arrays(m).vertices, arrays(m).indices, one); }, ours);
   fmt::print("{:<28} {:>9} triangles  rayproof {:>7} pairs {:>9.4f} s", name, m.triangles.size(), ours.size(), t_ours);
+  if (rayproof_only) {
+    fmt::print("\n");
+    return;
+  }
   if (refused) {
     fmt::print("  CGAL: {} faces not manifold, skipped\n", refused);
     return;
@@ -139,6 +144,10 @@ void pair_row(const std::string& name, const mesh::Mesh& a, const mesh::Mesh& b,
   fmt::print("{:<28} {:>9} x {:<9} rayproof {:>7} pairs {:>9.4f} s", name, a.triangles.size(), b.triangles.size(),
              ours.size(), t_ours);
 #ifdef RAYPROOF_HAVE_FCL
+  if (rayproof_only) {
+    fmt::print("\n");
+    return;
+  }
   Pairs theirs;
   const double t_fcl = best_of(repeat, [&] { return fcl_pairs(a, b); }, theirs);
   fmt::print("  FCL {:>7} pairs {:>9.4f} s  differ: {} only rayproof, {} only FCL  FCL/rayproof {:.2f}x\n", theirs.size(),
@@ -157,6 +166,7 @@ int main(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--repeat") == 0 && i + 1 < argc) repeat = std::max(1, std::atoi(argv[++i]));
     else if (std::strcmp(argv[i], "--big") == 0) big = true;
+    else if (std::strcmp(argv[i], "--rayproof-only") == 0) rayproof_only = true;
     else dir = argv[i];
   }
   fmt::print("one thread; best of {} (CGAL best of {})\n", repeat, std::max(1, repeat / 2));
