@@ -1,6 +1,7 @@
 // Self-intersections side by side, one thread: rayproof::self_intersections (BVH candidates,
 // certified triangle/triangle decisions) against CGAL Polygon_mesh_processing::self_intersections
-// (Epick, Sequential_tag) on bunny00, refined_elephant and generated meshes with self-intersections;
+// (Epick, Sequential_tag) on bunny00, refined_elephant, elephant-with-holes and boeing (CGAL data meshes
+// that self-intersect) and generated meshes with self-intersections;
 // and, when the build found FCL (libfcl-dev), rayproof::intersecting_pairs against FCL's mesh-mesh
 // collision (OBBRSS trees, every contact) on two meshes. Prints the pairs each finds, the pairs that
 // differ and the time ratio. A plain program (bench only: PMP is not in the tool's libraries).
@@ -171,7 +172,7 @@ int main(int argc, char** argv) {
   }
   fmt::print("one thread; best of {} (CGAL best of {})\n", repeat, std::max(1, repeat / 2));
   std::vector<std::pair<std::string, mesh::Mesh>> meshes;
-  for (const char* f : {"bunny00.off", "refined_elephant.off"}) {
+  for (const char* f : {"bunny00.off", "refined_elephant.off", "elephant-with-holes.off", "boeing.off"}) {
     const auto p = std::filesystem::path(dir) / f;
     if (std::filesystem::exists(p)) meshes.push_back({f, mesh::read_mesh(p.string())});
     else fmt::print("{}: not found, skipped\n", p.string());
