@@ -1,6 +1,7 @@
 // Self-intersections side by side, one thread: rayproof::self_intersections (BVH candidates,
 // certified triangle/triangle decisions) against CGAL Polygon_mesh_processing::self_intersections
-// (Epick, Sequential_tag) on bunny00, refined_elephant and generated meshes with self-intersections;
+// (Epick, Sequential_tag) on bunny00, refined_elephant, elephant-with-holes and boeing (CGAL data meshes
+// that self-intersect) and generated meshes with self-intersections;
 // and, when the build found FCL (libfcl-dev), rayproof::intersecting_pairs against FCL's mesh-mesh
 // collision (OBBRSS trees, every contact) on two meshes. Prints the pairs each finds, the pairs that
 // differ and the time ratio. A plain program (bench only: PMP is not in the tool's libraries).
@@ -33,6 +34,7 @@ using namespace rayproof;
 using K = CGAL::Exact_predicates_inexact_constructions_kernel;
 using SM = CGAL::Surface_mesh<K::Point_3>;
 using Pairs = std::vector<TrianglePair>;
+bool rayproof_only = false;  ///< --rayproof-only: no peers (for profiling)
 
 double seconds_since(std::chrono::steady_clock::time_point t0) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -94,6 +96,10 @@ void self_row(const std::string& name, const mesh::Mesh& m, int repeat) {
   Pairs ours, theirs;
   const double t_ours = best_of(repeat, [&] { return self_intersections(arrays(m).vertices, arrays(m).indices, one); }, ours);
   fmt::print("{:<28} {:>9} triangles  rayproof {:>7} pairs {:>9.4f} s", name, m.triangles.size(), ours.size(), t_ours);
+  if (rayproof_only) {
+    fmt::print("\n");
+    return;
+  }
   if (refused) {
     fmt::print("  CGAL: {} faces not manifold, skipped\n", refused);
     return;
@@ -139,6 +145,10 @@ void pair_row(const std::string& name, const mesh::Mesh& a, const mesh::Mesh& b,
   fmt::print("{:<28} {:>9} x {:<9} rayproof {:>7} pairs {:>9.4f} s", name, a.triangles.size(), b.triangles.size(),
              ours.size(), t_ours);
 #ifdef RAYPROOF_HAVE_FCL
+  if (rayproof_only) {
+    fmt::print("\n");
+    return;
+  }
   Pairs theirs;
   const double t_fcl = best_of(repeat, [&] { return fcl_pairs(a, b); }, theirs);
   fmt::print("  FCL {:>7} pairs {:>9.4f} s  differ: {} only rayproof, {} only FCL  FCL/rayproof {:.2f}x\n", theirs.size(),
@@ -157,11 +167,12 @@ int main(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     if (std::strcmp(argv[i], "--repeat") == 0 && i + 1 < argc) repeat = std::max(1, std::atoi(argv[++i]));
     else if (std::strcmp(argv[i], "--big") == 0) big = true;
+    else if (std::strcmp(argv[i], "--rayproof-only") == 0) rayproof_only = true;
     else dir = argv[i];
   }
   fmt::print("one thread; best of {} (CGAL best of {})\n", repeat, std::max(1, repeat / 2));
   std::vector<std::pair<std::string, mesh::Mesh>> meshes;
-  for (const char* f : {"bunny00.off", "refined_elephant.off"}) {
+  for (const char* f : {"bunny00.off", "refined_elephant.off", "elephant-with-holes.off", "boeing.off"}) {
     const auto p = std::filesystem::path(dir) / f;
     if (std::filesystem::exists(p)) meshes.push_back({f, mesh::read_mesh(p.string())});
     else fmt::print("{}: not found, skipped\n", p.string());

@@ -132,6 +132,27 @@ TEST(SelfIntersections, EqualsBruteForceOnLatticeSoups) {
   }
 }
 
+// The vertices as packed doubles are read in place; floats and strided doubles are converted
+// first: the pairs are those of the same coordinates as packed doubles.
+TEST(SelfIntersections, FloatAndStridedVerticesGiveTheSamePairs) {
+  mesh::Mesh m = scene::bumpy_sphere(1200);
+  mesh::Mesh copy = m;
+  for (auto& v : copy.vertices) v = v + Vec3<double>{0.5, 0.25, 0.125};
+  append(m, copy);
+  std::vector<float> f;
+  std::vector<double> strided;
+  for (auto& v : m.vertices) {
+    for (int k = 0; k < 3; ++k) f.push_back(float(v[k]));
+    v = {double(float(v.x)), double(float(v.y)), double(float(v.z))};
+    strided.insert(strided.end(), {v.x, v.y, v.z, 7.0});
+  }
+  const P want = self_of(m);
+  ASSERT_GT(want.size(), 10u);
+  const IndexArray t{m.triangles.front().data(), m.triangles.size()};
+  EXPECT_EQ(self_intersections(VertexArray(f.data(), m.vertices.size()), t), want);
+  EXPECT_EQ(self_intersections(VertexArray(strided.data(), m.vertices.size(), 4 * sizeof(double)), t), want);
+}
+
 TEST(SelfIntersections, SameOutputForEveryThreadCount) {
   mesh::Mesh m = scene::bumpy_sphere(3000);
   mesh::Mesh copy = m;

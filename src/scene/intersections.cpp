@@ -5,13 +5,15 @@
 #include "rayproof/scene/intersections.h"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
+#include <memory>
 #include <span>
 #include <string>
 
 #include "exact/orient_exact.h"
-#include "rayproof/bvh_build.h"
+#include "rayproof/bvh.h"
 #include "rayproof/certified/tritri.h"
 #include "scene/batch_threads.h"
 
@@ -19,16 +21,63 @@ namespace rayproof {
 
 namespace {
 
-/// A mesh's triangles as packed doubles, their boxes and the tree over them.
-struct PairMesh {
-  std::vector<Vec3<double>> v;          ///< three vertices per triangle
-  std::vector<std::uint32_t> idx;       ///< three vertex indices per triangle
-  std::vector<BvhBox> box;              ///< per triangle, rounded outwards
-  std::vector<std::uint8_t> zero_area;  ///< per triangle: collinear or coincident vertices (exact)
-  Bvh bvh;
-  [[nodiscard]] std::size_t size() const { return box.size(); }
-  [[nodiscard]] Triangle<double> tri(std::size_t t) const { return {v[3 * t], v[3 * t + 1], v[3 * t + 2]}; }
+/// A box with float bounds rounded outwards (no initialisers: arrays of them are not zeroed first).
+struct Box {
+  float lo[3], hi[3];
+  void set(const Vec3<double>& p) {
+    for (int k = 0; k < 3; ++k) lo[k] = bvh_float_down(p[k]), hi[k] = bvh_float_up(p[k]);
+  }
+  void extend(const Box& b) {
+    for (int k = 0; k < 3; ++k) lo[k] = b.lo[k] < lo[k] ? b.lo[k] : lo[k], hi[k] = b.hi[k] > hi[k] ? b.hi[k] : hi[k];
+  }
+  [[nodiscard]] float half_area() const {
+    const float dx = hi[0] - lo[0], dy = hi[1] - lo[1], dz = hi[2] - lo[2];
+    return dx * dy + dy * dz + dz * dx;
+  }
 };
+
+/// A node of the overlap tree: a box, and either two children (at index, index + 1) or a leaf's
+/// run of slots [index, index + count) (the triangles are stored in the tree's order).
+struct Node {
+  Box box;
+  std::uint32_t index, count;
+  [[nodiscard]] bool is_leaf() const { return count != 0; }
+};
+
+/// An array of a trivial type left uninitialised (every element is written before it is read).
+template <class T>
+struct Buffer {
+  std::unique_ptr<T[]> p;
+  void resize(std::size_t n) { p.reset(n ? new T[n] : nullptr); }
+  T& operator[](std::size_t i) { return p[i]; }
+  const T& operator[](std::size_t i) const { return p[i]; }
+};
+
+/// A mesh's triangles in the tree's order (slots): vertex indices, boxes, zero-area flags, and
+/// the vertices as packed doubles (the caller's array when it is one, else a converted copy).
+struct PairMesh {
+  std::size_t n = 0;
+  const unsigned char* vertices = nullptr;  ///< 24 bytes (three doubles) per vertex
+  std::vector<Vec3<double>> converted;      ///< the vertices when the input is not packed doubles
+  Buffer<std::uint32_t> idx;                ///< three vertex indices per slot
+  Buffer<std::uint32_t> id;                 ///< the input's triangle number of each slot
+  Buffer<Box> box;                          ///< per slot
+  Buffer<std::uint8_t> zero_area;           ///< per slot: collinear or coincident vertices (exact)
+  std::vector<Node> nodes;                  ///< the tree (empty without one)
+  [[nodiscard]] std::size_t size() const { return n; }
+  [[nodiscard]] Vec3<double> vertex(std::uint32_t x) const {
+    Vec3<double> p;
+    std::memcpy(&p, vertices + 24 * std::size_t(x), 24);
+    return p;
+  }
+  void corners(std::size_t s, Vec3<double>* out) const {
+    for (int k = 0; k < 3; ++k) out[k] = vertex(idx[3 * s + k]);
+  }
+  [[nodiscard]] Triangle<double> tri(std::size_t s) const {
+    return {vertex(idx[3 * s]), vertex(idx[3 * s + 1]), vertex(idx[3 * s + 2])};
+  }
+};
+static_assert(sizeof(Vec3<double>) == 24);
 
 Vec3<double> vertex_at(const VertexArray& va, std::size_t k) {
   const auto* p = static_cast<const unsigned char*>(va.data) + k * va.stride;
@@ -50,18 +99,103 @@ bool zero_area(const Vec3<double>& a, const Vec3<double>& b, const Vec3<double>&
   return true;
 }
 
+/// The plane of a triangle (p0, p1, p2) as orient3d's filter uses it: the minors of (p1 - p0) and
+/// (p2 - p0) and their absolute sums, so that side() computes bit for bit the double value and
+/// bound of orient::orient3d(p0, p1, p2, x) with a third of its products.
+struct Plane {
+  double nx, ny, nz;  ///< m1 - m2, m3 - m4, m5 - m6
+  double sx, sy, sz;  ///< |m1| + |m2|, |m3| + |m4|, |m5| + |m6|
+  bool filter;        ///< the edge differences are in the filter's exponent window
+};
+
+Plane plane_of(const Vec3<double>& a, const Vec3<double>& b, const Vec3<double>& c) {
+  // The operations of orient::orient3d(a, b, c, .) on u = b - a, v = c - a, in its order.
+  const double ux = b.x - a.x, uy = b.y - a.y, uz = b.z - a.z;
+  const double vx = c.x - a.x, vy = c.y - a.y, vz = c.z - a.z;
+  const double m1 = uy * vz, m2 = uz * vy, m3 = uz * vx, m4 = ux * vz, m5 = ux * vy, m6 = uy * vx;
+  return {m1 - m2,
+          m3 - m4,
+          m5 - m6,
+          std::fabs(m1) + std::fabs(m2),
+          std::fabs(m3) + std::fabs(m4),
+          std::fabs(m5) + std::fabs(m6),
+          certified::in_range<-480, 1023>(ux, uy, uz, vx, vy, vz)};
+}
+
+/// The exact sign of orient3d(t[0], t[1], t[2], x), P the plane of t: orient3d's filter on the
+/// stored minors (the same double value and bound), else the exact predicate.
+int side(const Plane& P, const Vec3<double>* t, const Vec3<double>& x) {
+  if (P.filter) {
+    const double wx = x.x - t[0].x, wy = x.y - t[0].y, wz = x.z - t[0].z;
+    const double det = wx * P.nx + wy * P.ny + wz * P.nz;
+    const double perm = P.sx * std::fabs(wx) + P.sy * std::fabs(wy) + P.sz * std::fabs(wz);
+    if (perm > orient::detail::kTiny && std::fabs(det) > orient::detail::kO3dBound * perm &&
+        certified::in_range<-480, 1023>(wx, wy, wz))
+      return det > 0 ? 1 : -1;
+  }
+  return certified::orient3d_exact(t[0], t[1], t[2], x);
+}
+
+/// 30-bit Morton code of a grid cell (x, y, z < 1024).
+std::uint32_t morton(std::uint32_t x, std::uint32_t y, std::uint32_t z) {
+  auto spread = [](std::uint32_t b) {
+    b = (b | (b << 16)) & 0x030000ffu;
+    b = (b | (b << 8)) & 0x0300f00fu;
+    b = (b | (b << 4)) & 0x030c30c3u;
+    b = (b | (b << 2)) & 0x09249249u;
+    return b;
+  };
+  return (spread(x) << 2) | (spread(y) << 1) | spread(z);
+}
+
+/// Leaves hold up to this many triangles.
+constexpr std::uint32_t kLeaf = 4;
+
+/// Builds node `ni` over slots [first, last) of `key` (sorted, the Morton code in the high 32
+/// bits): a leaf of up to kLeaf, else split where the codes' highest differing bit turns on (at the
+/// middle when they are equal).
+Box build_node(std::vector<Node>& nodes, const Buffer<Box>& box, const std::vector<std::uint64_t>& key, std::uint32_t ni,
+               std::uint32_t first, std::uint32_t last) {
+  if (last - first <= kLeaf) {
+    Box b = box[first];
+    for (std::uint32_t k = first + 1; k < last; ++k) b.extend(box[k]);
+    nodes[ni] = Node{b, first, last - first};
+    return b;
+  }
+  std::uint32_t split = first + (last - first) / 2;
+  const std::uint32_t diff = std::uint32_t(key[first] >> 32) ^ std::uint32_t(key[last - 1] >> 32);
+  if (diff != 0) {
+    const std::uint64_t bit = std::uint64_t(0x80000000u >> std::countl_zero(diff)) << 32;
+    split = static_cast<std::uint32_t>(
+        std::partition_point(key.begin() + first, key.begin() + last, [&](std::uint64_t c) { return (c & bit) == 0; }) -
+        key.begin());
+  }
+  const auto c = static_cast<std::uint32_t>(nodes.size());
+  nodes.resize(c + 2);
+  Box b = build_node(nodes, box, key, c, first, split);
+  b.extend(build_node(nodes, box, key, c + 1, split, last));
+  nodes[ni] = Node{b, c, 0};
+  return b;
+}
+
 template <class ForEach>
 PairMesh load(const char* what, const VertexArray& va, const IndexArray& ia, bool with_tree, ForEach&& for_each) {
   if (ia.triangles > 0 && ia.data == nullptr) throw MeshInputError(std::string(what) + ": no index data");
   if (ia.triangles > 0 && va.count > 0 && va.data == nullptr) throw MeshInputError(std::string(what) + ": no vertex data");
   if (ia.triangles >= 0xffffffffu) throw MeshInputError(std::string(what) + ": too many triangles");
-  PairMesh m;
   const std::size_t n = ia.triangles;
-  m.v.resize(3 * n), m.idx.resize(3 * n), m.box.resize(n), m.zero_area.resize(n);
-  for (std::size_t t = 0; t < n; ++t) {
-    const auto* row = reinterpret_cast<const std::uint32_t*>(reinterpret_cast<const unsigned char*>(ia.data) + t * ia.stride);
+  auto row = [&](std::size_t t) {
+    return reinterpret_cast<const std::uint32_t*>(reinterpret_cast<const unsigned char*>(ia.data) + t * ia.stride);
+  };
+  PairMesh m;
+  m.n = n;
+  if (n == 0) return m;
+  // The input checked in its order (the first bad triangle is the one reported); the bounds of the
+  // used vertices for the Morton codes.
+  double lo[3] = {HUGE_VAL, HUGE_VAL, HUGE_VAL}, hi[3] = {-HUGE_VAL, -HUGE_VAL, -HUGE_VAL};
+  for (std::size_t t = 0; t < n; ++t)
     for (int k = 0; k < 3; ++k) {
-      const std::uint32_t x = row[k];
+      const std::uint32_t x = row(t)[k];
       if (x >= va.count)
         throw MeshInputError(std::string(what) + ": triangle " + std::to_string(t) + " has vertex index " +
                             std::to_string(x) + " outside [0, " + std::to_string(va.count) + ")");
@@ -69,36 +203,87 @@ PairMesh load(const char* what, const VertexArray& va, const IndexArray& ia, boo
       if (!std::isfinite(p.x) || !std::isfinite(p.y) || !std::isfinite(p.z))
         throw MeshInputError(std::string(what) + ": vertex " + std::to_string(x) + " (of triangle " + std::to_string(t) +
                             ") has a NaN or infinite coordinate");
-      m.idx[3 * t + k] = x, m.v[3 * t + k] = p;
-      m.box[t].extend(p);
+      for (int c = 0; c < 3; ++c) lo[c] = std::min(lo[c], p[c]), hi[c] = std::max(hi[c], p[c]);
     }
+  if (va.is_double && va.stride == 24) {
+    m.vertices = static_cast<const unsigned char*>(va.data);
+  } else {
+    m.converted.resize(va.count);
+    for_each(va.count, [&](std::size_t x) { m.converted[x] = vertex_at(va, x); });
+    m.vertices = reinterpret_cast<const unsigned char*>(m.converted.data());
   }
-  for_each(n, [&](std::size_t t) { m.zero_area[t] = zero_area(m.v[3 * t], m.v[3 * t + 1], m.v[3 * t + 2]); });
-  if (with_tree && n > 0) m.bvh = build_bvh(std::span<const BvhBox>(m.box), std::span<const Vec3<float>>(), {}, for_each);
+  // The slots' order: by the Morton code of each triangle's centroid on a 1024^3 grid over the
+  // bounds (radix sort, stable: equal codes keep the input's order); the input's order without a tree.
+  std::vector<std::uint64_t> key;
+  m.id.resize(n);
+  if (with_tree) {
+    key.resize(n);
+    double scale[3];
+    for (int c = 0; c < 3; ++c) scale[c] = hi[c] > lo[c] ? 1023.0 / (hi[c] - lo[c]) : 0.0;
+    for_each(n, [&](std::size_t t) {
+      std::uint32_t g[3];
+      for (int c = 0; c < 3; ++c) {
+        double sum = 0;
+        for (int k = 0; k < 3; ++k) sum += m.vertex(row(t)[k])[c];
+        const double f = (sum / 3 - lo[c]) * scale[c];
+        g[c] = static_cast<std::uint32_t>(std::clamp(f, 0.0, 1023.0));
+      }
+      key[t] = (std::uint64_t(morton(g[0], g[1], g[2])) << 32) | t;
+    });
+    std::vector<std::uint64_t> tmp(n);
+    for (int shift = 32; shift < 62; shift += 10) {  // three passes of 10 bits
+      std::vector<std::uint32_t> count(1025, 0);
+      for (std::size_t t = 0; t < n; ++t) ++count[((key[t] >> shift) & 1023) + 1];
+      for (int d = 0; d < 1024; ++d) count[d + 1] += count[d];
+      for (std::size_t t = 0; t < n; ++t) tmp[count[(key[t] >> shift) & 1023]++] = key[t];
+      key.swap(tmp);
+    }
+    for (std::size_t s = 0; s < n; ++s) m.id[s] = std::uint32_t(key[s]);
+  } else {
+    for (std::size_t s = 0; s < n; ++s) m.id[s] = static_cast<std::uint32_t>(s);
+  }
+  m.idx.resize(3 * n), m.box.resize(n), m.zero_area.resize(n);
+  for_each(n, [&](std::size_t s) {
+    const std::uint32_t* r = row(m.id[s]);
+    Vec3<double> p[3];
+    for (int k = 0; k < 3; ++k) m.idx[3 * s + k] = r[k], p[k] = m.vertex(r[k]);
+    Box b;
+    b.set(p[0]);
+    for (int k = 1; k < 3; ++k) {
+      Box c;
+      c.set(p[k]);
+      b.extend(c);
+    }
+    m.box[s] = b;
+    m.zero_area[s] = zero_area(p[0], p[1], p[2]);
+  });
+  if (with_tree) {
+    m.nodes.reserve(2 * (n / kLeaf) + 16);
+    m.nodes.resize(1);
+    build_node(m.nodes, m.box, key, 0, 0, static_cast<std::uint32_t>(n));
+  }
   return m;
 }
 
-bool overlap(const BvhBox& a, const BvhBox& b) {
+bool overlap(const Box& a, const Box& b) {
   return a.lo[0] <= b.hi[0] && b.lo[0] <= a.hi[0] && a.lo[1] <= b.hi[1] && b.lo[1] <= a.hi[1] && a.lo[2] <= b.hi[2] &&
          b.lo[2] <= a.hi[2];
 }
 
-/// Calls f(j) for every triangle j of `tree` whose box overlaps `q`, in no particular order.
+/// Calls f(s) for every slot s of `tree` whose box overlaps `q`, in no particular order.
 template <class F>
-void query(const PairMesh& tree, const BvhBox& q, std::vector<std::uint32_t>& stack, F&& f) {
-  if (tree.bvh.empty()) return;
-  const auto& nodes = tree.bvh.nodes;
+void query(const PairMesh& tree, const Box& q, std::vector<std::uint32_t>& stack, F&& f) {
+  if (tree.nodes.empty()) return;
+  const auto& nodes = tree.nodes;
   stack.clear();
   stack.push_back(0);
   while (!stack.empty()) {
-    const BvhNode& node = nodes[stack.back()];
+    const Node& node = nodes[stack.back()];
     stack.pop_back();
     if (!overlap(node.box, q)) continue;
     if (node.is_leaf()) {
-      for (std::uint32_t k = node.index; k < node.index + node.count; ++k) {
-        const std::uint32_t j = tree.bvh.prim_ids[k];
-        if (overlap(tree.box[j], q)) f(j);
-      }
+      for (std::uint32_t s = node.index; s < node.index + node.count; ++s)
+        if (overlap(tree.box[s], q)) f(s);
     } else {
       stack.push_back(node.index + 1);
       stack.push_back(node.index);
@@ -106,19 +291,16 @@ void query(const PairMesh& tree, const BvhBox& q, std::vector<std::uint32_t>& st
   }
 }
 
-/// All three points strictly on one side of the plane of (p0, p1, p2) (exact signs).
-bool one_side(const Vec3<double>& p0, const Vec3<double>& p1, const Vec3<double>& p2, const Vec3<double>& x,
-              const Vec3<double>& y, const Vec3<double>& z) {
-  const int s = certified::orient3d_exact(p0, p1, p2, x);
-  if (s == 0) return false;
-  return certified::orient3d_exact(p0, p1, p2, y) == s && certified::orient3d_exact(p0, p1, p2, z) == s;
+/// All three points strictly on one side of the plane P of triangle t (exact signs).
+bool one_side(const Plane& P, const Vec3<double>* t, const Vec3<double>* x) {
+  const int s = side(P, t, x[0]);
+  return s != 0 && side(P, t, x[1]) == s && side(P, t, x[2]) == s;
 }
 
-/// The segment (x, y) strictly on one side of the plane of (p0, p1, p2) (exact signs).
-bool segment_off_plane(const Vec3<double>& p0, const Vec3<double>& p1, const Vec3<double>& p2, const Vec3<double>& x,
-                       const Vec3<double>& y) {
-  const int s = certified::orient3d_exact(p0, p1, p2, x);
-  return s != 0 && certified::orient3d_exact(p0, p1, p2, y) == s;
+/// The segment (x, y) strictly on one side of the plane P of triangle t (exact signs).
+bool segment_off_plane(const Plane& P, const Vec3<double>* t, const Vec3<double>& x, const Vec3<double>& y) {
+  const int s = side(P, t, x);
+  return s != 0 && side(P, t, y) == s;
 }
 
 /// The closed segment [x, y] (x != y) meets the closed triangle t (positive area): the certified
@@ -141,8 +323,8 @@ bool segment_meets(const Vec3<double>& x, const Vec3<double>& y, const Vec3<doub
 bool self_pair_intersects(const PairMesh& m, std::uint32_t i, std::uint32_t j) {
   const std::uint32_t* a = &m.idx[3 * i];
   const std::uint32_t* b = &m.idx[3 * j];
-  const Vec3<double>* pa = &m.v[3 * i];
-  const Vec3<double>* pb = &m.v[3 * j];
+  Vec3<double> pa[3], pb[3];
+  m.corners(i, pa), m.corners(j, pb);
   int shared = 0, ka = -1, kb = -1, b_only = -1;
   for (int y = 0; y < 3; ++y) {
     bool in_a = false;
@@ -150,14 +332,14 @@ bool self_pair_intersects(const PairMesh& m, std::uint32_t i, std::uint32_t j) {
       if (a[x] == b[y]) ++shared, ka = x, kb = y, in_a = true;
     if (!in_a) b_only = y;
   }
+  const Plane qa = plane_of(pa[0], pa[1], pa[2]);
   if (shared == 0) {
-    if (one_side(pa[0], pa[1], pa[2], pb[0], pb[1], pb[2]) || one_side(pb[0], pb[1], pb[2], pa[0], pa[1], pa[2]))
-      return false;
+    if (one_side(qa, pa, pb) || one_side(plane_of(pb[0], pb[1], pb[2]), pb, pa)) return false;
     return certified::tritri_meets(m.tri(i), m.tri(j));
   }
   if (shared >= 2) {
     // Not coplanar: they meet in the shared edge alone.
-    if (shared == 2 && certified::orient3d_exact(pa[0], pa[1], pa[2], pb[b_only]) != 0) return false;
+    if (shared == 2 && side(qa, pa, pb[b_only]) != 0) return false;
     return certified::tritri(m.tri(i), m.tri(j)) == TriTri::coplanar_overlap;
   }
   // One shared vertex: a point in both other than it exists exactly when the edge of one opposite
@@ -169,7 +351,7 @@ bool self_pair_intersects(const PairMesh& m, std::uint32_t i, std::uint32_t j) {
   const Vec3<double>& b2 = pb[(kb + 2) % 3];
   // The edge of b opposite v strictly on one side of a's plane puts all of b but v strictly on that
   // side: nothing beyond v in common (two signs settle most pairs of a smooth mesh); likewise a.
-  if (segment_off_plane(pa[0], pa[1], pa[2], b1, b2) || segment_off_plane(pb[0], pb[1], pb[2], a1, a2)) return false;
+  if (segment_off_plane(qa, pa, b1, b2) || segment_off_plane(plane_of(pb[0], pb[1], pb[2]), pb, a1, a2)) return false;
   return segment_meets(b1, b2, pa) || segment_meets(a1, a2, pb);
 }
 
@@ -187,27 +369,26 @@ constexpr int kTaskLevels = 6;
 /// distinct triangles once over the whole descent).
 template <class Push, class Emit>
 void self_step(const PairMesh& m, NodePair t, Push&& push, Emit&& emit) {
-  const auto& nodes = m.bvh.nodes;
-  const auto& ids = m.bvh.prim_ids;
-  const BvhNode& A = nodes[t.a];
+  const auto& nodes = m.nodes;
+  const Node& A = nodes[t.a];
   if (t.a == t.b) {
     if (A.is_leaf()) {
       for (std::uint32_t k = A.index; k < A.index + A.count; ++k)
         for (std::uint32_t l = k + 1; l < A.index + A.count; ++l)
-          if (overlap(m.box[ids[k]], m.box[ids[l]])) emit(ids[k], ids[l]);
+          if (overlap(m.box[k], m.box[l])) emit(k, l);
     } else {
       push(NodePair{A.index, A.index}), push(NodePair{A.index + 1, A.index + 1}), push(NodePair{A.index, A.index + 1});
     }
     return;
   }
-  const BvhNode& B = nodes[t.b];
+  const Node& B = nodes[t.b];
   if (!overlap(A.box, B.box)) return;
   if (A.is_leaf() && B.is_leaf()) {
     for (std::uint32_t k = A.index; k < A.index + A.count; ++k) {
-      const BvhBox& bk = m.box[ids[k]];
+      const Box& bk = m.box[k];
       if (!overlap(bk, B.box)) continue;
       for (std::uint32_t l = B.index; l < B.index + B.count; ++l)
-        if (overlap(bk, m.box[ids[l]])) emit(ids[k], ids[l]);
+        if (overlap(bk, m.box[l])) emit(k, l);
     }
   } else if (B.is_leaf() || (!A.is_leaf() && A.box.half_area() >= B.box.half_area())) {
     push(NodePair{A.index, t.b}), push(NodePair{A.index + 1, t.b});
@@ -258,14 +439,16 @@ std::vector<TrianglePair> self_intersections(const VertexArray& vertices, const 
                                              const IntersectOptions& opt) {
   const PairMesh m = load("mesh", vertices, indices, true, parallel(opt.threads));
   std::vector<TrianglePair> pairs;
-  for (std::uint32_t i = 0; i < m.size(); ++i)
-    if (m.zero_area[i]) pairs.push_back({i, i, opt.classes ? TriTri::degenerate : TriTri::invalid});
+  for (std::uint32_t s = 0; s < m.size(); ++s)
+    if (m.zero_area[s]) pairs.push_back({m.id[s], m.id[s], opt.classes ? TriTri::degenerate : TriTri::invalid});
+  // p, q: slots. The pair is decided with the lower input number first (the classes' order).
   const auto test = [&](std::uint32_t p, std::uint32_t q, std::vector<TrianglePair>& out) {
-    const std::uint32_t i = std::min(p, q), j = std::max(p, q);
-    if (m.zero_area[i] || m.zero_area[j] || !self_pair_intersects(m, i, j)) return;
-    out.push_back({i, j, opt.classes ? certified::tritri(m.tri(i), m.tri(j)) : TriTri::invalid});
+    if (m.zero_area[p] || m.zero_area[q]) return;
+    if (m.id[p] > m.id[q]) std::swap(p, q);
+    if (!self_pair_intersects(m, p, q)) return;
+    out.push_back({m.id[p], m.id[q], opt.classes ? certified::tritri(m.tri(p), m.tri(q)) : TriTri::invalid});
   };
-  if (!m.bvh.empty()) {
+  if (!m.nodes.empty()) {
     // The top levels one after the other, into tasks; then the tasks on the threads.
     std::vector<NodePair> tasks{{0, 0}}, next;
     for (int level = 0; level < kTaskLevels && !tasks.empty(); ++level) {
@@ -277,6 +460,7 @@ std::vector<TrianglePair> self_intersections(const VertexArray& vertices, const 
     std::vector<std::vector<TrianglePair>> found(tasks.size());
     scene::detail::for_each_batch_range(tasks.size(), opt.threads, 2, 1, [&](std::size_t t0, std::size_t t1) {
       std::vector<NodePair> stack;
+      stack.reserve(256);
       for (std::size_t t = t0; t < t1; ++t) {
         stack.assign(1, tasks[t]);
         while (!stack.empty()) {
@@ -300,7 +484,7 @@ std::vector<TrianglePair> intersecting_pairs(const MeshArrays& a, const MeshArra
     const Triangle<double> ti = ma.tri(i);
     query(mb, ma.box[i], stack, [&](std::uint32_t j) {
       if (!certified::tritri_meets(ti, mb.tri(j))) return;
-      row.push_back({i, j, opt.classes ? certified::tritri(ti, mb.tri(j)) : TriTri::invalid});
+      row.push_back({i, mb.id[j], opt.classes ? certified::tritri(ti, mb.tri(j)) : TriTri::invalid});
     });
   });
 }
