@@ -89,6 +89,8 @@ std::vector<std::string> check_sentences(const CheckResult& r) {
         s.push_back("Promise watertight: kept (no false miss and no failure on tri_edge and tri_vertex).");
       else if (p.promise == "exact-class")
         s.push_back("Promise exact-class: kept (no class error and no failure on any family).");
+      else if (p.promise == "no-false-negative")
+        s.push_back("Promise no-false-negative: kept (no false miss, no pair that meets called disjoint, and no failure).");
       else
         s.push_back(fmt::format("Promise {}: kept (no class-correct t further off).", p.promise));
       continue;
@@ -99,6 +101,9 @@ std::vector<std::string> check_sentences(const CheckResult& r) {
                               plural(p.violations, "case", "cases")));
     else if (p.promise == "exact-class")
       s.push_back(fmt::format("Promise exact-class: BROKEN by {} (class errors and failures).",
+                              plural(p.violations, "case", "cases")));
+    else if (p.promise == "no-false-negative")
+      s.push_back(fmt::format("Promise no-false-negative: BROKEN by {} (false misses, false disjoints and failures).",
                               plural(p.violations, "case", "cases")));
     else
       s.push_back(fmt::format("Promise {}: BROKEN by {} with a t further off.", p.promise,
