@@ -285,6 +285,7 @@ Outcome stream(const Shared& sh, std::span<const io::Case> cases, std::span<io::
                  " case");
             break;
           }
+          if (cases[o.answered].kind == io::Kind::tritri) a->pair = true;  // written `hit`, `miss` or the class alone
           out[o.answered++] = *a;
         }
         rbuf.erase(0, begin);
