@@ -68,9 +68,13 @@ std::vector<io::Case> halves(const std::string& family, std::size_t count, std::
   return out;
 }
 
+/// The cases as a case file, with a `# family NAME` line where the family changes.
 std::string case_file(const std::vector<io::Case>& cases) {
-  std::string s;
-  for (const auto& c : cases) io::append_case_line(s, c);
+  std::string s, family;
+  for (const auto& c : cases) {
+    if (c.family != family) s += "# family " + c.family + "\n", family = c.family;
+    io::append_case_line(s, c);
+  }
   return s;
 }
 
@@ -100,7 +104,7 @@ TEST(TriTriCli, ClassifyAnswersEachPairWithItsClassAndBadLinesWithErrors) {
     EXPECT_EQ(l[1], "disjoint") << m;
     EXPECT_EQ(l[2], "crossing") << m;
     EXPECT_EQ(l[3].rfind("error", 0), 0u) << m << l[3];
-    EXPECT_NE(r.err.find("line 4"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("-:4: tritri needs 18 numbers, got 17"), std::string::npos) << r.err;
   }
 }
 
@@ -327,6 +331,12 @@ TEST(TriTriCheckText, PairResultsAreWordedAsMeetsAndDisjoint) {
   const auto table = verify::check_table(r);
   EXPECT_NE(table.find("false meets"), std::string::npos) << table;
   EXPECT_NE(table.find("false disjoint"), std::string::npos) << table;
+  {  // the row: cases, false meets, false disjoint, wrong class, no t (three "-"), no tolerance ("-"), failures
+    std::istringstream row(table.substr(table.find("tritri_shared_edge")));
+    std::vector<std::string> cells(10);
+    for (auto& c : cells) row >> c;
+    EXPECT_EQ(cells, (std::vector<std::string>{"tritri_shared_edge", "40", "3", "5", "0", "-", "-", "-", "-", "0"})) << table;
+  }
   const auto s = verify::check_sentences(r);
   ASSERT_GE(s.size(), 3u);
   EXPECT_EQ(s[0], "8 of 40 pairs (20%) have a class error: 3 false meets (disjoint, called meeting), "
