@@ -266,8 +266,9 @@ def test_pair_kernel_gets_six_points_in_its_precision():
 def test_the_guigue_devillers_example_misses_contacts_and_its_reproducers_reproduce():
     gd = _gd_example()
 
-    def f(p0, p1, p2, q0, q1, q2):
-        return gd.meets([tuple(p0), tuple(p1), tuple(p2)], [tuple(q0), tuple(q1), tuple(q2)])
+    def f(*pts):  # numpy arrays of 3 -> the example's tuples of Python floats
+        p0, p1, p2, q0, q1, q2 = (tuple(float(x) for x in p) for p in pts)
+        return gd.meets([p0, p1, p2], [q0, q1, q2])
 
     res = rayproof.check(f, kind="tritri", count=200, seed=1, precision="double", families=PAIR_FAMILIES,
                          minimize=False)
