@@ -253,6 +253,24 @@ TEST(TriTriCheck, ExecPairKernelTalliesAreTheKernelsAndThePromiseFollowsThem) {
   if (want.false_disjoint > 0) expect_reproducer_reproduces(j, exec, "gd");
 }
 
+TEST(TriTriCheck, KernelsThatGiveClassesAreHeldToExactClass) {
+  // Every pair of tritri_shared_edge is touching by construction: a kernel that always says
+  // `crossing` has the meets-or-not answer right and the class wrong on each one.
+  int status = -1;
+  const auto j = check_json("--exec 'x:double:tritri=while read l; do echo crossing; done' --expect exact-class",
+                            "tritri_shared_edge", 40, status);
+  const auto& t = j.at("total");
+  EXPECT_EQ(t.at("cases").get<std::size_t>(), 40u);
+  EXPECT_EQ(t.at("wrong_hit_class").get<std::size_t>() + t.at("wrong_class").get<std::size_t>(), 40u);
+  EXPECT_EQ(t.at("false_hit").get<std::size_t>() + t.at("false_miss").get<std::size_t>(), 0u);
+  EXPECT_EQ(status, 1);
+  // The certified classifier served over the line protocol keeps the promise.
+  const auto c = check_json(std::string("--exec 'c=") + RAYPROOF_BIN + " serve --method certified' --expect exact-class",
+                            "tritri_shared_edge,tritri_coplanar", 40, status);
+  EXPECT_EQ(c.at("total").at("cases").get<std::size_t>(), 80u);
+  EXPECT_EQ(status, 0) << c.dump();
+}
+
 TEST(TriTriCheck, TheCPluginExampleMissesWhatMollerInFloatMisses) {
   const std::string plugin = std::string(RAYPROOF_PLUGIN_DIR) + "/tritri_moller_c.so";
   const std::string fams = "tritri_shared_vertex,tritri_coplanar_touching";
