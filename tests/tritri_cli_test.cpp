@@ -271,6 +271,26 @@ TEST(TriTriCheck, KernelsThatGiveClassesAreHeldToExactClass) {
   EXPECT_EQ(status, 0) << c.dump();
 }
 
+TEST(TriTriCheck, GarbageAndCrashesOfAPairKernelAreFailuresWithTheirPair) {
+  struct Bad {
+    const char* kernel;
+    const char* what;
+  };
+  for (const Bad& b : {Bad{"while read l; do echo hit 1.0; done", "is not an answer to a tritri case"},
+                       Bad{"while read l; do echo edge 1.0 -; done", "is not an answer to a tritri case"},
+                       Bad{"read l; kill -SEGV $$", "crashed (signal 11"}}) {
+    int status = -1;
+    const auto j = check_json(std::string("--exec 'bad:double:tritri=") + b.kernel + "'", "tritri_crossing", 4, status);
+    EXPECT_EQ(status, 1) << b.kernel;  // no-false-negative counts failures
+    EXPECT_EQ(j.at("total").at("failures").get<std::size_t>(), 4u) << b.kernel;
+    EXPECT_EQ(j.at("total").at("false_miss").get<std::size_t>() + j.at("total").at("false_hit").get<std::size_t>(), 0u);
+    const auto& rep = j.at("families").at(0).at("reproducers").at(0);
+    EXPECT_EQ(rep.at("verdict"), "kernel-failure");
+    EXPECT_NE(rep.at("what").get<std::string>().find(b.what), std::string::npos) << rep.dump();
+    EXPECT_EQ(rep.at("case").get<std::string>().rfind("tritri ", 0), 0u);
+  }
+}
+
 TEST(TriTriCheck, TheCPluginExampleMissesWhatMollerInFloatMisses) {
   const std::string plugin = std::string(RAYPROOF_PLUGIN_DIR) + "/tritri_moller_c.so";
   const std::string fams = "tritri_shared_vertex,tritri_coplanar_touching";
