@@ -59,6 +59,7 @@ void visit(const io::Case& c, F&& f) {
     case io::Kind::triangle: f(ray, triangle_of<double>(c)); return;
     case io::Kind::box: f(ray, box_of<double>(c)); return;
     case io::Kind::disk: f(ray, disk_of<double>(c)); return;
+    case io::Kind::tritri: ADD_FAILURE() << "a triangle pair has no ray: " << io::format_case(c); return;
   }
 }
 

@@ -1,4 +1,5 @@
 #include "io/case_file.h"
+#include "rayproof/tritri_class.h"
 
 #include <gtest/gtest.h>
 
@@ -168,4 +169,109 @@ TEST(CaseFile, AppendCaseLineMatchesFormatCase) {
       }
     }
   }
+}
+
+// ---- triangle pairs (kind tritri, docs/cases.md and docs/tritri.md) ----
+
+TEST(CaseFilePairs, ParsesEighteenNumbersInVertexOrder) {
+  std::istringstream in(
+      "# family tt_shared_edge\ntritri 0 0 0 4 0 0 0 4 0  1 1 0 1 1 1 2 1 0x1p-3  # tail\n"
+      "tritri 1 2 3 4 5 6 7 8 9 10 11 12 13 14 15 16 17 nan\n");
+  const auto e = read_cases(in);
+  ASSERT_EQ(e.size(), 2u);
+  const auto& c = std::get<Case>(e[0]);
+  EXPECT_EQ(c.kind, Kind::tritri);
+  EXPECT_EQ(c.family, "tt_shared_edge");
+  EXPECT_EQ(c.v[3], 4.0);   // p1.x
+  EXPECT_EQ(c.v[9], 1.0);   // q0.x
+  EXPECT_EQ(c.v[17], 0.125);  // q2.z
+  const auto& d = std::get<Case>(e[1]);
+  for (int i = 0; i < 17; ++i) EXPECT_EQ(d.v[static_cast<std::size_t>(i)], i + 1.0);
+  EXPECT_TRUE(std::isnan(d.v[17]));
+  EXPECT_EQ(field_count(Kind::tritri), 18);
+  EXPECT_EQ(kind_from_string("tritri"), Kind::tritri);
+  EXPECT_EQ(to_string(Kind::tritri), "tritri");
+}
+
+TEST(CaseFilePairs, BadLinesAreErrorsAsForRays) {
+  std::istringstream in(
+      "tritri 0 0 0 1 0 0 0 1 0 0 0 1 1 0 1 0 1\n"           // 17 numbers
+      "tritri 0 0 0 1 0 0 0 1 0 0 0 1 1 0 1 0 1 1 2\n"       // 19 numbers
+      "tritri 0 0 0 1 0 0 0 1 0 0 0 1 1 0 1 0 one 1\n"       // not a number
+      "tri-tri 0 0 0 1 0 0 0 1 0 0 0 1 1 0 1 0 1 1\n");
+  const auto e = read_cases(in);
+  ASSERT_EQ(e.size(), 4u);
+  EXPECT_NE(std::get<CaseError>(e[0]).message.find("tritri needs 18 numbers, got 17"), std::string::npos);
+  EXPECT_NE(std::get<CaseError>(e[1]).message.find("tritri needs 18 numbers, got 19"), std::string::npos);
+  EXPECT_NE(std::get<CaseError>(e[2]).message.find("field 17 'one' is not a number"), std::string::npos);
+  EXPECT_NE(std::get<CaseError>(e[3]).message.find("unknown kind 'tri-tri'"), std::string::npos);
+  EXPECT_NE(std::get<CaseError>(e[3]).message.find("disk or tritri"), std::string::npos);
+}
+
+TEST(CaseFilePairs, CaseLinesRoundTrip) {
+  std::mt19937_64 rng(11);
+  for (int i = 0; i < 500; ++i) {
+    Case c;
+    c.kind = Kind::tritri;
+    for (double& x : c.v) x = i % 2 ? std::bit_cast<double>(rng()) : double(std::int64_t(rng() % 2001) - 1000) / 64.0;
+    std::string fam;
+    const auto back = parse_case_line(format_case(c), 1, fam);
+    ASSERT_TRUE(back && std::holds_alternative<Case>(*back)) << format_case(c);
+    const Case& b = std::get<Case>(*back);
+    for (std::size_t k = 0; k < 18; ++k) {
+      if (std::isnan(c.v[k])) {  // written `nan`: any NaN reads back as a NaN
+        ASSERT_TRUE(std::isnan(b.v[k])) << format_case(c);
+        continue;
+      }
+      ASSERT_EQ(std::bit_cast<std::uint64_t>(b.v[k]), std::bit_cast<std::uint64_t>(c.v[k])) << format_case(c);
+    }
+  }
+}
+
+TEST(CaseFilePairs, AnswerIsTheClassAlone) {
+  for (Contact c : {Contact::disjoint, Contact::crossing, Contact::touching, Contact::coplanar_overlap,
+                    Contact::coplanar_touching, Contact::degenerate, Contact::invalid}) {
+    const CaseResult r = pair_result(c);
+    const std::string text = format_result(r);
+    EXPECT_EQ(text, std::string(to_string(c)));
+    const auto back = parse_result(text);
+    ASSERT_TRUE(back) << text;
+    EXPECT_EQ(*back, r);
+    const auto answer = parse_answer(text);
+    ASSERT_TRUE(answer) << text;
+    EXPECT_EQ(*answer, r);
+    EXPECT_EQ(format_answer(*answer), text);
+  }
+  EXPECT_EQ(format_result(pair_coarse(true)), "hit");
+  EXPECT_EQ(format_result(pair_coarse(false)), "miss");
+  // A pair class is never written with T columns, and ray classes never stand alone.
+  for (const char* bad : {"touching - -", "crossing 1.0 -", "interior", "edge", "miss - - -", "coplanar", "error"})
+    EXPECT_FALSE(parse_result(bad)) << bad;
+  EXPECT_TRUE(is_hit(Contact::touching) && is_hit(Contact::crossing) && is_hit(Contact::coplanar_overlap) &&
+              is_hit(Contact::coplanar_touching));
+  EXPECT_FALSE(is_hit(Contact::disjoint));
+  for (std::size_t i = 0; i < kTriTriNames.size(); ++i) {
+    const auto t = static_cast<TriTri>(i);
+    EXPECT_EQ(to_string(to_contact(t)), to_string(t));
+    EXPECT_EQ(tritri_of(to_contact(t)), t);
+    EXPECT_EQ(is_hit(to_contact(t)), meets(t));
+  }
+  EXPECT_FALSE(tritri_of(Contact::edge));
+}
+
+TEST(CaseFilePairs, AnswersFitTheirKind) {
+  const auto hit = parse_answer("hit"), miss = parse_answer("miss"), touching = parse_answer("touching"),
+             hit_t = parse_answer("hit 1.0"), edge = parse_answer("edge 2.0 -"), invalid = parse_answer("invalid");
+  ASSERT_TRUE(hit && miss && touching && hit_t && edge && invalid);
+  EXPECT_TRUE(answer_fits(Kind::tritri, *hit));
+  EXPECT_TRUE(answer_fits(Kind::tritri, *miss));
+  EXPECT_TRUE(answer_fits(Kind::tritri, *touching));
+  EXPECT_TRUE(answer_fits(Kind::tritri, *invalid));
+  EXPECT_FALSE(answer_fits(Kind::tritri, *hit_t));  // a pair has no t
+  EXPECT_FALSE(answer_fits(Kind::tritri, *edge));
+  EXPECT_TRUE(answer_fits(Kind::triangle, *edge));
+  EXPECT_TRUE(answer_fits(Kind::triangle, *hit_t));
+  EXPECT_TRUE(answer_fits(Kind::triangle, *hit));
+  EXPECT_FALSE(answer_fits(Kind::triangle, *touching));
+  EXPECT_FALSE(answer_fits(Kind::sphere, *invalid));  // a ray case's invalid is `invalid - -`
 }

@@ -54,14 +54,17 @@ void crosscheck(const io::Case& c, std::map<Contact, std::size_t>& seen) {
 
 TEST(ExactCrosscheck, EveryFamilyFloatAndDoubleBuilt) {
   std::map<Contact, std::size_t> seen;
-  std::size_t cases = 0;
-  for (const gen::Family& f : gen::families())
+  std::size_t cases = 0, ray_families = 0;
+  for (const gen::Family& f : gen::families()) {
+    if (f.kind == io::Kind::tritri) continue;  // pairs have no ray: tritri_test cross-checks them against CGAL
+    ++ray_families;
     for (const auto p : {gen::Precision::float32, gen::Precision::float64})
       for (const io::Case& c : gen::generate(f, kCasesPerFamily, kSeed, p)) {
         crosscheck(c, seen);
         ++cases;
       }
-  EXPECT_EQ(cases, gen::families().size() * 2 * kCasesPerFamily);
+  }
+  EXPECT_EQ(cases, ray_families * 2 * kCasesPerFamily);
   // Coverage: every class the kernels construct answers for turns up (the families claim them).
   for (const Contact k : {Contact::hit, Contact::miss, Contact::behind, Contact::inside, Contact::tangent,
                           Contact::graze, Contact::rim, Contact::interior, Contact::edge, Contact::vertex,

@@ -64,7 +64,10 @@ void expect_same_stats(const verify::Stats& a, const verify::Stats& b, const std
 
 TEST(ExecKernel, BuiltInFloatThroughServeGivesTheInProcessTallies) {
   std::vector<io::Case> cases;
+  std::size_t ray_families = 0;
   for (const auto& f : gen::families()) {
+    if (f.kind == io::Kind::tritri) continue;  // float answers rays only
+    ++ray_families;
     auto c = gen::generate(f, 24, 5, gen::Precision::float64);
     cases.insert(cases.end(), c.begin(), c.end());
   }
@@ -76,7 +79,7 @@ TEST(ExecKernel, BuiltInFloatThroughServeGivesTheInProcessTallies) {
   EXPECT_EQ(ext.kinds, inproc->kinds);
   const auto exact = verify::exact_answers(cases);
   const auto cmp = verify::compare(cases, exact, {inproc, &ext}, 0);
-  ASSERT_EQ(cmp.groups.size(), gen::families().size());
+  ASSERT_EQ(cmp.groups.size(), ray_families);
   std::size_t total = 0;
   for (const auto& g : cmp.groups) {
     const auto a = cmp.stats.find({"float", g}), b = cmp.stats.find({"f", g});

@@ -117,6 +117,9 @@ TEST(GenDeterminism, FewerCasesAreAPrefixOfMore) {
 TEST(GenDeterminism, GoldenOutput) {
   std::string all64, all32;
   for (const auto& f : gen::families()) {
+    // The ray families' pinned bytes; the triangle-pair families are tritri_families.cpp's pairs
+    // (tritri_test checks the case lines are those pairs).
+    if (f.kind == io::Kind::tritri) continue;
     all64 += text_of(gen::generate(f, 20, 1, Precision::float64));
     all32 += text_of(gen::generate(f, 20, 1, Precision::float32));
   }

@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <sstream>
 #include <string>
+#include <variant>
 
 #include "io/case_file.h"
 #include "rayproof/certified/intersect.h"
@@ -21,6 +22,8 @@
 
 namespace rayproof {
 namespace {
+
+Triangle<double> detail_wide(const Triangle<float>& t) { return gtest::detail::wide(t); }
 
 using ::testing::HasSubstr;
 
@@ -104,6 +107,52 @@ TEST(GTestHelpers, CaseLineReadsBackExactly) {
   for (std::size_t i = 0; i < 15; ++i) {
     EXPECT_EQ(std::bit_cast<std::uint64_t>(c->v[i]), std::bit_cast<std::uint64_t>(want[i])) << line << " field " << i;
   }
+}
+
+// --- triangle pairs: EXPECT_TRITRI_MATCHES_EXACT ------------------------------------------------------
+
+// b's vertex (1, 1, 0) lies inside a: touching by construction (docs/tritri.md's example).
+const Triangle<double> kA{{0, 0, 0}, {4, 0, 0}, {0, 4, 0}};
+const Triangle<double> kB{{1, 1, 0}, {1, 1, 1}, {2, 1, 1}};
+const Triangle<double> kFar{{10, 10, 10}, {11, 10, 10}, {10, 11, 10}};
+
+TEST(GtestTriTri, PassesOnExactAnswersBoolOrClass) {
+  auto meets = [](const auto& a, const auto& b) { return exact::tritri_meets(a, b); };
+  auto cls = [](const auto& a, const auto& b) { return exact::tritri(a, b); };
+  EXPECT_TRITRI_MATCHES_EXACT(meets, kA, kB);
+  EXPECT_TRITRI_MATCHES_EXACT(meets, kA, kFar);
+  EXPECT_TRITRI_MATCHES_EXACT(cls, kA, kB);
+  // A float kernel: the pair is exact in float, and widened for the exact answer.
+  auto meets_f = [](const Triangle<float>& a, const Triangle<float>& b) {
+    return exact::tritri_meets(detail_wide(a), detail_wide(b));
+  };
+  const Triangle<float> af{{0, 0, 0}, {4, 0, 0}, {0, 4, 0}}, bf{{1, 1, 0}, {1, 1, 1}, {2, 1, 1}};
+  EXPECT_TRITRI_MATCHES_EXACT(meets_f, af, bf);
+}
+
+TEST(GtestTriTri, FailsWithTheCaseLineTheExactAndTheKernelAnswer) {
+  auto never = [](const auto&, const auto&) { return false; };
+  auto crossing = [](const auto&, const auto&) { return TriTri::crossing; };
+  EXPECT_NONFATAL_FAILURE(EXPECT_TRITRI_MATCHES_EXACT(never, kA, kB), "exact:  meets (touching)");
+  EXPECT_NONFATAL_FAILURE(EXPECT_TRITRI_MATCHES_EXACT(never, kA, kB), "kernel: disjoint");
+  EXPECT_NONFATAL_FAILURE(EXPECT_TRITRI_MATCHES_EXACT(crossing, kA, kB), "exact:  touching\n  kernel: crossing");
+  auto always = [](const auto&, const auto&) { return true; };
+  EXPECT_NONFATAL_FAILURE(EXPECT_TRITRI_MATCHES_EXACT(always, kA, kFar), "exact:  disjoint");
+
+  // The case line reads back to the same pair.
+  const auto r = gtest::tritri_matches_exact(never, kA, kB);
+  ASSERT_FALSE(r);
+  const std::string msg = r.message();
+  const auto at = msg.find("case:   ");
+  ASSERT_NE(at, std::string::npos) << msg;
+  const std::string line = msg.substr(at + 8, msg.find('\n', at) - at - 8);
+  std::string family;
+  const auto entry = io::parse_case_line(line, 1, family);
+  ASSERT_TRUE(entry && std::holds_alternative<io::Case>(*entry)) << line;
+  const auto& c = std::get<io::Case>(*entry);
+  EXPECT_EQ(c.kind, io::Kind::tritri);
+  const double want[18] = {0, 0, 0, 4, 0, 0, 0, 4, 0, 1, 1, 0, 1, 1, 1, 2, 1, 1};
+  for (int i = 0; i < 18; ++i) EXPECT_EQ(c.v[static_cast<std::size_t>(i)], want[i]) << i;
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 // the naive Möller–Trumbore examples in C, Python and JavaScript caught on exact edge and vertex hits.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <csignal>
 #include <cstdlib>
@@ -57,10 +58,11 @@ std::vector<io::Case> cases_of(const std::string& family, std::size_t n, std::ui
   return gen::generate(*f, n, seed, gen::Precision::float64);
 }
 
-/// Every family, n cases each.
+/// Every family of rays (not the tritri_* pair families), n cases each.
 std::vector<io::Case> all_families(std::size_t n) {
   std::vector<io::Case> all;
   for (const auto& f : gen::families()) {
+    if (f.kind == io::Kind::tritri) continue;
     auto c = gen::generate(f, n, 7, gen::Precision::float64);
     all.insert(all.end(), c.begin(), c.end());
   }
@@ -268,7 +270,9 @@ TEST(PluginMethods, FloatPluginGivesTheBuiltInFloatTallies) {
   const auto cases = all_families(40);
   const auto exact = verify::exact_answers(cases);
   const auto cmp = verify::compare(cases, exact, {builtin, &plugin}, 0);
-  ASSERT_EQ(cmp.groups.size(), gen::families().size());
+  const auto ray_families = static_cast<std::size_t>(std::count_if(
+      gen::families().begin(), gen::families().end(), [](const gen::Family& f) { return f.kind != io::Kind::tritri; }));
+  ASSERT_EQ(cmp.groups.size(), ray_families);  // the pair families are not run: float answers rays
   for (const auto& g : cmp.groups) {
     const auto a = cmp.stats.find({"float", g}), b = cmp.stats.find({"plugin-float", g});
     ASSERT_TRUE(a != cmp.stats.end() && b != cmp.stats.end()) << g;

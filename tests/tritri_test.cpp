@@ -9,13 +9,19 @@
 #include <gtest/gtest.h>
 
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstdio>
 #include <string>
 #include <vector>
 
+#include "gen/families.h"
 #include "gen/rng.h"
 #include "gen/tritri_families.h"
+#include "methods/method.h"
+#include "verify/certified_method.h"
+#include "verify/differential.h"
+#include "verify/exact_method.h"
 #include "rayproof/tritri.h"
 #include "rayproof/verify/exact.h"
 
@@ -408,6 +414,102 @@ TEST(TriTriKernels, FailuresOnHardFamiliesCounted) {
     }
   }
   std::printf("(wrong answers, false negatives in brackets; float columns on the pair rounded to float)\n");
+}
+
+// ---- pairs as cases: the methods of the registry on the generated tritri families ----
+
+/// The tritri methods: exact, certified and the four classic ones, as the tool registers them.
+const MethodRegistry& pair_registry() {
+  static const MethodRegistry reg = [] {
+    MethodRegistry r;
+    verify::register_exact_method(r);
+    verify::register_certified_method(r);
+    register_tritri_methods(r);
+    return r;
+  }();
+  return reg;
+}
+
+std::vector<const gen::Family*> pair_case_families() {
+  std::vector<const gen::Family*> out;
+  for (const gen::Family& f : gen::families())
+    if (f.kind == io::Kind::tritri) out.push_back(&f);
+  return out;
+}
+
+/// Every pair family is a case family, and its double cases are the pairs of generate_tritri.
+TEST(TriTriCases, FamiliesAreThePairFamiliesAsCases) {
+  const auto fams = pair_case_families();
+  ASSERT_EQ(fams.size(), gen::tritri_families().size());
+  for (const gen::Family* f : fams) {
+    const gen::TriTriFamily* pf = gen::find_tritri_family(f->name.substr(7));
+    ASSERT_NE(pf, nullptr) << f->name;
+    const auto cases = gen::generate(*f, 30, kSeed, gen::Precision::float64);
+    const auto pairs = gen::generate_tritri(*pf, 30, kSeed);
+    ASSERT_EQ(cases.size(), pairs.size());
+    for (std::size_t i = 0; i < cases.size(); ++i) {
+      EXPECT_EQ(cases[i].kind, io::Kind::tritri);
+      EXPECT_EQ(cases[i].family, f->name);
+      const io::Case want = gen::tritri_case(pairs[i]);
+      for (std::size_t k = 0; k < 18; ++k)
+        ASSERT_EQ(std::bit_cast<std::uint64_t>(cases[i].v[k]), std::bit_cast<std::uint64_t>(want.v[k])) << f->name << " " << i;
+    }
+  }
+}
+
+/// The certified method promises the exact class: no wrong class on any family, in double or on the
+/// float-built cases, and it counts the pairs that needed GMP.
+TEST(TriTriCases, CertifiedNeverWrongOnAnyFamily) {
+  const Method* cert = pair_registry().find("certified");
+  ASSERT_NE(cert, nullptr);
+  ASSERT_TRUE(cert->supports(io::Kind::tritri));
+  std::vector<io::Case> cases;
+  for (const gen::Family* f : pair_case_families())
+    for (auto p : {gen::Precision::float64, gen::Precision::float32}) {
+      const auto part = gen::generate(*f, 60, kSeed + 1, p);
+      cases.insert(cases.end(), part.begin(), part.end());
+    }
+  const verify::ExactAnswers exact = verify::exact_answers(cases);
+  const verify::Comparison cmp = verify::compare(cases, exact, {cert}, 10);
+  const verify::Stats total = cmp.total("certified");
+  EXPECT_EQ(total.cases, cases.size());
+  EXPECT_EQ(total.class_errors(), 0u);
+  EXPECT_EQ(total.promised, cases.size());
+  EXPECT_EQ(total.promise_broken, 0u);
+  EXPECT_TRUE(cmp.mismatches.empty());
+  EXPECT_GT(cmp.stats.at({"certified", "tritri_extreme"}).fallbacks, 0u);  // 2^+-600 needs GMP
+  EXPECT_EQ(cmp.stats.at({"certified", "tritri_crossing"}).fallbacks, 0u);
+}
+
+/// The classic kernels judged through the registry (coarse answers, float methods on the rounded
+/// pair) count exactly the wrong answers that calling the kernels directly counts (tally above),
+/// family by family: the same pairs judged, the same false "meets" and false "disjoint".
+TEST(TriTriCases, ClassicFailuresEqualTheDirectCount) {
+  const char* names[4] = {"moller-float", "moller-double", "gd-float", "gd-double"};  // tally's order
+  std::vector<const Method*> methods;
+  for (const char* n : names) {
+    methods.push_back(pair_registry().find(n));
+    ASSERT_NE(methods.back(), nullptr) << n;
+  }
+  constexpr std::size_t kCount = 150;
+  std::size_t wrong_seen = 0;
+  for (const gen::Family* f : pair_case_families()) {
+    const auto cases = gen::generate(*f, kCount, kSeed, gen::Precision::float64);
+    const verify::Comparison cmp = verify::compare(cases, verify::exact_answers(cases), methods, 0);
+    const Tally direct = tally(gen::generate_tritri(*gen::find_tritri_family(f->name.substr(7)), kCount, kSeed));
+    for (int k = 0; k < 4; ++k) {
+      const verify::Stats& st = cmp.stats.at({names[k], f->name});
+      const int prec = k % 2 == 0 ? 0 : 1;
+      EXPECT_EQ(st.cases, std::size_t(direct.pairs[prec])) << f->name << " " << names[k];
+      EXPECT_EQ(st.cases + st.unjudged, kCount) << f->name << " " << names[k];
+      EXPECT_EQ(st.false_hit + st.false_miss, std::size_t(direct.wrong[k])) << f->name << " " << names[k];
+      EXPECT_EQ(st.false_miss, std::size_t(direct.false_neg[k])) << f->name << " " << names[k];
+      EXPECT_EQ(st.wrong_hit_class + st.wrong_class, 0u) << "coarse answers have no class";
+      EXPECT_EQ(st.coarse, st.cases);
+      wrong_seen += st.class_errors();
+    }
+  }
+  EXPECT_GT(wrong_seen, 0u);  // the hard families do defeat them
 }
 
 }  // namespace

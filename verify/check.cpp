@@ -202,6 +202,12 @@ CheckResult check(const Method& m, const CheckOptions& opt) {
     pc.kept = pc.violations == 0;
     res.promises.push_back(pc);
   }
+  if (p.no_false_negative) {
+    PromiseCheck pc{"no-false-negative"};
+    for (const auto& f : res.families) pc.violations += f.stats.false_miss + f.failures.size();
+    pc.kept = pc.violations == 0;
+    res.promises.push_back(pc);
+  }
   if (p.max_ulps) {
     PromiseCheck pc{"max-ulps " + std::to_string(*p.max_ulps)};
     for (const auto& f : res.families)

@@ -24,6 +24,9 @@ struct Promises {
   bool watertight = false;               ///< no false miss on the edge and vertex families (and no failure there)
   bool exact_class = false;              ///< no class error, and no kernel failure, on any family
   std::optional<std::uint64_t> max_ulps; ///< every class-correct t within this many ulps of exact
+  /// No false miss (for triangle pairs: no pair that meets called disjoint), and no kernel failure,
+  /// on any family. Last, so that {watertight, exact_class, max_ulps} initializers keep their meaning.
+  bool no_false_negative = false;
 };
 
 struct CheckProgress {

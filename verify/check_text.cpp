@@ -14,19 +14,27 @@ std::string plural(std::size_t n, const char* one, const char* many) {
 
 namespace {
 std::string percent(std::size_t n, std::size_t of) { return fmt::format("{:.3g}%", of ? 100.0 * double(n) / double(of) : 0.0); }
+
+/// Every family checked is of triangle pairs: a hit is then "they meet", a miss "disjoint".
+bool pairs_only(const CheckResult& r) {
+  return !r.families.empty() &&
+         std::all_of(r.families.begin(), r.families.end(), [](const FamilyCheck& f) { return f.kind == io::Kind::tritri; });
+}
 }  // namespace
 
 std::string check_table(const CheckResult& r) {
   // Cells first, then each column as wide as its widest cell: a t error beyond 10^6 ulps carries its
   // reading, "4.5e+18 (leading bits wrong)".
   std::vector<std::vector<std::string>> rows;
-  rows.push_back({"family", "cases", "false hit", "false miss", "wrong class", "t median", "t p99", "t max",
-                  fmt::format("> {} ulp", r.ulp_tolerance), "failures"});
+  const bool pairs = pairs_only(r);
+  rows.push_back({"family", "cases", pairs ? "false meets" : "false hit", pairs ? "false disjoint" : "false miss",
+                  "wrong class", "t median", "t p99", "t max", fmt::format("> {} ulp", r.ulp_tolerance), "failures"});
   auto row = [&](const std::string& name, const Stats& s, std::size_t over_n, std::size_t fails) {
+    // A pair's answer has no t: its t columns are "-".
+    auto t_cell = [&](double q) { return pairs ? std::string("-") : ulp_text(s.ulp_quantile(q), r.precision); };
     rows.push_back({name, std::to_string(s.cases), std::to_string(s.false_hit), std::to_string(s.false_miss),
-                    std::to_string(s.wrong_hit_class + s.wrong_class), ulp_text(s.ulp_quantile(0.5), r.precision),
-                    ulp_text(s.ulp_quantile(0.99), r.precision), ulp_text(s.ulp_quantile(1.0), r.precision),
-                    std::to_string(over_n), std::to_string(fails)});
+                    std::to_string(s.wrong_hit_class + s.wrong_class), t_cell(0.5), t_cell(0.99), t_cell(1.0),
+                    pairs ? std::string("-") : std::to_string(over_n), std::to_string(fails)});
   };
   for (const auto& f : r.families) row(f.family, f.stats, f.over_tolerance, f.failures.size());
   row("(all)", r.total(), r.over_tolerance(), r.failures());
@@ -48,7 +56,10 @@ std::vector<std::string> reproducer_lines(const CheckResult& r) {
     for (const auto& w : f.worst) {
       const auto& j = w.judged;
       out.push_back(fmt::format("{}  # {}: {}, got {}, exact {}{}{}", io::format_case(j.input), w.family,
-                                to_string(j.verdict), io::format_result(j.got), io::format_result(j.want),
+                                to_string(j.verdict),
+                                // a pair's coarse answer as given (`hit`, `miss`), its full one as its class alone
+                                j.input.kind == io::Kind::tritri ? io::format_answer(j.got) : io::format_result(j.got),
+                                io::format_result(j.want),
                                 j.verdict == Verdict::agree ? fmt::format(" ({} ulps)", ulp_text(j.ulps, r.precision)) : "",
                                 w.minimized ? ", minimized" : ""));
     }
@@ -62,16 +73,28 @@ std::vector<std::string> check_sentences(const CheckResult& r) {
   std::vector<std::string> s;
   const Stats t = r.total();
   const std::size_t errors = t.class_errors();
+  const bool pairs = pairs_only(r);
   if (errors == 0)
-    s.push_back(fmt::format("No class error in {}.", plural(t.cases, "case", "cases")));
+    s.push_back(fmt::format("No class error in {}.", plural(t.cases, pairs ? "pair" : "case", pairs ? "pairs" : "cases")));
+  else if (pairs)
+    s.push_back(fmt::format("{} of {} pairs ({}) have a class error: {} (disjoint, called meeting), {} (meeting, "
+                            "called disjoint), {}.", errors, t.cases, percent(errors, t.cases),
+                            plural(t.false_hit, "false meets", "false meets"),
+                            plural(t.false_miss, "false disjoint", "false disjoints"),
+                            plural(t.wrong_hit_class + t.wrong_class, "wrong class", "wrong classes")));
   else
     s.push_back(fmt::format("{} of {} cases ({}) have a class error: {}, {}, {}.", errors, t.cases,
                             percent(errors, t.cases), plural(t.false_hit, "false hit", "false hits"),
                             plural(t.false_miss, "false miss", "false misses"),
                             plural(t.wrong_hit_class + t.wrong_class, "wrong class", "wrong classes")));
+  if (pairs && t.unjudged > 0)
+    s.push_back(fmt::format("{} answered meets-or-not whose exact class is degenerate or invalid are not judged.",
+                            plural(t.unjudged, "pair", "pairs")));
   const std::size_t with_t = t.ulps.size();
   const std::size_t over = r.over_tolerance();
-  if (with_t == 0)
+  if (pairs) {
+    // a pair's answer carries no t: nothing to say about t
+  } else if (with_t == 0)
     s.push_back("No class-correct case carries a t to compare.");
   else if (over == 0)
     s.push_back(fmt::format("Every t of the {} class-correct cases that carry one is within {} of exact (largest: {}).",
@@ -89,6 +112,9 @@ std::vector<std::string> check_sentences(const CheckResult& r) {
         s.push_back("Promise watertight: kept (no false miss and no failure on tri_edge and tri_vertex).");
       else if (p.promise == "exact-class")
         s.push_back("Promise exact-class: kept (no class error and no failure on any family).");
+      else if (p.promise == "no-false-negative")
+        s.push_back(pairs ? "Promise no-false-negative: kept (no pair that meets called disjoint, and no failure)."
+                          : "Promise no-false-negative: kept (no false miss and no failure on any family).");
       else
         s.push_back(fmt::format("Promise {}: kept (no class-correct t further off).", p.promise));
       continue;
@@ -100,6 +126,10 @@ std::vector<std::string> check_sentences(const CheckResult& r) {
     else if (p.promise == "exact-class")
       s.push_back(fmt::format("Promise exact-class: BROKEN by {} (class errors and failures).",
                               plural(p.violations, "case", "cases")));
+    else if (p.promise == "no-false-negative")
+      s.push_back(fmt::format("Promise no-false-negative: BROKEN by {} ({} and failures).",
+                              plural(p.violations, pairs ? "pair" : "case", pairs ? "pairs" : "cases"),
+                              pairs ? "false disjoints" : "false misses"));
     else
       s.push_back(fmt::format("Promise {}: BROKEN by {} with a t further off.", p.promise,
                               plural(p.violations, "case", "cases")));

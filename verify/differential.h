@@ -43,6 +43,10 @@ struct Stats {
   std::vector<double> bary_errors;     ///< coarse triangle hits with barycentrics: max |b - exact b| of b1, b2
   std::size_t promised = 0;            ///< cases on which the method promised something (Method::promises)
   std::size_t promise_broken = 0;      ///< of those, the answers that broke the promise
+  /// Coarse (meets-or-not) answers to triangle pairs whose exact class is `degenerate` or `invalid`:
+  /// the class does not say whether such a pair meets (docs/tritri.md), so they are not judged and
+  /// not counted in `cases`.
+  std::size_t unjudged = 0;
   /// The class-correct answer with the largest t error (the first one met), to show beside "max".
   struct Worst {
     std::uint64_t ulps = 0;
@@ -88,7 +92,8 @@ struct Judged {
 /// coarse one (io::AnswerForm::coarse) by hit or miss against touches(want), its t against
 /// first_contact_t(want) and its barycentrics against the exact ones. Contact::error from a method
 /// with take_failures is a kernel failure: counted in `cases` and `kernel_failures`, not as a class
-/// error. Exact fallbacks are not counted here. Counts `promised` and `promise_broken` against
+/// error. A coarse answer to a triangle pair whose exact class is degenerate or invalid is not
+/// judged (Stats::unjudged; verdict agree, not in `cases`). Exact fallbacks are not counted here. Counts `promised` and `promise_broken` against
 /// m.promise(kind) and keeps the worst t error.
 void judge_answer(const Method& m, Judged& j, Stats& s);
 

@@ -20,6 +20,8 @@ io::CaseResult exact_classify(const io::Case& c) {
     case io::Kind::triangle: return result(exact::intersect(ray, triangle_of<double>(c)));
     case io::Kind::box: return result(exact::intersect(ray, box_of<double>(c)));
     case io::Kind::disk: return result(exact::intersect(ray, disk_of<double>(c)));
+    case io::Kind::tritri:
+      return io::pair_result(to_contact(exact::tritri(first_triangle_of<double>(c), second_triangle_of<double>(c))));
   }
   return {Contact::error, std::nullopt, std::nullopt};
 }
@@ -36,8 +38,8 @@ std::optional<std::array<double, 2>> exact_barycentrics(const io::Case& c) {
 void register_exact_method(MethodRegistry& reg) {
   reg.add({"exact",
            "ground truth: exact rationals (CGAL Gmpq) decide the class; T, T2 rounded to nearest (MPFR, "
-           "checked exactly)",
-           Precision::float64, std::vector<io::Kind>(io::kAllKinds.begin(), io::kAllKinds.end()), exact_classify, {}, {}, {},
+           "checked exactly); triangle pairs by CGAL's Triangle_3 intersection",
+           Precision::float64, std::vector<io::Kind>(io::kCaseKinds.begin(), io::kCaseKinds.end()), exact_classify, {}, {}, {},
            exact_promises()});
 }
 

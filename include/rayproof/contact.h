@@ -1,5 +1,7 @@
 #pragma once
-/// The contact classes of docs/cases.md: the contract between fast and exact methods.
+/// The contact classes of docs/cases.md: the contract between fast and exact methods. A ray case
+/// answers with the classes up to `error`; a triangle/triangle case (kind `tritri`) with the five
+/// after it or `invalid` / `degenerate` (docs/tritri.md; rayproof::TriTri, tritri_class.h).
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -23,11 +25,18 @@ enum class Contact : std::uint8_t {
   graze,       ///< box: the ray touches the box at one point
   rim,         ///< disk: hit exactly on the circle
   error,       ///< not a class: the case line could not be read (CLI output only)
+  // Triangle against triangle (TriTri; appended so that the values above keep their numbers):
+  disjoint,           ///< the closed triangles share no point
+  crossing,           ///< not coplanar; some point lies in the relative interiors of both
+  touching,           ///< not coplanar; they meet, but no point is interior to both
+  coplanar_overlap,   ///< coplanar; the intersection has positive area
+  coplanar_touching,  ///< coplanar; they meet in a segment or a point only
 };
 
-inline constexpr std::array<std::string_view, 15> kContactNames = {
+inline constexpr std::array<std::string_view, 20> kContactNames = {
     "invalid", "degenerate", "parallel", "coplanar", "miss",   "behind", "interior", "edge",
-    "vertex",  "hit",        "tangent",  "inside",   "graze",  "rim",    "error"};
+    "vertex",  "hit",        "tangent",  "inside",   "graze",  "rim",    "error",
+    "disjoint", "crossing", "touching", "coplanar_overlap", "coplanar_touching"};
 
 [[nodiscard]] constexpr std::string_view to_string(Contact c) { return kContactNames[static_cast<std::size_t>(c)]; }
 
@@ -37,15 +46,23 @@ inline constexpr std::array<std::string_view, 15> kContactNames = {
   return std::nullopt;
 }
 
-/// True for the classes in which the ray touches the primitive at some t >= 0.
+/// True for the classes in which the ray touches the primitive at some t >= 0, and for the
+/// triangle/triangle classes in which the two triangles meet (rayproof::meets).
 [[nodiscard]] constexpr bool is_hit(Contact c) {
   switch (c) {
     case Contact::interior: case Contact::edge: case Contact::vertex: case Contact::hit:
     case Contact::tangent: case Contact::inside: case Contact::graze: case Contact::rim:
+    case Contact::crossing: case Contact::touching: case Contact::coplanar_overlap: case Contact::coplanar_touching:
       return true;
     default:
       return false;
   }
+}
+
+/// True for the classes only a triangle/triangle case has (disjoint ... coplanar_touching).
+[[nodiscard]] constexpr bool is_pair_class(Contact c) {
+  return c == Contact::disjoint || c == Contact::crossing || c == Contact::touching || c == Contact::coplanar_overlap ||
+         c == Contact::coplanar_touching;
 }
 
 }  // namespace rayproof

@@ -13,7 +13,7 @@
  *
  * Inputs. A kind function receives the case's numbers in the order of docs/cases.md (the kind's fields
  * after the kind name: triangle o(3) d(3) p0(3) p1(3) p2(3), 15 numbers; plane 12, sphere 10,
- * ellipsoid 12, box 12, disk 13). A double kernel gets the doubles of the case file. A float kernel
+ * ellipsoid 12, box 12, disk 13; tritri p0(3) p1(3) p2(3) q0(3) q1(3) q2(3), 18 numbers). A double kernel gets the doubles of the case file. A float kernel
  * gets each input rounded to nearest float, as floats; its t error is counted in float ulps and it
  * is judged against the exact answer on those rounded inputs. Inputs may be NaN or infinite (the
  * `invalid` family sends them).
@@ -30,11 +30,20 @@
  * barycentrics on a full one or on another kind) is a kernel failure for that case, reported with
  * the case as a one-line reproducer; it is not counted as a class error.
  *
+ * Pairs of triangles. The function of RAYPROOF_KIND_TRITRI is the entry point for a triangle/
+ * triangle test: it receives the two triangles (18 numbers, above) and writes RAYPROOF_COARSE_HIT
+ * (they meet) or RAYPROOF_COARSE_MISS (they do not), or, if it knows the class, one of
+ * RAYPROOF_DISJOINT .. RAYPROOF_COPLANAR_TOUCHING, RAYPROOF_INVALID or RAYPROOF_DEGENERATE; never
+ * with values in `has`. A ray class for a pair, or a pair's class for a ray, is a kernel failure.
+ * A pair kernel may answer ray kinds too. This kind was added in ABI version 1: plugins built
+ * before it load unchanged; a rayproof older than it refuses a plugin declaring it ("bad kind 6").
+ * examples/c_plugin/tritri_moller.c is a complete one.
+ *
  * What the loader checks, refusing the plugin with a message otherwise: the library opens, exports
  * `rayproof_plugin_entry`, which returns a non-null description whose `abi_version` equals the
  * loader's RAYPROOF_PLUGIN_ABI_VERSION (checked before any other field is read), whose `name` is 1 to
  * 64 characters of [A-Za-z0-9_.+-], whose `precision` is RAYPROOF_FLOAT or RAYPROOF_DOUBLE, and whose
- * 1 to 6 kinds are distinct RAYPROOF_KIND_* values, each with the function of the declared precision.
+ * 1 to 7 kinds are distinct RAYPROOF_KIND_* values, each with the function of the declared precision.
  *
  * Threads. rayproof may call the kind functions from several threads at once (`fuzz --jobs`), so
  * they must not share mutable state without synchronisation. rayproof calls `rayproof_plugin_entry`
@@ -77,6 +86,8 @@
 #define RAYPROOF_KIND_TRIANGLE 3
 #define RAYPROOF_KIND_BOX 4
 #define RAYPROOF_KIND_DISK 5
+/* Two triangles, no ray (docs/tritri.md): 18 numbers, p0 p1 p2 of the first, q0 q1 q2 of the second. */
+#define RAYPROOF_KIND_TRITRI 6
 
 /* Full answers: the classes of docs/cases.md. */
 #define RAYPROOF_INVALID 0
@@ -94,7 +105,16 @@
 #define RAYPROOF_GRAZE 12
 #define RAYPROOF_RIM 13
 
-/* Coarse answers: only whether the ray touches the primitive at some t >= 0. */
+/* Full answers to a pair of triangles (RAYPROOF_KIND_TRITRI): the classes of docs/tritri.md, and
+ * RAYPROOF_INVALID, RAYPROOF_DEGENERATE above. */
+#define RAYPROOF_DISJOINT 15
+#define RAYPROOF_CROSSING 16
+#define RAYPROOF_TOUCHING 17
+#define RAYPROOF_COPLANAR_OVERLAP 18
+#define RAYPROOF_COPLANAR_TOUCHING 19
+
+/* Coarse answers: only whether the ray touches the primitive at some t >= 0; for a pair of
+ * triangles, whether they meet (share a point). */
 #define RAYPROOF_COARSE_MISS 100
 #define RAYPROOF_COARSE_HIT 101
 
@@ -129,7 +149,7 @@ struct rayproof_plugin {
   int abi_version;                     /* RAYPROOF_PLUGIN_ABI_VERSION: first, and read first */
   const char *name;                    /* the method name when --plugin gives none */
   int precision;                       /* RAYPROOF_FLOAT or RAYPROOF_DOUBLE */
-  int kind_count;                      /* 1 to 6 */
+  int kind_count;                      /* 1 to 7 */
   const struct rayproof_kind_fn *kinds; /* kind_count entries */
 };
 

@@ -7,6 +7,8 @@
 #include <optional>
 #include <string_view>
 
+#include "rayproof/contact.h"
+
 namespace rayproof {
 
 enum class TriTri : std::uint8_t {
@@ -36,6 +38,34 @@ inline constexpr std::array<std::string_view, 7> kTriTriNames = {
 [[nodiscard]] constexpr bool meets(TriTri c) {
   return c == TriTri::crossing || c == TriTri::touching || c == TriTri::coplanar_overlap ||
          c == TriTri::coplanar_touching;
+}
+
+/// The class as a case-file contact (docs/cases.md: a `tritri` case answers with these).
+[[nodiscard]] constexpr Contact to_contact(TriTri c) {
+  switch (c) {
+    case TriTri::disjoint: return Contact::disjoint;
+    case TriTri::crossing: return Contact::crossing;
+    case TriTri::touching: return Contact::touching;
+    case TriTri::coplanar_overlap: return Contact::coplanar_overlap;
+    case TriTri::coplanar_touching: return Contact::coplanar_touching;
+    case TriTri::degenerate: return Contact::degenerate;
+    case TriTri::invalid: break;
+  }
+  return Contact::invalid;
+}
+
+/// The TriTri class of a contact, nothing for a contact no pair has (a ray class, `error`).
+[[nodiscard]] constexpr std::optional<TriTri> tritri_of(Contact c) {
+  switch (c) {
+    case Contact::disjoint: return TriTri::disjoint;
+    case Contact::crossing: return TriTri::crossing;
+    case Contact::touching: return TriTri::touching;
+    case Contact::coplanar_overlap: return TriTri::coplanar_overlap;
+    case Contact::coplanar_touching: return TriTri::coplanar_touching;
+    case Contact::degenerate: return TriTri::degenerate;
+    case Contact::invalid: return TriTri::invalid;
+    default: return std::nullopt;
+  }
 }
 
 }  // namespace rayproof

@@ -34,6 +34,7 @@ std::vector<int> prim_groups(io::Kind k) {
     case io::Kind::triangle: return {3, 3, 3};   // p0, p1, p2
     case io::Kind::box: return {3, 3};           // lo, hi
     case io::Kind::disk: return {3, 3, 1};       // center, normal, radius
+    case io::Kind::tritri: return {3, 3, 3, 3};  // after the first two points: p2, q0, q1, q2
   }
   return {};
 }
@@ -48,7 +49,7 @@ class PyKernel {
  public:
   PyKernel(py::function f, io::Kind kind, bool f32, bool vectorized)
       : f_(std::move(f)), groups_(prim_groups(kind)), f32_(f32), vectorized_(vectorized),
-        barycentrics_(kind == io::Kind::triangle) {}
+        barycentrics_(kind == io::Kind::triangle), pair_(kind == io::Kind::tritri) {}
 
   void classify_batch(std::span<const io::Case> in, std::span<io::CaseResult> out) {
     py::gil_scoped_acquire locked;
@@ -137,9 +138,12 @@ class PyKernel {
       return false;
     }
     if (py::isinstance<py::bool_>(r) || py::isinstance(r, py::module_::import("numpy").attr("bool_"))) {
-      out = coarse(r.cast<bool>(), std::nullopt);
+      out = pair_ ? io::pair_coarse(r.cast<bool>()) : coarse(r.cast<bool>(), std::nullopt);
       return true;
     }
+    if (pair_)  // two triangles: whether they meet, nothing else
+      throw py::type_error(fmt::format("check: the function returned {} for the pair `{}`; expected a bool (they meet)",
+                                       py::repr(r).cast<std::string>(), io::format_case(c)));
     const std::size_t len = (py::isinstance<py::tuple>(r) || py::isinstance<py::list>(r)) ? py::len(r) : 0;
     if (len == 2 || (len == 4 && barycentrics_)) {
       py::sequence s = r.cast<py::sequence>();
@@ -173,6 +177,7 @@ class PyKernel {
       return false;
     }
     auto np = py::module_::import("numpy");
+    if (pair_) return pair_batch(np, r, out);
     const std::size_t len = (py::isinstance<py::tuple>(r) || py::isinstance<py::list>(r)) ? py::len(r) : 0;
     if (len != 2 && !(len == 4 && barycentrics_))
       throw py::type_error(fmt::format("check: the vectorized function returned {}; expected (hit array, t array){}",
@@ -208,9 +213,26 @@ class PyKernel {
     return true;
   }
 
+  /// A vectorized pair function's answer: one bool array of n (they meet).
+  bool pair_batch(py::module_& np, const py::object& r, std::span<io::CaseResult> out) const {
+    const std::size_t n = out.size();
+    py::array_t<bool, py::array::c_style | py::array::forcecast> hit;
+    try {
+      hit = np.attr("asarray")(r, "bool");
+    } catch (py::error_already_set& e) {
+      if (is_interrupt(e)) throw;
+      throw py::type_error(fmt::format("check: the vectorized pair function's answer is not a bool array: {}", e.what()));
+    }
+    if (hit.ndim() != 1 || static_cast<std::size_t>(hit.shape(0)) != n)
+      throw py::type_error(fmt::format("check: the vectorized pair function returned shape {}; expected ({},) bools",
+                                       py::str(np.attr("shape")(r)).cast<std::string>(), n));
+    for (std::size_t i = 0; i < n; ++i) out[i] = io::pair_coarse(hit.data()[i]);
+    return true;
+  }
+
   py::function f_;
   std::vector<int> groups_;
-  bool f32_, vectorized_, barycentrics_;
+  bool f32_, vectorized_, barycentrics_, pair_;
   std::vector<KernelFailure> failures_;
 };
 
@@ -298,7 +320,7 @@ py::dict check(py::object f_obj, const std::string& kind_name, std::size_t count
       r["family"] = w.family;
       r["verdict"] = verify::to_string(w.judged.verdict);
       r["case"] = io::format_case(w.judged.input);
-      r["got"] = io::format_result(w.judged.got);
+      r["got"] = w.judged.input.kind == io::Kind::tritri ? io::format_answer(w.judged.got) : io::format_result(w.judged.got);
       r["want"] = io::format_result(w.judged.want);
       r["ulps"] = w.judged.ulps;
       // The t error in report's words; none for a class error, whose t is not compared.
@@ -354,6 +376,9 @@ f answers whether the ray touches the primitive at some t >= 0, and where first:
   vectorized:  f(O, D, *prim) -> (hits, ts)      O, D, points: (n, 3); radii: (n,); results (n,)
   (triangle: f(o, d, p0, p1, p2); sphere: center, radius; plane: point, normal; ellipsoid:
   center, semi_axes; box: lo, hi; disk: center, normal, radius.)
+kind 'tritri' (two triangles, no ray): f(p0, p1, p2, q0, q1, q2) -> bool, whether the closed
+  triangles meet; vectorized, six (n, 3) arrays -> a bool array (n,). 'false_hits' are then pairs
+  called meeting that are disjoint, 'false_misses' meeting pairs called disjoint (docs/tritri.md).
 t may be None (or NaN) when f does not compute it; it is ignored for misses. A triangle function
 may return (hit, t, b1, b2) with the barycentrics of p1 and p2: they are judged against the exact
 ones (absolute error; 'bary_count', 'bary_error_max').

@@ -13,6 +13,9 @@ namespace {
 py::dict classify(const std::string& kind_name, py::handle origins, py::handle directions, py::handle prims,
                   const std::string& method_name) {
   const io::Kind kind = kind_named(kind_name);
+  if (kind == io::Kind::tritri)  // two triangles, no ray: not this function's (origins, directions, prims)
+    throw py::value_error("kind: 'tritri' cases have no ray; classify triangle pairs with `rayproof classify` on "
+                          "case lines (docs/tritri.md), check a pair kernel with rayproof.check(f, kind='tritri')");
   const Method& meth = method_named(method_name);
   if (!meth.supports(kind))
     throw py::value_error(fmt::format("method: '{}' does not answer {} cases", meth.name, kind_name));

@@ -17,7 +17,7 @@ const Method& method_named(const std::string& name) {
 
 io::Kind kind_named(const std::string& name) {
   if (auto k = io::kind_from_string(name)) return *k;
-  throw py::value_error(fmt::format("kind: unknown kind '{}' (known: plane, sphere, ellipsoid, triangle, box, disk)", name));
+  throw py::value_error(fmt::format("kind: unknown kind '{}' (known: plane, sphere, ellipsoid, triangle, box, disk, tritri)", name));
 }
 
 namespace {

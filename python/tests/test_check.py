@@ -218,3 +218,65 @@ def test_t_errors_are_worded_as_report_and_the_cli_word_them():
     worded = [r["t_error"] for r in res["reproducers"] if r["verdict"] == "agree"]
     assert worded and all(w.endswith("(leading bits wrong)") for w in worded)
     assert all(r["t_error"] is None for r in res["reproducers"] if r["verdict"] != "agree")
+
+
+# --- triangle pairs: kind "tritri", f(p0, p1, p2, q0, q1, q2) -> bool --------------------------------
+
+PAIR_FAMILIES = ["tritri_shared_vertex", "tritri_vertex_on_face", "tritri_far_apart"]
+MEETS = {"crossing", "touching", "coplanar_overlap", "coplanar_touching"}
+
+
+def _gd_example():
+    import importlib.util, pathlib
+    path = pathlib.Path(__file__).resolve().parents[2] / "examples" / "python" / "tritri_guigue_devillers.py"
+    spec = importlib.util.spec_from_file_location("tritri_gd", path)
+    mod = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(mod)
+    return mod
+
+
+def test_pair_kernels_always_and_never_split_the_judged_pairs():
+    """'Always meets' is wrong exactly on the disjoint pairs, 'never' exactly on the meeting ones."""
+    args = dict(kind="tritri", count=60, seed=3, precision="double", families=PAIR_FAMILIES)
+    yes = rayproof.check(lambda *p: True, **args)
+    no = rayproof.check(lambda *p: False, **args)
+    for fam in PAIR_FAMILIES:
+        y, n = yes["families"][fam], no["families"][fam]
+        assert y["cases"] == n["cases"] > 0
+        assert y["false_misses"] == 0 and n["false_hits"] == 0
+        assert y["false_hits"] + n["false_misses"] == y["cases"]
+    assert no["families"]["tritri_vertex_on_face"]["false_misses"] == no["families"]["tritri_vertex_on_face"]["cases"]
+    assert yes["families"]["tritri_far_apart"]["false_hits"] == yes["families"]["tritri_far_apart"]["cases"]
+    assert "false meets" in yes["table"] and "false disjoint" in yes["table"]
+
+
+def test_pair_kernel_gets_six_points_in_its_precision():
+    seen = []
+
+    def f(*pts):
+        seen.append((len(pts), [np.asarray(p).dtype for p in pts], [np.asarray(p).shape for p in pts]))
+        return False
+
+    rayproof.check(f, kind="tritri", count=2, precision="float", families=["tritri_crossing"])
+    assert seen and all(n == 6 and all(d == np.float32 for d in dt) and all(s == (3,) for s in sh) for n, dt, sh in seen)
+    with pytest.raises(TypeError, match="expected a bool"):
+        rayproof.check(lambda *p: (True, 1.0), kind="tritri", count=2, families=["tritri_crossing"])
+
+
+def test_the_guigue_devillers_example_misses_contacts_and_its_reproducers_reproduce():
+    gd = _gd_example()
+
+    def f(*pts):  # numpy arrays of 3 -> the example's tuples of Python floats
+        p0, p1, p2, q0, q1, q2 = (tuple(float(x) for x in p) for p in pts)
+        return gd.meets([p0, p1, p2], [q0, q1, q2])
+
+    res = rayproof.check(f, kind="tritri", count=200, seed=1, precision="double", families=PAIR_FAMILIES,
+                         minimize=False)
+    assert res["failures"] == []
+    misses = [r for r in res["reproducers"] if r["verdict"] == "false-miss"]
+    assert len(misses) > 0 or res["total"]["false_misses"] == 0
+    for r in misses:
+        v = [float(x) for x in r["case"].split()[1:]]
+        assert r["case"].split()[0] == "tritri" and len(v) == 18
+        assert r["got"] == "miss" and r["want"] in MEETS
+        assert not gd.meets([tuple(v[0:3]), tuple(v[3:6]), tuple(v[6:9])], [tuple(v[9:12]), tuple(v[12:15]), tuple(v[15:18])])

@@ -12,7 +12,7 @@ def test_methods_lists_the_registry():
         assert name in names
     cert = next(m for m in rayproof.methods() if m["name"] == "certified")
     assert cert["precision"] == "double"
-    assert set(cert["kinds"]) == {"plane", "sphere", "ellipsoid", "triangle", "box", "disk"}
+    assert set(cert["kinds"]) == {"plane", "sphere", "ellipsoid", "triangle", "box", "disk", "tritri"}
     assert next(m for m in rayproof.methods() if m["name"] == "float")["precision"] == "float"
 
 

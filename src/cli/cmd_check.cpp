@@ -184,8 +184,9 @@ int run_check(const CheckCliOptions& o) {
   for (const auto& e : o.expect) {
     if (e == "watertight") opt.promises.watertight = true;
     else if (e == "exact-class") opt.promises.exact_class = true;
+    else if (e == "no-false-negative") opt.promises.no_false_negative = true;
     else {
-      fmt::print(stderr, "rayproof check: unknown promise '{}' for --expect (known: watertight, exact-class; "
+      fmt::print(stderr, "rayproof check: unknown promise '{}' for --expect (known: watertight, exact-class, no-false-negative; "
                          "a t bound is --max-ulps N)\n", e);
       return 2;
     }
@@ -345,7 +346,7 @@ Run add_check(CLI::App& app) {
   sub->add_option("--seed", o->seed, "Seed of the case families")->capture_default_str();
   sub->add_option("--families", o->families, "Families (default: every family of the kinds the kernel answers)")
       ->delimiter(',')->allow_extra_args(false);
-  sub->add_option("--expect", o->expect, "Promises that set the exit status: watertight, exact-class")
+  sub->add_option("--expect", o->expect, "Promises that set the exit status: watertight, exact-class, no-false-negative")
       ->delimiter(',')->allow_extra_args(false);
   sub->add_option("--max-ulps", o->max_ulps, "Promise: every class-correct t within N ulps (also the tolerance shown)")
       ->check(CLI::Range(std::uint64_t{0}, std::numeric_limits<std::uint64_t>::max() - 1));

@@ -44,6 +44,7 @@ nlohmann::json stats_json(const verify::Stats& s) {
           {"coarse", s.coarse},
           {"promised", s.promised},
           {"promise_broken", s.promise_broken},
+          {"unjudged", s.unjudged},  // pairs' hit/miss answers on degenerate or invalid pairs (docs/tritri.md)
           {"bary_error_max", s.bary_errors.empty() ? 0.0 : *std::max_element(s.bary_errors.begin(), s.bary_errors.end())}};
 }
 

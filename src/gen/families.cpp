@@ -13,6 +13,7 @@
 
 #include "gen/build.h"
 #include "gen/gen_table.h"
+#include "gen/tritri_families.h"
 
 namespace rayproof::gen {
 
@@ -97,15 +98,71 @@ const Table& table() {
       // every kind
       {{"invalid", K::triangle, "NaN, inf, zero direction, negative radius or semi-axis, inverted boxes, over every kind", {C::invalid}, true},
        invalid_mix},
+      // triangle pairs (kind tritri): the pair families of tritri_families.h, named tritri_NAME, made
+      // by generate_each below (no per-case function: near_coplanar's lift depends on the index)
+      {{"tritri_random", K::tritri, "", {C::disjoint, C::crossing}}, nullptr},
+      {{"tritri_far_apart", K::tritri, "", {C::disjoint}}, nullptr},
+      {{"tritri_crossing", K::tritri, "", {C::crossing}}, nullptr},
+      {{"tritri_shared_edge", K::tritri, "", {C::touching}}, nullptr},
+      {{"tritri_shared_vertex", K::tritri, "", {C::touching}}, nullptr},
+      {{"tritri_coplanar", K::tritri, "", {C::coplanar_overlap, C::coplanar_touching, C::disjoint}}, nullptr},
+      {{"tritri_coplanar_touching", K::tritri, "", {C::coplanar_touching}}, nullptr},
+      {{"tritri_coplanar_overlap", K::tritri, "", {C::coplanar_overlap}}, nullptr},
+      {{"tritri_coplanar_disjoint", K::tritri, "", {C::disjoint}}, nullptr},
+      {{"tritri_near_coplanar", K::tritri, "",  // in float the lift may round away: coplanar again
+        {C::disjoint, C::crossing, C::touching, C::coplanar_overlap, C::coplanar_touching}}, nullptr},
+      {{"tritri_edge_through_edge", K::tritri, "", {C::touching, C::crossing}}, nullptr},
+      {{"tritri_vertex_on_face", K::tritri, "", {C::touching}}, nullptr},
+      {{"tritri_sliver", K::tritri, "", {C::disjoint, C::crossing, C::touching, C::degenerate}}, nullptr},  // float: flat
+      {{"tritri_extreme", K::tritri, "",  // in float 2^600 is inf (invalid), 2^-600 is 0 (degenerate)
+        {C::crossing, C::touching, C::coplanar_touching, C::coplanar_overlap, C::disjoint, C::invalid, C::degenerate}},
+       nullptr},
+      {{"tritri_degenerate", K::tritri, "", {C::degenerate}}, nullptr},
+      {{"tritri_degenerate_contact", K::tritri, "", {C::degenerate}}, nullptr},
   };
   return t;
 }
 
+constexpr std::string_view kPairPrefix = "tritri_";
+
+/// The pair family behind a tritri_NAME family, or nullptr.
+const TriTriFamily* pair_family(const Family& f) {
+  if (f.kind != K::tritri || f.name.rfind(kPairPrefix, 0) != 0) return nullptr;
+  return find_tritri_family(std::string_view(f.name).substr(kPairPrefix.size()));
+}
+
+/// The table with the pair families' descriptions filled in from tritri_families().
+const std::vector<Family>& described() {
+  static const std::vector<Family> v = [] {
+    std::vector<Family> out = table().items;
+    for (Family& f : out)
+      if (const TriTriFamily* pf = pair_family(f)) f.stresses = "triangle pairs: " + pf->stresses;
+    return out;
+  }();
+  return v;
+}
+
 }  // namespace
 
-const std::vector<Family>& families() { return table().items; }
+const std::vector<Family>& families() { return described(); }
 
-const Family* find_family(std::string_view name) { return table().find(name); }
+const Family* find_family(std::string_view name) {
+  for (const Family& f : described())
+    if (f.name == name) return &f;
+  return nullptr;
+}
+
+io::Case tritri_case(const TriPair& p) {
+  io::Case c;
+  c.kind = io::Kind::tritri;
+  const Vec3<double> v[6] = {p.a.p0, p.a.p1, p.a.p2, p.b.p0, p.b.p1, p.b.p2};
+  for (std::size_t i = 0; i < 6; ++i) {
+    c.v[3 * i] = v[i].x;
+    c.v[3 * i + 1] = v[i].y;
+    c.v[3 * i + 2] = v[i].z;
+  }
+  return c;
+}
 
 std::string family_names() {
   std::string s;
@@ -118,6 +175,17 @@ std::string family_names() {
 
 void generate_each(const Family& f, std::size_t count, std::uint64_t seed, Precision p,
                    const std::function<void(const io::Case&)>& sink) {
+  if (const TriTriFamily* pf = pair_family(f)) {
+    // The pairs as tritri_families.h makes them; in float, every coordinate rounded to float.
+    generate_tritri_each(*pf, count, seed, [&](const TriPair& pair) {
+      io::Case c = tritri_case(pair);
+      if (p == Precision::float32) c = io::round_to_float(c);  // 2^600 becomes inf: invalid in float
+      c.family = f.name;
+      c.line = 0;
+      sink(c);
+    });
+    return;
+  }
   const CaseFn fn = table().fn_of(f);
   if (!fn) return;
   Rng rng = Rng::for_family(seed, f.name);
@@ -331,6 +399,7 @@ std::optional<io::Case> emit(const LCase& c, const Place& pl, Precision p) {
       vec(9, c.n, pl.g, 0);
       set(12, put(c.r, pl.e, p));
       break;
+    case io::Kind::tritri: break;  // pairs are placed by tritri_families.cpp
   }
   if (!ok) return std::nullopt;
   return out;

@@ -14,6 +14,10 @@
 ///
 /// Precision::float32: every emitted number is exactly a float, so the float-rounded case
 /// (io::round_to_float) is the same case and keeps its class.
+///
+/// The triangle-pair families (kind tritri, named tritri_NAME) are tritri_families.h's pair
+/// families as case lines; in float their coordinates are rounded to float (the class may then
+/// differ from the construction's; `classes` lists what either precision gives).
 #include <cstddef>
 #include <cstdint>
 #include <functional>
@@ -46,6 +50,10 @@ struct Family {
 [[nodiscard]] const Family* find_family(std::string_view name);
 /// Comma-separated names of every family (for messages).
 [[nodiscard]] std::string family_names();
+
+/// A triangle pair as a `tritri` case (a's vertices, then b's).
+struct TriPair;
+[[nodiscard]] io::Case tritri_case(const TriPair& p);
 
 /// `count` cases of the family; each has `.family` = the family's name and `.line` = 0.
 [[nodiscard]] std::vector<io::Case> generate(const Family& f, std::size_t count, std::uint64_t seed, Precision p);

@@ -375,6 +375,7 @@ io::Case invalid_mix(Rng& r, Precision p) {
         if (c.v[i] > c.v[i + 3]) std::swap(c.v[i], c.v[i + 3]);
       break;
     case io::Kind::triangle: break;
+    case io::Kind::tritri: break;  // the ray kinds only (kAllKinds)
   }
   const double tiny = f ? static_cast<double>(std::numeric_limits<float>::denorm_min())
                         : std::numeric_limits<double>::denorm_min();

@@ -381,19 +381,24 @@ TriPair near_coplanar_pair(std::uint64_t seed, std::size_t index, int k_ulps) {
   return near_coplanar_from(r, k_ulps);
 }
 
-std::vector<TriPair> generate_tritri(const TriTriFamily& f, std::size_t count, std::uint64_t seed) {
+void generate_tritri_each(const TriTriFamily& f, std::size_t count, std::uint64_t seed,
+                          const std::function<void(const TriPair&)>& sink) {
   const Entry* entry = nullptr;
   for (const Entry& e : entries())
     if (e.family.name == f.name) entry = &e;
-  std::vector<TriPair> out;
-  if (!entry) return out;
+  if (!entry) return;
   Rng r = Rng::for_family(seed, f.name);
-  out.reserve(count);
   for (std::size_t i = 0; i < count; ++i) {
-    if (entry->lattice) out.push_back(place(r, entry->lattice(r), std_scale(r)).pair);
-    else if (entry->direct) out.push_back(entry->direct(r));
-    else out.push_back(near_coplanar_pair(seed, i, 1 << (2 * (i % 11))));
+    if (entry->lattice) sink(place(r, entry->lattice(r), std_scale(r)).pair);
+    else if (entry->direct) sink(entry->direct(r));
+    else sink(near_coplanar_pair(seed, i, 1 << (2 * (i % 11))));
   }
+}
+
+std::vector<TriPair> generate_tritri(const TriTriFamily& f, std::size_t count, std::uint64_t seed) {
+  std::vector<TriPair> out;
+  out.reserve(count);
+  generate_tritri_each(f, count, seed, [&](const TriPair& p) { out.push_back(p); });
   return out;
 }
 

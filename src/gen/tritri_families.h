@@ -10,6 +10,7 @@
 /// constructions, exact scalings; see rng.h). Each family draws from its own stream.
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -38,6 +39,10 @@ struct TriTriFamily {
 /// `count` pairs of the family. The near_coplanar family lifts one vertex by k ulps, k cycling
 /// through 1, 4, 16, ..., 4^10 with the pair's index (its stiffness knob).
 [[nodiscard]] std::vector<TriPair> generate_tritri(const TriTriFamily& f, std::size_t count, std::uint64_t seed);
+
+/// The same pairs, one at a time (for outputs too large to hold).
+void generate_tritri_each(const TriTriFamily& f, std::size_t count, std::uint64_t seed,
+                          const std::function<void(const TriPair&)>& sink);
 
 /// One near_coplanar pair with the lift given: a coplanar pair (overlapping, touching or apart)
 /// with one vertex of b moved k ulps along an axis off the plane (k = 0: the coplanar pair).

@@ -9,8 +9,12 @@
 namespace rayproof::io {
 
 namespace {
-constexpr std::array<std::string_view, 6> kKindNames = {"plane", "sphere", "ellipsoid", "triangle", "box", "disk"};
-constexpr std::array<int, 6> kFieldCounts = {12, 10, 12, 15, 12, 13};
+constexpr std::array<std::string_view, 7> kKindNames = {"plane", "sphere", "ellipsoid", "triangle", "box", "disk", "tritri"};
+constexpr std::array<int, 7> kFieldCounts = {12, 10, 12, 15, 12, 13, 18};
+static_assert(kFieldCounts.size() == kCaseKinds.size());
+
+/// The classes a triangle/triangle answer may name (docs/tritri.md).
+bool pair_class_name(Contact c) { return is_pair_class(c) || c == Contact::invalid || c == Contact::degenerate; }
 
 bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
 
@@ -59,7 +63,7 @@ std::optional<CaseEntry> parse_case_line(std::string_view text, std::size_t line
   const auto kind = kind_from_string(fields[0]);
   if (!kind) {
     std::string shown(fields[0].substr(0, 40));
-    return CaseError{line_no, "unknown kind '" + shown + "' (expected plane, sphere, ellipsoid, triangle, box or disk)"};
+    return CaseError{line_no, "unknown kind '" + shown + "' (expected plane, sphere, ellipsoid, triangle, box, disk or tritri)"};
   }
   const int want = field_count(*kind);
   const int got = static_cast<int>(fields.size()) - 1;
@@ -166,8 +170,22 @@ std::string format_double(double x) {
   return s;
 }
 
+CaseResult pair_result(Contact c) {
+  CaseResult r{c};
+  r.pair = true;
+  return r;
+}
+
+CaseResult pair_coarse(bool meets) {
+  CaseResult r{meets ? Contact::hit : Contact::miss};
+  r.form = AnswerForm::coarse;
+  r.pair = true;
+  return r;
+}
+
 std::string format_result(const CaseResult& r) {
   std::string s(to_string(r.contact));
+  if (r.pair) return s;
   s += ' ';
   s += r.t ? format_double(*r.t) : "-";
   s += ' ';
@@ -188,9 +206,14 @@ std::string format_answer(const CaseResult& r) {
 
 std::optional<CaseResult> parse_result(std::string_view text) {
   const auto f = split_fields(text);
+  if (f.size() == 1) {
+    const auto c = contact_from_string(f[0]);
+    if (!c || !pair_class_name(*c)) return std::nullopt;
+    return pair_result(*c);
+  }
   if (f.size() != 3) return std::nullopt;
   auto c = contact_from_string(f[0]);
-  if (!c) return std::nullopt;
+  if (!c || is_pair_class(*c)) return std::nullopt;
   CaseResult r;
   r.contact = *c;
   for (int i = 1; i <= 2; ++i) {
@@ -218,6 +241,7 @@ std::optional<CaseResult> parse_answer(std::string_view text) {
   }
   if (n == 3) return parse_result(text);
   if (n == 0 || n > 4) return std::nullopt;
+  if (n == 1 && f[0] != "hit" && f[0] != "miss") return parse_result(text);
   CaseResult r;
   r.form = AnswerForm::coarse;
   if (f[0] == "miss") {
@@ -237,6 +261,12 @@ std::optional<CaseResult> parse_answer(std::string_view text) {
   if (n >= 2) r.t = v[0];
   if (n == 4) r.b1 = v[1], r.b2 = v[2];
   return r;
+}
+
+bool answer_fits(Kind k, const CaseResult& r) {
+  if (k != Kind::tritri) return !r.pair;
+  if (r.form == AnswerForm::coarse) return !r.t && !r.b1 && !r.b2;
+  return r.pair;
 }
 
 std::string format_case(const Case& c) {

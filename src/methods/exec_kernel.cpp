@@ -279,6 +279,13 @@ Outcome stream(const Shared& sh, std::span<const io::Case> cases, std::span<io::
             fail("unreadable answer '" + shown(line) + "'");
             break;
           }
+          if (!io::answer_fits(cases[o.answered].kind, *a)) {  // a pair's answer to a ray case, or the reverse
+            o.culprit_known = true;
+            fail("answer '" + shown(line) + "' is not an answer to a " + std::string(io::to_string(cases[o.answered].kind)) +
+                 " case");
+            break;
+          }
+          if (cases[o.answered].kind == io::Kind::tritri) a->pair = true;  // written `hit`, `miss` or the class alone
           out[o.answered++] = *a;
         }
         rbuf.erase(0, begin);
@@ -433,7 +440,7 @@ std::string parse_declaration(std::string_view precision, std::string_view kinds
     std::size_t j = kinds.find(',', i);
     if (j == std::string_view::npos) j = kinds.size();
     const auto k = io::kind_from_string(kinds.substr(i, j - i));
-    if (!k) return "kind '" + shown(kinds.substr(i, j - i)) + "' is not one of plane, sphere, ellipsoid, triangle, box, disk";
+    if (!k) return "kind '" + shown(kinds.substr(i, j - i)) + "' is not one of plane, sphere, ellipsoid, triangle, box, disk, tritri";
     if (std::find(sh.kinds.begin(), sh.kinds.end(), *k) == sh.kinds.end()) sh.kinds.push_back(*k);
     i = j + 1;
   }

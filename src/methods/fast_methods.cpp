@@ -18,6 +18,7 @@ io::CaseResult textbook(const io::Case& c, TriangleMethod tm) {
     case io::Kind::triangle: return out(intersect(ray, triangle_of<T>(c), tm));
     case io::Kind::box: return out(intersect(ray, box_of<T>(c)));
     case io::Kind::disk: return out(intersect(ray, disk_of<T>(c)));
+    case io::Kind::tritri: break;  // not registered for pairs (tritri_methods.cpp)
   }
   return {Contact::error};
 }

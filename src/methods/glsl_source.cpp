@@ -21,6 +21,7 @@ std::vector<std::pair<const char*, int>> fields(io::Kind k) {
     case io::Kind::triangle: return {{"p0", 3}, {"p1", 3}, {"p2", 3}};
     case io::Kind::box: return {{"lo", 3}, {"hi", 3}};
     case io::Kind::disk: return {{"center", 3}, {"normal", 3}, {"radius", 1}};
+    case io::Kind::tritri: break;  // two triangles, no ray: shader kernels answer the ray kinds only
   }
   return {};
 }

@@ -105,7 +105,12 @@ void register_fast_methods(MethodRegistry& reg);
 /// baldwin-weber, plucker): floating point only, no exact arithmetic.
 void register_robust_methods(MethodRegistry& reg);
 
-/// The promise of an exact method on every kind: exact class, no false miss, t within 1 ulp.
+/// Registers the classic triangle/triangle tests on `tritri` cases (moller-float, moller-double,
+/// gd-float, gd-double): coarse answers, meets or not (docs/tritri.md).
+void register_tritri_methods(MethodRegistry& reg);
+
+/// The promise of an exact method on every kind (tritri included): exact class, no false miss, t
+/// within 1 ulp (a pair's answer carries no t).
 [[nodiscard]] std::map<io::Kind, Promise> exact_promises();
 
 /// Which classes carry T and T2, per kind (docs/cases.md), to turn a kernel result into a CaseResult.

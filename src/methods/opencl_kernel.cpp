@@ -323,6 +323,9 @@ std::variant<Method, std::string> make_opencl_method(std::string_view spec_in, c
       const std::string k = parts[2].substr(at, comma - at);
       auto kind = io::kind_from_string(k);
       if (!kind) return where + ": unknown kind '" + k + "' (plane sphere ellipsoid triangle box disk)";
+      if (*kind == io::Kind::tritri)
+        return where + ": kind tritri (two triangles) has no OpenCL kernels: they answer the ray kinds "
+                       "(plane sphere ellipsoid triangle box disk)";
       if (std::find(defined.begin(), defined.end(), *kind) == defined.end())
         return "opencl " + file + ": declares kind " + k + " but defines no function " + opencl::function_name(*kind);
       st->kinds.push_back(*kind);

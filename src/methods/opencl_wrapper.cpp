@@ -21,6 +21,7 @@ std::vector<int> groups(io::Kind k) {
     case io::Kind::triangle: return {3, 3, 3};
     case io::Kind::box: return {3, 3};
     case io::Kind::disk: return {3, 3, 1};
+    case io::Kind::tritri: break;  // not a ray kind: no OpenCL kernel answers pairs
   }
   return {};
 }

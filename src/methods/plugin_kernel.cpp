@@ -15,11 +15,19 @@ namespace rayproof {
 
 namespace {
 
+// plugin.h's numbers are the enums' values (C cannot include the C++ headers).
+static_assert(RAYPROOF_KIND_TRITRI == static_cast<int>(io::Kind::tritri) && io::kCaseKinds.size() == 7);
+static_assert(RAYPROOF_RIM == static_cast<int>(Contact::rim) && RAYPROOF_DISJOINT == static_cast<int>(Contact::disjoint) &&
+              RAYPROOF_CROSSING == static_cast<int>(Contact::crossing) &&
+              RAYPROOF_TOUCHING == static_cast<int>(Contact::touching) &&
+              RAYPROOF_COPLANAR_OVERLAP == static_cast<int>(Contact::coplanar_overlap) &&
+              RAYPROOF_COPLANAR_TOUCHING == static_cast<int>(Contact::coplanar_touching));
+
 /// What classify needs: the kind functions and the failures not yet taken.
 struct PluginState {
   Precision precision = Precision::float64;
-  std::array<rayproof_double_fn, 6> on_double{};
-  std::array<rayproof_float_fn, 6> on_float{};
+  std::array<rayproof_double_fn, io::kCaseKinds.size()> on_double{};
+  std::array<rayproof_float_fn, io::kCaseKinds.size()> on_float{};
   std::mutex mutex;
   std::vector<KernelFailure> failures;  ///< at most kMaxKept between two takes; later ones are not kept
 };
@@ -56,7 +64,7 @@ io::CaseResult call(PluginState& st, const io::Case& c) {
     st.on_double[k](c.v.data(), &a);
   } else {
     if (!st.on_float[k]) return {Contact::error};
-    std::array<float, 15> in{};
+    std::array<float, io::kMaxFields> in{};
     for (std::size_t i = 0; i < in.size(); ++i) in[i] = static_cast<float>(c.v[i]);
     st.on_float[k](in.data(), &a);
   }
@@ -81,6 +89,19 @@ std::variant<io::CaseResult, std::string> plugin_answer_to_result(io::Kind kind,
   const int known_bits = RAYPROOF_HAS_T | RAYPROOF_HAS_T2 | RAYPROOF_HAS_B;
   if (a.has & ~known_bits) return "answer outside the vocabulary: unknown bits in has (" + std::to_string(a.has) + ")";
   const bool has_t = a.has & RAYPROOF_HAS_T, has_t2 = a.has & RAYPROOF_HAS_T2, has_b = a.has & RAYPROOF_HAS_B;
+  if (kind == io::Kind::tritri) {  // a pair: hit or miss, or its class alone, never with values
+    const bool pair_class = a.cls == RAYPROOF_INVALID || a.cls == RAYPROOF_DEGENERATE ||
+                            (a.cls >= RAYPROOF_DISJOINT && a.cls <= RAYPROOF_COPLANAR_TOUCHING);
+    const bool coarse = a.cls == RAYPROOF_COARSE_HIT || a.cls == RAYPROOF_COARSE_MISS;
+    if ((pair_class || coarse) && a.has) return std::string("answer outside the vocabulary: values (has) on a tritri answer");
+    if (pair_class) return io::pair_result(static_cast<Contact>(a.cls));
+    if (coarse) return io::pair_coarse(a.cls == RAYPROOF_COARSE_HIT);
+    if (a.cls >= RAYPROOF_INVALID && a.cls <= RAYPROOF_RIM)
+      return "not an answer to a tritri case: the ray class " + std::string(to_string(static_cast<Contact>(a.cls)));
+  } else if (a.cls >= RAYPROOF_DISJOINT && a.cls <= RAYPROOF_COPLANAR_TOUCHING) {
+    return "not an answer to a " + std::string(io::to_string(kind)) + " case: the pair class " +
+           std::string(to_string(static_cast<Contact>(a.cls)));
+  }
   if (a.cls >= RAYPROOF_INVALID && a.cls <= RAYPROOF_RIM) {
     if (has_b) return "answer outside the vocabulary: barycentrics on a full answer (" +
                       std::string(to_string(static_cast<Contact>(a.cls))) + ")";
@@ -141,16 +162,16 @@ std::variant<Method, std::string> load_plugin_method(const std::string& path, co
     return where + ": bad name '" + printable(declared) + "' (1 to 64 characters of A-Z a-z 0-9 _ . + -)";
   if (p->precision != RAYPROOF_FLOAT && p->precision != RAYPROOF_DOUBLE)
     return where + ": bad precision " + std::to_string(p->precision) + " (RAYPROOF_FLOAT or RAYPROOF_DOUBLE)";
-  if (p->kind_count < 1 || p->kind_count > 6 || !p->kinds)
-    return where + ": bad kind list (kind_count " + std::to_string(p->kind_count) + "; 1 to 6 kinds)";
+  if (p->kind_count < 1 || p->kind_count > static_cast<int>(io::kCaseKinds.size()) || !p->kinds)
+    return where + ": bad kind list (kind_count " + std::to_string(p->kind_count) + "; 1 to 7 kinds)";
 
   auto st = std::make_shared<PluginState>();
   st->precision = p->precision == RAYPROOF_FLOAT ? Precision::float32 : Precision::float64;
   std::vector<io::Kind> kinds;
   for (int i = 0; i < p->kind_count; ++i) {
     const rayproof_kind_fn& k = p->kinds[i];
-    if (k.kind < RAYPROOF_KIND_PLANE || k.kind > RAYPROOF_KIND_DISK)
-      return where + ": bad kind " + std::to_string(k.kind) + " (RAYPROOF_KIND_PLANE .. RAYPROOF_KIND_DISK)";
+    if (k.kind < RAYPROOF_KIND_PLANE || k.kind > RAYPROOF_KIND_TRITRI)
+      return where + ": bad kind " + std::to_string(k.kind) + " (RAYPROOF_KIND_PLANE .. RAYPROOF_KIND_TRITRI)";
     const auto kind = static_cast<io::Kind>(k.kind);
     if (std::find(kinds.begin(), kinds.end(), kind) != kinds.end())
       return where + ": kind " + std::string(io::to_string(kind)) + " declared twice";

@@ -20,6 +20,9 @@ template <class T> Sphere<T> sphere_of(const io::Case& c) { return {vec_at<T>(c,
 template <class T> Ellipsoid<T> ellipsoid_of(const io::Case& c) { return {vec_at<T>(c, 6), vec_at<T>(c, 9)}; }
 template <class T> Triangle<T> triangle_of(const io::Case& c) { return {vec_at<T>(c, 6), vec_at<T>(c, 9), vec_at<T>(c, 12)}; }
 template <class T> Box<T> box_of(const io::Case& c) { return {vec_at<T>(c, 6), vec_at<T>(c, 9)}; }
+/// The two triangles of a `tritri` case: a = (p0, p1, p2), b = (q0, q1, q2).
+template <class T> Triangle<T> first_triangle_of(const io::Case& c) { return {vec_at<T>(c, 0), vec_at<T>(c, 3), vec_at<T>(c, 6)}; }
+template <class T> Triangle<T> second_triangle_of(const io::Case& c) { return {vec_at<T>(c, 9), vec_at<T>(c, 12), vec_at<T>(c, 15)}; }
 template <class T> Disk<T> disk_of(const io::Case& c) { return {vec_at<T>(c, 6), vec_at<T>(c, 9), static_cast<T>(c.v[12])}; }
 
 }  // namespace rayproof

@@ -31,6 +31,7 @@ io::CaseResult robust(const io::Case& c) {
     case io::Kind::triangle: return result_of(c, intersect_watertight<T, double>(ray, triangle_of<T>(c)));
     case io::Kind::box: return result_of(c, intersect_conservative(ray, box_of<T>(c)));
     case io::Kind::disk: return result_of(c, intersect_fma(ray, disk_of<T>(c)));
+    case io::Kind::tritri: break;  // not registered for pairs (tritri_methods.cpp)
   }
   return {Contact::error};
 }

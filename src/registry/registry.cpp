@@ -17,6 +17,7 @@ const MethodRegistry& all_methods() {
     verify::register_exact_method(r);
     register_robust_methods(r);
     verify::register_certified_method(r);
+    register_tritri_methods(r);
     return r;
   }();
   return reg;

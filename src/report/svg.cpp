@@ -142,7 +142,7 @@ std::string to_svg(const Report& r) {
   std::map<std::string, int> colour;
   for (const auto& p : r.points) colour.emplace(p.method, static_cast<int>(colour.size()));
   std::vector<io::Kind> kinds;
-  for (io::Kind k : io::kAllKinds)
+  for (io::Kind k : io::kCaseKinds)
     if (std::any_of(r.rows.begin(), r.rows.end(), [&](const Row& row) { return row.kind == k; })) kinds.push_back(k);
   const double pw = 540, ph = 300;
   const double W = 2 * pw + 20;

@@ -4,6 +4,7 @@
 #
 # An example is a line inside a fenced code block of the page of the form
 #     CASE LINE  ->  CLASS T T2            # optional comment
+# (a tritri case's answer is its class alone).
 # All examples go through one run, in page order, on standard input. The run's exit status must be
 # 1 when an example expects `error - -` (an input error) and 0 otherwise; every kind must have at
 # least one example, so that an edit that drops a block or changes the arrow is caught.
@@ -26,7 +27,7 @@ if [ "$n" -eq 0 ]; then
   exit 1
 fi
 failed=0
-for kind in plane sphere ellipsoid triangle box disk; do
+for kind in plane sphere ellipsoid triangle box disk tritri; do
   if ! grep -qE "^[[:space:]]*$kind[[:space:]]" "$tmp/input"; then
     echo "$doc: no example for the kind '$kind'"
     failed=1

@@ -17,6 +17,9 @@
 /// correctly rounded float. A failure prints the case as a docs/cases.md line (a one-line reproducer for
 /// `rayproof classify` or `rayproof verify`), the exact answer, the kernel's answer and the ulp
 /// distances, as `CLASS T T2` lines.
+///
+/// Triangle pairs: EXPECT_TRITRI_MATCHES_EXACT(kernel, a, b) with kernel(a, b) returning bool (meets)
+/// or rayproof::TriTri (docs/tritri.md); the failure prints the pair's `tritri` case line.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -159,7 +162,48 @@ template <class Kernel, class T, template <class> class Prim>
          << "  kernel: " << detail::result_line(got.contact, double(got_t), double(got_t2), kg) << ulp_note << "\n";
 }
 
+/// The check behind EXPECT_TRITRI_MATCHES_EXACT: a triangle/triangle kernel (docs/tritri.md) against
+/// exact arithmetic. kernel(a, b) takes two Triangle<T> (T = float or double) and returns either a
+/// bool, whether the closed triangles meet, compared with exact::tritri_meets (zero-area triangles
+/// included), or a rayproof::TriTri class, compared with exact::tritri. A failure prints the pair as a
+/// docs/cases.md `tritri` line (a one-line reproducer for `rayproof classify` or `rayproof verify`),
+/// the exact answer and the kernel's.
+template <class Kernel, class T>
+::testing::AssertionResult tritri_matches_exact(Kernel&& kernel, const Triangle<T>& a, const Triangle<T>& b) {
+  static_assert(std::is_same_v<T, float> || std::is_same_v<T, double>, "triangles in float or double");
+  const Triangle<double> ad = detail::wide(a), bd = detail::wide(b);
+  const auto got = kernel(a, b);
+  using Answer = std::decay_t<decltype(got)>;
+  static_assert(std::is_same_v<Answer, bool> || std::is_same_v<Answer, TriTri>,
+                "a triangle/triangle kernel returns bool (they meet) or rayproof::TriTri");
+  std::string line = "tritri";
+  detail::append_prim(line, ad), detail::append_prim(line, bd);
+  std::string want_text, got_text;
+  bool same = false;
+  if constexpr (std::is_same_v<Answer, bool>) {
+    const bool want = exact::tritri_meets(ad, bd);
+    same = got == want;
+    want_text = want ? "meets (" + std::string(to_string(exact::tritri(ad, bd))) + ")" : "disjoint";
+    got_text = got ? "meets" : "disjoint";
+  } else {
+    const TriTri want = exact::tritri(ad, bd);
+    same = got == want;
+    want_text = std::string(to_string(want));
+    got_text = std::string(to_string(got));
+  }
+  if (same) return ::testing::AssertionSuccess();
+  return ::testing::AssertionFailure() << "kernel answer does not match exact\n"
+                                       << "  case:   " << line << "\n"
+                                       << "  exact:  " << want_text << "\n"
+                                       << "  kernel: " << got_text << "\n";
+}
+
 }  // namespace rayproof::gtest
+
+/// Non-fatal / fatal check that kernel(a, b), a triangle/triangle test returning bool (meets) or a
+/// TriTri class, agrees with exact arithmetic (see tritri_matches_exact above).
+#define EXPECT_TRITRI_MATCHES_EXACT(kernel, a, b) EXPECT_TRUE(::rayproof::gtest::tritri_matches_exact(kernel, a, b))
+#define ASSERT_TRITRI_MATCHES_EXACT(kernel, a, b) ASSERT_TRUE(::rayproof::gtest::tritri_matches_exact(kernel, a, b))
 
 /// Non-fatal / fatal check that kernel(ray, prim) has the exact class and its t values within
 /// max_ulps ulps of the exact ones (see the top of rayproof/verify/gtest.h).
