@@ -18,6 +18,7 @@
 #include "rayproof/float_util.h"
 #include "rayproof/scene/exact_mesh.h"
 #include "rayproof/verify/crossings_check.h"
+#include "rayproof/verify/crossings_gtest.h"
 #include "rayproof/verify/exact.h"
 
 namespace rayproof {
@@ -256,6 +257,13 @@ TEST(CrossingsCheck, OwnCrossingsAndNaiveLoopMatchTheBruteForce) {
       const verify::CrossingsTally t = judge(c, naive);
       expect_counts(t, brute_tally(c.mesh, c.rays, naive, f32, 1), m.name + " naive");
       EXPECT_GT(t.findings(), 0u) << m.name;
+      if (f32) continue;
+      std::uint64_t with = 0;  // the rays with a finding, from the brute force ray by ray
+      for (std::size_t i = 0; i < c.rays.rays.size(); ++i) {
+        const verify::CasterRays one{{c.rays.rays[i]}, {0}, {"one"}, {}};
+        with += brute_tally(c.mesh, one, std::span(naive).subspan(i, 1), f32, 1).findings() > 0;
+      }
+      EXPECT_EQ(t.rays_with_findings, with) << m.name;
       if (m.name != "coincident") EXPECT_GT(t.duplicates + t.missing, 0u) << m.name;  // shared edges and vertices
     }
   }
@@ -405,6 +413,26 @@ TEST(CrossingsCheck, FunctionsRunBatchByBatch) {
   EXPECT_EQ(u.crossings, 4u);
   ASSERT_EQ(u.sets.size(), 1u);
   EXPECT_EQ(u.sets[0].set, "user");
+}
+
+TEST(CrossingsCheck, GtestMacroPassesOwnAndFailsADroppedHit) {
+  const OwnedMesh m = fan();
+  const ExactMesh em(VertexArray(&m.v[0].x, m.v.size()), IndexArray{m.f[0].data(), m.f.size()});
+  auto own = [&](std::span<const Vec3<double>> o, std::span<const Vec3<double>> d,
+                 std::span<std::vector<CrossingHit>> out) {
+    for (std::size_t i = 0; i < o.size(); ++i)
+      for (const Crossing& c : em.ray_crossings({o[i], d[i]}, kPositive).crossings) out[i].push_back({c.t, c.triangle});
+  };
+  EXPECT_CROSSINGS_MATCH_EXACT(own, m.view());
+  auto last_dropped = [&](std::span<const Vec3<double>> o, std::span<const Vec3<double>> d,
+                          std::span<std::vector<CrossingHit>> out) {
+    own(o, d, out);
+    for (auto& h : out)
+      if (!h.empty()) h.pop_back();
+  };
+  const ::testing::AssertionResult r = gtest::crossings_match_exact(last_dropped, m.view());
+  EXPECT_FALSE(r);
+  EXPECT_NE(std::string(r.message()).find("missing "), std::string::npos) << r.message();
 }
 
 }  // namespace

@@ -285,6 +285,7 @@ CrossingsTally CrossingsJudge::judge(const CasterRays& rays, std::span<const Cro
           ContainsSetCounts& set = tally.sets[rays.set[i]];
           ++set.points;
           set.findings += v.findings();
+          tally.rays_with_findings += v.findings() > 0;
           for (const CrossingsCounter& counter : kCrossingsCounters) {
             if (!counter.finding || v.*counter.member == 0) continue;
             const std::string kind = kind_of(counter.key);

@@ -158,6 +158,7 @@ static_assert(every_crossings_counter_once_in_table());
 struct CrossingsTally : CrossingsCounts {
   CasterPrecision precision = CasterPrecision::float64;
   std::uint64_t tolerance_ulps = 1;
+  std::uint64_t rays_with_findings = 0;  ///< rays with one finding or more (a ray may have several)
   std::vector<ContainsSetCounts> sets;  ///< per ray set: rays (in `points`), findings, the cost
   std::vector<CasterReproducer> reproducers;
   std::vector<std::string> notes;
