@@ -27,6 +27,7 @@
 #include "rayproof/scene/mesh_caster.h"
 #include "rayproof/verify/exact.h"
 #include "verify/judge_frame.h"
+#include "verify/rounded_t.h"
 
 namespace rayproof::verify {
 
@@ -58,59 +59,6 @@ ForwardContact forward_contact(const TriangleHit<double>& h) {
       return {};
     default: return {};
   }
-}
-
-/// The correctly rounded t of a ray crossing a triangle's plane (d . n != 0), given t0 within one
-/// ulp of it: the exact signs of N - m D at the midpoints m around t0 (N = (p0 - o) . n, D = d . n,
-/// floating-point expansions). Nothing when the inputs are outside the range where every product is
-/// exact (the caller then asks exact::intersect).
-std::optional<double> round_t(const Ray<double>& r, const Triangle<double>& tri, double t0) {
-  using certified::Bounded;
-  using certified::Expansion;
-  const double at = std::fabs(t0);
-  if (!(at > 0x1p-200 && at < 0x1p200)) return std::nullopt;
-  if (!certified::in_range<-150, 150>(r.o.x, r.o.y, r.o.z, r.d.x, r.d.y, r.d.z, tri.p0.x, tri.p0.y, tri.p0.z,
-                                      tri.p1.x, tri.p1.y, tri.p1.z, tri.p2.x, tri.p2.y, tri.p2.z))
-    return std::nullopt;
-  // First in Wide with running error bounds (certified_filter.h); the expansions only where that
-  // cannot tell the sign.
-  const Vec3<Bounded> p0 = certified::lift(tri.p0);
-  const Vec3<Bounded> nb = cross(certified::lift(tri.p1) - p0, certified::lift(tri.p2) - p0);
-  const Bounded Nb = dot(p0 - certified::lift(r.o), nb), Db = dot(certified::lift(r.d), nb);
-  std::optional<int> sdb = certified::kFilterAvailable ? certified::sign(Db) : std::nullopt;
-  std::optional<Expansion> N, D;
-  auto exact_parts = [&] {
-    if (N) return;
-    const certified::ExpVec3 e1 = certified::diff3(tri.p1, tri.p0), e2 = certified::diff3(tri.p2, tri.p0);
-    const certified::ExpVec3 n = cross(e1, e2);
-    N = dot(certified::diff3(tri.p0, r.o), n);
-    D = dot(certified::exact3(r.d), n);
-  };
-  // side(lo, hi): sign of t - (lo + hi) / 2 for adjacent doubles lo < hi (exact t = N / D).
-  auto side = [&](double lo, double hi) -> std::optional<int> {
-    const double half = (hi - lo) * 0.5;  // exact: adjacent normal doubles
-    if (sdb && *sdb != 0) {
-      const auto sb = certified::sign(Nb - Bounded(lo) * Db - Bounded(half) * Db);
-      if (sb) return *sb * *sdb;
-    }
-    exact_parts();
-    if (N->bad || D->bad || D->n == 0) return std::nullopt;
-    Expansion m(lo);
-    m.grow(half);
-    const Expansion sx = *N - m * *D;
-    if (sx.bad) return std::nullopt;
-    return sx.sign() * D->sign();
-  };
-  const double lo = next_down(t0), hi = next_up(t0);
-  const auto up = side(t0, hi);
-  if (!up) return std::nullopt;
-  if (*up > 0) return hi;  // t above the midpoint to next: next (t0 is within 1 ulp)
-  if (*up == 0) return (std::bit_cast<std::uint64_t>(hi) & 1) ? t0 : hi;  // tie: even
-  const auto down = side(lo, t0);
-  if (!down) return std::nullopt;
-  if (*down < 0) return lo;
-  if (*down == 0) return (std::bit_cast<std::uint64_t>(lo) & 1) ? t0 : lo;
-  return t0;
 }
 
 /// The exact contact of a ray with one triangle: the class from the certified filter (exact; GMP

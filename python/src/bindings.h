@@ -69,5 +69,6 @@ struct CheckedMesh {
 
 void bind_check_caster(py::module_& m);
 void bind_check_contains(py::module_& m);
+void bind_check_crossings(py::module_& m);
 
 }  // namespace rayproof::python

@@ -131,4 +131,5 @@ PYBIND11_MODULE(rayproof, m) {
   bind_load_mesh(m);
   bind_check_caster(m);
   bind_check_contains(m);
+  bind_check_crossings(m);
 }

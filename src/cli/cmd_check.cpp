@@ -122,6 +122,7 @@ nlohmann::json result_json(const verify::CheckResult& r) {
 
 
 int run_check(const CheckCliOptions& o) {
+  if (!o.crossings.empty()) return run_crossings_check(o);
   if (!o.distance.empty()) return run_distance_check(o);
   if (!o.contains.empty()) return run_contains_check(o);
   if (!o.caster.empty()) return run_caster_check(o);
@@ -430,6 +431,7 @@ Run add_check(CLI::App& app) {
   sub->add_option("--distance-sets", o->distance_sets,
                   "Point sets: vertex, edge, face, nudged, thin, far, random, invalid (default: all)")
       ->delimiter(',')->allow_extra_args(false);
+  add_crossings_check_options(*sub, *o);
   return [o] { return run_check(*o); };
 }
 

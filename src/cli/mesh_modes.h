@@ -46,6 +46,12 @@ struct CheckCliOptions {
   double distance_rel_tol = 0, distance_timeout = 10;
   std::size_t distance_batch = 1024, distance_points = 1000, distance_max_per_set = 1000;
   std::vector<std::string> distance_sets;
+  std::vector<std::string> crossings;  ///< --crossings NAME=COMMAND: all-hits functions on --mesh (check_crossings.cpp)
+  std::string crossings_precision = "double";
+  std::uint64_t crossings_max_ulps = 1;
+  double crossings_timeout = 10;
+  std::size_t crossings_batch = 1024, crossings_rays = 2000, crossings_max_per_set = 5000;
+  std::vector<std::string> crossings_sets;
 };
 
 
@@ -92,6 +98,9 @@ std::optional<std::vector<JudgedMesh>> judged_meshes(const CheckCliOptions& o);
 int run_caster_check(const CheckCliOptions& o);
 int run_contains_check(const CheckCliOptions& o);
 int run_distance_check(const CheckCliOptions& o);
+/// check --crossings (check_crossings.cpp), and its options (registered on `check`).
+int run_crossings_check(const CheckCliOptions& o);
+void add_crossings_check_options(CLI::App& sub, CheckCliOptions& o);
 int run_mesh_fuzz_cli(const FuzzCliOptions& o);
 /// fuzz --distance: closest points against a brute force in rationals (verify/distance_fuzz.h).
 int run_distance_fuzz_cli(const FuzzCliOptions& o);
