@@ -116,6 +116,13 @@ TEST(BenchIntersect, TinyMeshEndToEnd) {
   EXPECT_NE(r.out.find("Open3D: "), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("== boxes.off + moved copy (24 x 24 triangles)"), std::string::npos) << r.out;
   EXPECT_NE(r.out.find("FCL: "), std::string::npos) << r.out;
+  // Without the interpreter the Open3D row says why, and the rest runs.
+  const auto no_python = run_rayproof("bench intersect " + boxes.string() + " --repeat 1 --python /nonexistent/python3");
+  ASSERT_EQ(no_python.status, 0) << no_python.err;
+  EXPECT_NE(no_python.out.find("Open3D: not run: cannot start /nonexistent/python3: No such file or directory."),
+            std::string::npos)
+      << no_python.out;
+  EXPECT_NE(no_python.out.find("FCL: "), std::string::npos) << no_python.out;
   const auto alone = run_rayproof("bench intersect " + boxes.string() + " --repeat 1 --rayproof-only");
   ASSERT_EQ(alone.status, 0) << alone.err;
   EXPECT_EQ(alone.out.find("CGAL PMP Epick"), std::string::npos) << alone.out;

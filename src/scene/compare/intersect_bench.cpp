@@ -176,7 +176,7 @@ PeerPairs open3d_self_intersections(const std::string& python, const mesh::Mesh&
   const std::string why =
       proc::spawn(python, {python, "-c", open3d_script, vf, tf, std::to_string(std::max(1, repeat)), pf}, {}, ch);
   if (!why.empty()) {
-    out.note = fmt::format("not run: {} could not be started ({})", python, why);
+    out.note = fmt::format("not run: {}", why);
     return out;
   }
   proc::close_fd(ch.to);
@@ -194,7 +194,11 @@ PeerPairs open3d_self_intersections(const std::string& python, const mesh::Mesh&
     std::string tag, version;
     if (!(w >> tag)) continue;
     if (tag == "rayproof-open3d-missing") {
-      out.note = fmt::format("not installed for {} (python3-open3d):{}", python, line.substr(tag.size()));
+      std::string error, message;
+      w >> error;
+      std::getline(w, message);
+      out.note = fmt::format("not installed: {} cannot import open3d and numpy (Debian: python3-open3d; --python): {}:{}",
+                             python, error, message);
       return out;
     }
     double seconds = 0;
