@@ -1,3 +1,6 @@
+// The measuring half of `rayproof bench intersect` (intersect_bench.h): rayproof timed on one thread,
+// the peers run and compared pair by pair, the Open3D child process, the generated meshes and the
+// sentences.
 #include "scene/compare/intersect_bench.h"
 
 #include <fmt/core.h>
@@ -7,6 +10,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cerrno>
 #include <chrono>
 #include <cmath>
 #include <cstdint>

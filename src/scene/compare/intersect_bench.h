@@ -58,7 +58,7 @@ struct NamedMesh {
 };
 [[nodiscard]] std::vector<NamedMesh> generated_intersect_meshes();
 
-/// `m` with `b` appended (b's indices shifted: no index shared).
+/// `a` with `b` appended (b's indices shifted: no index shared), as one mesh.
 [[nodiscard]] mesh::Mesh joined(const mesh::Mesh& a, const mesh::Mesh& b);
 /// `m` with every vertex moved by d.
 [[nodiscard]] mesh::Mesh moved(mesh::Mesh m, Vec3<double> d);
