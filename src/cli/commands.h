@@ -34,6 +34,8 @@ Run add_bench_crossings(CLI::App& bench);
 Run add_distance(CLI::App& app);
 /// `rayproof bench distance`: registered on the bench subcommand; main runs it before bench.
 Run add_bench_distance(CLI::App& bench);
+/// `rayproof bench intersect`: registered on the bench subcommand; main runs it before bench.
+Run add_bench_intersect(CLI::App& bench);
 /// `rayproof intersect`: self-intersections and contact pairs (rayproof/scene/intersections.h).
 Run add_intersect(CLI::App& app);
 

@@ -40,7 +40,8 @@ void add_commands(CLI::App& app, Commands& out) {
     using AddSub = Run (*)(CLI::App&);
     CLI::App* bench = app.get_subcommand("bench");
     for (const auto& [name, add_sub] : {std::pair<const char*, AddSub>{"contains", &add_bench_contains},
-                                        {"crossings", &add_bench_crossings}, {"distance", &add_bench_distance}}) {
+                                        {"crossings", &add_bench_crossings}, {"distance", &add_bench_distance},
+                                        {"intersect", &add_bench_intersect}}) {
       Run run = add_sub(*bench);
       out.insert(out.begin(), {bench->get_subcommand(name), std::move(run)});
     }
