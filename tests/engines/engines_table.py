@@ -24,7 +24,8 @@ CONTAINS_LABELS = [("in→out", "inside_called_outside"), ("out→in", "outside_
                    ("false surface", "false_surface"), ("garbage", "garbage"), ("failed", "failures"),
                    ("invalid failed", "invalid_failures"), ("events", "events")]
 DISTANCE_LABELS = [("over tol", "over_tolerance"), ("random over tol", "random_over_tolerance"),
-                   ("wrong sign", "wrong_sign"), ("surface ≠ 0", "surface_nonzero"), ("garbage", "garbage"),
+                   ("wrong sign", "wrong_sign"), ("surface ≠ 0", "surface_nonzero"), ("off mesh", "closest_off_mesh"),
+                   ("not nearest", "closest_not_nearest"), ("wrong triangle", "wrong_triangle"), ("garbage", "garbage"),
                    ("failed", "failures"), ("invalid number", "invalid_number"),
                    ("invalid failed", "invalid_failures"), ("events", "events"), ("max rel", "max_rel_error")]
 
@@ -139,8 +140,8 @@ def main():
         flags = []
         if judge_cell.startswith("signed"):
             flags.append("--distance-signed")
-        if "float" in judge_cell and judge == "contains":
-            flags += ["--contains-precision", "float"]
+        if "float" in judge_cell:
+            flags += ["--%s-precision" % judge, "float"]
         command = engine_command(command_cell.strip("`"), examples_bin, source_dir)
         if command is None:
             skipped.append(engine)
