@@ -23,7 +23,7 @@ MESH_COLUMNS = {"bunny00": "bunny00.off", "refined_elephant": "refined_elephant.
 CONTAINS_LABELS = [("in→out", "inside_called_outside"), ("out→in", "outside_called_inside"),
                    ("false surface", "false_surface"), ("garbage", "garbage"), ("failed", "failures"),
                    ("invalid failed", "invalid_failures"), ("events", "events")]
-DISTANCE_LABELS = [("over tol", "over_tolerance"), ("random over tol", "random_over_tolerance"),
+DISTANCE_LABELS = [("over tol", "over_tolerance"), ("random findings", "random_findings"),
                    ("wrong sign", "wrong_sign"), ("surface ≠ 0", "surface_nonzero"), ("off mesh", "closest_off_mesh"),
                    ("not nearest", "closest_not_nearest"), ("wrong triangle", "wrong_triangle"), ("garbage", "garbage"),
                    ("failed", "failures"), ("invalid number", "invalid_number"),
@@ -114,7 +114,7 @@ def measure(rayproof, judge, name, command, flags, options, meshes_dir):
         values = dict(r)
         values["events"] = len(r["events"])
         if judge == "distance":
-            values["random_over_tolerance"] = r["sets"].get("random", {}).get("findings", 0) if r["rel_tol"] > 0 else 0
+            values["random_findings"] = r["sets"].get("random", {}).get("findings", 0) if r["rel_tol"] > 0 else 0
         out[column] = values
     return out
 
