@@ -394,15 +394,23 @@ TEST(DistanceCheck, FloatPrecisionJudgesTheRoundedInputInFloatUlps) {
       }
     };
     const Judged r = run(rounded, fn, opt);
-    for (const Vec3<double>& p : r.points.points)
-      if (finite(p)) ASSERT_EQ(p.x, static_cast<float>(p.x));
+    for (const Vec3<double>& p : r.points.points) {
+      if (finite(p)) {
+        ASSERT_EQ(p.x, static_cast<float>(p.x));
+      }
+    }
     expect_counts_equal(r.tally, brute_tally(rounded, opt, r.points, r.answers), "float, off " + std::to_string(off));
-    if (off >= 0) EXPECT_EQ(r.tally.findings(), 0u) << verify::summary_text(r.tally);
-    else EXPECT_GT(r.tally.over_tolerance, 0u) << verify::summary_text(r.tally);
+    if (off >= 0) {
+      EXPECT_EQ(r.tally.findings(), 0u) << verify::summary_text(r.tally);
+    } else {
+      EXPECT_GT(r.tally.over_tolerance, 0u) << verify::summary_text(r.tally);
+    }
     verify::DistanceCheckOptions in_double = opt;
     in_double.precision = verify::ContainsPrecision::float64;
     const verify::DistanceTally d = verify::DistanceJudge(rounded.view()).judge(r.points, r.answers, in_double);
-    if (off > 0) EXPECT_GT(d.over_tolerance, 0u) << verify::summary_text(d);
+    if (off > 0) {
+      EXPECT_GT(d.over_tolerance, 0u) << verify::summary_text(d);
+    }
   }
   // check_distance rounds the mesh itself; a mesh beyond float's range is refused.
   const verify::DistanceTally t = verify::check_distance(exact_answers(mesh, false), m.view(), opt);
