@@ -372,6 +372,29 @@ TEST(DistanceCheck, ClosestPointReproducersAreExact) {
     EXPECT_NE(text.find(line), std::string::npos) << line << "\n" << text;
 }
 
+// The bound's edge: b(x) = 2 ulps of 1 = 2^-51 at the cube's top face (point 0.5 0.5 2, exact
+// nearest triangle 2): a closest point 2 ulps above the face is on the mesh, 3 ulps above is off it
+// (and nearer the point); one on the side face x = 1, 2.5 ulps below the top edge, is on the mesh
+// (though farther than b(x) from triangle 2) and not nearest; 3 and 1.5 ulps of 1 below the top
+// face (b(x) = 2^-52 there) are off the mesh and not nearest (that much farther than 1 from the point).
+TEST(DistanceCheck, ClosestPointsAtTheBoundsEdge) {
+  const OwnedMesh m = cube();
+  const double u = std::ldexp(1.0, -52);
+  const std::vector<Vec3<double>> xs{{0.5, 0.5, 1 + 2 * u}, {0.5, 0.5, 1 + 3 * u}, {1, 0.5, 1 - 2.5 * u}, {0.5, 0.5, 1 - 3 * u},
+                                     {0.5, 0.5, 1 - 1.5 * u}};
+  const std::uint64_t off[] = {0, 1, 0, 1, 1}, not_nearest[] = {0, 0, 1, 1, 1};
+  for (std::size_t k = 0; k < xs.size(); ++k) {
+    const std::vector<Vec3<double>> pts(1, Vec3<double>{0.5, 0.5, 2});
+    const verify::DistanceAnswerFunction fn = [&](std::span<const Vec3<double>>, std::span<DistanceAnswer> out) {
+      out[0] = {.distance = 1, .point = xs[k], .has_point = true};
+    };
+    const verify::DistanceTally t = verify::check_distance(fn, m.view(), pts);
+    EXPECT_EQ(t.closest_points, 1u) << k;
+    EXPECT_EQ(t.closest_off_mesh, off[k]) << k << "\n" << verify::summary_text(t);
+    EXPECT_EQ(t.closest_not_nearest, not_nearest[k]) << k << "\n" << verify::summary_text(t);
+  }
+}
+
 // Float precision: the cube scaled by 0.1 (not floats) is judged rounded to float; rayproof's exact
 // answers on that rounded mesh have no finding, a double answer 1e-12 off is within 1 ulp of float
 // (and not of double), one 3 float ulps off is counted; each as the brute-force tally in float ulps.

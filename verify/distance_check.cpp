@@ -69,7 +69,9 @@ DistanceTally DistanceJudge::judge(const ContainsPoints& points, std::span<const
   const bool float32 = opt.precision == ContainsPrecision::float32;
   tally.rel_tol = opt.rel_tol;
   tally.notes = points.notes;
-  std::vector<ClosestPoint> ref(n), baseline(n), answered(n);  // answered: the answers' closest points' own
+  // answered: the answers' closest points' own distances to the mesh (or, when within b(x), to the
+  // exact nearest triangle: enough to tell they are not off the mesh)
+  std::vector<ClosestPoint> ref(n), baseline(n), answered(n);
   KindQuota quota(opt.reproducers);
   auto exact_of = [&](std::size_t i) { return opt.signed_distance ? ref[i].signed_distance() : ref[i].distance; };
   auto finding = [&](std::uint64_t DistanceCounts::*counter, const char* kind, std::size_t i, const std::string& extra) {
@@ -165,12 +167,23 @@ DistanceTally DistanceJudge::judge(const ContainsPoints& points, std::span<const
       points.set, tally.sets,
       [&](std::size_t b, std::size_t e) {
         s.mesh.closest_points(points_of(b, e), std::span(ref).subspan(b, e - b), opt.signed_distance, opt.threads);
-        // The answered closest points' own exact distances to the mesh.
+        // The answered closest points' own exact distances to the mesh, where needed: x within b(x) of
+        // the exact nearest triangle is within b(x) of the mesh (the rounding is monotone), else the
+        // mesh is searched.
         std::vector<Vec3<double>> xs;
         std::vector<std::size_t> at;
-        for (std::size_t i = b; i < e; ++i)
-          if (answers[i].has_point && !answers[i].failed && finite(answers[i].point) && finite(points.points[i]))
-            xs.push_back(answers[i].point), at.push_back(i);
+        for (std::size_t i = b; i < e; ++i) {
+          const DistanceAnswer& a = answers[i];
+          if (!a.has_point || a.failed || !finite(a.point) || !finite(points.points[i])) continue;
+          if (ref[i].triangle != ClosestPoint::kNoTriangle) {
+            const double near = exact_triangle_distance(a.point, s.triangles[ref[i].triangle]);
+            if (near <= closest_bound(a.point, float32)) {
+              answered[i].distance = near;
+              continue;
+            }
+          }
+          xs.push_back(a.point), at.push_back(i);
+        }
         std::vector<ClosestPoint> xd(xs.size());
         s.mesh.closest_points(xs, xd, false, opt.threads);
         for (std::size_t k = 0; k < xs.size(); ++k) answered[at[k]] = xd[k];
