@@ -1,6 +1,7 @@
 // rayproof check --distance: programs speaking the distance line protocol, judged on a mesh file.
 // The numpy example is caught (far points overflow to inf, a subnormal distance rounds to 0); the
-// example wrapping `rayproof distance` has no finding, signed or not; hangs and unreadable answers
+// example wrapping `rayproof distance` has no finding, signed or not, with closest points and
+// triangles or not; wrong closest points and triangles are counted; hangs and unreadable answers
 // are reported and the run goes on.
 #include <gtest/gtest.h>
 
@@ -39,11 +40,16 @@ TEST(CheckDistanceCli, NumpyExampleIsCaughtAndRayproofsOwnIsNot) {
   EXPECT_GT(count_of(r.out, "np", "over_tolerance"), 0u) << r.out;
   EXPECT_EQ(count_of(r.out, "np", "invalid_number"), 0u) << r.out;
   EXPECT_NE(r.out.find("over-tolerance set=far mesh=" + mesh.string() + " point "), std::string::npos) << r.out;
-  for (const char* sign : {"", " --signed"}) {
+  for (const char* sign : {"", " --signed", " --closest", " --signed --closest"}) {
+    const std::string s = sign;
     const auto e = run_rayproof("check --distance 'exact=/usr/bin/python3 " + example("rayproof_distance.py") + " " +
                                 RAYPROOF_BIN + sign + "' --mesh " + mesh.string() + " --distance-points 100" +
-                                (*sign ? " --distance-signed" : ""));
+                                (s.find("--signed") != std::string::npos ? " --distance-signed" : ""));
     EXPECT_EQ(e.status, 0) << sign << e.err << e.out;
+    if (s.find("--closest") != std::string::npos) {
+      EXPECT_GT(count_of(e.out, "exact", "closest_points"), 100u) << e.out;
+      EXPECT_EQ(count_of(e.out, "exact", "triangle_ids"), count_of(e.out, "exact", "closest_points")) << e.out;
+    }
     EXPECT_EQ(count_of(e.out, "exact", "max_ulps"), 0u) << e.out;
     EXPECT_NE(e.out.find("function 'exact' answered all"), std::string::npos) << e.out;
   }
@@ -70,6 +76,29 @@ TEST(CheckDistanceCli, HangUnreadableAndJson) {
   EXPECT_TRUE(run["cost_ratio"].is_number()) << j.out;
 }
 
+TEST(CheckDistanceCli, ClosestPointColumnsAndFloatPrecision) {
+  const auto mesh = write_file("cube.off", kCube);
+  const auto r = run_rayproof("check --distance 'cols=while read l; do echo 1 0.5 0.5 7 99; done' --distance "
+                              "'pt=while read l; do echo 1 0.5 0.5 1; done' --mesh " + mesh.string() +
+                              " --distance-points 10 --distance-sets random --json --distance-precision float");
+  ASSERT_EQ(r.status, 1) << r.err;
+  const nlohmann::json out = nlohmann::json::parse(r.out);
+  const nlohmann::json& cols = out["functions"][0];
+  EXPECT_EQ(cols["precision"], "float");
+  EXPECT_EQ(cols["closest_points"], 10);
+  EXPECT_EQ(cols["closest_off_mesh"], 10);  // 6 above the cube
+  EXPECT_EQ(cols["triangle_ids"], 10);
+  EXPECT_EQ(cols["wrong_triangle"], 10);  // the cube has 12
+  const nlohmann::json& pt = out["functions"][1];
+  EXPECT_EQ(pt["closest_points"], 10);
+  EXPECT_EQ(pt["closest_off_mesh"], 0);  // on the top face
+  EXPECT_EQ(pt["triangle_ids"], 0);
+  EXPECT_EQ(pt["wrong_triangle"], 0);
+  const auto bad = run_rayproof("check --distance 'x=while read l; do echo 1 2 3; done' --mesh " + mesh.string() +
+                                " --distance-points 3 --distance-sets random");
+  EXPECT_NE(bad.out.find("event: unreadable answer '1 2 3'"), std::string::npos) << bad.out;
+}
+
 TEST(CheckDistanceCli, BadUsageIsRefused) {
   const auto mesh = write_file("cube.off", kCube);
   EXPECT_EQ(run_rayproof("check --distance 'x=cat'").status, 2);
@@ -77,6 +106,9 @@ TEST(CheckDistanceCli, BadUsageIsRefused) {
   EXPECT_EQ(run_rayproof("check --distance x=cat --contains y=cat --mesh " + mesh.string()).status, 2);
   EXPECT_EQ(run_rayproof("check --distance x=cat --distance-rel-tol -1 --mesh " + mesh.string()).status, 2);
   EXPECT_EQ(run_rayproof("check --distance x=cat --distance-sets nope --mesh " + mesh.string()).status, 2);
+  const auto p = run_rayproof("check --distance x=cat --distance-precision half --mesh " + mesh.string());
+  EXPECT_EQ(p.status, 2);
+  EXPECT_NE(p.err.find("--distance-precision 'half' is neither float nor double"), std::string::npos) << p.err;
 }
 
 }  // namespace

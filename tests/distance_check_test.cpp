@@ -3,6 +3,10 @@
 // with flipped signs and one answering numbers at NaN points get exactly the counts of a brute-force
 // tally: the exact distance as the least correctly rounded distance to each triangle
 // (exact_triangle_distance), the side from the generalized winding number over every triangle.
+// Closest points and triangles: rayproof's own get no finding; hand-made wrong ones (off the mesh,
+// on it but not nearest, a triangle not at the exact distance) each move their counter only, and
+// every count equals the brute-force tally (the nearest triangles compared exactly, pairwise). The
+// float precision: the mesh and points rounded to float, errors in float ulps.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -52,8 +56,49 @@ double brute(const OwnedMesh& m, const Vec3<double>& p, bool with_sign) {
   return std::lround(w.w) != 0 ? -d : d;  // closed oriented meshes: the integer winding number
 }
 
+std::array<Vec3<double>, 3> corners(const OwnedMesh& m, std::size_t t) {
+  return {m.v[m.f[t][0]], m.v[m.f[t][1]], m.v[m.f[t][2]]};
+}
+
+/// The spacing of doubles (or floats) above |v|: nextafter, not frexp as the judge.
+double spacing(double v, bool float32) {
+  if (float32) {
+    const float f = std::fabs(static_cast<float>(v));
+    return static_cast<double>(std::nextafter(f, std::numeric_limits<float>::infinity())) - f;
+  }
+  return std::nextafter(std::fabs(v), std::numeric_limits<double>::infinity()) - std::fabs(v);
+}
+
+/// The closest point's and triangle's counts, brute force: every triangle's exact distance.
+void brute_columns(const OwnedMesh& m, bool float32, const Vec3<double>& p, const DistanceAnswer& a, DistanceCounts& c) {
+  std::size_t nearest = 0;  // a nearest triangle: exact pairwise comparisons
+  for (std::size_t t = 1; t < m.f.size(); ++t)
+    if (compare_triangle_distances(p, corners(m, t), corners(m, nearest)) < 0) nearest = t;
+  if (a.has_point) {
+    ++c.closest_points;
+    const Vec3<double>& x = a.point;
+    if (!finite(x)) {
+      ++c.closest_off_mesh;
+    } else {
+      const double b = 2 * std::max({spacing(x.x, float32), spacing(x.y, float32), spacing(x.z, float32)});
+      double off = std::numeric_limits<double>::infinity();
+      for (std::size_t t = 0; t < m.f.size(); ++t) off = std::min(off, exact_triangle_distance(x, corners(m, t)));
+      if (off > b) ++c.closest_off_mesh;
+      if (exact_triangle_distance(p, {x, x, x}) - exact_triangle_distance(p, corners(m, nearest)) > b)
+        ++c.closest_not_nearest;
+    }
+  }
+  if (a.has_triangle) {
+    ++c.triangle_ids;
+    if (a.triangle < 0 || a.triangle >= static_cast<std::int64_t>(m.f.size()) ||
+        compare_triangle_distances(p, corners(m, static_cast<std::size_t>(a.triangle)), corners(m, nearest)) != 0)
+      ++c.wrong_triangle;
+  }
+}
+
 DistanceCounts brute_tally(const OwnedMesh& m, const verify::DistanceCheckOptions& opt,
                            const verify::ContainsPoints& pts, std::span<const DistanceAnswer> answers) {
+  const bool float32 = opt.precision == verify::ContainsPrecision::float32;
   DistanceCounts c;
   for (std::size_t i = 0; i < pts.points.size(); ++i) {
     const DistanceAnswer& a = answers[i];
@@ -70,6 +115,7 @@ DistanceCounts brute_tally(const OwnedMesh& m, const verify::DistanceCheckOption
       ++c.failures;
       continue;
     }
+    brute_columns(m, float32, pts.points[i], a, c);
     const double d = a.distance;
     if (std::isnan(d) || (!opt.signed_distance && d < 0)) {
       ++c.garbage;
@@ -77,7 +123,8 @@ DistanceCounts brute_tally(const OwnedMesh& m, const verify::DistanceCheckOption
     }
     if (exact == 0 && d != 0) ++c.surface_nonzero;
     if (opt.signed_distance && d != 0 && exact != 0 && (d < 0) != (exact < 0)) ++c.wrong_sign;
-    const std::uint64_t ulps = ulp_distance(d, exact);
+    const std::uint64_t ulps =
+        float32 ? ulp_distance(static_cast<float>(d), static_cast<float>(exact)) : ulp_distance(d, exact);
     c.max_ulps = std::max(c.max_ulps, ulps);
     if (ulps <= 1) continue;
     ++c.over_1ulp;
@@ -127,7 +174,8 @@ struct Judged {
   verify::DistanceTally tally;
 };
 
-Judged run(const OwnedMesh& m, const verify::DistanceFunction& fn, verify::DistanceCheckOptions opt = {}) {
+template <class Function>
+Judged run(const OwnedMesh& m, const Function& fn, verify::DistanceCheckOptions opt = {}) {
   opt.random_points = 200;
   opt.max_points_per_set = 200;
   Judged r;
@@ -225,6 +273,174 @@ TEST(DistanceCheck, SurfaceNonzeroAndGarbageWithExactReproducers) {
     seen = seen || r.line == "over-tolerance set=user mesh=cube point 1.0000000000000002 0.5 0.5 exact: "
                              "2.220446049250313e-16 (triangle 10) answer: 0 (4372995238176751616 ulps)";
   EXPECT_TRUE(seen) << verify::summary_text(t);
+}
+
+/// rayproof's own answers with their closest points and triangles (ExactMesh::closest_point).
+verify::DistanceAnswerFunction exact_answers(const ExactMesh& mesh, bool with_sign) {
+  return [&mesh, with_sign](std::span<const Vec3<double>> p, std::span<DistanceAnswer> out) {
+    for (std::size_t i = 0; i < p.size(); ++i) {
+      const ClosestPoint c = mesh.closest_point(p[i], with_sign);
+      out[i].distance = with_sign ? c.signed_distance() : c.distance;
+      out[i].point = c.point, out[i].has_point = true;
+      out[i].triangle = c.triangle == ClosestPoint::kNoTriangle ? -1 : c.triangle, out[i].has_triangle = true;
+    }
+  };
+}
+
+ExactMesh exact_mesh(const OwnedMesh& m) {
+  return ExactMesh(VertexArray(&m.v[0].x, m.v.size()), IndexArray{m.f[0].data(), m.f.size()});
+}
+
+TEST(DistanceCheck, ExactClosestPointsAndTrianglesHaveNoFinding) {
+  for (const OwnedMesh& m : {cube(), tetrahedron()})
+    for (bool with_sign : {false, true}) {
+      const ExactMesh mesh = exact_mesh(m);
+      verify::DistanceCheckOptions opt;
+      opt.signed_distance = with_sign;
+      const Judged r = run(m, exact_answers(mesh, with_sign), opt);
+      EXPECT_EQ(r.tally.findings(), 0u) << m.name << "\n" << verify::summary_text(r.tally);
+      EXPECT_EQ(r.tally.closest_points, r.tally.points - r.tally.invalid_points) << m.name;
+      EXPECT_EQ(r.tally.triangle_ids, r.tally.closest_points) << m.name;
+      expect_counts_equal(r.tally, brute_tally(m, opt, r.points, r.answers), m.name);
+    }
+}
+
+// Each wrong answer moves its counter and no other finding's: the closest point halfway to the
+// point (off the mesh, nearer), the mesh's vertex farthest from the point (on the mesh, not
+// nearest), the next triangle (not at the exact distance unless tied), a NaN point, no such triangle.
+TEST(DistanceCheck, WrongClosestPointsAndTrianglesMoveTheirCounterOnly) {
+  const OwnedMesh m = tetrahedron();
+  const ExactMesh mesh = exact_mesh(m);
+  struct Wrong {
+    const char* name;
+    std::uint64_t DistanceCounts::*counter;
+    std::function<void(const Vec3<double>&, DistanceAnswer&)> change;
+  };
+  const std::vector<Wrong> wrongs = {
+      {"halfway", &DistanceCounts::closest_off_mesh,
+       [](const Vec3<double>& p, DistanceAnswer& a) { a.point = a.point + 0.5 * (p - a.point); }},
+      {"far vertex", &DistanceCounts::closest_not_nearest,
+       [&m](const Vec3<double>& p, DistanceAnswer& a) {
+         for (const Vec3<double>& v : m.v)
+           if (length(v - p) > length(a.point - p)) a.point = v;
+       }},
+      {"next triangle", &DistanceCounts::wrong_triangle,
+       [&m](const Vec3<double>&, DistanceAnswer& a) {
+         a.triangle = (a.triangle + 1) % static_cast<std::int64_t>(m.f.size());
+       }},
+      {"nan point", &DistanceCounts::closest_off_mesh,
+       [](const Vec3<double>&, DistanceAnswer& a) { a.point.y = kNaN<double>; }},
+      {"no such triangle", &DistanceCounts::wrong_triangle, [](const Vec3<double>&, DistanceAnswer& a) { a.triangle = 4; }},
+  };
+  const verify::DistanceCheckOptions opt;
+  const Judged right = run(m, exact_answers(mesh, false), opt);
+  for (const Wrong& w : wrongs) {
+    const auto exact = exact_answers(mesh, false);
+    std::size_t seen = 0;
+    const verify::DistanceAnswerFunction fn = [&](std::span<const Vec3<double>> p, std::span<DistanceAnswer> out) {
+      exact(p, out);
+      for (std::size_t i = 0; i < p.size(); ++i)
+        if (seen++ % 3 == 0 && finite(p[i])) w.change(p[i], out[i]);
+    };
+    const Judged r = run(m, fn, opt);
+    expect_counts_equal(r.tally, brute_tally(m, opt, r.points, r.answers), w.name);
+    EXPECT_GT(r.tally.*w.counter, 0u) << w.name << "\n" << verify::summary_text(r.tally);
+    EXPECT_EQ(r.tally.findings(), r.tally.*w.counter) << w.name << "\n" << verify::summary_text(r.tally);
+    EXPECT_EQ(r.tally.closest_points, right.tally.closest_points) << w.name;
+  }
+}
+
+TEST(DistanceCheck, ClosestPointReproducersAreExact) {
+  const OwnedMesh m = cube();
+  const std::vector<Vec3<double>> pts{{0.5, 0.5, 2}, {0.5, 0.5, 3}};
+  const verify::DistanceAnswerFunction fn = [](std::span<const Vec3<double>>, std::span<DistanceAnswer> out) {
+    out[0] = {.distance = 1, .point = {0.5, 0.5, 1.25}, .triangle = 0, .has_point = true, .has_triangle = true};
+    out[1] = {.distance = 2, .point = {0, 0, 1}, .triangle = 2, .has_point = true, .has_triangle = true};
+  };
+  const verify::DistanceTally t = verify::check_distance(fn, m.view(), pts);
+  EXPECT_EQ(t.closest_off_mesh, 1u);
+  EXPECT_EQ(t.closest_not_nearest, 1u);
+  EXPECT_EQ(t.wrong_triangle, 1u);
+  EXPECT_EQ(t.findings(), 3u) << verify::summary_text(t);
+  const std::string text = verify::summary_text(t);
+  for (const char* line :
+       {"closest-off-mesh set=user mesh=cube point 0.5 0.5 2 exact: 1 (triangle 2) answer: 1 closest 0.5 0.5 1.25 "
+        "(0.25 from the mesh, bound 4.440892098500626e-16)",
+        "closest-not-nearest set=user mesh=cube point 0.5 0.5 3 exact: 2 (triangle 2) answer: 2 closest 0 0 1 "
+        "(2.1213203435596424 from the point, bound 4.440892098500626e-16)",
+        "wrong-triangle set=user mesh=cube point 0.5 0.5 2 exact: 1 (triangle 2) answer: 1 triangle 0 (exact distance 2)"})
+    EXPECT_NE(text.find(line), std::string::npos) << line << "\n" << text;
+}
+
+// The bound's edge: b(x) = 2 ulps of 1 = 2^-51 at the cube's top face (point 0.5 0.5 2, exact
+// nearest triangle 2): a closest point 2 ulps above the face is on the mesh, 3 ulps above is off it
+// (and nearer the point); one on the side face x = 1, 2.5 ulps below the top edge, is on the mesh
+// (though farther than b(x) from triangle 2) and not nearest; 3 and 1.5 ulps of 1 below the top
+// face (b(x) = 2^-52 there) are off the mesh and not nearest (that much farther than 1 from the point).
+TEST(DistanceCheck, ClosestPointsAtTheBoundsEdge) {
+  const OwnedMesh m = cube();
+  const double u = std::ldexp(1.0, -52);
+  const std::vector<Vec3<double>> xs{{0.5, 0.5, 1 + 2 * u}, {0.5, 0.5, 1 + 3 * u}, {1, 0.5, 1 - 2.5 * u}, {0.5, 0.5, 1 - 3 * u},
+                                     {0.5, 0.5, 1 - 1.5 * u}};
+  const std::uint64_t off[] = {0, 1, 0, 1, 1}, not_nearest[] = {0, 0, 1, 1, 1};
+  for (std::size_t k = 0; k < xs.size(); ++k) {
+    const std::vector<Vec3<double>> pts(1, Vec3<double>{0.5, 0.5, 2});
+    const verify::DistanceAnswerFunction fn = [&](std::span<const Vec3<double>>, std::span<DistanceAnswer> out) {
+      out[0] = {.distance = 1, .point = xs[k], .has_point = true};
+    };
+    const verify::DistanceTally t = verify::check_distance(fn, m.view(), pts);
+    EXPECT_EQ(t.closest_points, 1u) << k;
+    EXPECT_EQ(t.closest_off_mesh, off[k]) << k << "\n" << verify::summary_text(t);
+    EXPECT_EQ(t.closest_not_nearest, not_nearest[k]) << k << "\n" << verify::summary_text(t);
+  }
+}
+
+// Float precision: the cube scaled by 0.1 (not floats) is judged rounded to float; rayproof's exact
+// answers on that rounded mesh have no finding, a double answer 1e-12 off is within 1 ulp of float
+// (and not of double), one 3 float ulps off is counted; each as the brute-force tally in float ulps.
+TEST(DistanceCheck, FloatPrecisionJudgesTheRoundedInputInFloatUlps) {
+  OwnedMesh m = cube();
+  for (Vec3<double>& v : m.v) v = 0.1 * v;
+  OwnedMesh rounded = m;
+  rounded.v = verify::float_vertices(m.v);
+  EXPECT_NE(rounded.v[7].x, m.v[7].x);
+  const ExactMesh mesh = exact_mesh(rounded);
+  verify::DistanceCheckOptions opt;
+  opt.precision = verify::ContainsPrecision::float32;
+  for (const double off : {0.0, 1e-12, -1.0}) {
+    const auto exact = exact_answers(mesh, false);
+    const verify::DistanceAnswerFunction fn = [&](std::span<const Vec3<double>> p, std::span<DistanceAnswer> out) {
+      exact(p, out);
+      for (DistanceAnswer& a : out) {
+        if (off >= 0) a.distance *= 1 + off;
+        else if (a.distance > 0) a.distance = std::nextafter(std::nextafter(std::nextafter(float(a.distance), 1.f), 1.f), 1.f);
+      }
+    };
+    const Judged r = run(rounded, fn, opt);
+    for (const Vec3<double>& p : r.points.points) {
+      if (finite(p)) {
+        ASSERT_EQ(p.x, static_cast<float>(p.x));
+      }
+    }
+    expect_counts_equal(r.tally, brute_tally(rounded, opt, r.points, r.answers), "float, off " + std::to_string(off));
+    if (off >= 0) {
+      EXPECT_EQ(r.tally.findings(), 0u) << verify::summary_text(r.tally);
+    } else {
+      EXPECT_GT(r.tally.over_tolerance, 0u) << verify::summary_text(r.tally);
+    }
+    verify::DistanceCheckOptions in_double = opt;
+    in_double.precision = verify::ContainsPrecision::float64;
+    const verify::DistanceTally d = verify::DistanceJudge(rounded.view()).judge(r.points, r.answers, in_double);
+    if (off > 0) {
+      EXPECT_GT(d.over_tolerance, 0u) << verify::summary_text(d);
+    }
+  }
+  // check_distance rounds the mesh itself; a mesh beyond float's range is refused.
+  const verify::DistanceTally t = verify::check_distance(exact_answers(mesh, false), m.view(), opt);
+  EXPECT_EQ(t.findings(), 0u) << verify::summary_text(t);
+  OwnedMesh huge = m;
+  huge.v[7].x = 1e300;
+  EXPECT_THROW((void)verify::check_distance(exact_answers(mesh, false), huge.view(), opt), std::invalid_argument);
 }
 
 }  // namespace

@@ -41,11 +41,28 @@ ExecContainsRun run_exec_contains(const std::string& command, const ContainsMesh
 
 bool parse_distance_answer(const std::string& line, double& d) { return parse_fields(line, "d", &d, nullptr); }
 
+bool parse_distance_answer(const std::string& line, DistanceAnswer& a) {
+  double f[4];
+  long long triangle = -1;
+  if (parse_fields(line, "d", f, nullptr)) {
+    a.distance = f[0];
+    return true;
+  }
+  const bool with_triangle = parse_fields(line, "ddddi", f, &triangle);
+  if (!with_triangle && !parse_fields(line, "dddd", f, nullptr)) return false;
+  a.distance = f[0];
+  a.point = {f[1], f[2], f[3]};
+  a.has_point = true;
+  a.triangle = triangle;
+  a.has_triangle = with_triangle;
+  return true;
+}
+
 ExecDistanceRun run_exec_distance(const std::string& command, const ContainsMesh& mesh, const ContainsPoints& points,
                                   const ExecContainsOptions& opt) {
   std::vector<DistanceAnswer> answers(points.points.size());
   LineBatchRun r = run_on_points(command, "rayproof-distance", mesh, points, opt, [&](const std::string& line, std::size_t i) {
-    return parse_distance_answer(line, answers[i].distance);
+    return parse_distance_answer(line, answers[i]);
   });
   return with_failures(std::move(answers), std::move(r));
 }

@@ -36,5 +36,8 @@ using ExecDistanceRun = ExecRun<DistanceAnswer>;
                                                 const ContainsPoints& points, const ExecContainsOptions& opt = {});
 /// One distance answer line: a number (what strtod reads, blanks after it); false when unreadable.
 [[nodiscard]] bool parse_distance_answer(const std::string& line, double& d);
+/// One answer line of any of the protocol's forms: `d`, `d x y z` (the closest point) or
+/// `d x y z triangle` (and its triangle's index); false when unreadable.
+[[nodiscard]] bool parse_distance_answer(const std::string& line, DistanceAnswer& a);
 
 }  // namespace rayproof::verify

@@ -22,15 +22,34 @@ namespace {
 
 std::string num(double x) { return exact_number(x); }
 
+/// The spacing of the precision's numbers at |v| (double: 53 bits, float: 24), a power of two.
+double ulp_at(double v, bool float32) {
+  const int bits = float32 ? 24 : 53, least = float32 ? -149 : -1074;
+  if (v == 0) return std::ldexp(1.0, least);
+  int e = 0;
+  (void)std::frexp(v, &e);
+  return std::ldexp(1.0, std::max(e - bits, least));
+}
+
+/// b(x): 2 ulps of x's largest coordinate; rounding each coordinate of a point of the mesh moves
+/// it less than sqrt(3)/2 of that ulp.
+double closest_bound(const Vec3<double>& x, bool float32) {
+  return 2 * std::max({ulp_at(x.x, float32), ulp_at(x.y, float32), ulp_at(x.z, float32)});
+}
+
 }  // namespace
 
 struct DistanceJudge::State {
   std::string name;
+  std::vector<std::array<Vec3<double>, 3>> triangles;  // for the exact ties of answered triangles
   ExactMesh mesh;
   explicit State(const ContainsMesh& m)
       : name(m.name),
         mesh(VertexArray(reinterpret_cast<const double*>(m.vertices.data()), m.vertices.size()),
-             IndexArray{m.triangles.empty() ? nullptr : m.triangles.data()->data(), m.triangles.size()}) {}
+             IndexArray{m.triangles.empty() ? nullptr : m.triangles.data()->data(), m.triangles.size()}) {
+    triangles.reserve(m.triangles.size());
+    for (const auto& t : m.triangles) triangles.push_back({m.vertices[t[0]], m.vertices[t[1]], m.vertices[t[2]]});
+  }
 };
 
 DistanceJudge::DistanceJudge(const ContainsMesh& mesh) : state_(std::make_unique<State>(mesh)) {}
@@ -46,9 +65,13 @@ DistanceTally DistanceJudge::judge(const ContainsPoints& points, std::span<const
   const State& s = *state_;
   DistanceTally tally;
   tally.signed_distance = opt.signed_distance;
+  tally.precision = opt.precision;
+  const bool float32 = opt.precision == ContainsPrecision::float32;
   tally.rel_tol = opt.rel_tol;
   tally.notes = points.notes;
-  std::vector<ClosestPoint> ref(n), baseline(n);
+  // answered: the answers' closest points' own distances to the mesh (or, when within b(x), to the
+  // exact nearest triangle: enough to tell they are not off the mesh)
+  std::vector<ClosestPoint> ref(n), baseline(n), answered(n);
   KindQuota quota(opt.reproducers);
   auto exact_of = [&](std::size_t i) { return opt.signed_distance ? ref[i].signed_distance() : ref[i].distance; };
   auto finding = [&](std::uint64_t DistanceCounts::*counter, const char* kind, std::size_t i, const std::string& extra) {
@@ -64,6 +87,19 @@ DistanceTally DistanceJudge::judge(const ContainsPoints& points, std::span<const
          fmt::format("{} set={} mesh={} point {} {} {} exact: {} answer: {}{}", kind, points.names[points.set[i]],
                      s.name, num(p.x), num(p.y), num(p.z), exact,
                      answers[i].failed ? std::string("failed") : num(answers[i].distance), extra)});
+  };
+
+  auto judge_distance_ulps = [&](std::size_t i, double d, double exact) {
+    const std::uint64_t ulps = float32 ? ulp_distance(static_cast<float>(d), static_cast<float>(exact))
+                                       : ulp_distance(d, exact);
+    tally.max_ulps = std::max(tally.max_ulps, ulps);
+    if (exact != 0 && std::isfinite(exact))
+      tally.max_rel_error = std::max(tally.max_rel_error, std::fabs(d - exact) / std::fabs(exact));
+    if (ulps <= 1) return;
+    ++tally.over_1ulp;
+    if (!(std::fabs(d - exact) <= opt.rel_tol * std::fabs(exact)))
+      finding(&DistanceCounts::over_tolerance, "over-tolerance", i,
+              fmt::format(" ({} ulps{})", ulps, float32 ? " of float" : ""));
   };
 
   auto judge_point = [&](std::size_t i) {
@@ -84,16 +120,40 @@ DistanceTally DistanceJudge::judge(const ContainsPoints& points, std::span<const
     if (on_surface && d != 0) finding(&DistanceCounts::surface_nonzero, "surface-nonzero", i, "");
     if (opt.signed_distance && d != 0 && exact != 0 && (d < 0) != (exact < 0))
       finding(&DistanceCounts::wrong_sign, "wrong-sign", i, "");
-    const std::uint64_t ulps = ulp_distance(d, exact);
-    tally.max_ulps = std::max(tally.max_ulps, ulps);
-    if (exact != 0 && std::isfinite(exact))
-      tally.max_rel_error = std::max(tally.max_rel_error, std::fabs(d - exact) / std::fabs(exact));
-    if (ulps <= 1) return;
-    ++tally.over_1ulp;
-    if (!(std::fabs(d - exact) <= opt.rel_tol * std::fabs(exact)))
-      finding(&DistanceCounts::over_tolerance, "over-tolerance", i, fmt::format(" ({} ulps)", ulps));
+    judge_distance_ulps(i, d, exact);
   };
-
+  // The closest point and triangle answered at a valid point whose answer did not fail.
+  auto judge_columns = [&](std::size_t i) {
+    const DistanceAnswer& a = answers[i];
+    if (a.failed || !finite(points.points[i])) return;
+    const Vec3<double>& p = points.points[i];
+    if (a.has_point) {
+      ++tally.closest_points;
+      const Vec3<double>& x = a.point;
+      if (!finite(x)) {
+        finding(&DistanceCounts::closest_off_mesh, "closest-off-mesh", i, fmt::format(" closest {}", exact_point(x)));
+      } else {
+        const double b = closest_bound(x, float32);
+        if (answered[i].distance > b)
+          finding(&DistanceCounts::closest_off_mesh, "closest-off-mesh", i,
+                  fmt::format(" closest {} ({} from the mesh, bound {})", exact_point(x), num(answered[i].distance), num(b)));
+        const double from_p = exact_triangle_distance(p, {x, x, x});
+        if (from_p - ref[i].distance > b)
+          finding(&DistanceCounts::closest_not_nearest, "closest-not-nearest", i,
+                  fmt::format(" closest {} ({} from the point, bound {})", exact_point(x), num(from_p), num(b)));
+      }
+    }
+    if (a.has_triangle) {
+      ++tally.triangle_ids;
+      const bool known = a.triangle >= 0 && static_cast<std::uint64_t>(a.triangle) < s.triangles.size();
+      if (!known || ref[i].triangle == ClosestPoint::kNoTriangle ||
+          compare_triangle_distances(p, s.triangles[static_cast<std::size_t>(a.triangle)], s.triangles[ref[i].triangle]) != 0)
+        finding(&DistanceCounts::wrong_triangle, "wrong-triangle", i,
+                known ? fmt::format(" triangle {} (exact distance {})", a.triangle,
+                                    num(exact_triangle_distance(p, s.triangles[static_cast<std::size_t>(a.triangle)])))
+                      : fmt::format(" triangle {} (no such triangle)", a.triangle));
+    }
+  };
   for (std::size_t k = 0; k < points.names.size(); ++k) tally.sets.push_back({points.names[k], 0, 0, 0, 0});
   {  // Warm-up, untimed: the first call builds the distance tree.
     const std::size_t m = std::min<std::size_t>(n, 64);
@@ -107,9 +167,30 @@ DistanceTally DistanceJudge::judge(const ContainsPoints& points, std::span<const
       points.set, tally.sets,
       [&](std::size_t b, std::size_t e) {
         s.mesh.closest_points(points_of(b, e), std::span(ref).subspan(b, e - b), opt.signed_distance, opt.threads);
+        // The answered closest points' own exact distances to the mesh, where needed: x within b(x) of
+        // the exact nearest triangle is within b(x) of the mesh (the rounding is monotone), else the
+        // mesh is searched.
+        std::vector<Vec3<double>> xs;
+        std::vector<std::size_t> at;
+        for (std::size_t i = b; i < e; ++i) {
+          const DistanceAnswer& a = answers[i];
+          if (!a.has_point || a.failed || !finite(a.point) || !finite(points.points[i])) continue;
+          if (ref[i].triangle != ClosestPoint::kNoTriangle) {
+            const double near = exact_triangle_distance(a.point, s.triangles[ref[i].triangle]);
+            if (near <= closest_bound(a.point, float32)) {
+              answered[i].distance = near;
+              continue;
+            }
+          }
+          xs.push_back(a.point), at.push_back(i);
+        }
+        std::vector<ClosestPoint> xd(xs.size());
+        s.mesh.closest_points(xs, xd, false, opt.threads);
+        for (std::size_t k = 0; k < xs.size(); ++k) answered[at[k]] = xd[k];
         for (std::size_t i = b; i < e; ++i) {
           ++tally.sets[points.set[i]].points;
           judge_point(i);
+          judge_columns(i);
         }
       },
       [&](std::size_t b, std::size_t e) {
@@ -118,8 +199,24 @@ DistanceTally DistanceJudge::judge(const ContainsPoints& points, std::span<const
   return tally;
 }
 
+std::vector<Vec3<double>> float_vertices(std::span<const Vec3<double>> vertices) {
+  std::vector<Vec3<double>> out;
+  out.reserve(vertices.size());
+  for (std::size_t i = 0; i < vertices.size(); ++i) {
+    const Vec3<double>& v = vertices[i];
+    const Vec3<double> f{static_cast<float>(v.x), static_cast<float>(v.y), static_cast<float>(v.z)};
+    if (finite(v) && !finite(f))
+      throw std::invalid_argument(fmt::format("vertex {} ({}) is beyond float's range: a float32 function cannot hold "
+                                              "this mesh",
+                                              i, exact_point(v)));
+    out.push_back(f);
+  }
+  return out;
+}
+
 ContainsPoints distance_points(const ContainsMesh& mesh, const DistanceCheckOptions& opt) {
   ContainsCheckOptions c;
+  c.precision = opt.precision;
   c.random_points = opt.random_points;
   c.max_points_per_set = opt.max_points_per_set;
   c.seed = opt.seed;
@@ -138,14 +235,45 @@ void run_distance(const DistanceFunction& fn, std::span<const Vec3<double>> poin
         fn(points.subspan(at, n), d);
       },
       [&](std::size_t at, std::size_t n, bool failed) {
-        for (std::size_t k = 0; k < n; ++k) out[at + k] = {d[k], failed};
+        for (std::size_t k = 0; k < n; ++k) out[at + k] = {.distance = d[k], .failed = failed};
+      });
+}
+
+void run_distance(const DistanceAnswerFunction& fn, std::span<const Vec3<double>> points, std::size_t batch,
+                  std::span<DistanceAnswer> out, std::string& error) {
+  if (out.size() != points.size()) throw std::invalid_argument("run_distance: output size differs from point count");
+  run_in_batches(
+      points.size(), batch, error,
+      [&](std::size_t at, std::size_t n) {
+        const std::span<DistanceAnswer> batch_out = out.subspan(at, n);
+        std::fill(batch_out.begin(), batch_out.end(), DistanceAnswer{});
+        fn(points.subspan(at, n), batch_out);
+      },
+      [&](std::size_t at, std::size_t n, bool failed) {
+        for (std::size_t k = 0; k < n; ++k) out[at + k].failed = failed;
       });
 }
 
 namespace {
 
-DistanceTally run_and_judge(const DistanceFunction& fn, const ContainsMesh& mesh, const ContainsPoints& points,
+/// The function run on the points and judged; under float32 on the mesh rounded to float, the
+/// user's points (`user`) rounded to float; else on distance_points.
+template <class Function>
+DistanceTally run_and_judge(const Function& fn, const ContainsMesh& given, const std::vector<Vec3<double>>* user,
                             const DistanceCheckOptions& opt) {
+  const bool float32 = opt.precision == ContainsPrecision::float32;
+  const std::vector<Vec3<double>> rounded = float32 ? float_vertices(given.vertices) : std::vector<Vec3<double>>();
+  const ContainsMesh mesh{float32 ? std::span<const Vec3<double>>(rounded) : given.vertices, given.triangles, given.name};
+  ContainsPoints points;
+  if (user) {
+    for (const Vec3<double>& p : *user)
+      points.points.push_back(float32 ? Vec3<double>{static_cast<float>(p.x), static_cast<float>(p.y), static_cast<float>(p.z)}
+                                      : p);
+    points.set.assign(points.points.size(), 0);
+    points.names = {"user"};
+  } else {
+    points = distance_points(mesh, opt);
+  }
   const DistanceJudge judge(mesh);
   std::vector<DistanceAnswer> answers(points.points.size());
   std::string error;
@@ -158,20 +286,28 @@ DistanceTally run_and_judge(const DistanceFunction& fn, const ContainsMesh& mesh
 }  // namespace
 
 DistanceTally check_distance(const DistanceFunction& fn, const ContainsMesh& mesh, const DistanceCheckOptions& opt) {
-  return run_and_judge(fn, mesh, distance_points(mesh, opt), opt);
+  return run_and_judge(fn, mesh, nullptr, opt);
 }
 
 DistanceTally check_distance(const DistanceFunction& fn, const ContainsMesh& mesh,
                              std::span<const Vec3<double>> user_points, const DistanceCheckOptions& opt) {
-  ContainsPoints points;
-  points.points.assign(user_points.begin(), user_points.end());
-  points.set.assign(points.points.size(), 0);
-  points.names = {"user"};
-  return run_and_judge(fn, mesh, points, opt);
+  const std::vector<Vec3<double>> user(user_points.begin(), user_points.end());
+  return run_and_judge(fn, mesh, &user, opt);
+}
+
+DistanceTally check_distance(const DistanceAnswerFunction& fn, const ContainsMesh& mesh, const DistanceCheckOptions& opt) {
+  return run_and_judge(fn, mesh, nullptr, opt);
+}
+
+DistanceTally check_distance(const DistanceAnswerFunction& fn, const ContainsMesh& mesh,
+                             std::span<const Vec3<double>> user_points, const DistanceCheckOptions& opt) {
+  const std::vector<Vec3<double>> user(user_points.begin(), user_points.end());
+  return run_and_judge(fn, mesh, &user, opt);
 }
 
 std::string summary_text(const DistanceTally& tally) {
-  return fmt::format("{:<18} {}{}\n", "distance", tally.signed_distance ? "signed" : "unsigned",
+  return fmt::format("{:<18} {}{}{}\n", "distance", tally.signed_distance ? "signed" : "unsigned",
+                     tally.precision == ContainsPrecision::float32 ? ", float (float ulps, the mesh rounded to float)" : "",
                      tally.rel_tol > 0 ? fmt::format(", rel_tol {}", tally.rel_tol) : std::string()) +
          counters_text(kDistanceCounters, tally, 18, [](const auto&) { return true; }) +
          fmt::format("{:<18} {:.3g}\n", "max_rel_error", tally.max_rel_error) +

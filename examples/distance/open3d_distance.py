@@ -3,11 +3,16 @@
 (docs/check.md, "Distances"): the mesh goes into a scene once (float32, as Open3D stores it), then
 each batch of points (rounded to float32, as Open3D takes them) is answered with compute_distance,
 or with compute_signed_distance under --signed (negative inside: its sign comes from the same
-occupancy rays as compute_occupancy).
+occupancy rays as compute_occupancy); with --closest each distance is followed by
+compute_closest_points' point and primitive id (`d x y z triangle`). Open3D is float32: judge it
+with --distance-precision float.
 
-    rayproof check --distance 'o3d=/usr/bin/python3 examples/distance/open3d_distance.py' --mesh mesh.off
+    rayproof check --distance 'o3d=/usr/bin/python3 examples/distance/open3d_distance.py' \\
+        --distance-precision float --mesh mesh.off
+    rayproof check --distance 'o3d=/usr/bin/python3 examples/distance/open3d_distance.py --closest' \\
+        --distance-precision float --mesh mesh.off
     rayproof check --distance 'o3d=/usr/bin/python3 examples/distance/open3d_distance.py --signed' \\
-        --distance-signed --mesh mesh.off
+        --distance-signed --distance-precision float --mesh mesh.off
 
 Open3D runs in this child process: where it aborts, rayproof reports the crash and goes on."""
 import sys
@@ -30,6 +35,7 @@ def read_rows(f, n, convert, dtype):
 
 def main():
     signed = "--signed" in sys.argv[1:]
+    closest = "--closest" in sys.argv[1:]
     f = sys.stdin
     head = read_line(f)
     if head[:2] != ["rayproof-distance", "1"]:
@@ -46,7 +52,13 @@ def main():
             return
         P = read_rows(f, int(words[1]), float, np.float32)
         d = query(o3d.core.Tensor(P)).numpy()
-        out.write("".join("%r\n" % float(x) for x in d))
+        if not closest:
+            out.write("".join("%r\n" % float(x) for x in d))
+        else:
+            c = scene.compute_closest_points(o3d.core.Tensor(P))
+            X, ids = c["points"].numpy(), c["primitive_ids"].numpy()
+            out.write("".join("%r %r %r %r %d\n" % (float(x), float(q[0]), float(q[1]), float(q[2]), int(i))
+                              for x, q, i in zip(d, X, ids)))
         out.flush()
 
 

@@ -4,12 +4,15 @@
 //
 //   cgal_engine distance: an AABB_tree of the triangles with accelerate_distance_queries(), and per
 //     point sqrt(squared_distance(p, closest_point(p))) (`check --distance`);
+//   cgal_engine closest: the same tree's closest_point_and_primitive(p): the distance to that
+//     point, the point and its triangle's index (`d x y z triangle`, `check --distance`);
 //   cgal_engine contains: the triangles as a Surface_mesh (through CGAL's polygon soup functions,
 //     which orient the soup where it is not already a mesh) and Side_of_triangle_mesh per point:
 //     ON_BOUNDED_SIDE 1, ON_BOUNDARY 2, ON_UNBOUNDED_SIDE 0 (`check --contains`). CGAL documents it
 //     for closed meshes; on an open one it answers all the same.
 //
 //   rayproof check --distance 'cgal=build/examples/cgal_engine distance' --mesh mesh.off
+//   rayproof check --distance 'cgal=build/examples/cgal_engine closest' --mesh mesh.off
 //   rayproof check --contains 'cgal=build/examples/cgal_engine contains' --mesh mesh.off
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
@@ -32,7 +35,8 @@ using Points = std::vector<std::array<double, 3>>;
 
 K::Point_3 point(const std::array<double, 3>& p) { return {p[0], p[1], p[2]}; }
 
-void distance() {
+/// `closest`: with the closest point and its triangle, else the distance alone.
+void distance(bool closest) {
   using Triangle = K::Triangle_3;
   using Tree = CGAL::AABB_tree<CGAL::AABB_traits<K, CGAL::AABB_triangle_primitive<K, std::vector<Triangle>::const_iterator>>>;
   const engine_example::Mesh mesh = engine_example::read_mesh("rayproof-distance");
@@ -45,7 +49,13 @@ void distance() {
     std::vector<std::string> answers;
     for (const auto& p : points) {
       const K::Point_3 q = point(p);
-      answers.push_back(fmt::format("{}", std::sqrt(CGAL::squared_distance(q, tree.closest_point(q)))));
+      if (!closest) {
+        answers.push_back(fmt::format("{}", std::sqrt(CGAL::squared_distance(q, tree.closest_point(q)))));
+        continue;
+      }
+      const auto [x, id] = tree.closest_point_and_primitive(q);
+      answers.push_back(fmt::format("{} {} {} {} {}", std::sqrt(CGAL::squared_distance(q, x)), x.x(), x.y(), x.z(),
+                                    id - triangles.cbegin()));
     }
     return answers;
   });
@@ -77,7 +87,7 @@ void contains() {
 
 int main(int argc, char** argv) {
   const std::string_view what = argc == 2 ? argv[1] : "";
-  if (what == "distance") distance();
+  if (what == "distance" || what == "closest") distance(what == "closest");
   else if (what == "contains") contains();
-  else engine_example::fail("usage: cgal_engine distance|contains (then the line protocol on stdin)");
+  else engine_example::fail("usage: cgal_engine distance|closest|contains (then the line protocol on stdin)");
 }

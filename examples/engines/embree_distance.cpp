@@ -3,13 +3,16 @@
 // each query point rounded to float, a point-query callback that takes each candidate triangle's
 // closest point by its Voronoi regions (vertex, edge or face) in float, keeps the nearest and
 // shrinks the query radius to its distance. One thread (device "threads=1"): the same answers on
-// every run.
+// every run. With --closest each distance is followed by that closest point and its triangle
+// (`d x y z triangle`). Embree is float32: judge it with --distance-precision float.
 //
-//   rayproof check --distance 'embree=build/examples/embree_distance' --mesh mesh.off
+//   rayproof check --distance 'embree=build/examples/embree_distance' --distance-precision float --mesh mesh.off
+//   rayproof check --distance 'embree=build/examples/embree_distance --closest' --distance-precision float --mesh mesh.off
 #include <embree3/rtcore.h>
 
 #include <cmath>
 #include <limits>
+#include <string_view>
 
 #include "line_protocol.h"
 
@@ -49,23 +52,30 @@ struct Query {
   const std::vector<std::array<std::uint32_t, 3>>* triangles;
   V3 p;
   float d2 = std::numeric_limits<float>::infinity();
+  V3 nearest{0, 0, 0};
+  std::int64_t triangle = -1;
 };
 
 bool nearest_triangle(RTCPointQueryFunctionArguments* args) {
   auto* q = static_cast<Query*>(args->userPtr);
   const auto& t = (*q->triangles)[args->primID];
   const std::vector<V3>& v = *q->vertices;
-  const V3 d = q->p - closest_on_triangle(q->p, v[t[0]], v[t[1]], v[t[2]]);
+  const V3 x = closest_on_triangle(q->p, v[t[0]], v[t[1]], v[t[2]]);
+  const V3 d = q->p - x;
   const float d2 = dot(d, d);
   if (!(d2 < q->d2)) return false;
   q->d2 = d2;
+  q->nearest = x;
+  q->triangle = args->primID;
   args->query->radius = std::sqrt(d2);
   return true;
 }
 
 }  // namespace
 
-int main() {
+int main(int argc, char** argv) {
+  const bool closest = argc == 2 && std::string_view(argv[1]) == "--closest";
+  if (argc > 1 && !closest) engine_example::fail("usage: embree_distance [--closest] (then the line protocol on stdin)");
   const engine_example::Mesh mesh = engine_example::read_mesh("rayproof-distance");
   std::vector<V3> vertices;
   for (const auto& v : mesh.vertices) vertices.push_back({float(v[0]), float(v[1]), float(v[2])});
@@ -93,7 +103,11 @@ int main() {
       RTCPointQueryContext context;
       rtcInitPointQueryContext(&context);
       rtcPointQuery(scene, &query, &context, nullptr, &q);
-      answers.push_back(fmt::format("{}", double(std::sqrt(q.d2))));
+      if (closest)
+        answers.push_back(fmt::format("{} {} {} {} {}", double(std::sqrt(q.d2)), double(q.nearest.x),
+                                      double(q.nearest.y), double(q.nearest.z), q.triangle));
+      else
+        answers.push_back(fmt::format("{}", double(std::sqrt(q.d2))));
     }
     return answers;
   });

@@ -103,15 +103,68 @@ py::dict check_contains(py::function fn, py::handle vertices, py::handle triangl
   return result_dict(tally);
 }
 
-/// The function's n distances (a result of the wrong shape or type throws: a failure).
-void read_distances(py::handle obj, std::span<double> out) {
-  const auto d = result_column<double>(obj, out.size(), "result", false);
-  std::copy(d.data(), d.data() + out.size(), out.begin());
+/// The function's n closest points: an (n, 3) array of numbers (else throws: a failure).
+void read_closest_points(py::handle obj, std::span<verify::DistanceAnswer> out) {
+  py::array a;
+  try {
+    a = py::module_::import("numpy").attr("asarray")(obj);
+  } catch (py::error_already_set& e) {
+    throw std::runtime_error(fmt::format("the function's points are not an array ({})", e.what()));
+  }
+  const char k = a.dtype().kind();
+  if (!(k == 'f' || k == 'i' || k == 'u') || a.ndim() != 2 || static_cast<std::size_t>(a.shape(0)) != out.size() ||
+      a.shape(1) != 3)
+    throw std::runtime_error(fmt::format("the function's points have shape {} and dtype {}, expected ({}, 3) numbers",
+                                         py::str(a.attr("shape")).cast<std::string>(),
+                                         py::str(a.dtype()).cast<std::string>(), out.size()));
+  const auto x = py::array_t<double, py::array::c_style | py::array::forcecast>::ensure(a);
+  if (!x) throw std::runtime_error("the function's points cannot be read as numbers");
+  for (std::size_t i = 0; i < out.size(); ++i) {
+    const double* r = x.data() + 3 * i;
+    out[i].point = {r[0], r[1], r[2]};
+    out[i].has_point = true;
+  }
+}
+
+/// The function's answers: n distances, or a tuple (distances, points) or (distances, points,
+/// triangles), or a dict with "distance" and optionally "points", "triangles" ("barycentric" and
+/// "side" ignored: Mesh.closest_points' dict as it is); a result of the wrong shape or type, or a
+/// dict with another key, throws: a failure.
+void read_distance_answers(py::handle obj, std::span<verify::DistanceAnswer> out) {
+  py::object d = py::reinterpret_borrow<py::object>(obj), points = py::none(), triangles = py::none();
+  if (py::isinstance<py::tuple>(obj)) {
+    const py::tuple t(py::reinterpret_borrow<py::object>(obj));
+    if (t.size() < 2 || t.size() > 3)
+      throw std::runtime_error(
+          fmt::format("the function returned a tuple of {}, expected (distance, point) or (distance, point, triangle)",
+                      t.size()));
+    d = t[0], points = t[1];
+    if (t.size() == 3) triangles = t[2];
+  } else if (py::isinstance<py::dict>(obj)) {
+    const py::dict m(py::reinterpret_borrow<py::object>(obj));
+    for (const auto& [key, value] : m) {
+      const std::string k = py::str(key).cast<std::string>();
+      if (k == "distance") d = py::reinterpret_borrow<py::object>(value);
+      else if (k == "points") points = py::reinterpret_borrow<py::object>(value);
+      else if (k == "triangles") triangles = py::reinterpret_borrow<py::object>(value);
+      else if (k != "barycentric" && k != "side")
+        throw std::runtime_error("the function's dict has key '" + k + "', not distance, points or triangles");
+    }
+    if (!m.contains("distance")) throw std::runtime_error("the function's dict has no key 'distance'");
+  }
+  const auto dv = result_column<double>(d, out.size(), "distance", false);
+  for (std::size_t i = 0; i < out.size(); ++i) out[i].distance = dv.data()[i];
+  if (!points.is_none()) read_closest_points(points, out);
+  if (!triangles.is_none()) {
+    const auto tv = result_column<std::int64_t>(triangles, out.size(), "triangle", false);
+    for (std::size_t i = 0; i < out.size(); ++i) out[i].triangle = tv.data()[i], out[i].has_triangle = true;
+  }
 }
 
 py::dict distance_dict(const verify::DistanceTally& tally) {
   py::dict d = counters_dict(tally, verify::kDistanceCounters, [](const auto&) { return true; });
   d["signed"] = tally.signed_distance;
+  d["precision"] = tally.precision == verify::ContainsPrecision::float32 ? "float" : "double";
   d["rel_tol"] = tally.rel_tol;
   d["max_rel_error"] = tally.max_rel_error;
   d["sets"] = set_costs_dict(tally.sets);
@@ -123,13 +176,15 @@ py::dict distance_dict(const verify::DistanceTally& tally) {
 }
 
 py::dict check_distance(py::function fn, py::handle vertices, py::handle triangles, bool signed_distance,
-                        double rel_tol, std::size_t random_points, std::size_t max_points_per_set, std::uint64_t seed,
+                        const std::string& precision, double rel_tol, std::size_t random_points, std::size_t max_points_per_set, std::uint64_t seed,
                         std::optional<std::vector<std::string>> sets, std::size_t batch, std::size_t reproducers,
                         std::optional<py::handle> points, const std::string& mesh_name, int threads) {
   const CheckedMesh arrays = checked_mesh(vertices, triangles);
   verify::DistanceCheckOptions opt;
   if (!(rel_tol >= 0) || !std::isfinite(rel_tol)) throw py::value_error("rel_tol: must be a finite number >= 0");
   if (batch == 0) throw py::value_error("batch: must be at least 1");
+  if (precision == "float") opt.precision = verify::ContainsPrecision::float32;
+  else if (precision != "double") throw py::value_error(fmt::format("precision: '{}' is neither 'float' nor 'double'", precision));
   opt.signed_distance = signed_distance;
   opt.rel_tol = rel_tol;
   opt.random_points = random_points;
@@ -139,14 +194,23 @@ py::dict check_distance(py::function fn, py::handle vertices, py::handle triangl
   opt.batch = batch;
   opt.reproducers = reproducers;
   opt.threads = threads;
-  const verify::ContainsMesh mesh{arrays.vertices, arrays.triangles, mesh_name};
+  const bool float32 = opt.precision == verify::ContainsPrecision::float32;
+  std::vector<Vec3<double>> rounded;
+  if (float32) prepare_unlocked([&] { rounded = verify::float_vertices(arrays.vertices); });
+  const verify::ContainsMesh mesh{float32 ? std::span<const Vec3<double>>(rounded) : arrays.vertices, arrays.triangles,
+                                  mesh_name};
   UserCalls user;
-  const verify::DistanceFunction distance = [&](std::span<const Vec3<double>> p, std::span<double> d) {
-    user([&] { read_distances(fn(vec3_array(p)), d); });
+  const verify::DistanceAnswerFunction distance = [&](std::span<const Vec3<double>> p,
+                                                      std::span<verify::DistanceAnswer> out) {
+    user([&] { read_distance_answers(fn(vec3_array(p)), out); });
   };
   verify::ContainsPoints point_set;
   std::optional<verify::DistanceJudge> judge;
-  if (points && !points->is_none()) point_set = user_point_set(*points);
+  if (points && !points->is_none()) {
+    point_set = user_point_set(*points);
+    if (float32)
+      for (Vec3<double>& q : point_set.points) q = {static_cast<float>(q.x), static_cast<float>(q.y), static_cast<float>(q.z)};
+  }
   prepare_unlocked([&] {
     if (point_set.names.empty()) point_set = verify::distance_points(mesh, opt);
     judge.emplace(mesh);
@@ -185,17 +249,21 @@ docs/check.md explains each count.)";
   static const std::string distance_doc = R"(Judge a distance (or signed distance) function on a mesh against exact arithmetic.
 
 fn(points) takes an (n, 3) float64 array and returns n distances (signed=True: negative inside, 0
-on the surface; nan for a point with a NaN or infinity). Each answer is judged against rayproof's
-exact distance correctly rounded: more than 1 ulp off and more than rel_tol relatively is a finding.
-The points: the sets of check_contains (`sets` picks some), or points=(n, 3) array. An exception fn
-raises fails that batch's points and the run goes on.
+on the surface; nan for a point with a NaN or infinity), or a tuple (distances, closest points
+(n, 3)) or (distances, closest points, triangle ids), or a dict with keys 'distance', 'points',
+'triangles' (Mesh.closest_points' dict as it is). Each distance is judged against rayproof's exact distance correctly rounded: more than
+1 ulp off and more than rel_tol relatively is a finding; closest points off the mesh or not
+nearest, and triangles not at the exact distance, are findings too. precision='float' (a float32
+function): the mesh and the points rounded to float, errors in float ulps. The points: the sets of
+check_contains (`sets` picks some), or points=(n, 3) array. An exception fn raises fails that
+batch's points and the run goes on.
 
 Returns a dict of counts ()" + count_keys(verify::kDistanceCounters, std::string_view("Returns a dict of counts (").size()) + R"(),
-signed, rel_tol, max_rel_error, per-set counts (`sets`), one-line `reproducers`, `notes`, and the
+signed, precision, rel_tol, max_rel_error, per-set counts (`sets`), one-line `reproducers`, `notes`, and the
 cost: judge_seconds, closest_seconds (rayproof's own closest points on the same points) and
 cost_ratio. docs/check.md explains each count.)";
   m.def("check_distance", &check_distance, py::arg("fn"), py::arg("vertices"), py::arg("triangles"), py::kw_only(),
-        py::arg("signed") = false, py::arg("rel_tol") = 0.0, py::arg("random_points") = 1000,
+        py::arg("signed") = false, py::arg("precision") = "double", py::arg("rel_tol") = 0.0, py::arg("random_points") = 1000,
         py::arg("max_points_per_set") = 1000, py::arg("seed") = 1, py::arg("sets") = py::none(),
         py::arg("batch") = 4096, py::arg("reproducers") = 5, py::arg("points") = py::none(),
         py::arg("mesh_name") = "mesh", py::arg("threads") = 0, distance_doc.c_str());

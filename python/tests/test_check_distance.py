@@ -1,7 +1,9 @@
 """rayproof.check_distance: distance functions (a Python function over an array of points) judged on
 a mesh. rayproof's own distances get no finding; a distance off by a relative 1e-9 is forgiven by
 rel_tol and not without it; flipped signs, nonzero surface distances, numbers at NaN points and
-raising functions get exactly the expected counts."""
+raising functions get exactly the expected counts. Closest points and triangles (a tuple or a dict
+of columns): rayproof's own have no finding, wrong ones are counted; precision='float' judges the
+mesh and the points rounded to float, in float ulps."""
 import numpy as np
 import pytest
 
@@ -59,8 +61,55 @@ def test_raising_and_bad_arguments():
     res = rayproof.check_distance(boom, v, f, random_points=20, batch=7)
     assert res["failures"] + res["invalid_failures"] == res["points"]
     assert any("no tree today" in n for n in res["notes"])
-    assert all(key in rayproof.check_distance.__doc__ for key in list(res)[:13])
+    assert all(key in rayproof.check_distance.__doc__ for key in list(res)[:18])
     with pytest.raises(ValueError, match="rel_tol"):
         rayproof.check_distance(boom, v, f, rel_tol=-1)
     with pytest.raises(ValueError, match="unknown point set"):
         rayproof.check_distance(boom, v, f, sets=["nope"])
+
+
+def exact_columns(v, f):
+    mesh = rayproof.Mesh(v, f)
+
+    def fn(p):
+        c = mesh.closest_points(p)
+        return c["distance"], c["points"], c["triangles"]
+
+    return fn, mesh.closest_points
+
+
+def test_closest_points_and_triangles():
+    v, f = cube()
+    for fn in exact_columns(v, f):  # a tuple, and Mesh.closest_points' dict
+        res = rayproof.check_distance(fn, v, f, random_points=100)
+        assert res["findings"] == 0, res["reproducers"]
+        assert res["closest_points"] == res["triangle_ids"] == res["points"] - res["invalid_points"]
+    p = np.array([[0.5, 0.5, 2.0], [0.5, 0.5, 3.0]])
+    answers = {"distance": np.array([1.0, 2.0]), "points": np.array([[0.5, 0.5, 1.25], [0, 0, 1]]),
+               "triangles": np.array([0, 2])}
+    res = rayproof.check_distance(lambda q: answers, v, f, points=p)
+    assert (res["closest_off_mesh"], res["closest_not_nearest"], res["wrong_triangle"], res["findings"]) == (1, 1, 1, 3)
+    res = rayproof.check_distance(lambda q: (answers["distance"], answers["points"]), v, f, points=p)
+    assert (res["closest_points"], res["triangle_ids"], res["findings"]) == (2, 0, 2)
+    res = rayproof.check_distance(lambda q: (answers["distance"], np.zeros((2, 2))), v, f, points=p)
+    assert res["failures"] == 2 and any("shape" in n for n in res["notes"])
+    res = rayproof.check_distance(lambda q: {"dist": answers["distance"]}, v, f, points=p)
+    assert res["failures"] == 2 and any("'dist'" in n for n in res["notes"])
+
+
+NEAR = ["vertex", "edge", "face", "nudged", "thin", "random"]  # not `far`: its distances overflow * (1 + 1e-12)
+
+
+def test_float_precision():
+    v, f = cube()
+    v = v * 0.1
+    vf = v.astype(np.float32).astype(np.float64)
+    mesh = rayproof.Mesh(vf, f)
+    res = rayproof.check_distance(lambda q: mesh.distance(q) * (1 + 1e-12), v, f, precision="float", sets=NEAR)
+    assert res["findings"] == 0 and res["precision"] == "float", res["reproducers"]
+    res = rayproof.check_distance(lambda q: mesh.distance(q) * (1 + 1e-12), vf, f, sets=NEAR)
+    assert res["over_tolerance"] > 0 and res["precision"] == "double"
+    with pytest.raises(ValueError, match="precision"):
+        rayproof.check_distance(lambda q: q[:, 0], v, f, precision="half")
+    with pytest.raises(ValueError, match="float's range"):
+        rayproof.check_distance(lambda q: q[:, 0], v * 1e300, f, precision="float")

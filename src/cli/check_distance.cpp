@@ -22,6 +22,7 @@ nlohmann::json distance_run_json(const NamedCommand& fn, const JudgedMesh& mesh,
   nlohmann::json out = judged_run_json("function", fn, mesh, tally, run.events, run.starts, verify::kDistanceCounters,
                                        [](const auto&) { return true; });
   out["signed"] = tally.signed_distance;
+  out["precision"] = tally.precision == verify::ContainsPrecision::float32 ? "float" : "double";
   out["rel_tol"] = tally.rel_tol;
   out["max_rel_error"] = tally.max_rel_error;
   out["sets"] = set_costs_json(tally.sets);
@@ -52,6 +53,11 @@ int run_distance_check(const CheckCliOptions& o) {
     return 2;
   }
   verify::DistanceCheckOptions opt;
+  if (o.distance_precision == "float") opt.precision = verify::ContainsPrecision::float32;
+  else if (o.distance_precision != "double") {
+    fmt::print(stderr, "rayproof check: --distance-precision '{}' is neither float nor double\n", o.distance_precision);
+    return 2;
+  }
   opt.signed_distance = o.distance_signed;
   opt.rel_tol = o.distance_rel_tol;
   opt.seed = o.seed;
@@ -69,20 +75,29 @@ int run_distance_check(const CheckCliOptions& o) {
   nlohmann::json json_runs = nlohmann::json::array();
   if (!o.json)
     fmt::print("rayproof check --distance: {} distances judged against rayproof's exact distance, correctly rounded "
-               "(docs/check.md)\n",
-               o.distance_signed ? "signed" : "unsigned");
+               "(docs/check.md){}\n",
+               o.distance_signed ? "signed" : "unsigned",
+               opt.precision == verify::ContainsPrecision::float32
+                   ? "; float: the mesh and the points rounded to float, errors in float ulps"
+                   : "");
   struct Prepared {
+    std::vector<Vec3<double>> rounded;  // the mesh's vertices rounded to float (float precision); `mesh` views them
     verify::ContainsMesh mesh;
     verify::ContainsPoints points;
     verify::DistanceJudge judge;
   };
-  const std::string agreed = fmt::format(" within 1 ulp{}", opt.rel_tol > 0 ? fmt::format(" or a relative {}", opt.rel_tol)
-                                                                            : std::string());
+  const std::string agreed =
+      fmt::format(" within 1 ulp{}{}", opt.precision == verify::ContainsPrecision::float32 ? " of float" : "",
+                  opt.rel_tol > 0 ? fmt::format(" or a relative {}", opt.rel_tol) : std::string());
   const bool prepared = for_each_mesh_and_function(
       *judged, *functions,
       [&](const JudgedMesh& m) {
-        const verify::ContainsMesh mesh{m.mesh.vertices, m.mesh.triangles, m.name};
-        return Prepared{mesh, verify::distance_points(mesh, opt), verify::DistanceJudge(mesh)};
+        const bool float32 = opt.precision == verify::ContainsPrecision::float32;
+        std::vector<Vec3<double>> rounded = float32 ? verify::float_vertices(m.mesh.vertices) : std::vector<Vec3<double>>();
+        // A vector's move keeps its buffer: `mesh` stays a view of Prepared's own `rounded`.
+        const verify::ContainsMesh mesh{float32 ? std::span<const Vec3<double>>(rounded) : m.mesh.vertices, m.mesh.triangles,
+                                        m.name};
+        return Prepared{std::move(rounded), mesh, verify::distance_points(mesh, opt), verify::DistanceJudge(mesh)};
       },
       [&](const NamedCommand& fn, const JudgedMesh& m, const Prepared& p) {
         fmt::print(stderr, "[distance] {} on {}: {} points\n", fn.name, m.name, p.points.points.size());

@@ -412,9 +412,13 @@ Run add_check(CLI::App& app) {
       ->delimiter(',')->allow_extra_args(false);
   sub->add_option("--distance", o->distance,
                   "NAME=COMMAND: a distance function judged on --mesh: it reads the mesh, then batches of points, and "
-                  "answers one distance per point (docs/check.md); repeatable");
+                  "answers per point a distance, optionally its closest point and triangle (docs/check.md); "
+                  "repeatable");
   sub->add_flag("--distance-signed", o->distance_signed,
                 "The function answers signed distances (negative inside, 0 on the surface)");
+  sub->add_option("--distance-precision", o->distance_precision,
+                  "The function's precision: float (the mesh and points rounded to float, float ulps) or double")
+      ->capture_default_str();
   sub->add_option("--distance-rel-tol", o->distance_rel_tol,
                   "Relative error forgiven beyond 1 ulp (0: every answer more than 1 ulp off is a finding)")
       ->capture_default_str();

@@ -43,6 +43,7 @@ struct CheckCliOptions {
   std::vector<std::string> contains_sets;
   std::vector<std::string> distance;  ///< --distance NAME=COMMAND: distance functions on --mesh (check_distance.cpp)
   bool distance_signed = false;
+  std::string distance_precision = "double";
   double distance_rel_tol = 0, distance_timeout = 10;
   std::size_t distance_batch = 1024, distance_points = 1000, distance_max_per_set = 1000;
   std::vector<std::string> distance_sets;

@@ -23,8 +23,9 @@ MESH_COLUMNS = {"bunny00": "bunny00.off", "refined_elephant": "refined_elephant.
 CONTAINS_LABELS = [("in→out", "inside_called_outside"), ("out→in", "outside_called_inside"),
                    ("false surface", "false_surface"), ("garbage", "garbage"), ("failed", "failures"),
                    ("invalid failed", "invalid_failures"), ("events", "events")]
-DISTANCE_LABELS = [("over tol", "over_tolerance"), ("random over tol", "random_over_tolerance"),
-                   ("wrong sign", "wrong_sign"), ("surface ≠ 0", "surface_nonzero"), ("garbage", "garbage"),
+DISTANCE_LABELS = [("over tol", "over_tolerance"), ("random findings", "random_findings"),
+                   ("wrong sign", "wrong_sign"), ("surface ≠ 0", "surface_nonzero"), ("off mesh", "closest_off_mesh"),
+                   ("not nearest", "closest_not_nearest"), ("wrong triangle", "wrong_triangle"), ("garbage", "garbage"),
                    ("failed", "failures"), ("invalid number", "invalid_number"),
                    ("invalid failed", "invalid_failures"), ("events", "events"), ("max rel", "max_rel_error")]
 
@@ -113,7 +114,7 @@ def measure(rayproof, judge, name, command, flags, options, meshes_dir):
         values = dict(r)
         values["events"] = len(r["events"])
         if judge == "distance":
-            values["random_over_tolerance"] = r["sets"].get("random", {}).get("findings", 0) if r["rel_tol"] > 0 else 0
+            values["random_findings"] = r["sets"].get("random", {}).get("findings", 0) if r["rel_tol"] > 0 else 0
         out[column] = values
     return out
 
@@ -139,8 +140,8 @@ def main():
         flags = []
         if judge_cell.startswith("signed"):
             flags.append("--distance-signed")
-        if "float" in judge_cell and judge == "contains":
-            flags += ["--contains-precision", "float"]
+        if "float" in judge_cell:
+            flags += ["--%s-precision" % judge, "float"]
         command = engine_command(command_cell.strip("`"), examples_bin, source_dir)
         if command is None:
             skipped.append(engine)
