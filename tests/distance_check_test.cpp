@@ -250,14 +250,16 @@ TEST(DistanceCheck, WrongOnAKnownSubsetGetsExactlyTheExpectedCounts) {
     EXPECT_GT(r.tally.wrong_sign, 0u);
     EXPECT_GT(r.tally.over_1ulp, r.tally.wrong_sign);
     EXPECT_EQ(r.tally.invalid_number, 10u);
-    if (rel_tol > 0) EXPECT_EQ(r.tally.over_tolerance, r.tally.wrong_sign) << verify::summary_text(r.tally);
+    if (rel_tol > 0) {
+      EXPECT_EQ(r.tally.over_tolerance, r.tally.wrong_sign) << verify::summary_text(r.tally);
+    }
   }
 }
 
 TEST(DistanceCheck, SurfaceNonzeroAndGarbageWithExactReproducers) {
   const OwnedMesh m = cube();
   const std::vector<Vec3<double>> pts{{1, 0.5, 0.5}, {std::nextafter(1.0, 2.0), 0.5, 0.5}, {0.5, 0.5, 0.5}};
-  const auto fn = [](std::span<const Vec3<double>> p, std::span<double> out) {
+  const auto fn = [](std::span<const Vec3<double>>, std::span<double> out) {
     out[0] = 1e-17;  // on the surface: exactly 0
     out[1] = 0;      // 2^-52 away
     out[2] = -1;     // unsigned: no distance
