@@ -50,7 +50,9 @@ std::size_t same_certified_answers(const Accel& ours, const Accel& theirs, const
     const PrimHit a = ours.closest(rays[i], certified), b = theirs.closest(rays[i], certified);
     EXPECT_EQ(a.prim, b.prim) << "ray " << i;
     if (a.prim != b.prim) return hits;
-    if (a.prim != PrimHit::kNoPrim) EXPECT_EQ(a.t, b.t) << "ray " << i;
+    if (a.prim != PrimHit::kNoPrim) {
+      EXPECT_EQ(a.t, b.t) << "ray " << i;
+    }
     EXPECT_EQ(ours.any(rays[i], certified), theirs.any(rays[i], certified)) << "ray " << i;
     hits += a.prim != PrimHit::kNoPrim;
   }
@@ -221,7 +223,9 @@ TEST(BenchCompetitors, EmbreesTreeUnderOurLoopGivesTheSameAnswers) {
   // Every triangle lands in exactly one leaf of Embree's tree.
   std::vector<int> seen(s.mesh.triangles.size(), 0);
   for (const auto& p : theirs.leaf_prims())
-    if (p.id != PrimHit::kNoPrim) ASSERT_EQ(seen.at(p.id)++, 0);
+    if (p.id != PrimHit::kNoPrim) {
+      ASSERT_EQ(seen.at(p.id)++, 0);
+    }
   EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), std::ptrdiff_t(seen.size()));
   // And it is Embree's tree, not ours again: the leaves hold the triangles in another order.
   std::vector<std::uint32_t> ids_ours, ids_theirs;

@@ -1,10 +1,13 @@
 // CGAL AABB_tree competitors: first_intersection with Epick (filtered predicates, inexact
 // constructions) and Epeck (exact constructions; not thread-safe, so one thread).
+// Built without RAYPROOF_CGAL_PEERS (the README's first command), only the names and Embree's.
+#if RAYPROOF_CGAL_PEERS
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
 #include <CGAL/AABB_triangle_primitive.h>
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#endif
 #include <tbb/blocked_range.h>
 #include <tbb/parallel_for.h>
 #include <tbb/task_arena.h>
@@ -21,6 +24,7 @@ namespace rayproof::scene::compare {
 Competitor make_embree(const Scene& s, bool robust, int build_threads, const std::string& max_isa);
 #endif
 
+#if RAYPROOF_CGAL_PEERS
 namespace {
 
 template <class K>
@@ -86,6 +90,9 @@ Competitor make_cgal(const Scene& s, const char* name, bool threaded, std::size_
 }
 
 }  // namespace
+#endif
+
+bool cgal_peers_built() { return RAYPROOF_CGAL_PEERS != 0; }
 
 const std::vector<std::string>& competitor_names() {
   static const std::vector<std::string> names{"embree",     "embree-robust", "embree-avx2", "embree-robust-avx2",
@@ -120,8 +127,10 @@ std::vector<Competitor> make_competitors(const Scene& s, const std::string& name
   if (want("embree-avx2")) out.push_back(make_embree(s, false, build_threads, "avx2"));
   if (want("embree-robust-avx2")) out.push_back(make_embree(s, true, build_threads, "avx2"));
 #endif
+#if RAYPROOF_CGAL_PEERS
   if (want("cgal-epick")) out.push_back(make_cgal<CGAL::Epick>(s, "cgal-epick", true, 0));
   if (want("cgal-epeck")) out.push_back(make_cgal<CGAL::Epeck>(s, "cgal-epeck", false, 2000));
+#endif
   return out;
 }
 

@@ -59,6 +59,13 @@ struct Competitor {
 /// a competitor (empty names and "none" are allowed), and the names it takes.
 void check_competitor_names(const std::string& names);
 
+/// Whether CGAL's peers (AABB_tree, Side_of_triangle_mesh) are compiled in: the CMake option
+/// RAYPROOF_CGAL_PEERS, off in the README's first command (their one translation unit was the
+/// longest job of that build). Without them the cgal-* competitors are absent from `bench`, and
+/// `bench contains` / `bench distance` list them with this note.
+[[nodiscard]] bool cgal_peers_built();
+inline constexpr const char* kCgalPeersNotBuilt = "not built (configure with -DRAYPROOF_CGAL_PEERS=ON)";
+
 [[nodiscard]] bool have_embree();
 /// Embree default and robust, the same two on a device with max_isa=avx2, then CGAL Epick and Epeck
 /// (each built on construction), those of them named in the comma-separated `names` (checked by

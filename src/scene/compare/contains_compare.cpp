@@ -1,8 +1,10 @@
 // CGAL Side_of_triangle_mesh (Epick, Epeck) and Embree one-ray parity along (1, 1, 1).
+#if RAYPROOF_CGAL_PEERS
 #include <CGAL/Exact_predicates_exact_constructions_kernel.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
 #include <CGAL/Side_of_triangle_mesh.h>
 #include <CGAL/Surface_mesh.h>
+#endif
 
 #include <array>
 #include <limits>
@@ -20,6 +22,7 @@ namespace rayproof::scene::compare {
 namespace {
 
 
+#if RAYPROOF_CGAL_PEERS
 template <class K>
 ContainsCompetitor make_cgal_side_of(const std::vector<Vec3<double>>& v, const std::vector<std::array<std::uint32_t, 3>>& t,
                              const char* name) {
@@ -49,6 +52,7 @@ ContainsCompetitor make_cgal_side_of(const std::vector<Vec3<double>>& v, const s
   };
   return c;
 }
+#endif
 
 #ifdef RAYPROOF_HAVE_EMBREE
 /// The intersect context with the hits counted: distinct (geometry, primitive) pairs of one ray.
@@ -101,8 +105,13 @@ std::vector<ContainsCompetitor> make_contains_competitors(const std::vector<Vec3
                                                           const std::vector<std::array<std::uint32_t, 3>>& triangles,
                                                           const std::string& names) {
   std::vector<ContainsCompetitor> out;
+#if RAYPROOF_CGAL_PEERS
   if (named_in(names, "cgal-epick")) out.push_back(make_cgal_side_of<CGAL::Epick>(vertices, triangles, "cgal-epick"));
   if (named_in(names, "cgal-epeck")) out.push_back(make_cgal_side_of<CGAL::Epeck>(vertices, triangles, "cgal-epeck"));
+#else
+  if (named_in(names, "cgal-epick")) out.push_back({"cgal-epick", kCgalPeersNotBuilt, nullptr});
+  if (named_in(names, "cgal-epeck")) out.push_back({"cgal-epeck", kCgalPeersNotBuilt, nullptr});
+#endif
   if (named_in(names, "embree-parity")) {
 #ifdef RAYPROOF_HAVE_EMBREE
     out.push_back(make_embree_parity(vertices, triangles));

@@ -1,8 +1,10 @@
 // CGAL AABB_tree closest point (Epick) and Embree rtcPointQuery closest point.
+#if RAYPROOF_CGAL_PEERS
 #include <CGAL/AABB_traits.h>
 #include <CGAL/AABB_tree.h>
 #include <CGAL/AABB_triangle_primitive.h>
 #include <CGAL/Exact_predicates_inexact_constructions_kernel.h>
+#endif
 
 #include <algorithm>
 #include <cmath>
@@ -23,6 +25,7 @@ namespace rayproof::scene::compare {
 namespace {
 
 
+#if RAYPROOF_CGAL_PEERS
 DistanceCompetitor make_cgal_aabb_distance(const std::vector<Vec3<double>>& v, const std::vector<std::array<std::uint32_t, 3>>& t) {
   using K = CGAL::Epick;
   using Tri = K::Triangle_3;
@@ -50,6 +53,7 @@ DistanceCompetitor make_cgal_aabb_distance(const std::vector<Vec3<double>>& v, c
   };
   return c;
 }
+#endif
 
 #ifdef RAYPROOF_HAVE_EMBREE
 /// The closest point of a triangle in double (the Voronoi regions, as Embree's tutorial).
@@ -132,7 +136,13 @@ std::vector<DistanceCompetitor> make_distance_competitors(const std::vector<Vec3
                                                           const std::vector<std::array<std::uint32_t, 3>>& triangles,
                                                           const std::string& names) {
   std::vector<DistanceCompetitor> out;
-  if (named_in(names, "cgal-epick")) out.push_back(make_cgal_aabb_distance(vertices, triangles));
+  if (named_in(names, "cgal-epick")) {
+#if RAYPROOF_CGAL_PEERS
+    out.push_back(make_cgal_aabb_distance(vertices, triangles));
+#else
+    out.push_back({"cgal-epick", kCgalPeersNotBuilt, nullptr});
+#endif
+  }
   if (named_in(names, "embree")) {
 #ifdef RAYPROOF_HAVE_EMBREE
     out.push_back(make_embree_point_query(vertices, triangles));

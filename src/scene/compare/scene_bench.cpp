@@ -222,6 +222,9 @@ void bench_scene(const SceneBenchOptions& opt, const Scene& s, const std::string
     }
   }
   double embree_build[2] = {-1, -1};
+  if (!cgal_peers_built())
+    for (const char* n : {"cgal-epick", "cgal-epeck"})
+      if (named_in(opt.competitors, n)) notes.push_back(std::string(n) + ": " + kCgalPeersNotBuilt);
   for (auto& c : make_competitors(s, opt.competitors, threads)) {
     if (!c.isa.empty() && std::none_of(isa.competitors.begin(), isa.competitors.end(),
                                        [&](const BenchIsa::Side& x) { return x.name == c.name; }))
