@@ -2,6 +2,7 @@
 // symmetry), --signed, clear errors (missing file, bad line, mesh without triangles), fuzz --distance.
 #include <gtest/gtest.h>
 
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "cli_support.h"
@@ -39,6 +40,15 @@ TEST(DistanceCli, LinesSignedAndJson) {
             std::string::npos)
       << r.out;
   EXPECT_NE(r.out.find("\"count\": 2, \"inside\": 0, \"outside\": 2, \"surface\": 0}"), std::string::npos) << r.out;
+  // A distance beyond double's range is inf, which JSON has no number for: written as the string "inf"
+  // (the whole output must parse as JSON).
+  r = run_rayproof("distance " + mesh.string() + " - --json --signed", "1.5e308 1.5e308 1.5e308\n");
+  ASSERT_EQ(r.status, 0) << r.err;
+  const nlohmann::json doc = nlohmann::json::parse(r.out, nullptr, false);
+  ASSERT_FALSE(doc.is_discarded()) << r.out;
+  EXPECT_EQ(doc["points"][0]["distance"], "inf") << r.out;
+  EXPECT_EQ(doc["points"][0]["signed"], "inf") << r.out;
+  EXPECT_EQ(doc["points"][0]["point"][0], 2.0) << r.out;
 }
 
 TEST(DistanceCli, ClearErrors) {

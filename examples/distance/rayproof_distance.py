@@ -12,7 +12,6 @@ are answered nan here."""
 import json
 import math
 import os
-import re
 import subprocess
 import sys
 sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
@@ -34,10 +33,10 @@ def main():
             run = subprocess.run(cmd + (["--json"] if closest else []), capture_output=True, text=True, check=True)
             lines = run.stdout.splitlines()
             if closest:  # one JSON object: per point its distance, side, triangle and closest point
-                # (`rayproof distance --json` writes a distance beyond double's range as inf: read as Infinity)
-                lines = [" ".join([repr(-q["distance"] if signed and q["side"] == "inside" else q["distance"])]
-                                  + [repr(x) for x in q["point"]] + [str(q["triangle"])])
-                         for q in json.loads(re.sub(r"(?<=[ \[])(-?)inf\b", r"\1Infinity", run.stdout))["points"]]
+                # (a distance beyond double's range is the string "inf" there: float() reads it)
+                lines = [" ".join([repr(-float(q["distance"]) if signed and q["side"] == "inside" else float(q["distance"]))]
+                                  + [repr(float(x)) for x in q["point"]] + [str(q["triangle"])])
+                         for q in json.loads(run.stdout)["points"]]
         it = iter(lines)
         answer(((next(it) if closest else next(it).split()[0]) if ok else "nan") + "\n" for ok in valid)
 

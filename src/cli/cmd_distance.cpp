@@ -8,6 +8,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/core.h>
 
+#include <cmath>
 #include <cstdio>
 #include <memory>
 #include <string>
@@ -57,15 +58,18 @@ int run_distance(const DistanceOptions& opt) {
     out += fmt::format("{{\"mesh\": \"{}\", \"triangles\": {}, \"rule\": \"{}\", \"points\": [", opt.mesh, cm->triangle_count(),
                        to_string(cm->rule()));
   const auto f = [](double x) { return io::format_double(x); };
+  // JSON has no infinity or NaN (a distance beyond double's range is inf): those as strings,
+  // "inf", "-inf", "nan", which the JSON readers take and float() reads back.
+  const auto j = [](double x) { return std::isfinite(x) ? io::format_double(x) : "\"" + io::format_double(x) + "\""; };
   for (std::size_t i = 0; i < n; ++i) {
     const ClosestPoint& r = res[i];
     ++sides[int(r.side)], ++stages[int(r.stage)];
     if (opt.json) {
       out += fmt::format(
           "{}{{\"distance\": {}, {}\"side\": \"{}\", \"triangle\": {}, \"point\": [{}, {}, {}], \"barycentric\": [{}, {}, {}]}}",
-          i ? ", " : "", f(r.distance), opt.signed_first ? fmt::format("\"signed\": {}, ", f(r.signed_distance())) : "",
-          to_string(r.side), r.triangle, f(r.point.x), f(r.point.y), f(r.point.z), f(r.barycentric[0]), f(r.barycentric[1]),
-          f(r.barycentric[2]));
+          i ? ", " : "", j(r.distance), opt.signed_first ? fmt::format("\"signed\": {}, ", j(r.signed_distance())) : "",
+          to_string(r.side), r.triangle, j(r.point.x), j(r.point.y), j(r.point.z), j(r.barycentric[0]), j(r.barycentric[1]),
+          j(r.barycentric[2]));
     } else {
       if (opt.signed_first) out += f(r.signed_distance()) + " ";
       out += fmt::format("{} {} {}\n", f(r.distance), to_string(r.side), r.triangle);
