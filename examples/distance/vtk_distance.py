@@ -10,55 +10,24 @@ absolute value.
 
 Debian: python3-vtk9."""
 import math
+import os
 import sys
 
-import numpy as np
-from vtkmodules.util import numpy_support
-from vtkmodules.vtkCommonCore import vtkPoints
-from vtkmodules.vtkCommonDataModel import vtkCellArray, vtkPolyData
 from vtkmodules.vtkFiltersCore import vtkImplicitPolyDataDistance
 
-
-def read_line(f):
-    line = f.readline()
-    if not line:
-        sys.exit(0)
-    return line.split()
-
-
-def read_rows(f, n, convert):
-    return [[convert(w) for w in f.readline().split()] for _ in range(n)]
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."))
+from rayproof_protocol import answer, batches, read_mesh  # noqa: E402
+from vtk_mesh import polydata  # noqa: E402
 
 
 def main():
     signed = "--unsigned" not in sys.argv[1:]
-    f = sys.stdin
-    head = read_line(f)
-    if head[:2] != ["rayproof-distance", "1"]:
-        sys.exit("not the rayproof distance protocol: %r" % head)
-    V = np.array(read_rows(f, int(read_line(f)[1]), float), dtype=np.float64).reshape(-1, 3)
-    T = np.array(read_rows(f, int(read_line(f)[1]), int), dtype=np.int64).reshape(-1, 3)
-    points = vtkPoints()
-    points.SetData(numpy_support.numpy_to_vtk(V, deep=True))
-    cells = vtkCellArray()
-    cells.SetData(numpy_support.numpy_to_vtkIdTypeArray(np.arange(0, 3 * len(T) + 1, 3, dtype=np.int64), deep=True),
-                  numpy_support.numpy_to_vtkIdTypeArray(T.reshape(-1).copy(), deep=True))
-    surface = vtkPolyData()
-    surface.SetPoints(points)
-    surface.SetPolys(cells)
+    V, T = read_mesh("rayproof-distance")
     distance = vtkImplicitPolyDataDistance()
-    distance.SetInput(surface)
-    out = sys.stdout
-    while True:
-        words = read_line(f)
-        if words[0] == "end":
-            return
-        answers = []
-        for x, y, z in read_rows(f, int(words[1]), float):
-            d = distance.EvaluateFunction(x, y, z)
-            answers.append("%r\n" % (d if signed else math.fabs(d)))
-        out.write("".join(answers))
-        out.flush()
+    distance.SetInput(polydata(V, T))
+    for P in batches(3):
+        d = (distance.EvaluateFunction(float(x), float(y), float(z)) for x, y, z in P)
+        answer("%r\n" % (v if signed else math.fabs(v)) for v in d)
 
 
 if __name__ == "__main__":
