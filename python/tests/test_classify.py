@@ -66,3 +66,54 @@ def test_float_methods_see_float_rounded_inputs():
 def test_invalid_input_is_a_class_not_an_error():
     r = rayproof.classify("sphere", [[np.nan, 0, 0], [0, 0, 0]], [[1, 0, 0], [0, 0, 0]], [5, 0, 0, 1], method="certified")
     assert list(r["classes"]) == ["invalid", "invalid"]
+
+
+# --- triangle pairs: rayproof.classify_pairs(a, b, method) against `rayproof classify` on tritri lines ------
+
+
+def _pair_cases(tmp_path, family, count=40, seed=5):
+    path = tmp_path / f"{family}.txt"
+    path.write_text("\n".join(run_cli("gen", family, "--count", count, "--seed", seed)) + "\n")
+    rows = []
+    for line in path.read_text().splitlines():
+        tok = line.split("#")[0].split()
+        if tok and tok[0] == "tritri":
+            rows.append([float.fromhex(x) if "x" in x.lower() else float(x) for x in tok[1:]])
+    return path, np.array(rows, dtype=np.float64)
+
+
+@pytest.mark.parametrize("method", ["certified", "exact", "moller-float", "gd-double"])
+@pytest.mark.parametrize("family", ["tritri_shared_vertex", "tritri_coplanar_touching", "tritri_random"])
+def test_classify_pairs_equals_the_command_line_tool(tmp_path, method, family):
+    path, v = _pair_cases(tmp_path, family)
+    assert v.shape[1] == 18 and len(v) > 0
+    got = rayproof.classify_pairs(v[:, :9].reshape(-1, 3, 3), v[:, 9:], method=method)
+    want = [line.split()[0] for line in run_cli("classify", "--method", method, path)]
+    assert list(got["classes"]) == want
+    assert [rayproof.CLASS_NAMES[c] for c in got["codes"]] == want
+
+
+def test_classify_pairs_classes_a_known_pair_and_broadcasts():
+    a = np.array([[0, 0, 0], [4, 0, 0], [0, 4, 0]])
+    touching = np.array([[1, 1, 0], [1, 1, 1], [2, 1, 1]])  # a vertex on a's face, the rest above
+    crossing = np.array([[1, 1, -1], [1, 1, 1], [2, 1, 1]])
+    far = touching + [0, 0, 5]
+    res = rayproof.classify_pairs(a, np.stack([touching, crossing, far]))
+    assert list(res["classes"]) == ["touching", "crossing", "disjoint"]
+    assert list(rayproof.classify_pairs(a, np.stack([touching, far]), method="moller-double")["classes"]) == ["hit", "miss"]
+    assert list(rayproof.classify_pairs(a, [[0, 0, 0], [1, 1, 1], [2, 2, 2]])["classes"]) == ["degenerate"]
+    assert list(rayproof.classify_pairs(a, [[np.nan, 0, 0], [1, 1, 1], [2, 1, 1]])["classes"]) == ["invalid"]
+
+
+def test_classify_pairs_errors_name_the_argument():
+    a = np.zeros((2, 9))
+    with pytest.raises(ValueError, match="^a: expected triangles"):
+        rayproof.classify_pairs(np.zeros((2, 8)), a)
+    with pytest.raises(ValueError, match="b"):
+        rayproof.classify_pairs(a, np.zeros((3, 9)))
+    with pytest.raises(ValueError, match="does not answer triangle pairs"):
+        rayproof.classify_pairs(a, a, method="float")
+    with pytest.raises(ValueError, match="unknown"):
+        rayproof.classify_pairs(a, a, method="nope")
+    with pytest.raises(ValueError, match="classify_pairs"):
+        rayproof.classify("tritri", [0, 0, 0], [0, 0, 1], np.zeros(18))
