@@ -26,6 +26,23 @@
 
 namespace rayproof::certified {
 
+/// Adds b to the expansion e[0..n) in place: GROW-EXPANSION with zero elimination (Shewchuk 1997,
+/// Theorem 10, valid under round-to-nearest whatever the tie rule). Writing e[k] with k <= i after
+/// reading e[i] keeps it in place, so e needs room for n + 1 components. Returns the new length.
+/// Expansion::grow uses it, and orient.h's stack stages on small arrays of their own.
+inline int grow_into(double* e, int n, double b) {
+  if (b == 0) return n;
+  double q = b;
+  int k = 0;
+  for (int i = 0; i < n; ++i) {
+    const TwoTerm<double> s = two_sum(q, e[i]);
+    q = s.hi;
+    if (s.lo != 0) e[k++] = s.lo;
+  }
+  if (q != 0) e[k++] = q;
+  return k;
+}
+
 /// An expansion with room for kCap components. An operation that would need more room (possible only
 /// for inputs spread over a huge exponent range) marks the result `bad`; its sign is then unknown and
 /// the caller falls back to GMP.
@@ -51,15 +68,7 @@ struct Expansion {
         return;
       }
     }
-    double q = b;
-    int k = 0;
-    for (int i = 0; i < n; ++i) {
-      const TwoTerm<double> s = two_sum(q, c[i]);
-      q = s.hi;
-      if (s.lo != 0) c[k++] = s.lo;
-    }
-    if (q != 0) c[k++] = q;
-    n = k;
+    n = grow_into(c, n, b);
   }
 
   /// Shewchuk's COMPRESS (predicates.c): the same value in fewer, nonadjacent components.

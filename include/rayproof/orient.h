@@ -29,22 +29,7 @@ inline constexpr double kTiny = 0x1p-900;
 
 namespace detail {
 
-/// Adds b to the expansion e[0..n) in place: GROW-EXPANSION with zero elimination (Shewchuk 1997,
-/// Theorem 10, valid under round-to-nearest whatever the tie rule), as certified::Expansion::grow but
-/// on a small array of the caller's: no 960-byte Expansion copied per operation. Writing e[k] with
-/// k <= i after reading e[i] keeps it in place. Returns the new length (at most n + 1).
-inline int grow_into(double* e, int n, double b) {
-  if (b == 0) return n;
-  double q = b;
-  int k = 0;
-  for (int i = 0; i < n; ++i) {
-    const TwoTerm<double> s = two_sum(q, e[i]);
-    q = s.hi;
-    if (s.lo != 0) e[k++] = s.lo;
-  }
-  if (q != 0) e[k++] = q;
-  return k;
-}
+using certified::grow_into;  // GROW-EXPANSION on the caller's small arrays (certified_expansion.h)
 
 /// The sign of an expansion (nonoverlapping, increasing magnitude): that of its largest component.
 inline int sign_of(const double* e, int n) { return n == 0 ? 0 : (e[n - 1] > 0 ? 1 : -1); }
