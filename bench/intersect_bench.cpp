@@ -1,7 +1,7 @@
 // Self-intersections and contact pairs side by side, one thread, as a plain program (for profiling
 // rayproof alone with --rayproof-only, and for the sphere sizes of the earlier tables): the rows of
 // `rayproof bench intersect` (scene/compare/intersect_bench.h: rayproof beside CGAL PMP Epick and
-// Epeck, Open3D and FCL) on bunny00, refined_elephant, elephant-with-holes and boeing, the bumpy
+// Epeck, Open3D and FCL) on bunny00, armadillo, refined_elephant, elephant-with-holes and boeing, the bumpy
 // sphere of 81,920 triangles and the same with a shifted copy in one mesh.
 //   intersect_bench [MESH_DIR] [--repeat N] [--big] [--rayproof-only]
 //   (--big: also the generated 1.31M-triangle sphere)
@@ -42,7 +42,7 @@ int main(int argc, char** argv) {
   }
   fmt::print("one thread, thread CPU time, least of {} runs\n", opt.repeat);
   std::vector<cmp::NamedMesh> meshes;
-  for (const char* f : {"bunny00.off", "refined_elephant.off", "elephant-with-holes.off", "boeing.off"}) {
+  for (const char* f : {"bunny00.off", "armadillo.off", "refined_elephant.off", "elephant-with-holes.off", "boeing.off"}) {
     const auto p = std::filesystem::path(dir) / f;
     if (std::filesystem::exists(p)) meshes.push_back({f, rayproof::mesh::read_mesh(p.string())});
     else fmt::print("{}: not found, skipped\n", p.string());

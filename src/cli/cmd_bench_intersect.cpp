@@ -63,7 +63,7 @@ int run_bench_intersect(const BenchIntersectOptions& opt) {
   }
   if (opt.meshes.empty()) {
 #ifdef RAYPROOF_BENCH_MESH_DIR
-    for (const char* n : {"bunny00.off", "refined_elephant.off", "elephant-with-holes.off", "boeing.off"}) {
+    for (const char* n : {"bunny00.off", "armadillo.off", "refined_elephant.off", "elephant-with-holes.off", "boeing.off"}) {
       const std::string path = std::string(RAYPROOF_BENCH_MESH_DIR) + "/" + n;
       if (!std::filesystem::exists(path)) continue;
       std::optional<mesh::Mesh> m = read_mesh_file(me, path);
@@ -109,7 +109,7 @@ Run add_bench_intersect(CLI::App& bench) {
   auto* sub = bench.add_subcommand(
       "intersect", "Self-intersections and contact pairs: rayproof (exact) beside CGAL PMP, Open3D and FCL, one thread");
   sub->add_option("meshes", opt->meshes,
-                  "Meshes (default: CGAL's bunny00, refined_elephant, elephant-with-holes, boeing where extracted, and "
+                  "Meshes (default: CGAL's bunny00, armadillo, refined_elephant, elephant-with-holes, boeing where extracted, and "
                   "generated meshes with known contacts)");
   sub->add_flag("--big", opt->big, "Also the generated 1.31M-triangle bumpy sphere");
   sub->add_option("--repeat", opt->run.repeat, "Timed runs per method (least time kept)")
