@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "cli_support.h"
+#include "judge_report_support.h"
 
 namespace rayproof {
 namespace {
@@ -152,6 +153,32 @@ TEST(CheckContainsCli, DebianOpen3dCallsEveryPointOutsideAndItsAbortsAreReported
   EXPECT_EQ(count_of(r.out, "o3d", "outside_called_inside"), 0u) << r.out;
   EXPECT_GT(count_of(r.out, "o3d", "failures"), 0u) << r.out;
   EXPECT_NE(r.out.find("event: crashed (signal 6"), std::string::npos) << r.out;
+}
+
+// --out DIR: report.md holds the counts --json gives for a function calling every point outside,
+// beside rayproof's own exact contains judged the same way with no finding; a DIR that cannot be
+// made is refused.
+TEST(CheckContainsCli, OutWritesTheReportBesideRayproofsOwn) {
+  const auto mesh = write_file("cube.off", kCube);
+  const auto dir = testing::scratch_dir() / "contains_report";
+  const std::string args = "check --contains 'out=while read l; do echo 0; done' --mesh " + mesh.string() +
+                           " --contains-points 20 --contains-sets vertex,nudged,random,invalid";
+  const auto r = run_rayproof(args + " --json --out " + dir.string());
+  ASSERT_EQ(r.status, 1) << r.err;
+  EXPECT_NE(r.err.find("wrote " + dir.string() + "/report.md and " + dir.string() + "/report.html"),
+            std::string::npos)
+      << r.err;
+  const nlohmann::json run = nlohmann::json::parse(r.out)["functions"][0];
+  EXPECT_GT(run["inside_called_outside"].get<int>(), 0);
+  EXPECT_EQ(run["inside_called_outside"], run["inside"]);
+  testing::expect_report_matches_json(dir, run, "out", mesh.string(), "points", run["findings"].get<std::uint64_t>(),
+                                      {"points", "inside", "surface", "inside_called_outside", "outside_called_inside",
+                                       "false_surface", "surface_said_outside", "rules_differ", "garbage", "failures",
+                                       "invalid_points", "invalid_failures", "findings"});
+  const auto own = testing::markdown_row(testing::slurp(dir / "report.md"), 0, "rayproof exact");
+  ASSERT_FALSE(own.empty());
+  EXPECT_EQ(own.at("surface_said_surface"), own.at("surface"));  // rayproof answers 2 on the surface
+  testing::expect_unwritable_out_refused(args);
 }
 
 TEST(CheckContainsCli, BadUsageIsRefused) {

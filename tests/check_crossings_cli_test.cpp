@@ -12,6 +12,7 @@
 #include <string>
 
 #include "cli_support.h"
+#include "judge_report_support.h"
 
 namespace rayproof {
 namespace {
@@ -76,6 +77,34 @@ TEST(CheckCrossingsCli, CrashHangUnreadableAndJson) {
   EXPECT_EQ(run["findings"], run["crossings"]);
   EXPECT_EQ(run["sets"]["random"]["rays"], 10);
   EXPECT_TRUE(run["cost_ratio"].is_number()) << j.out;
+}
+
+// --out DIR: report.md holds the counts --json gives for a function answering no hit, beside
+// rayproof's own exact crossings judged the same way with no finding; a DIR that cannot be made is
+// refused.
+TEST(CheckCrossingsCli, OutWritesTheReportBesideRayproofsOwn) {
+  const auto mesh = write_file("cube.off", kCube);
+  const auto dir = testing::scratch_dir() / "crossings_report";
+  const std::string args = "check --crossings 'none=while read l; do echo 0; done' --mesh " + mesh.string() +
+                           " --crossings-rays 10 --crossings-sets leak,random,invalid";
+  const auto r = run_rayproof(args + " --json --out " + dir.string());
+  ASSERT_EQ(r.status, 1) << r.err;
+  EXPECT_NE(r.err.find("wrote " + dir.string() + "/report.md and " + dir.string() + "/report.html"),
+            std::string::npos)
+      << r.err;
+  const nlohmann::json run = nlohmann::json::parse(r.out)["functions"][0];
+  EXPECT_GT(run["missing"].get<int>(), 0);
+  EXPECT_EQ(run["missing"], run["crossings"]);
+  testing::expect_report_matches_json(dir, run, "none", mesh.string(), "rays",
+                                      run["rays_with_findings"].get<std::uint64_t>(),
+                                      {"rays", "crossings", "hits", "missing", "duplicates", "touch_hits", "no_contact",
+                                       "garbage", "wrong_order", "t_over_tolerance", "max_ulps", "failures",
+                                       "invalid_rays", "invalid_hit", "invalid_failures", "findings"});
+  const auto own = testing::markdown_row(testing::slurp(dir / "report.md"), 0, "rayproof exact");
+  ASSERT_FALSE(own.empty());
+  EXPECT_EQ(own.at("hits"), own.at("crossings"));  // every crossing once
+  EXPECT_EQ(own.at("crossings"), std::to_string(run["crossings"].get<int>()));
+  testing::expect_unwritable_out_refused(args);
 }
 
 TEST(CheckCrossingsCli, BadUsageIsRefused) {

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "cli_support.h"
+#include "judge_report_support.h"
 
 namespace rayproof {
 namespace {
@@ -97,6 +98,35 @@ TEST(CheckDistanceCli, ClosestPointColumnsAndFloatPrecision) {
   const auto bad = run_rayproof("check --distance 'x=while read l; do echo 1 2 3; done' --mesh " + mesh.string() +
                                 " --distance-points 3 --distance-sets random");
   EXPECT_NE(bad.out.find("event: unreadable answer '1 2 3'"), std::string::npos) << bad.out;
+}
+
+// --out DIR: report.md holds the counts --json gives for a function answering 0 everywhere (right
+// at the vertices, wrong at random points, a number at invalid points), beside rayproof's own exact
+// distance judged the same way with no finding; a DIR that cannot be made is refused.
+TEST(CheckDistanceCli, OutWritesTheReportBesideRayproofsOwn) {
+  const auto mesh = write_file("cube.off", kCube);
+  const auto dir = testing::scratch_dir() / "distance_report";
+  const std::string args = "check --distance 'zero=while read l; do echo 0; done' --mesh " + mesh.string() +
+                           " --distance-points 10 --distance-sets vertex,random,invalid --distance-signed";
+  const auto r = run_rayproof(args + " --json --out " + dir.string());
+  ASSERT_EQ(r.status, 1) << r.err;
+  EXPECT_NE(r.err.find("wrote " + dir.string() + "/report.md and " + dir.string() + "/report.html"),
+            std::string::npos)
+      << r.err;
+  const nlohmann::json run = nlohmann::json::parse(r.out)["functions"][0];
+  EXPECT_EQ(run["over_tolerance"], 10);
+  EXPECT_EQ(run["invalid_number"], run["invalid_points"]);
+  EXPECT_EQ(run["sets"]["vertex"]["findings"], 0);
+  testing::expect_report_matches_json(dir, run, "zero", mesh.string(), "points", run["findings"].get<std::uint64_t>(),
+                                      {"points", "surface", "over_1ulp", "over_tolerance", "max_ulps", "wrong_sign",
+                                       "closest_points", "wrong_triangle", "garbage", "failures", "invalid_points",
+                                       "invalid_number", "invalid_failures", "findings"});
+  // rayproof's own answers its closest points and triangles too: judged, and right.
+  const auto own = testing::markdown_row(testing::slurp(dir / "report.md"), 0, "rayproof exact");
+  ASSERT_FALSE(own.empty());
+  EXPECT_EQ(own.at("closest_points"), own.at("triangle_ids"));
+  EXPECT_EQ(own.at("closest_points"), std::to_string(run["points"].get<int>() - run["invalid_points"].get<int>()));
+  testing::expect_unwritable_out_refused(args);
 }
 
 TEST(CheckDistanceCli, BadUsageIsRefused) {

@@ -3,12 +3,11 @@
 
 #include <fmt/core.h>
 
-#include <filesystem>
-#include <fstream>
 #include <limits>
-#include <stdexcept>
+#include <utility>
 
 #include "rayproof/scene/mesh_caster.h"
+#include "verify/judge_report.h"
 
 namespace rayproof::verify {
 
@@ -31,20 +30,6 @@ CasterReportRow builtin(const char* name, const CasterMesh& mesh, const CasterRa
           judge.judge(rays, answers, opt), {}};
 }
 
-std::string html_escape(const std::string& s) {
-  std::string o;
-  for (char c : s) {
-    switch (c) {
-      case '&': o += "&amp;"; break;
-      case '<': o += "&lt;"; break;
-      case '>': o += "&gt;"; break;
-      case '"': o += "&quot;"; break;
-      default: o += c;
-    }
-  }
-  return o;
-}
-
 }  // namespace
 
 std::vector<CasterReportRow> builtin_caster_rows(const CasterMesh& mesh, const CasterRays& rays, const CasterJudge& judge,
@@ -58,8 +43,6 @@ std::vector<CasterReportRow> builtin_caster_rows(const CasterMesh& mesh, const C
 }
 
 void write_caster_report(const std::string& dir, const std::vector<CasterReportRow>& rows, const std::string& precision) {
-  std::error_code ec;
-  std::filesystem::create_directories(dir, ec);
   const std::string intro = fmt::format(
       "Whole casters judged exactly on meshes (`rayproof check --caster`, docs/check.md): each caster's closest "
       "hit per ray against rayproof's certified caster and exact per-triangle tests, crossings at t > 0, t errors "
@@ -70,56 +53,31 @@ void write_caster_report(const std::string& dir, const std::vector<CasterReportR
              "given, in double, they are charged with what that rounding changes (run with --caster-precision float "
              "to judge them on float rays)."
            : std::string());
-  std::string md = "# Casters under the exact test\n\n" + intro + "\n\n| caster | mesh |";
-  std::string html =
-      "<!doctype html>\n<html><head><meta charset=\"utf-8\"><title>Casters under the exact test</title>\n"
-      "<style>body{font-family:sans-serif;max-width:80em;margin:2em auto}table{border-collapse:collapse}"
-      "td,th{border:1px solid #bbb;padding:.2em .5em;text-align:right}td:first-child,td:nth-child(2){text-align:left}"
-      "tr.builtin{color:#555}pre{white-space:pre-wrap;font-size:85%}</style></head><body>\n"
-      "<h1>Casters under the exact test</h1>\n<p>" +
-      html_escape(intro) + "</p>\n<table>\n<tr><th>caster</th><th>mesh</th>";
-  std::string sep = "|---|---|";
-  for (const CasterCounter& counter : kCasterCounters) {
-    if (!counter.report_column) continue;
-    md += fmt::format(" {} |", column_label(counter));
-    sep += "---|";
-    html += fmt::format("<th>{}</th>", html_escape(std::string(column_label(counter))));
-  }
-  md += "\n" + sep + "\n";
-  html += "</tr>\n";
+  ReportPages page("Casters under the exact test", intro);
+  std::vector<std::string> header{"caster", "mesh"};
+  for (const CasterCounter& counter : kCasterCounters)
+    if (counter.report_column) header.emplace_back(column_label(counter));
+  std::vector<ReportTableRow> table;
   for (const auto& r : rows) {
     const bool is_builtin = r.command == "built-in";
-    md += fmt::format("| {} | {} |", is_builtin ? r.caster : "**" + r.caster + "**", r.mesh);
-    html += fmt::format("<tr{}><td>{}</td><td>{}</td>", is_builtin ? " class=\"builtin\"" : "",
-                        html_escape(is_builtin ? r.caster : r.caster + " (" + r.command + ")"), html_escape(r.mesh));
-    for (const CasterCounter& counter : kCasterCounters) {
-      if (!counter.report_column) continue;
-      md += fmt::format(" {} |", count_of(r.tally, counter));
-      html += fmt::format("<td>{}</td>", count_of(r.tally, counter));
-    }
-    md += "\n";
-    html += "</tr>\n";
+    ReportTableRow t{{is_builtin ? r.caster : "**" + r.caster + "**", r.mesh},
+                     is_builtin ? std::string() : r.caster + " (" + r.command + ")", is_builtin};
+    for (const CasterCounter& counter : kCasterCounters)
+      if (counter.report_column) t.cells.push_back(fmt::format("{}", count_of(r.tally, counter)));
+    table.push_back(std::move(t));
   }
-  html += "</table>\n";
-  md += "\n## Reproducers and events\n";
-  html += "<h2>Reproducers and events</h2>\n";
+  page.table(header, table);
+  page.heading(2, "Reproducers and events");
   for (const auto& r : rows) {
     if (r.tally.reproducers.empty() && r.events.empty() && r.tally.notes.empty()) continue;
-    md += fmt::format("\n### {} on {}\n\n```\n", r.caster, r.mesh);
-    html += fmt::format("<h3>{} on {}</h3>\n<pre>", html_escape(r.caster), html_escape(r.mesh));
-    for (const auto& e : r.events) md += "event: " + e + "\n", html += html_escape("event: " + e) + "\n";
-    for (const auto& n : r.tally.notes) md += "note: " + n + "\n", html += html_escape("note: " + n) + "\n";
-    for (const auto& p : r.tally.reproducers) md += p.line + "\n", html += html_escape(p.line) + "\n";
-    md += "```\n";
-    html += "</pre>\n";
+    page.heading(3, fmt::format("{} on {}", r.caster, r.mesh));
+    std::vector<std::string> lines;
+    for (const auto& e : r.events) lines.push_back("event: " + e);
+    for (const auto& n : r.tally.notes) lines.push_back("note: " + n);
+    for (const auto& p : r.tally.reproducers) lines.push_back(p.line);
+    page.block(lines);
   }
-  html += "</body></html>\n";
-  for (const auto& [name, text] : {std::pair<std::string, const std::string*>{"report.md", &md}, {"report.html", &html}}) {
-    const auto path = std::filesystem::path(dir) / name;
-    std::ofstream out(path, std::ios::binary);
-    out << *text;
-    if (!out) throw std::runtime_error("cannot write " + path.string());
-  }
+  page.write(dir);
 }
 
 }  // namespace rayproof::verify

@@ -6,6 +6,7 @@
 
 #include <array>
 #include <cerrno>
+#include <chrono>
 #include <cstdlib>
 
 #include "verify/line_child.h"
@@ -59,6 +60,7 @@ LineBatchRun run_line_batches(const std::string& command, const std::string& hea
                               const LineBatchOptions& opt, const std::function<void(std::size_t, std::string&)>& write,
                               const std::function<bool(const std::string&, std::size_t)>& read) {
   ignore_sigpipe();  // a program that dies while we write must not kill us
+  const auto began = std::chrono::steady_clock::now();
   LineBatchRun run;
   const std::size_t n = set.size();
   run.failed.assign(n, false);
@@ -118,6 +120,7 @@ LineBatchRun run_line_batches(const std::string& command, const std::string& hea
     (void)child.send("end\n", 1.0);
     child.stop(true);
   }
+  run.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - began).count();
   return run;
 }
 

@@ -63,11 +63,13 @@ struct LineBatchOptions {
   std::size_t batch = 1024;     ///< items per batch
 };
 
-/// A run of a program: which items failed, the events (one sentence per failure), the starts.
+/// A run of a program: which items failed, the events (one sentence per failure), the starts, and
+/// its wall time.
 struct LineBatchRun {
   std::vector<bool> failed;
   std::vector<std::string> events;
   std::size_t starts = 0;
+  double seconds = 0;  ///< from the first start to the end: starts, the protocol's text and waits included
 };
 
 /// A program's run with its answers (each Answer has a `failed` flag), in item order.
@@ -76,13 +78,14 @@ struct ExecRun {
   std::vector<Answer> answers;
   std::vector<std::string> events;  ///< "crashed (killed by signal 11 (Segmentation fault)) ..." per failure
   std::size_t starts = 0;           ///< times the program was started
+  double seconds = 0;               ///< the run's wall time (LineBatchRun::seconds)
 };
 
 /// The answers read during `run`, with its failures marked on them.
 template <class Answer>
 [[nodiscard]] ExecRun<Answer> with_failures(std::vector<Answer> answers, LineBatchRun&& run) {
   for (std::size_t i = 0; i < answers.size(); ++i) answers[i].failed = run.failed[i];
-  return {std::move(answers), std::move(run.events), run.starts};
+  return {std::move(answers), std::move(run.events), run.starts, run.seconds};
 }
 
 /// Runs `command` on `set.size()` items: `head` first (at every start), then per batch the line

@@ -43,10 +43,10 @@ std::optional<ContainsRule> judged_rule_named(const std::string& s) {
 int run_contains_check(const CheckCliOptions& o) {
   const auto functions = named_commands(o.contains, "--contains");
   if (!functions) return 2;
-  if (kernel_options_given(o) || !o.caster.empty() || !o.out.empty()) {
-    fmt::print(stderr, "rayproof check: --contains takes --mesh, --json, --seed, --reproducers and the --contains-* "
-                       "options; --caster, --exec, --plugin, --glsl, --opencl, --method, --families, --expect, "
-                       "--max-ulps and --out apply to other checks\n");
+  if (kernel_options_given(o) || !o.caster.empty()) {
+    fmt::print(stderr, "rayproof check: --contains takes --mesh, --json, --out, --seed, --reproducers and the "
+                       "--contains-* options; --caster, --exec, --plugin, --glsl, --opencl, --method, --families, "
+                       "--expect and --max-ulps apply to other checks\n");
     return 2;
   }
   if (o.mesh.empty()) {
@@ -72,6 +72,7 @@ int run_contains_check(const CheckCliOptions& o) {
   opt.max_points_per_set = o.contains_max_per_set;
   opt.reproducers = o.reproducers;
   opt.sets = o.contains_sets;
+  if (!report_dir_ready(o.out)) return 2;
 
   const auto judged = judged_meshes(o);
   if (!judged) return 2;
@@ -86,6 +87,9 @@ int run_contains_check(const CheckCliOptions& o) {
     fmt::print("rayproof check --contains: rule {}, {} precision; each point's side judged against rayproof's exact "
                "contains (docs/check.md)\n",
                o.contains_rule, o.contains_precision);
+  // --out: every function's row, then rayproof's own exact contains on each mesh's points.
+  verify::JudgeReport report = verify::contains_report(opt);
+  std::vector<verify::JudgeReportRow> builtin_rows;
   struct Prepared {
     verify::ContainsMesh mesh;
     verify::ContainsPoints points;
@@ -95,19 +99,27 @@ int run_contains_check(const CheckCliOptions& o) {
       meshes, *functions,
       [&](const JudgedMesh& m) {
         const verify::ContainsMesh mesh{m.mesh.vertices, m.mesh.triangles, m.name};
-        return Prepared{mesh, verify::contains_points(mesh, opt), verify::ContainsJudge(mesh, opt.rule)};
+        Prepared p{mesh, verify::contains_points(mesh, opt), verify::ContainsJudge(mesh, opt.rule)};
+        if (!o.out.empty()) builtin_rows.push_back(verify::builtin_contains_row(p.mesh, p.points, p.judge, opt));
+        return p;
       },
       [&](const NamedCommand& fn, const JudgedMesh& m, const Prepared& p) {
         fmt::print(stderr, "[contains] {} on {}: {} points\n", fn.name, m.name, p.points.points.size());
         const verify::ExecContainsRun run = verify::run_exec_contains(fn.command, p.mesh, p.points, exec_opt);
         const verify::ContainsTally tally = p.judge.judge(p.points, run.answers, opt);
         any_finding = any_finding || tally.findings() > 0;
+        if (!o.out.empty())
+          report.rows.push_back(verify::report_row(verify::program_run(fn.name, fn.command, run), p.mesh, tally));
         if (o.json) json_runs.push_back(contains_run_json(fn, m, tally, run));
         else
           print_judged_run({"function", "points", fn, m, tally.points, tally.findings(), run.starts,
-                            verify::summary_text(tally), run.events, " as exact arithmetic does"});
+                            verify::summary_text(tally), run.events, report.agreed});
       });
   if (!prepared) return 2;
+  if (!o.out.empty()) {
+    report.rows.insert(report.rows.end(), builtin_rows.begin(), builtin_rows.end());
+    if (!write_report(o.out, report)) return 2;
+  }
   if (o.json) fmt::print("{}\n", nlohmann::json{{"functions", json_runs}, {"findings", any_finding}}.dump(1));
   return any_finding ? 1 : 0;
 }

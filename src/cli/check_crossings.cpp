@@ -39,7 +39,8 @@ nlohmann::json crossings_run_json(const NamedCommand& fn, const JudgedMesh& mesh
 void add_crossings_check_options(CLI::App& sub, CheckCliOptions& o) {
   sub.add_option("--crossings", o.crossings,
                  "NAME=COMMAND: an all-hits function judged on --mesh: it reads the mesh, then batches of rays, and "
-                 "answers every hit of each ray as (t, triangle) pairs (docs/check.md); repeatable");
+                 "answers every hit of each ray as (t, triangle) pairs (docs/check.md); repeatable. With --out: report.md "
+                 "and report.html, rayproof's own crossings beside");
   sub.add_option("--crossings-precision", o.crossings_precision,
                  "The function's precision: float (float rays, t in float ulps) or double")
       ->capture_default_str();
@@ -63,10 +64,10 @@ void add_crossings_check_options(CLI::App& sub, CheckCliOptions& o) {
 int run_crossings_check(const CheckCliOptions& o) {
   const auto functions = named_commands(o.crossings, "--crossings");
   if (!functions) return 2;
-  if (kernel_options_given(o) || !o.caster.empty() || !o.contains.empty() || !o.distance.empty() || !o.out.empty()) {
-    fmt::print(stderr, "rayproof check: --crossings takes --mesh, --json, --seed, --reproducers and the --crossings-* "
-                       "options; --caster, --contains, --distance, --exec, --plugin, --glsl, --opencl, --method, "
-                       "--families, --expect, --max-ulps and --out apply to other checks\n");
+  if (kernel_options_given(o) || !o.caster.empty() || !o.contains.empty() || !o.distance.empty()) {
+    fmt::print(stderr, "rayproof check: --crossings takes --mesh, --json, --out, --seed, --reproducers and the "
+                       "--crossings-* options; --caster, --contains, --distance, --exec, --plugin, --glsl, --opencl, "
+                       "--method, --families, --expect and --max-ulps apply to other checks\n");
     return 2;
   }
   if (o.mesh.empty()) {
@@ -86,6 +87,7 @@ int run_crossings_check(const CheckCliOptions& o) {
   opt.max_rays_per_set = o.crossings_max_per_set;
   opt.reproducers = o.reproducers;
   opt.sets = o.crossings_sets;
+  if (!report_dir_ready(o.out)) return 2;
   const auto judged = judged_meshes(o);
   if (!judged) return 2;
 
@@ -98,6 +100,9 @@ int run_crossings_check(const CheckCliOptions& o) {
     fmt::print("rayproof check --crossings: every hit of each ray judged against rayproof's exact crossings "
                "({} precision, t within {} ulp{}; docs/check.md)\n",
                o.crossings_precision, opt.max_ulps, opt.max_ulps == 1 ? "" : "s");
+  // --out: every function's row, then rayproof's own exact crossings on each mesh's rays.
+  verify::JudgeReport report = verify::crossings_report(opt);
+  std::vector<verify::JudgeReportRow> builtin_rows;
   struct Prepared {
     verify::CasterMesh mesh;
     verify::CasterRays rays;
@@ -107,19 +112,27 @@ int run_crossings_check(const CheckCliOptions& o) {
       *judged, *functions,
       [&](const JudgedMesh& m) {
         const verify::CasterMesh mesh{m.mesh.vertices, m.mesh.triangles, m.name};
-        return Prepared{mesh, verify::crossings_rays(mesh, opt), verify::CrossingsJudge(mesh)};
+        Prepared p{mesh, verify::crossings_rays(mesh, opt), verify::CrossingsJudge(mesh)};
+        if (!o.out.empty()) builtin_rows.push_back(verify::builtin_crossings_row(p.mesh, p.rays, p.judge, opt));
+        return p;
       },
       [&](const NamedCommand& fn, const JudgedMesh& m, const Prepared& p) {
         fmt::print(stderr, "[crossings] {} on {}: {} rays\n", fn.name, m.name, p.rays.rays.size());
         const verify::ExecCrossingsRun run = verify::run_exec_crossings(fn.command, p.mesh, p.rays, exec_opt);
         const verify::CrossingsTally tally = p.judge.judge(p.rays, run.answers, opt);
         any_finding = any_finding || tally.findings() > 0;
+        if (!o.out.empty())
+          report.rows.push_back(verify::report_row(verify::program_run(fn.name, fn.command, run), p.mesh, tally));
         if (o.json) json_runs.push_back(crossings_run_json(fn, m, tally, run));
         else
           print_judged_run({"function", "rays", fn, m, tally.rays, tally.rays_with_findings, run.starts,
-                            verify::summary_text(tally), run.events, " as exact arithmetic does"});
+                            verify::summary_text(tally), run.events, report.agreed});
       });
   if (!prepared) return 2;
+  if (!o.out.empty()) {
+    report.rows.insert(report.rows.end(), builtin_rows.begin(), builtin_rows.end());
+    if (!write_report(o.out, report)) return 2;
+  }
   if (o.json) fmt::print("{}\n", nlohmann::json{{"functions", json_runs}, {"findings", any_finding}}.dump(1));
   return any_finding ? 1 : 0;
 }

@@ -37,10 +37,10 @@ nlohmann::json distance_run_json(const NamedCommand& fn, const JudgedMesh& mesh,
 int run_distance_check(const CheckCliOptions& o) {
   const auto functions = named_commands(o.distance, "--distance");
   if (!functions) return 2;
-  if (kernel_options_given(o) || !o.caster.empty() || !o.contains.empty() || !o.out.empty()) {
-    fmt::print(stderr, "rayproof check: --distance takes --mesh, --json, --seed, --reproducers and the --distance-* "
-                       "options; --caster, --contains, --exec, --plugin, --glsl, --opencl, --method, --families, "
-                       "--expect, --max-ulps and --out apply to other checks\n");
+  if (kernel_options_given(o) || !o.caster.empty() || !o.contains.empty()) {
+    fmt::print(stderr, "rayproof check: --distance takes --mesh, --json, --out, --seed, --reproducers and the "
+                       "--distance-* options; --caster, --contains, --exec, --plugin, --glsl, --opencl, --method, "
+                       "--families, --expect and --max-ulps apply to other checks\n");
     return 2;
   }
   if (o.mesh.empty()) {
@@ -65,6 +65,7 @@ int run_distance_check(const CheckCliOptions& o) {
   opt.max_points_per_set = o.distance_max_per_set;
   opt.reproducers = o.reproducers;
   opt.sets = o.distance_sets;
+  if (!report_dir_ready(o.out)) return 2;
   const auto judged = judged_meshes(o);
   if (!judged) return 2;
 
@@ -86,9 +87,9 @@ int run_distance_check(const CheckCliOptions& o) {
     verify::ContainsPoints points;
     verify::DistanceJudge judge;
   };
-  const std::string agreed =
-      fmt::format(" within 1 ulp{}{}", opt.precision == verify::ContainsPrecision::float32 ? " of float" : "",
-                  opt.rel_tol > 0 ? fmt::format(" or a relative {}", opt.rel_tol) : std::string());
+  // --out: every function's row, then rayproof's own exact distance on each mesh's points.
+  verify::JudgeReport report = verify::distance_report(opt);
+  std::vector<verify::JudgeReportRow> builtin_rows;
   const bool prepared = for_each_mesh_and_function(
       *judged, *functions,
       [&](const JudgedMesh& m) {
@@ -97,19 +98,27 @@ int run_distance_check(const CheckCliOptions& o) {
         // A vector's move keeps its buffer: `mesh` stays a view of Prepared's own `rounded`.
         const verify::ContainsMesh mesh{float32 ? std::span<const Vec3<double>>(rounded) : m.mesh.vertices, m.mesh.triangles,
                                         m.name};
-        return Prepared{std::move(rounded), mesh, verify::distance_points(mesh, opt), verify::DistanceJudge(mesh)};
+        Prepared p{std::move(rounded), mesh, verify::distance_points(mesh, opt), verify::DistanceJudge(mesh)};
+        if (!o.out.empty()) builtin_rows.push_back(verify::builtin_distance_row(p.mesh, p.points, p.judge, opt));
+        return p;
       },
       [&](const NamedCommand& fn, const JudgedMesh& m, const Prepared& p) {
         fmt::print(stderr, "[distance] {} on {}: {} points\n", fn.name, m.name, p.points.points.size());
         const verify::ExecDistanceRun run = verify::run_exec_distance(fn.command, p.mesh, p.points, exec_opt);
         const verify::DistanceTally tally = p.judge.judge(p.points, run.answers, opt);
         any_finding = any_finding || tally.findings() > 0;
+        if (!o.out.empty())
+          report.rows.push_back(verify::report_row(verify::program_run(fn.name, fn.command, run), p.mesh, tally));
         if (o.json) json_runs.push_back(distance_run_json(fn, m, tally, run));
         else
           print_judged_run({"function", "points", fn, m, tally.points, tally.findings(), run.starts,
-                            verify::summary_text(tally), run.events, agreed});
+                            verify::summary_text(tally), run.events, report.agreed});
       });
   if (!prepared) return 2;
+  if (!o.out.empty()) {
+    report.rows.insert(report.rows.end(), builtin_rows.begin(), builtin_rows.end());
+    if (!write_report(o.out, report)) return 2;
+  }
   if (o.json) fmt::print("{}\n", nlohmann::json{{"functions", json_runs}, {"findings", any_finding}}.dump(1));
   return any_finding ? 1 : 0;
 }

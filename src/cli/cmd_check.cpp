@@ -354,7 +354,9 @@ Run add_check(CLI::App& app) {
   sub->add_option("--reproducers", o->reproducers, "Worst cases shown per family")
       ->check(CLI::Range(std::size_t{0}, std::size_t{1000}))
       ->capture_default_str();
-  sub->add_option("--out", o->out, "Write report.md, report.html, report.csv and error_vs_time.svg here");
+  sub->add_option("--out", o->out,
+                  "Write report.md, report.html, report.csv and error_vs_time.svg here (--caster, --contains, "
+                  "--distance, --crossings: report.md and report.html)");
   sub->add_option("--compare", o->compare, "Built-in methods placed beside the kernel in the report (default: all)")
       ->delimiter(',')->allow_extra_args(false);
   sub->add_option("--compare-plugin", o->compare_plugin,
@@ -391,7 +393,8 @@ Run add_check(CLI::App& app) {
       ->delimiter(',')->allow_extra_args(false);
   sub->add_option("--contains", o->contains,
                   "NAME=COMMAND: a containment function judged on --mesh: it reads the mesh, then batches of points, "
-                  "and answers 0 (outside), 1 (inside) or 2 (surface) per point (docs/check.md); repeatable");
+                  "and answers 0 (outside), 1 (inside) or 2 (surface) per point (docs/check.md); repeatable. With --out: "
+                  "report.md and report.html, rayproof's own contains beside");
   sub->add_option("--contains-rule", o->contains_rule, "The rule the answers are judged by: automatic, nonzero, parity, winding")
       ->capture_default_str();
   sub->add_option("--contains-precision", o->contains_precision,
@@ -413,7 +416,7 @@ Run add_check(CLI::App& app) {
   sub->add_option("--distance", o->distance,
                   "NAME=COMMAND: a distance function judged on --mesh: it reads the mesh, then batches of points, and "
                   "answers per point a distance, optionally its closest point and triangle (docs/check.md); "
-                  "repeatable");
+                  "repeatable. With --out: report.md and report.html, rayproof's own distance beside");
   sub->add_flag("--distance-signed", o->distance_signed,
                 "The function answers signed distances (negative inside, 0 on the surface)");
   sub->add_option("--distance-precision", o->distance_precision,

@@ -1,7 +1,8 @@
 #pragma once
-/// What `check --caster`, `--contains` and `--distance` share (check_caster.cpp,
-/// check_contains.cpp, check_distance.cpp): NAME=COMMAND specs, the options
-/// that belong to kernels, a run's JSON fields, its text (header line, summary, events, verdict).
+/// What `check --caster`, `--contains`, `--distance` and `--crossings` share (check_caster.cpp,
+/// check_contains.cpp, check_distance.cpp, check_crossings.cpp): NAME=COMMAND specs, the options
+/// that belong to kernels, a run's JSON fields, its text (header line, summary, events, verdict),
+/// the --out report's directory and writing.
 /// Header-only: the CLI's files compile in unity batches (src/cli/CMakeLists.txt).
 #include <fmt/core.h>
 
@@ -16,6 +17,7 @@
 
 #include "cli/mesh_modes.h"
 #include "rayproof/verify/judge_counters.h"
+#include "verify/judge_report.h"
 
 namespace rayproof::cli {
 
@@ -121,11 +123,31 @@ inline void print_judged_run(const JudgedRunText& r) {
              r.mesh.name, r.mesh.mesh.triangles.size(), r.items, r.noun, r.starts, r.starts == 1 ? "" : "s");
   fmt::print("{}", r.summary);
   for (const auto& e : r.events) fmt::print("event: {}\n", e);
-  if (r.findings == 0)
-    fmt::print("{} '{}' answered all {} {} on {}{}\n", r.role, r.fn.name, r.items, r.noun, r.mesh.name, r.agreed);
-  else
-    fmt::print("{} '{}' differs from exact on {} of {} {} on {}\n", r.role, r.fn.name, r.findings, r.items, r.noun,
-               r.mesh.name);
+  fmt::print("{}\n", verify::judged_verdict(r.role, r.fn.name, r.findings, r.items, r.noun, r.mesh.name, r.agreed));
+}
+
+/// --out DIR of a judge: DIR created before the run (false, the error printed, when it cannot be).
+inline bool report_dir_ready(const std::string& dir) {
+  if (dir.empty()) return true;
+  try {
+    verify::make_report_dir(dir);
+    return true;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "rayproof check: {}\n", e.what());
+    return false;
+  }
+}
+
+/// Writes the report of a judge's --out (the message printed); false when it could not be written.
+inline bool write_report(const std::string& dir, const verify::JudgeReport& report) {
+  try {
+    verify::write_judge_report(dir, report);
+    fmt::print(stderr, "rayproof check: wrote {}/report.md and {}/report.html\n", dir, dir);
+    return true;
+  } catch (const std::exception& e) {
+    fmt::print(stderr, "rayproof check: {}\n", e.what());
+    return false;
+  }
 }
 
 }  // namespace rayproof::cli
