@@ -27,6 +27,7 @@
 #include <cmath>
 #include <limits>
 #include <string_view>
+#include <utility>
 
 #include "line_protocol.h"
 
@@ -165,29 +166,13 @@ void record_and_reject(const RTCFilterFunctionNArguments* args) {
   }
 }
 
-/// The line protocol of `check --crossings`: the header, the mesh, then batches of rays
-/// (`rays N`, one ray `ox oy oz dx dy dz` a line) until `end`.
+/// Every hit of each ray, for `check --crossings`: `k t1 triangle1 ... tk trianglek`, by t.
 void crossings(bool robust) {
   const engine_example::Mesh mesh = engine_example::read_mesh("rayproof-crossings");
   const Scene s(mesh, nullptr, record_and_reject, robust);
-  for (;;) {
-    std::istringstream in(engine_example::next_line());
-    std::string word;
-    std::size_t n = 0;
-    in >> word;
-    if (word == "end") return;
-    if (word != "rays" || !(in >> n)) engine_example::fail("expected 'rays N' or 'end'");
-    std::string out;
-    for (std::size_t r = 0; r < n; ++r) {
-      const std::string line = engine_example::next_line();
-      std::array<double, 6> v{};
-      const char* p = line.c_str();
-      for (double& x : v) {
-        char* end = nullptr;
-        x = std::strtod(p, &end);
-        if (end == p) engine_example::fail("not six numbers: " + line);
-        p = end;
-      }
+  engine_example::serve_ray_batches([&](const std::vector<std::array<double, 6>>& rays) {
+    std::vector<std::string> answers;
+    for (const auto& v : rays) {
       std::vector<Hit> hits;
       HitsContext c{{}, &hits};
       rtcInitIntersectContext(&c.context);
@@ -201,13 +186,12 @@ void crossings(bool robust) {
       rtcIntersect1(s.scene, &c.context, &rh);
       std::sort(hits.begin(), hits.end(),
                 [](const Hit& a, const Hit& b) { return a.t < b.t || (a.t == b.t && a.triangle < b.triangle); });
-      out += fmt::format("{}", hits.size());
-      for (const Hit& h : hits) out += fmt::format(" {} {}", double(h.t), h.triangle);
-      out += "\n";
+      std::string answer = fmt::format("{}", hits.size());
+      for (const Hit& h : hits) answer += fmt::format(" {} {}", double(h.t), h.triangle);
+      answers.push_back(std::move(answer));
     }
-    std::fwrite(out.data(), 1, out.size(), stdout);
-    std::fflush(stdout);
-  }
+    return answers;
+  });
 }
 
 }  // namespace
