@@ -1,6 +1,6 @@
 #pragma once
-// The judges' line protocol (docs/check.md, "Inside/outside" and "Distances") for the C++ engine
-// examples: read the mesh once, then answer batches of points until `end`. Only the standard
+// The judges' line protocol (docs/check.md, "Inside/outside", "Distances" and "All hits") for the
+// C++ engine examples: read the mesh once, then answer batches of points or rays until `end`. Only the standard
 // library and fmt: each example links its own engine (CGAL, Embree) and nothing of rayproof.
 #include <fmt/core.h>
 
@@ -40,19 +40,22 @@ inline std::size_t count_after(const std::string& word) {
   return n;
 }
 
-/// Three doubles on a line (strtod reads inf, -inf and nan too, and shortest decimals exactly).
-inline std::array<double, 3> three_doubles() {
+/// N doubles on a line (strtod reads inf, -inf and nan too, and shortest decimals exactly).
+template <std::size_t N>
+std::array<double, N> doubles() {
   const std::string line = next_line();
-  std::array<double, 3> p{};
+  std::array<double, N> p{};
   const char* s = line.c_str();
   for (double& x : p) {
     char* end = nullptr;
     x = std::strtod(s, &end);
-    if (end == s) fail("not three numbers: " + line);
+    if (end == s) fail(fmt::format("not {} numbers: {}", N, line));
     s = end;
   }
   return p;
 }
+
+inline std::array<double, 3> three_doubles() { return doubles<3>(); }
 
 /// The header line `HEAD 1` and the mesh after it.
 inline Mesh read_mesh(const std::string& head) {
@@ -68,24 +71,36 @@ inline Mesh read_mesh(const std::string& head) {
   return m;
 }
 
-/// Answers every batch with `answer(points)` (one string per point, without the newline) until
-/// `end`.
-template <class Answer>
-void serve_batches(Answer&& answer) {
+/// Answers every batch `WORD n` of n lines of N numbers with `answer(items)` (one string per item,
+/// without the newline) until `end`.
+template <std::size_t N, class Answer>
+void serve(const std::string& word_expected, Answer&& answer) {
   for (;;) {
     std::istringstream in(next_line());
     std::string word;
     std::size_t n = 0;
     in >> word;
     if (word == "end") return;
-    if (word != "points" || !(in >> n)) fail("expected 'points N' or 'end'");
-    std::vector<std::array<double, 3>> points(n);
-    for (auto& p : points) p = three_doubles();
+    if (word != word_expected || !(in >> n)) fail("expected '" + word_expected + " N' or 'end'");
+    std::vector<std::array<double, N>> items(n);
+    for (auto& p : items) p = doubles<N>();
     std::string out;
-    for (const std::string& a : answer(points)) out += a + "\n";
+    for (const std::string& a : answer(items)) out += a + "\n";
     std::fwrite(out.data(), 1, out.size(), stdout);
     std::fflush(stdout);
   }
+}
+
+/// Batches of points (`points n`, one point `x y z` a line): the containment and distance judges.
+template <class Answer>
+void serve_batches(Answer&& answer) {
+  serve<3>("points", answer);
+}
+
+/// Batches of rays (`rays n`, one ray `ox oy oz dx dy dz` a line): the crossings judge.
+template <class Answer>
+void serve_ray_batches(Answer&& answer) {
+  serve<6>("rays", answer);
 }
 
 }  // namespace engine_example

@@ -1,18 +1,21 @@
 #!/usr/bin/env python3
 """Reproduces docs/check.md's table of real engines under the judges ("Real engines under the
-judges"): it reads the section's two option lines and its table, runs `rayproof check --json` with
-those options for every row whose engine is on this machine (Open3D and VTK through /usr/bin/python3,
-CGAL and Embree as the programs built into build/examples/), and compares each cell with the counts
-the judge printed. Rows whose engine is absent are skipped and named; with none at all the test is
-skipped (exit 77). `--print` prints the measured cells as table rows instead of comparing.
+judges"): it reads the section's option lines (one per judge) and its table, runs `rayproof check
+--json` with those options for every row whose engine is on this machine (Open3D and VTK through
+/usr/bin/python3, CGAL and Embree as the programs built into build/examples/), and compares each
+cell with the counts the judge printed. The crossings judge's float rows run on copies of the
+meshes rounded to float. Rows whose engine is absent are skipped and named; with none at all the
+test is skipped (exit 77). `--print` prints the measured cells as table rows instead of comparing.
 
     engines_table.py RAYPROOF EXAMPLES_BIN MESHES_DIR SOURCE_DIR [--print]"""
 import json
 import os
 import re
 import shlex
+import struct
 import subprocess
 import sys
+import tempfile
 import time
 
 SECTION = "## Real engines under the judges"
@@ -28,6 +31,11 @@ DISTANCE_LABELS = [("over tol", "over_tolerance"), ("random findings", "random_f
                    ("not nearest", "closest_not_nearest"), ("wrong triangle", "wrong_triangle"), ("garbage", "garbage"),
                    ("failed", "failures"), ("invalid number", "invalid_number"),
                    ("invalid failed", "invalid_failures"), ("events", "events"), ("max rel", "max_rel_error")]
+CROSSINGS_LABELS = [("missing", "missing"), ("duplicates", "duplicates"), ("touch hits", "touch_hits"),
+                    ("no contact", "no_contact"), ("garbage", "garbage"), ("wrong order", "wrong_order"),
+                    ("t over tol", "t_over_tolerance"), ("failed", "failures"), ("invalid hit", "invalid_hit"),
+                    ("invalid failed", "invalid_failures"), ("events", "events"), ("max ulps", "max_ulps")]
+LABELS = {"contains": CONTAINS_LABELS, "distance": DISTANCE_LABELS, "crossings": CROSSINGS_LABELS}
 
 
 def section(doc):
@@ -37,15 +45,15 @@ def section(doc):
 
 
 def option_lines(text):
-    """The code block's `check --contains` and `check --distance` lines: their options."""
+    """The code block's `check --contains`, `check --distance` and `check --crossings` lines: their
+    options."""
     block = re.search(r"```sh\n(.*?)```", text, re.S).group(1)
     out = {}
     for line in block.splitlines():
         words = shlex.split(line)
-        if "--contains" in " ".join(words):
-            out["contains"] = [w for w in words[2:] if w not in ("--contains", "NAME=COMMAND", "--mesh", "MESHES")]
-        elif "--distance" in " ".join(words):
-            out["distance"] = [w for w in words[2:] if w not in ("--distance", "NAME=COMMAND", "--mesh", "MESHES")]
+        for judge in LABELS:
+            if "--" + judge in words:
+                out[judge] = [w for w in words[2:] if w not in ("--" + judge, "NAME=COMMAND", "--mesh", "MESHES")]
     return out
 
 
@@ -96,6 +104,29 @@ def engine_command(command, examples_bin, source_dir):
     return " ".join(shlex.quote(w) for w in words)
 
 
+def float_meshes(meshes_dir, out_dir):
+    """Copies of the table's OFF meshes with every coordinate rounded to float (written exactly, as
+    shortest decimals): what a float engine holds, for the judges that round only the queries."""
+    for mesh in MESH_COLUMNS.values():
+        if mesh == "generated":
+            continue
+        with open(os.path.join(meshes_dir, mesh)) as f:
+            words = f.read().split()
+        if words[0] != "OFF":
+            sys.exit("%s: not an OFF file" % mesh)
+        nv = int(words[1])
+        rounded = [repr(struct.unpack("f", struct.pack("f", float(w)))[0]) for w in words[4:4 + 3 * nv]]
+        with open(os.path.join(out_dir, mesh), "w") as f:
+            f.write(" ".join(words[1:4]).join(["OFF\n", "\n"]))
+            for i in range(nv):
+                f.write(" ".join(rounded[3 * i:3 * i + 3]) + "\n")
+            faces = words[4 + 3 * nv:]
+            k = 0
+            while k < len(faces):  # one face a line: its vertex count, then its vertices
+                f.write(" ".join(faces[k:k + 1 + int(faces[k])]) + "\n")
+                k += 1 + int(faces[k])
+
+
 def measure(rayproof, judge, name, command, flags, options, meshes_dir):
     meshes = []
     for column, mesh in MESH_COLUMNS.items():
@@ -134,9 +165,11 @@ def main():
     if columns != list(MESH_COLUMNS):
         sys.exit("the table's mesh columns %r are not %r" % (columns, list(MESH_COLUMNS)))
     ran, skipped, wrong = 0, [], []
+    float_dir = tempfile.TemporaryDirectory(prefix="engines_table_")
+    float_written = False
     for row in rows:
         engine, judge_cell, broken_by, command_cell = row[:4]
-        judge = "distance" if "distance" in judge_cell else "contains"
+        judge = next(j for j in LABELS if j in judge_cell)
         flags = []
         if judge_cell.startswith("signed"):
             flags.append("--distance-signed")
@@ -146,8 +179,16 @@ def main():
         if command is None:
             skipped.append(engine)
             continue
-        labels = DISTANCE_LABELS if judge == "distance" else CONTAINS_LABELS
-        measured = measure(rayproof, judge, engine.strip("`"), command, flags, options[judge], meshes_dir)
+        labels = LABELS[judge]
+        mesh_dir = meshes_dir
+        if judge == "crossings" and "float" in judge_cell:
+            # The crossings judge rounds the rays to float, not the mesh: the float engine is judged
+            # on the float mesh it holds, as the distance judge does by itself.
+            if not float_written:
+                float_meshes(meshes_dir, float_dir.name)
+                float_written = True
+            mesh_dir = float_dir.name
+        measured = measure(rayproof, judge, engine.strip("`"), command, flags, options[judge], mesh_dir)
         ran += 1
         cells = [format_cell(measured[c], labels) for c in columns]
         if print_only:
