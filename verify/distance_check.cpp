@@ -146,8 +146,11 @@ DistanceTally DistanceJudge::judge(const ContainsPoints& points, std::span<const
     if (a.has_triangle) {
       ++tally.triangle_ids;
       const bool known = a.triangle >= 0 && static_cast<std::uint64_t>(a.triangle) < s.triangles.size();
-      if (!known || ref[i].triangle == ClosestPoint::kNoTriangle ||
-          compare_triangle_distances(p, s.triangles[static_cast<std::size_t>(a.triangle)], s.triangles[ref[i].triangle]) != 0)
+      // The exact nearest triangle itself is among the ties without a comparison.
+      const bool nearest = known && ref[i].triangle != ClosestPoint::kNoTriangle &&
+                           static_cast<std::uint64_t>(a.triangle) == ref[i].triangle;
+      if (!nearest && (!known || ref[i].triangle == ClosestPoint::kNoTriangle ||
+          compare_triangle_distances(p, s.triangles[static_cast<std::size_t>(a.triangle)], s.triangles[ref[i].triangle]) != 0))
         finding(&DistanceCounts::wrong_triangle, "wrong-triangle", i,
                 known ? fmt::format(" triangle {} (exact distance {})", a.triangle,
                                     num(exact_triangle_distance(p, s.triangles[static_cast<std::size_t>(a.triangle)])))
