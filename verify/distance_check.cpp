@@ -14,6 +14,7 @@
 #include "rayproof/float_util.h"
 #include "rayproof/scene/exact_mesh.h"
 #include "rayproof/scene/mesh_caster.h"
+#include "verify/distance_filter.h"
 #include "verify/judge_frame.h"
 
 namespace rayproof::verify {
@@ -69,9 +70,10 @@ DistanceTally DistanceJudge::judge(const ContainsPoints& points, std::span<const
   const bool float32 = opt.precision == ContainsPrecision::float32;
   tally.rel_tol = opt.rel_tol;
   tally.notes = points.notes;
-  // answered: the answers' closest points' own distances to the mesh (or, when within b(x), to the
-  // exact nearest triangle: enough to tell they are not off the mesh)
+  // answered: the answers' closest points' own distances to the mesh, where searched; near: x is
+  // within b(x) of the exact nearest triangle (so of the mesh: not off it), the mesh not searched
   std::vector<ClosestPoint> ref(n), baseline(n), answered(n);
+  std::vector<unsigned char> near(n, 0);
   KindQuota quota(opt.reproducers);
   auto exact_of = [&](std::size_t i) { return opt.signed_distance ? ref[i].signed_distance() : ref[i].distance; };
   auto finding = [&](std::uint64_t DistanceCounts::*counter, const char* kind, std::size_t i, const std::string& extra) {
@@ -134,10 +136,11 @@ DistanceTally DistanceJudge::judge(const ContainsPoints& points, std::span<const
         finding(&DistanceCounts::closest_off_mesh, "closest-off-mesh", i, fmt::format(" closest {}", exact_point(x)));
       } else {
         const double b = closest_bound(x, float32);
-        if (answered[i].distance > b)
+        if (!near[i] && answered[i].distance > b)
           finding(&DistanceCounts::closest_off_mesh, "closest-off-mesh", i,
                   fmt::format(" closest {} ({} from the mesh, bound {})", exact_point(x), num(answered[i].distance), num(b)));
-        const double from_p = exact_triangle_distance(p, {x, x, x});
+        double from_p = detail::rounded_point_distance(p, x);  // NaN: the filter cannot tell
+        if (std::isnan(from_p)) from_p = exact_triangle_distance(p, {x, x, x});
         if (from_p - ref[i].distance > b)
           finding(&DistanceCounts::closest_not_nearest, "closest-not-nearest", i,
                   fmt::format(" closest {} ({} from the point, bound {})", exact_point(x), num(from_p), num(b)));
@@ -172,16 +175,17 @@ DistanceTally DistanceJudge::judge(const ContainsPoints& points, std::span<const
         s.mesh.closest_points(points_of(b, e), std::span(ref).subspan(b, e - b), opt.signed_distance, opt.threads);
         // The answered closest points' own exact distances to the mesh, where needed: x within b(x) of
         // the exact nearest triangle is within b(x) of the mesh (the rounding is monotone), else the
-        // mesh is searched.
+        // mesh is searched. Within b(x) is decided by the filter where it can tell, else exactly.
         std::vector<Vec3<double>> xs;
         std::vector<std::size_t> at;
         for (std::size_t i = b; i < e; ++i) {
           const DistanceAnswer& a = answers[i];
           if (!a.has_point || a.failed || !finite(a.point) || !finite(points.points[i])) continue;
           if (ref[i].triangle != ClosestPoint::kNoTriangle) {
-            const double near = exact_triangle_distance(a.point, s.triangles[ref[i].triangle]);
-            if (near <= closest_bound(a.point, float32)) {
-              answered[i].distance = near;
+            const std::array<Vec3<double>, 3>& t = s.triangles[ref[i].triangle];
+            const double bound = closest_bound(a.point, float32);
+            if (detail::certainly_within(a.point, t, bound) || exact_triangle_distance(a.point, t) <= bound) {
+              near[i] = 1;
               continue;
             }
           }
