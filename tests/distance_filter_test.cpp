@@ -154,5 +154,48 @@ TEST(DistanceFilter, RoundedPointDistanceIsTheCorrectRounding) {
   EXPECT_GT(decided, tried * 9 / 10) << decided << " of " << tried;
 }
 
+// Fans of triangles around a corner (generic coordinates, one triangle of zero area) and the
+// points around it: the corner itself, rounded points of the shared edges, those 1 ulp off, and
+// points at 1e-12 to 10 in random directions, whose nearest points are often the corner or an edge.
+TEST(DistanceFilter, TiedOnlyWhereTheExactDistancesAre) {
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  std::size_t ties = 0, decided = 0, corner_ties = 0, corner_decided = 0;
+  for (int fan = 0; fan < 12; ++fan) {
+    const double scale = fan % 3 == 0 ? 1e-3 : (fan % 3 == 1 ? 0.7 : 2e4);
+    const Vec3<double> c{scale * unit(rng), scale * unit(rng), scale * unit(rng)};
+    std::vector<Vec3<double>> ring;
+    for (int k = 0; k < 6; ++k) {
+      const double angle = k * 1.0471975511965976 + 0.1 * unit(rng);
+      ring.push_back({c.x + scale * std::cos(angle), c.y + scale * std::sin(angle), c.z + 0.4 * scale * unit(rng)});
+    }
+    std::vector<Tri> tris;
+    for (int k = 0; k < 6; ++k) tris.push_back({c, ring[k], ring[(k + 1) % 6]});
+    tris.push_back({c, ring[0], Vec3<double>{c.x + 2 * (ring[0].x - c.x), c.y + 2 * (ring[0].y - c.y),
+                                             c.z + 2 * (ring[0].z - c.z)}});  // zero area (up to rounding)
+    std::vector<Vec3<double>> ps{c};
+    for (const Vec3<double>& r : ring)
+      for (double s : {0.5, 0.3}) {
+        const Vec3<double> e{c.x + s * (r.x - c.x), c.y + s * (r.y - c.y), c.z + s * (r.z - c.z)};
+        ps.push_back(e), ps.push_back(ulps(e, 1, -1, 1)), ps.push_back(ulps(c, 1, 0, -1));
+      }
+    for (double away : {1e-12, 1e-6, 1e-2, 1.0, 10.0})
+      for (int k = 0; k < 20; ++k)
+        ps.push_back({c.x + away * scale * unit(rng), c.y + away * scale * unit(rng), c.z + away * scale * unit(rng)});
+    for (const Vec3<double>& p : ps)
+      for (std::size_t i = 0; i < tris.size(); ++i)
+        for (std::size_t j = 0; j < tris.size(); ++j) {
+          const bool fast = verify::detail::certainly_tied(p, tris[i], tris[j]);
+          const bool tie = compare_triangle_distances(p, tris[i], tris[j]) == 0;
+          ASSERT_TRUE(!fast || tie) << "p " << p.x << " " << p.y << " " << p.z << " triangles " << i << " " << j;
+          if (i == j) continue;
+          ties += tie, decided += fast;
+          if (p.x == c.x && p.y == c.y && p.z == c.z) corner_ties += tie, corner_decided += fast;
+        }
+  }
+  EXPECT_EQ(corner_decided, corner_ties);
+  EXPECT_GT(decided, ties * 3 / 4) << decided << " of " << ties;
+}
+
 }  // namespace
 }  // namespace rayproof

@@ -149,11 +149,14 @@ DistanceTally DistanceJudge::judge(const ContainsPoints& points, std::span<const
     if (a.has_triangle) {
       ++tally.triangle_ids;
       const bool known = a.triangle >= 0 && static_cast<std::uint64_t>(a.triangle) < s.triangles.size();
-      // The exact nearest triangle itself is among the ties without a comparison.
+      // The exact nearest triangle itself is among the ties without a comparison; another one where
+      // the filter finds their nearest points on a corner or edge they share, else compared exactly.
       const bool nearest = known && ref[i].triangle != ClosestPoint::kNoTriangle &&
                            static_cast<std::uint64_t>(a.triangle) == ref[i].triangle;
       if (!nearest && (!known || ref[i].triangle == ClosestPoint::kNoTriangle ||
-          compare_triangle_distances(p, s.triangles[static_cast<std::size_t>(a.triangle)], s.triangles[ref[i].triangle]) != 0))
+                       (!detail::certainly_tied(p, s.triangles[static_cast<std::size_t>(a.triangle)], s.triangles[ref[i].triangle]) &&
+                        compare_triangle_distances(p, s.triangles[static_cast<std::size_t>(a.triangle)],
+                                                   s.triangles[ref[i].triangle]) != 0)))
         finding(&DistanceCounts::wrong_triangle, "wrong-triangle", i,
                 known ? fmt::format(" triangle {} (exact distance {})", a.triangle,
                                     num(exact_triangle_distance(p, s.triangles[static_cast<std::size_t>(a.triangle)])))

@@ -26,6 +26,44 @@ bool sum_at_most_one(L s, L t) {
   return sum < 1 || (sum == 1 && err <= 0);
 }
 
+/// A dot product of two vectors of differences of doubles (each difference rounded once): its
+/// value v and the sum a of its terms' magnitudes. Five roundings per term: |v - exact| <= gamma_5
+/// of the exact terms' magnitudes <= 6u a.
+struct Dot {
+  L v, a;
+};
+Dot dot_of(const LV& x, const LV& y) {
+  const L t0 = x.x * y.x, t1 = x.y * y.y, t2 = x.z * y.z;
+  return {t0 + t1 + t2, std::fabs(t0) + std::fabs(t1) + std::fabs(t2)};
+}
+/// The exact value of d is certainly <= 0 (>= 0): v + 8u a rounded keeps the sign of v + 8u a, and
+/// 8u a rounded is at least 6u a.
+bool at_most_zero(const Dot& d) { return d.v + 8 * kU * d.a <= 0; }
+bool at_least_zero(const Dot& d) { return d.v - 8 * kU * d.a >= 0; }
+
+bool same(const Vec3<double>& a, const Vec3<double>& b) { return a.x == b.x && a.y == b.y && a.z == b.z; }
+
+/// The nearest point of the triangle (v, e1, e2) to p is certainly its corner v: p - v has a
+/// nonpositive dot product with both edges from v (the triangle lies in the cone they span).
+bool corner_nearest(const LV& p, const LV& v, const LV& e1, const LV& e2) {
+  const LV d = sub(p, v);
+  return at_most_zero(dot_of(sub(e1, v), d)) && at_most_zero(dot_of(sub(e2, v), d));
+}
+
+/// The nearest point of the triangle (v, w, x) to p is certainly on its edge v-w (v != w): with
+/// e = w - v, d = p - v, f = x - v, L = e.e and s = e.d, the projection q = v + (s/L) e of p on the
+/// edge's line is on the edge (0 <= s <= L; L - s = e.(w - p)) and (p - q).(x - q) = G / L <= 0 for
+/// G = L (d.f) - s (e.f), so that (p - q).(y - q) <= 0 on the whole triangle. G's error: each dot
+/// within 6u of its magnitudes, the products and the difference rounded: below 14.1u (aL aP + as aQ).
+bool edge_nearest(const LV& p, const LV& v, const LV& w, const LV& x) {
+  const LV e = sub(w, v), d = sub(p, v), f = sub(x, v);
+  const Dot s = dot_of(e, d);
+  if (!at_least_zero(s) || !at_least_zero(dot_of(e, sub(w, p)))) return false;
+  const Dot l = dot_of(e, e), pf = dot_of(d, f), q = dot_of(e, f);
+  const L g = l.v * pf.v - s.v * q.v, bound = 16 * kU * (l.a * pf.a + s.a * q.a);
+  return std::isfinite(g) && std::isfinite(bound) && g + bound <= 0;
+}
+
 }  // namespace
 
 bool distance_filter_available() {
@@ -89,6 +127,30 @@ bool certainly_within(const Vec3<double>& xd, const std::array<Vec3<double>, 3>&
   const L bl = bd;
   if (!std::isfinite(s2) || !std::isfinite(err)) return false;
   return s2 <= L(0.5625) * (bl * bl) && err <= bl / 8;
+}
+
+bool certainly_tied(const Vec3<double>& pd, const std::array<Vec3<double>, 3>& t1, const std::array<Vec3<double>, 3>& t2) {
+  if (!distance_filter_available()) return false;
+  const LV p = lv(pd);
+  const LV a[3] = {lv(t1[0]), lv(t1[1]), lv(t1[2])}, b[3] = {lv(t2[0]), lv(t2[1]), lv(t2[2])};
+  int match[3] = {-1, -1, -1};  // t1's corner i is t2's corner match[i]
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3 && match[i] < 0; ++j)
+      if (same(t1[i], t2[j])) match[i] = j;
+  // A shared corner nearest on both.
+  for (int i = 0; i < 3; ++i) {
+    const int j = match[i];
+    if (j >= 0 && corner_nearest(p, a[i], a[(i + 1) % 3], a[(i + 2) % 3]) &&
+        corner_nearest(p, b[j], b[(j + 1) % 3], b[(j + 2) % 3]))
+      return true;
+  }
+  // A shared edge (two distinct corners) nearest on both; x the third corner of each.
+  for (int i = 0; i < 3; ++i) {
+    const int k = (i + 1) % 3, j = match[i], m = match[k];
+    if (j < 0 || m < 0 || j == m || same(t1[i], t1[k])) continue;
+    if (edge_nearest(p, a[i], a[k], a[3 - i - k]) && edge_nearest(p, a[i], a[k], b[3 - j - m])) return true;
+  }
+  return false;
 }
 
 double rounded_point_distance(const Vec3<double>& p, const Vec3<double>& x) {

@@ -23,4 +23,11 @@ namespace rayproof::verify::detail {
 /// double or 0), else NaN. p and x finite.
 [[nodiscard]] double rounded_point_distance(const Vec3<double>& p, const Vec3<double>& x);
 
+/// True when p is certainly at the same exact distance from the closed triangles t1 and t2 (a
+/// zero-area one: its edges) because the nearest point of each is one corner they share (equal
+/// coordinates), or lies on an edge they share; false when the filter cannot tell (they may still
+/// tie). p finite.
+[[nodiscard]] bool certainly_tied(const Vec3<double>& p, const std::array<Vec3<double>, 3>& t1,
+                                  const std::array<Vec3<double>, 3>& t2);
+
 }  // namespace rayproof::verify::detail
