@@ -10,6 +10,7 @@
 #include <cmath>
 #include <stdexcept>
 #include <tuple>
+#include <type_traits>
 
 #include "rayproof/float_util.h"
 #include "rayproof/scene/exact_mesh.h"
@@ -76,10 +77,14 @@ DistanceTally DistanceJudge::judge(const ContainsPoints& points, std::span<const
   std::vector<unsigned char> near(n, 0);
   KindQuota quota(opt.reproducers);
   auto exact_of = [&](std::size_t i) { return opt.signed_distance ? ref[i].signed_distance() : ref[i].distance; };
-  auto finding = [&](std::uint64_t DistanceCounts::*counter, const char* kind, std::size_t i, const std::string& extra) {
+  // extra: the reproducer's tail, or a function making it (called only for a kept reproducer)
+  auto finding = [&](std::uint64_t DistanceCounts::*counter, const char* kind, std::size_t i, const auto& extra) {
     ++(tally.*counter);
     ++tally.sets[points.set[i]].findings;
     if (!quota.keep(kind)) return;
+    std::string tail;
+    if constexpr (std::is_invocable_v<decltype(extra)>) tail = extra();
+    else tail = extra;
     const Vec3<double>& p = points.points[i];
     const std::string exact = finite(p) ? fmt::format("{} (triangle {}{})", num(exact_of(i)), ref[i].triangle,
                                                       opt.signed_distance ? std::string(", ") + to_string(ref[i].side) : "")
@@ -88,7 +93,7 @@ DistanceTally DistanceJudge::judge(const ContainsPoints& points, std::span<const
         {kind, i,
          fmt::format("{} set={} mesh={} point {} {} {} exact: {} answer: {}{}", kind, points.names[points.set[i]],
                      s.name, num(p.x), num(p.y), num(p.z), exact,
-                     answers[i].failed ? std::string("failed") : num(answers[i].distance), extra)});
+                     answers[i].failed ? std::string("failed") : num(answers[i].distance), tail)});
   };
 
   auto judge_distance_ulps = [&](std::size_t i, double d, double exact) {
@@ -157,10 +162,11 @@ DistanceTally DistanceJudge::judge(const ContainsPoints& points, std::span<const
                        (!detail::certainly_tied(p, s.triangles[static_cast<std::size_t>(a.triangle)], s.triangles[ref[i].triangle]) &&
                         compare_triangle_distances(p, s.triangles[static_cast<std::size_t>(a.triangle)],
                                                    s.triangles[ref[i].triangle]) != 0)))
-        finding(&DistanceCounts::wrong_triangle, "wrong-triangle", i,
-                known ? fmt::format(" triangle {} (exact distance {})", a.triangle,
-                                    num(exact_triangle_distance(p, s.triangles[static_cast<std::size_t>(a.triangle)])))
-                      : fmt::format(" triangle {} (no such triangle)", a.triangle));
+        finding(&DistanceCounts::wrong_triangle, "wrong-triangle", i, [&] {
+          return known ? fmt::format(" triangle {} (exact distance {})", a.triangle,
+                                     num(exact_triangle_distance(p, s.triangles[static_cast<std::size_t>(a.triangle)])))
+                       : fmt::format(" triangle {} (no such triangle)", a.triangle);
+        });
     }
   };
   for (std::size_t k = 0; k < points.names.size(); ++k) tally.sets.push_back({points.names[k], 0, 0, 0, 0});
