@@ -1,6 +1,8 @@
 // The judgement of someone else's distance function on a mesh (rayproof/verify/distance_check.h):
 // ExactMesh::closest_points gives each point's correctly rounded exact distance (and its exact side
-// for signed distances); the answers are counted against it in ulps and relatively.
+// for signed distances); the answers are counted against it in ulps and relatively. The exact tests
+// of answered closest points and triangles go through the floating-point filters of
+// verify/distance_filter.h first, rationals only where they cannot tell.
 #include "rayproof/verify/distance_check.h"
 
 #include <fmt/core.h>
