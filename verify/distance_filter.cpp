@@ -3,6 +3,7 @@
 // exponent reaches 2^-16382), so no step below underflows or overflows on finite input.
 #include "verify/distance_filter.h"
 
+#include <cfenv>
 #include <cmath>
 #include <limits>
 
@@ -68,7 +69,11 @@ bool edge_nearest(const LV& p, const LV& v, const LV& w, const LV& x) {
 
 bool distance_filter_available() {
   using N = std::numeric_limits<long double>;
-  return N::radix == 2 && N::digits == 64 && N::max_exponent == 16384 && N::min_exponent == -16381;
+  if (!(N::radix == 2 && N::digits == 64 && N::max_exponent == 16384 && N::min_exponent == -16381)) return false;
+  // At run time too: rounding to nearest, and the x87 precision control at 64 bits (not lowered to
+  // double's 53 by some library): 1 + 2^-63 is then exact.
+  volatile L one = 1, tiny = 0x1p-63L;
+  return std::fegetround() == FE_TONEAREST && one + tiny != one;
 }
 
 bool certainly_within(const Vec3<double>& xd, const std::array<Vec3<double>, 3>& t, double bd) {

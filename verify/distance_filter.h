@@ -4,14 +4,16 @@
 // significand) with a proven error bound, and answers "cannot tell" when the bound does not decide,
 // where the judge falls back to rationals (exact_triangle_distance). They never decide otherwise
 // than the exact test would. Where long double is not the x87 format (64-bit significand, 15-bit
-// exponent) they always answer "cannot tell".
+// exponent), or at run time the rounding is not to nearest or the x87 precision control is lowered,
+// they always answer "cannot tell".
 #include <array>
 
 #include "rayproof/vec3.h"
 
 namespace rayproof::verify::detail {
 
-/// long double is the x87 extended format the bounds below are proven for.
+/// long double is the x87 extended format the bounds below are proven for, rounding to nearest at
+/// its full 64 bits.
 [[nodiscard]] bool distance_filter_available();
 
 /// True when the exact distance from x to the closed triangle t (a zero-area one: its edges) is
