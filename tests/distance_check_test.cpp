@@ -397,6 +397,68 @@ TEST(DistanceCheck, ClosestPointsAtTheBoundsEdge) {
   }
 }
 
+// The judge decides the closest points' tests in long double where its error bound can tell
+// (verify/distance_filter.h), in rationals where not: answered points placed exactly on the
+// nearest triangle (a corner), rounded onto its edges and face, the exact closest point, and those
+// moved 1 to 4 ulps per coordinate, beside exact and neighbouring triangles, get every count of
+// the brute-force tally, on a mesh of generic coordinates and on the thin tetrahedron, in double
+// and in float.
+TEST(DistanceCheck, ClosestPointsOnOneUlpOffEdgesAndCornersCountAsTheBruteForceTally) {
+  OwnedMesh octahedron{{}, {}, "perturbed-octahedron"};
+  for (int k = 0; k < 6; ++k) {
+    Vec3<double> v{0.0007 * k, -0.0003 * k, 0.0011 / (k + 1)};
+    const double r = (k % 2 == 0 ? 1 : -1) * (0.9 + k / 7.0);
+    (k / 2 == 0 ? v.x : (k / 2 == 1 ? v.y : v.z)) += r;
+    octahedron.v.push_back(v);
+  }
+  octahedron.f = {{0, 2, 4}, {2, 1, 4}, {1, 3, 4}, {3, 0, 4}, {2, 0, 5}, {1, 2, 5}, {3, 1, 5}, {0, 3, 5}};
+  const auto step = [](const Vec3<double>& x, int kx, int ky, int kz) {
+    auto one = [](double v, int k) {
+      for (; k > 0; --k) v = std::nextafter(v, std::numeric_limits<double>::infinity());
+      for (; k < 0; ++k) v = std::nextafter(v, -std::numeric_limits<double>::infinity());
+      return v;
+    };
+    return Vec3<double>{one(x.x, kx), one(x.y, ky), one(x.z, kz)};
+  };
+  for (const bool float32 : {false, true})
+    for (const OwnedMesh& given : {octahedron, tetrahedron()}) {
+      OwnedMesh m = given;
+      if (float32) m.v = verify::float_vertices(m.v);
+      const ExactMesh mesh = exact_mesh(m);
+      std::size_t seen = 0;
+      const verify::DistanceAnswerFunction fn = [&](std::span<const Vec3<double>> p, std::span<DistanceAnswer> out) {
+        exact_answers(mesh, false)(p, out);
+        for (std::size_t i = 0; i < p.size(); ++i, ++seen) {
+          DistanceAnswer& a = out[i];
+          if (!finite(p[i]) || a.triangle < 0) continue;
+          const std::array<Vec3<double>, 3> t = corners(m, static_cast<std::size_t>(a.triangle));
+          const Vec3<double> centroid = (t[0] + t[1] + t[2]) / 3.0, mid = 0.5 * (t[1] + t[2]);
+          switch (seen % 8) {
+            case 1: a.point = step(a.point, 1, 0, 0); break;
+            case 2: a.point = step(a.point, -1, 1, -1); break;
+            case 3: a.point = t[0]; break;
+            case 4: a.point = mid; break;
+            case 5: a.point = centroid; break;
+            case 6: a.point = step(centroid, 3, -3, 3); break;
+            case 7: a.point = step(a.point, 4, -4, 4); break;
+            default: break;
+          }
+          if (seen % 3 == 1) a.triangle = (a.triangle + 1) % static_cast<std::int64_t>(m.f.size());
+        }
+      };
+      verify::DistanceCheckOptions opt;
+      if (float32) opt.precision = verify::ContainsPrecision::float32;
+      const Judged r = run(m, fn, opt);
+      const std::string what = m.name + (float32 ? ", float" : ", double");
+      expect_counts_equal(r.tally, brute_tally(m, opt, r.points, r.answers), what);
+      if (!float32) {  // 4 ulps of double are within b(x) in float ulps
+        EXPECT_GT(r.tally.closest_off_mesh, 0u) << what << "\n" << verify::summary_text(r.tally);
+      }
+      EXPECT_GT(r.tally.closest_not_nearest, 0u) << what << "\n" << verify::summary_text(r.tally);
+      EXPECT_LT(r.tally.closest_off_mesh, r.tally.closest_points / 4) << what << "\n" << verify::summary_text(r.tally);
+    }
+}
+
 // Float precision: the cube scaled by 0.1 (not floats) is judged rounded to float; rayproof's exact
 // answers on that rounded mesh have no finding, a double answer 1e-12 off is within 1 ulp of float
 // (and not of double), one 3 float ulps off is counted; each as the brute-force tally in float ulps.

@@ -1,6 +1,8 @@
 // The judgement of someone else's distance function on a mesh (rayproof/verify/distance_check.h):
 // ExactMesh::closest_points gives each point's correctly rounded exact distance (and its exact side
-// for signed distances); the answers are counted against it in ulps and relatively.
+// for signed distances); the answers are counted against it in ulps and relatively. The exact tests
+// of answered closest points and triangles go through the floating-point filters of
+// verify/distance_filter.h first, rationals only where they cannot tell.
 #include "rayproof/verify/distance_check.h"
 
 #include <fmt/core.h>
@@ -10,10 +12,12 @@
 #include <cmath>
 #include <stdexcept>
 #include <tuple>
+#include <type_traits>
 
 #include "rayproof/float_util.h"
 #include "rayproof/scene/exact_mesh.h"
 #include "rayproof/scene/mesh_caster.h"
+#include "verify/distance_filter.h"
 #include "verify/judge_frame.h"
 
 namespace rayproof::verify {
@@ -69,15 +73,20 @@ DistanceTally DistanceJudge::judge(const ContainsPoints& points, std::span<const
   const bool float32 = opt.precision == ContainsPrecision::float32;
   tally.rel_tol = opt.rel_tol;
   tally.notes = points.notes;
-  // answered: the answers' closest points' own distances to the mesh (or, when within b(x), to the
-  // exact nearest triangle: enough to tell they are not off the mesh)
+  // answered: the answers' closest points' own distances to the mesh, where searched; near: x is
+  // within b(x) of the exact nearest triangle (so of the mesh: not off it), the mesh not searched
   std::vector<ClosestPoint> ref(n), baseline(n), answered(n);
+  std::vector<unsigned char> near(n, 0);
   KindQuota quota(opt.reproducers);
   auto exact_of = [&](std::size_t i) { return opt.signed_distance ? ref[i].signed_distance() : ref[i].distance; };
-  auto finding = [&](std::uint64_t DistanceCounts::*counter, const char* kind, std::size_t i, const std::string& extra) {
+  // extra: the reproducer's tail, or a function making it (called only for a kept reproducer)
+  auto finding = [&](std::uint64_t DistanceCounts::*counter, const char* kind, std::size_t i, const auto& extra) {
     ++(tally.*counter);
     ++tally.sets[points.set[i]].findings;
     if (!quota.keep(kind)) return;
+    std::string tail;
+    if constexpr (std::is_invocable_v<decltype(extra)>) tail = extra();
+    else tail = extra;
     const Vec3<double>& p = points.points[i];
     const std::string exact = finite(p) ? fmt::format("{} (triangle {}{})", num(exact_of(i)), ref[i].triangle,
                                                       opt.signed_distance ? std::string(", ") + to_string(ref[i].side) : "")
@@ -86,7 +95,7 @@ DistanceTally DistanceJudge::judge(const ContainsPoints& points, std::span<const
         {kind, i,
          fmt::format("{} set={} mesh={} point {} {} {} exact: {} answer: {}{}", kind, points.names[points.set[i]],
                      s.name, num(p.x), num(p.y), num(p.z), exact,
-                     answers[i].failed ? std::string("failed") : num(answers[i].distance), extra)});
+                     answers[i].failed ? std::string("failed") : num(answers[i].distance), tail)});
   };
 
   auto judge_distance_ulps = [&](std::size_t i, double d, double exact) {
@@ -134,10 +143,11 @@ DistanceTally DistanceJudge::judge(const ContainsPoints& points, std::span<const
         finding(&DistanceCounts::closest_off_mesh, "closest-off-mesh", i, fmt::format(" closest {}", exact_point(x)));
       } else {
         const double b = closest_bound(x, float32);
-        if (answered[i].distance > b)
+        if (!near[i] && answered[i].distance > b)
           finding(&DistanceCounts::closest_off_mesh, "closest-off-mesh", i,
                   fmt::format(" closest {} ({} from the mesh, bound {})", exact_point(x), num(answered[i].distance), num(b)));
-        const double from_p = exact_triangle_distance(p, {x, x, x});
+        double from_p = detail::rounded_point_distance(p, x);  // NaN: the filter cannot tell
+        if (std::isnan(from_p)) from_p = exact_triangle_distance(p, {x, x, x});
         if (from_p - ref[i].distance > b)
           finding(&DistanceCounts::closest_not_nearest, "closest-not-nearest", i,
                   fmt::format(" closest {} ({} from the point, bound {})", exact_point(x), num(from_p), num(b)));
@@ -146,12 +156,19 @@ DistanceTally DistanceJudge::judge(const ContainsPoints& points, std::span<const
     if (a.has_triangle) {
       ++tally.triangle_ids;
       const bool known = a.triangle >= 0 && static_cast<std::uint64_t>(a.triangle) < s.triangles.size();
-      if (!known || ref[i].triangle == ClosestPoint::kNoTriangle ||
-          compare_triangle_distances(p, s.triangles[static_cast<std::size_t>(a.triangle)], s.triangles[ref[i].triangle]) != 0)
-        finding(&DistanceCounts::wrong_triangle, "wrong-triangle", i,
-                known ? fmt::format(" triangle {} (exact distance {})", a.triangle,
-                                    num(exact_triangle_distance(p, s.triangles[static_cast<std::size_t>(a.triangle)])))
-                      : fmt::format(" triangle {} (no such triangle)", a.triangle));
+      // The exact nearest triangle itself is among the ties without a comparison; another one where
+      // the filter finds their nearest points on a corner or edge they share, else compared exactly.
+      const bool nearest = known && ref[i].triangle != ClosestPoint::kNoTriangle &&
+                           static_cast<std::uint64_t>(a.triangle) == ref[i].triangle;
+      if (!nearest && (!known || ref[i].triangle == ClosestPoint::kNoTriangle ||
+                       (!detail::certainly_tied(p, s.triangles[static_cast<std::size_t>(a.triangle)], s.triangles[ref[i].triangle]) &&
+                        compare_triangle_distances(p, s.triangles[static_cast<std::size_t>(a.triangle)],
+                                                   s.triangles[ref[i].triangle]) != 0)))
+        finding(&DistanceCounts::wrong_triangle, "wrong-triangle", i, [&] {
+          return known ? fmt::format(" triangle {} (exact distance {})", a.triangle,
+                                     num(exact_triangle_distance(p, s.triangles[static_cast<std::size_t>(a.triangle)])))
+                       : fmt::format(" triangle {} (no such triangle)", a.triangle);
+        });
     }
   };
   for (std::size_t k = 0; k < points.names.size(); ++k) tally.sets.push_back({points.names[k], 0, 0, 0, 0});
@@ -169,16 +186,17 @@ DistanceTally DistanceJudge::judge(const ContainsPoints& points, std::span<const
         s.mesh.closest_points(points_of(b, e), std::span(ref).subspan(b, e - b), opt.signed_distance, opt.threads);
         // The answered closest points' own exact distances to the mesh, where needed: x within b(x) of
         // the exact nearest triangle is within b(x) of the mesh (the rounding is monotone), else the
-        // mesh is searched.
+        // mesh is searched. Within b(x) is decided by the filter where it can tell, else exactly.
         std::vector<Vec3<double>> xs;
         std::vector<std::size_t> at;
         for (std::size_t i = b; i < e; ++i) {
           const DistanceAnswer& a = answers[i];
           if (!a.has_point || a.failed || !finite(a.point) || !finite(points.points[i])) continue;
           if (ref[i].triangle != ClosestPoint::kNoTriangle) {
-            const double near = exact_triangle_distance(a.point, s.triangles[ref[i].triangle]);
-            if (near <= closest_bound(a.point, float32)) {
-              answered[i].distance = near;
+            const std::array<Vec3<double>, 3>& t = s.triangles[ref[i].triangle];
+            const double bound = closest_bound(a.point, float32);
+            if (detail::certainly_within(a.point, t, bound) || exact_triangle_distance(a.point, t) <= bound) {
+              near[i] = 1;
               continue;
             }
           }
