@@ -4,6 +4,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
 #include <limits>
 #include <vector>
 
@@ -132,8 +133,8 @@ TEST(SelfIntersections, EqualsBruteForceOnLatticeSoups) {
   }
 }
 
-// The vertices as packed doubles are read in place; floats and strided doubles are converted
-// first: the pairs are those of the same coordinates as packed doubles.
+// The used vertices are copied as doubles in the tree's order whatever the input's form (floats,
+// strided doubles): the pairs are those of the same coordinates as packed doubles.
 TEST(SelfIntersections, FloatAndStridedVerticesGiveTheSamePairs) {
   mesh::Mesh m = scene::bumpy_sphere(1200);
   mesh::Mesh copy = m;
@@ -151,6 +152,39 @@ TEST(SelfIntersections, FloatAndStridedVerticesGiveTheSamePairs) {
   const IndexArray t{m.triangles.front().data(), m.triangles.size()};
   EXPECT_EQ(self_intersections(VertexArray(f.data(), m.vertices.size()), t), want);
   EXPECT_EQ(self_intersections(VertexArray(strided.data(), m.vertices.size(), 4 * sizeof(double)), t), want);
+}
+
+// The used vertices are copied in the tree's order and renumbered by first use: the pairs do not
+// depend on the input's vertex order, on unused vertices (a NaN among them too), or on equal
+// coordinates under different indices (still distinct vertices).
+TEST(SelfIntersections, VertexOrderAndUnusedVerticesDoNotChangeThePairs) {
+  mesh::Mesh m = folded_sheet(8, 3);
+  append(m, box({0.5, 0.5, -0.5}, {1, 1, 1}));
+  append(m, scene::bumpy_sphere(300));
+  const P want = self_of(m);
+  ASSERT_EQ(want, brute_self(m));
+  ASSERT_GT(want.size(), 20u);
+  // Reversed order, each used vertex followed by an unused copy of itself and an unused NaN.
+  const std::size_t nv = m.vertices.size();
+  mesh::Mesh r;
+  for (std::size_t x = 0; x < nv; ++x) {
+    r.vertices.push_back(m.vertices[nv - 1 - x]);
+    r.vertices.push_back(m.vertices[nv - 1 - x]);
+    r.vertices.push_back({std::numeric_limits<double>::quiet_NaN(), 0, 0});
+  }
+  for (const auto& t : m.triangles) {
+    std::array<std::uint32_t, 3> u{};
+    for (int k = 0; k < 3; ++k) u[k] = std::uint32_t(3 * (nv - 1 - t[k]));
+    r.triangles.push_back(u);
+  }
+  EXPECT_EQ(self_of(r), want);
+  // The same triangles with every index of the second triangle use moved to the unused copy:
+  // the triangles that shared those vertices with it now touch there by coordinates only.
+  mesh::Mesh c = r;
+  for (int k = 0; k < 3; ++k) c.triangles[1][k] += 1;
+  const P moved = self_of(c);
+  EXPECT_EQ(moved, brute_self(c));
+  EXPECT_GT(moved.size(), want.size());
 }
 
 TEST(SelfIntersections, SameOutputForEveryThreadCount) {
