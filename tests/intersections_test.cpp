@@ -5,7 +5,9 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <limits>
+#include <random>
 #include <vector>
 
 #include "intersect_meshes.h"
@@ -131,6 +133,34 @@ TEST(SelfIntersections, EqualsBruteForceOnLatticeSoups) {
     EXPECT_EQ(got, brute_self(m)) << "seed " << seed;
     EXPECT_GT(got.size(), 10u);
   }
+}
+
+// Fans of triangles around one shared vertex, the other vertices random: most pairs have each
+// opposite edge crossing the other's plane (decided by one orient3d of the four other vertices),
+// some touch only at the vertex; equal to the brute force's segment tests either way.
+TEST(SelfIntersections, SharedVertexFansEqualBruteForce) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::size_t met = 0, pairs = 0;
+  for (int round = 0; round < 40; ++round) {
+    mesh::Mesh m;
+    const Vec3<double> v = round % 2 ? Vec3<double>{u(rng), u(rng), u(rng)} : Vec3<double>{0, 0, 0};
+    m.vertices.push_back(v);
+    const int fan = 12;
+    for (int k = 0; k < fan; ++k) {
+      for (int c = 0; c < 2; ++c) {
+        Vec3<double> x{u(rng), u(rng), u(rng)};
+        if (round % 4 == 2) x = {std::round(4 * x.x), std::round(4 * x.y), std::round(4 * x.z)};  // ties
+        m.vertices.push_back(v + x);
+      }
+      m.triangles.push_back({0, std::uint32_t(2 * k + 1), std::uint32_t(2 * k + 2)});
+    }
+    const P got = self_of(m);
+    EXPECT_EQ(got, brute_self(m)) << "round " << round;
+    met += got.size(), pairs += fan * (fan - 1) / 2;
+  }
+  EXPECT_GT(met, pairs / 10);
+  EXPECT_LT(met, pairs - pairs / 10);
 }
 
 // The used vertices are copied as doubles in the tree's order whatever the input's form (floats,

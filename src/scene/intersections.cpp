@@ -348,12 +348,6 @@ bool one_side(const Plane& P, const Vec3<double>* t, const Vec3<double>* x) {
   return s != 0 && side(P, t, x[1]) == s && side(P, t, x[2]) == s;
 }
 
-/// The segment (x, y) strictly on one side of the plane P of triangle t (exact signs).
-bool segment_off_plane(const Plane& P, const Vec3<double>* t, const Vec3<double>& x, const Vec3<double>& y) {
-  const int s = side(P, t, x);
-  return s != 0 && side(P, t, y) == s;
-}
-
 /// The closed segment [x, y] (x != y) meets the closed triangle t (positive area): the certified
 /// classifier's segment test on exact signs (no zero-area proof of the segment as a triangle).
 bool segment_meets(const Vec3<double>& x, const Vec3<double>& y, const Vec3<double>* t) {
@@ -366,6 +360,25 @@ bool segment_meets(const Vec3<double>& x, const Vec3<double>& y, const Vec3<doub
   certified::tritri_detail::Signs<decltype(o3), decltype(o2)> sg{o3, o2};
   const Vec3<double> tri[3] = {t[0], t[1], t[2]};
   return certified::tritri_detail::segment_meets_triangle(sg, x, y, tri);
+}
+
+/// Triangles a = (v, a1, a2) and b = (v, b1, b2) sharing the vertex v, with b1, b2 strictly on
+/// opposite sides of a's plane (s1 = orient3d(v, a1, a2, b1) = -orient3d(v, a1, a2, b2) != 0) and
+/// a1, a2 strictly on opposite sides of b's plane (t1 = orient3d(v, b1, b2, a1), likewise): whether
+/// they share a point other than v, by one more orient3d. The planes then meet in a line L through
+/// v, and a meets L in [v, p], p inside the edge a1a2 (b's plane crosses it there), b in [v, q], q
+/// inside b1b2; a and b share beyond v exactly when p and q lie on the same side of v on L. The
+/// tetrahedron T = (a1, a2, b1, b2) meets L in exactly [p, q] (a point of L beyond p or q has a
+/// negative barycentric coordinate), so they share beyond v exactly when v is not in T. v is off
+/// the plane of (a1, a2, b1, b2) (else all five points are coplanar and s1 = 0); when T is flat
+/// (D = 0) p = q, a common point, and v is not in T either. Else v is in T when its four
+/// barycentric signs, orient3d(v, a2, b1, b2) = t2 = -t1, orient3d(a1, v, b1, b2) = -t1,
+/// orient3d(a1, a2, v, b2) = s2 = -s1, orient3d(a1, a2, b1, v) = -s1, all have D's sign.
+bool crossing_wedges_meet(const Vec3<double>& a1, const Vec3<double>& a2, const Vec3<double>& b1,
+                          const Vec3<double>& b2, int s1, int t1) {
+  if (s1 != t1) return true;  // the barycentric signs differ: v is not in T
+  const int d = certified::orient3d_exact(a1, a2, b1, b2);
+  return d != -s1;
 }
 
 /// Whether triangles i and j (i != j, both of positive area) of one mesh intersect beyond the
@@ -402,7 +415,15 @@ bool self_pair_intersects(const PairMesh& m, std::uint32_t i, std::uint32_t j) {
   const Vec3<double>& b2 = pb[(kb + 2) % 3];
   // The edge of b opposite v strictly on one side of a's plane puts all of b but v strictly on that
   // side: nothing beyond v in common (two signs settle most pairs of a smooth mesh); likewise a.
-  if (segment_off_plane(qa, pa, b1, b2) || segment_off_plane(plane_of(pb[0], pb[1], pb[2]), pb, a1, a2)) return false;
+  // s_k = orient3d(v, a1, a2, b_k), t_k = orient3d(v, b1, b2, a_k) (pa is a rotation of (v, a1, a2)).
+  const int s1 = side(qa, pa, b1);
+  const int s2 = s1 != 0 ? side(qa, pa, b2) : 0;
+  if (s1 != 0 && s2 == s1) return false;
+  const Plane qb = plane_of(pb[0], pb[1], pb[2]);
+  const int t1 = side(qb, pb, a1);
+  const int t2 = t1 != 0 ? side(qb, pb, a2) : 0;
+  if (t1 != 0 && t2 == t1) return false;
+  if (s1 != 0 && s2 == -s1 && t1 != 0 && t2 == -t1) return crossing_wedges_meet(a1, a2, b1, b2, s1, t1);
   return segment_meets(b1, b2, pa) || segment_meets(a1, a2, pb);
 }
 
