@@ -162,9 +162,14 @@ Plane plane_of(const Vec3<double>& a, const Vec3<double>& b, const Vec3<double>&
           certified::in_range<-480, 1023>(ux, uy, uz, vx, vy, vz)};
 }
 
+/// The exact predicate, out of line: the filter's path below stays small enough to inline.
+[[gnu::noinline]] int side_exact(const Vec3<double>* t, const Vec3<double>& x) {
+  return certified::orient3d_exact(t[0], t[1], t[2], x);
+}
+
 /// The exact sign of orient3d(t[0], t[1], t[2], x), P the plane of t: orient3d's filter on the
 /// stored minors (the same double value and bound), else the exact predicate.
-int side(const Plane& P, const Vec3<double>* t, const Vec3<double>& x) {
+inline int side(const Plane& P, const Vec3<double>* t, const Vec3<double>& x) {
   if (P.filter) {
     const double wx = x.x - t[0].x, wy = x.y - t[0].y, wz = x.z - t[0].z;
     const double det = wx * P.nx + wy * P.ny + wz * P.nz;
@@ -173,7 +178,7 @@ int side(const Plane& P, const Vec3<double>* t, const Vec3<double>& x) {
         certified::in_range<-480, 1023>(wx, wy, wz))
       return det > 0 ? 1 : -1;
   }
-  return certified::orient3d_exact(t[0], t[1], t[2], x);
+  return side_exact(t, x);
 }
 
 /// 30-bit Morton code of a grid cell (x, y, z < 1024).
@@ -190,6 +195,7 @@ std::uint32_t morton(std::uint32_t x, std::uint32_t y, std::uint32_t z) {
 
 /// Leaves hold up to this many triangles.
 constexpr std::uint32_t kLeaf = 4;
+static_assert(kLeaf * kLeaf <= 32, "a leaf pair's box tests are the bits of an unsigned");
 
 /// Builds node `ni` over slots [first, last) of `key` (sorted, the Morton code in the high 32
 /// bits): a leaf of up to kLeaf, else split where the codes' highest differing bit turns on (at the
@@ -316,9 +322,11 @@ PairMesh load(const char* what, const VertexArray& va, const IndexArray& ia, boo
   return m;
 }
 
+/// The closed boxes overlap: six comparisons joined without a branch (whether two boxes of a
+/// descent overlap is close to a coin toss, a branch per comparison mispredicts often).
 bool overlap(const Box& a, const Box& b) {
-  return a.lo[0] <= b.hi[0] && b.lo[0] <= a.hi[0] && a.lo[1] <= b.hi[1] && b.lo[1] <= a.hi[1] && a.lo[2] <= b.hi[2] &&
-         b.lo[2] <= a.hi[2];
+  return (a.lo[0] <= b.hi[0]) & (b.lo[0] <= a.hi[0]) & (a.lo[1] <= b.hi[1]) & (b.lo[1] <= a.hi[1]) &
+         (a.lo[2] <= b.hi[2]) & (b.lo[2] <= a.hi[2]);
 }
 
 /// Calls f(s) for every slot s of `tree` whose box overlaps `q`, in no particular order.
@@ -459,9 +467,15 @@ void self_step(const PairMesh& m, NodePair t, Push&& push, Emit&& emit) {
   const Node& A = nodes[t.a];
   if (t.a == t.b) {
     if (A.is_leaf()) {
-      for (std::uint32_t k = A.index; k < A.index + A.count; ++k)
-        for (std::uint32_t l = k + 1; l < A.index + A.count; ++l)
-          if (overlap(m.box[k], m.box[l])) emit(k, l);
+      // The overlapping pairs as bits (k * kLeaf + l), then emitted: no branch per box test.
+      unsigned bits = 0;
+      for (std::uint32_t k = 0; k < A.count; ++k)
+        for (std::uint32_t l = k + 1; l < A.count; ++l)
+          bits |= unsigned(overlap(m.box[A.index + k], m.box[A.index + l])) << (k * kLeaf + l);
+      for (; bits != 0; bits &= bits - 1) {
+        const auto b = static_cast<std::uint32_t>(std::countr_zero(bits));
+        emit(A.index + b / kLeaf, A.index + b % kLeaf);
+      }
     } else {
       push(NodePair{A.index, A.index}), push(NodePair{A.index + 1, A.index + 1});
       if (overlap(nodes[A.index].box, nodes[A.index + 1].box)) push(NodePair{A.index, A.index + 1});
@@ -470,11 +484,13 @@ void self_step(const PairMesh& m, NodePair t, Push&& push, Emit&& emit) {
   }
   const Node& B = nodes[t.b];
   if (A.is_leaf() && B.is_leaf()) {
-    for (std::uint32_t k = A.index; k < A.index + A.count; ++k) {
-      const Box& bk = m.box[k];
-      if (!overlap(bk, B.box)) continue;
-      for (std::uint32_t l = B.index; l < B.index + B.count; ++l)
-        if (overlap(bk, m.box[l])) emit(k, l);
+    unsigned bits = 0;
+    for (std::uint32_t k = 0; k < A.count; ++k)
+      for (std::uint32_t l = 0; l < B.count; ++l)
+        bits |= unsigned(overlap(m.box[A.index + k], m.box[B.index + l])) << (k * kLeaf + l);
+    for (; bits != 0; bits &= bits - 1) {
+      const auto b = static_cast<std::uint32_t>(std::countr_zero(bits));
+      emit(A.index + b / kLeaf, B.index + b % kLeaf);
     }
   } else if (B.is_leaf() || (!A.is_leaf() && A.box.half_area() >= B.box.half_area())) {
     if (overlap(nodes[A.index].box, B.box)) push(NodePair{A.index, t.b});
