@@ -397,13 +397,12 @@ bool self_pair_intersects(const PairMesh& m, std::uint32_t i, std::uint32_t j) {
   const std::uint32_t* b = &m.idx[3 * j];
   Vec3<double> pa[3], pb[3];
   m.corners(i, pa), m.corners(j, pb);
-  int shared = 0, ka = -1, kb = -1, b_only = -1;
-  for (int y = 0; y < 3; ++y) {
-    bool in_a = false;
-    for (int x = 0; x < 3; ++x)
-      if (a[x] == b[y]) ++shared, ka = x, kb = y, in_a = true;
-    if (!in_a) b_only = y;
-  }
+  // Bit 3 y + x: a[x] == b[y] (no branch per comparison: how many indices two candidates share
+  // varies from pair to pair). Each triangle here has three distinct indices (else zero area).
+  unsigned eq = 0;
+  for (int y = 0; y < 3; ++y)
+    for (int x = 0; x < 3; ++x) eq |= unsigned(a[x] == b[y]) << (3 * y + x);
+  const int shared = std::popcount(eq);
   const Plane qa = plane_of(pa[0], pa[1], pa[2]);
   if (shared == 0) {
     if (one_side(qa, pa, pb) || one_side(plane_of(pb[0], pb[1], pb[2]), pb, pa)) return false;
@@ -411,12 +410,14 @@ bool self_pair_intersects(const PairMesh& m, std::uint32_t i, std::uint32_t j) {
   }
   if (shared >= 2) {
     // Not coplanar: they meet in the shared edge alone.
+    const int b_only = (eq & 7u) == 0 ? 0 : ((eq >> 3) & 7u) == 0 ? 1 : 2;
     if (shared == 2 && side(qa, pa, pb[b_only]) != 0) return false;
     return certified::tritri(m.tri(i), m.tri(j)) == TriTri::coplanar_overlap;
   }
   // One shared vertex: a point in both other than it exists exactly when the edge of one opposite
   // the shared vertex meets the other triangle (the nearer of the two exits of a ray from the
   // shared vertex through such a point lies on an opposite edge and in both triangles).
+  const int kb = std::countr_zero(eq) / 3, ka = std::countr_zero(eq) % 3;
   const Vec3<double>& a1 = pa[(ka + 1) % 3];
   const Vec3<double>& a2 = pa[(ka + 2) % 3];
   const Vec3<double>& b1 = pb[(kb + 1) % 3];
