@@ -28,9 +28,6 @@ namespace {
 /// A box with float bounds rounded outwards (no initialisers: arrays of them are not zeroed first).
 struct Box {
   float lo[3], hi[3];
-  void set(const Vec3<double>& p) {
-    for (int k = 0; k < 3; ++k) lo[k] = bvh_float_down(p[k]), hi[k] = bvh_float_up(p[k]);
-  }
   void extend(const Box& b) {
     for (int k = 0; k < 3; ++k) lo[k] = b.lo[k] < lo[k] ? b.lo[k] : lo[k], hi[k] = b.hi[k] > hi[k] ? b.hi[k] : hi[k];
   }
@@ -303,12 +300,11 @@ PairMesh load(const char* what, const VertexArray& va, const IndexArray& ia, boo
   for_each(n, [&](std::size_t s) {
     Vec3<double> p[3];
     for (int k = 0; k < 3; ++k) p[k] = m.vertex(m.idx[3 * s + k]);
+    // Rounding is monotone: the float bounds of the double bounds are those of the three corners'.
     Box b;
-    b.set(p[0]);
-    for (int k = 1; k < 3; ++k) {
-      Box c;
-      c.set(p[k]);
-      b.extend(c);
+    for (int c = 0; c < 3; ++c) {
+      b.lo[c] = bvh_float_down(std::min(std::min(p[0][c], p[1][c]), p[2][c]));
+      b.hi[c] = bvh_float_up(std::max(std::max(p[0][c], p[1][c]), p[2][c]));
     }
     m.box[s] = b;
     m.zero_area[s] = zero_area(p[0], p[1], p[2]);
