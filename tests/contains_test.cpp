@@ -284,6 +284,38 @@ TEST(Orient, FilterAndExpansionsAgreeWithGmpOnNearDegenerateInputs) {
   (void)zeros;
 }
 
+TEST(Orient, GmpSignsAtEveryScale) {
+  // The GMP stage works on the inputs as integers times one power of two: small integer points
+  // scaled by powers of two down into the subnormals and up to 2^900 keep their sign (a positive
+  // scale), and a point moved off the plane x = 0 by the least subnormal takes the sign of the
+  // normal of the other three in x (orient3d(a, b, c, p) = 2^-1074 ((b - a) x (c - a)).x).
+  namespace certified = rayproof::certified;
+  std::mt19937_64 rng(17);
+  auto small = [&] { return double(int(rng() % 31) - 15); };
+  int zeros = 0;
+  for (int i = 0; i < 3000; ++i) {
+    const Vec3<double> a{small(), small(), small()}, b{small(), small(), small()}, c{small(), small(), small()};
+    Vec3<double> p{small(), small(), small()};
+    if (i % 3 == 0) p = {a.x + b.x - c.x, a.y + b.y - c.y, a.z + b.z - c.z};  // coplanar
+    const int r3 = rayproof::orient::orient3d_exact_differences(a, b, c, p);
+    const int r2 = rayproof::orient::orient2d_exact_differences(a.x, a.y, b.x, b.y, p.x, p.y);
+    ASSERT_NE(r3, rayproof::orient::kUnknown);
+    zeros += r3 == 0;
+    for (const int e : {-1070, -1060, -600, 0, 400, 900}) {
+      auto s = [e](const Vec3<double>& v) { return Vec3<double>{std::ldexp(v.x, e), std::ldexp(v.y, e), std::ldexp(v.z, e)}; };
+      EXPECT_EQ(certified::orient3d_gmp(s(a), s(b), s(c), s(p)), r3) << i << " 2^" << e;
+      EXPECT_EQ(certified::orient2d_gmp(s(a).x, s(a).y, s(b).x, s(b).y, s(p).x, s(p).y), r2) << i << " 2^" << e;
+    }
+    // a on x = 0, p = a moved by the least subnormal in x: the sign of (b - a) x (c - a) in x.
+    const Vec3<double> a0{0, a.y + 0.3, a.z - 0.7};
+    const Vec3<double> p0{0x1p-1074, a0.y, a0.z};
+    const int nx = certified::orient2d_exact(a0.y, a0.z, b.y, b.z, c.y, c.z);
+    EXPECT_EQ(certified::orient3d_gmp(a0, b, c, p0), nx) << i;
+    EXPECT_EQ(certified::orient3d_exact(a0, b, c, p0), nx) << i;
+  }
+  EXPECT_GT(zeros, 900);
+}
+
 TEST(Orient, ExactDifferencesStageAgreesWithGmp) {
   // Points of a common grid (exact differences) at many scales: exactly coplanar and collinear
   // ones, ones an ulp of the grid off, and random ones; the stack stage must decide each of them
