@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <limits>
 #include <random>
 #include <string>
 #include <vector>
@@ -314,6 +315,42 @@ TEST(Orient, GmpSignsAtEveryScale) {
     EXPECT_EQ(certified::orient3d_exact(a0, b, c, p0), nx) << i;
   }
   EXPECT_GT(zeros, 900);
+}
+
+TEST(Orient, AxisAlignedZerosWithoutTheExactStage) {
+  // Points on a common axis-aligned plane (or line) have exact-zero orient3d terms: decided 0 from
+  // the zero differences, at any scale (subnormals too); moved off the plane by one ulp, not 0.
+  namespace certified = rayproof::certified;
+  std::mt19937_64 rng(23);
+  std::uniform_real_distribution<double> u(-1, 1);
+  int zeros = 0;
+  for (int i = 0; i < 4000; ++i) {
+    const double scale = std::ldexp(1.0, int(rng() % 1400) - 1100);
+    const int k = int(rng() % 3);
+    const double level = i % 5 == 0 ? 0.0 : u(rng) * scale;
+    auto on = [&] {
+      Vec3<double> v{u(rng) * scale, u(rng) * scale, u(rng) * scale};
+      v[k] = level;
+      if (i % 7 == 0) v[(k + 1) % 3] = level;  // on a common axis-parallel line too
+      return v;
+    };
+    const Vec3<double> a = on(), b = on(), c = on();
+    Vec3<double> p = on();
+    if (i % 3 == 1) p[k] = std::nextafter(p[k], (rng() & 1) ? 1e300 : -1e300);  // off the plane
+    const int o3 = rayproof::orient::orient3d(a, b, c, p), g3 = certified::orient3d_gmp(a, b, c, p);
+    if (i % 3 != 1) {
+      EXPECT_EQ(o3, 0) << i;  // decided without the expansions, even outside their window
+    }
+    if (o3 != rayproof::orient::kUnknown) {
+      EXPECT_EQ(o3, g3) << i;
+    }
+    EXPECT_EQ(certified::orient3d_exact(a, b, c, p), g3) << i;
+    zeros += g3 == 0;
+  }
+  EXPECT_GT(zeros, 2000);
+  // A NaN still leaves the filter undecided (the callers' checks see it).
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(rayproof::orient::orient3d({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {nan, 0, 0}), rayproof::orient::kUnknown);
 }
 
 TEST(Orient, ExactDifferencesStageAgreesWithGmp) {
