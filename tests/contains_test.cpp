@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
+#include <limits>
 #include <random>
 #include <string>
 #include <vector>
@@ -282,6 +283,74 @@ TEST(Orient, FilterAndExpansionsAgreeWithGmpOnNearDegenerateInputs) {
   EXPECT_EQ(certified::orient3d_exact({0, 0, 0}, {0x1p600, 0, 0}, {0, 0x1p-600, 0}, {0, 0, 0x1p-1074}), 1);
   EXPECT_EQ(certified::orient2d_exact(0, 0, 0x1p-1074, 0x1p-1074, 0x1p1000, 0x1p1000), 0);
   (void)zeros;
+}
+
+TEST(Orient, GmpSignsAtEveryScale) {
+  // The GMP stage works on the inputs as integers times one power of two: small integer points
+  // scaled by powers of two down into the subnormals and up to 2^900 keep their sign (a positive
+  // scale), and a point moved off the plane x = 0 by the least subnormal takes the sign of the
+  // normal of the other three in x (orient3d(a, b, c, p) = 2^-1074 ((b - a) x (c - a)).x).
+  namespace certified = rayproof::certified;
+  std::mt19937_64 rng(17);
+  auto small = [&] { return double(int(rng() % 31) - 15); };
+  int zeros = 0;
+  for (int i = 0; i < 3000; ++i) {
+    const Vec3<double> a{small(), small(), small()}, b{small(), small(), small()}, c{small(), small(), small()};
+    Vec3<double> p{small(), small(), small()};
+    if (i % 3 == 0) p = {a.x + b.x - c.x, a.y + b.y - c.y, a.z + b.z - c.z};  // coplanar
+    const int r3 = rayproof::orient::orient3d_exact_differences(a, b, c, p);
+    const int r2 = rayproof::orient::orient2d_exact_differences(a.x, a.y, b.x, b.y, p.x, p.y);
+    ASSERT_NE(r3, rayproof::orient::kUnknown);
+    zeros += r3 == 0;
+    for (const int e : {-1070, -1060, -600, 0, 400, 900}) {
+      auto s = [e](const Vec3<double>& v) { return Vec3<double>{std::ldexp(v.x, e), std::ldexp(v.y, e), std::ldexp(v.z, e)}; };
+      EXPECT_EQ(certified::orient3d_gmp(s(a), s(b), s(c), s(p)), r3) << i << " 2^" << e;
+      EXPECT_EQ(certified::orient2d_gmp(s(a).x, s(a).y, s(b).x, s(b).y, s(p).x, s(p).y), r2) << i << " 2^" << e;
+    }
+    // a on x = 0, p = a moved by the least subnormal in x: the sign of (b - a) x (c - a) in x.
+    const Vec3<double> a0{0, a.y + 0.3, a.z - 0.7};
+    const Vec3<double> p0{0x1p-1074, a0.y, a0.z};
+    const int nx = certified::orient2d_exact(a0.y, a0.z, b.y, b.z, c.y, c.z);
+    EXPECT_EQ(certified::orient3d_gmp(a0, b, c, p0), nx) << i;
+    EXPECT_EQ(certified::orient3d_exact(a0, b, c, p0), nx) << i;
+  }
+  EXPECT_GT(zeros, 900);
+}
+
+TEST(Orient, AxisAlignedZerosWithoutTheExactStage) {
+  // Points on a common axis-aligned plane (or line) have exact-zero orient3d terms: decided 0 from
+  // the zero differences, at any scale (subnormals too); moved off the plane by one ulp, not 0.
+  namespace certified = rayproof::certified;
+  std::mt19937_64 rng(23);
+  std::uniform_real_distribution<double> u(-1, 1);
+  int zeros = 0;
+  for (int i = 0; i < 4000; ++i) {
+    const double scale = std::ldexp(1.0, int(rng() % 1400) - 1100);
+    const int k = int(rng() % 3);
+    const double level = i % 5 == 0 ? 0.0 : u(rng) * scale;
+    auto on = [&] {
+      Vec3<double> v{u(rng) * scale, u(rng) * scale, u(rng) * scale};
+      v[k] = level;
+      if (i % 7 == 0) v[(k + 1) % 3] = level;  // on a common axis-parallel line too
+      return v;
+    };
+    const Vec3<double> a = on(), b = on(), c = on();
+    Vec3<double> p = on();
+    if (i % 3 == 1) p[k] = std::nextafter(p[k], (rng() & 1) ? 1e300 : -1e300);  // off the plane
+    const int o3 = rayproof::orient::orient3d(a, b, c, p), g3 = certified::orient3d_gmp(a, b, c, p);
+    if (i % 3 != 1) {
+      EXPECT_EQ(o3, 0) << i;  // decided without the expansions, even outside their window
+    }
+    if (o3 != rayproof::orient::kUnknown) {
+      EXPECT_EQ(o3, g3) << i;
+    }
+    EXPECT_EQ(certified::orient3d_exact(a, b, c, p), g3) << i;
+    zeros += g3 == 0;
+  }
+  EXPECT_GT(zeros, 2000);
+  // A NaN still leaves the filter undecided (the callers' checks see it).
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  EXPECT_EQ(rayproof::orient::orient3d({0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {nan, 0, 0}), rayproof::orient::kUnknown);
 }
 
 TEST(Orient, ExactDifferencesStageAgreesWithGmp) {

@@ -4,7 +4,10 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <limits>
+#include <random>
 #include <vector>
 
 #include "intersect_meshes.h"
@@ -132,8 +135,36 @@ TEST(SelfIntersections, EqualsBruteForceOnLatticeSoups) {
   }
 }
 
-// The vertices as packed doubles are read in place; floats and strided doubles are converted
-// first: the pairs are those of the same coordinates as packed doubles.
+// Fans of triangles around one shared vertex, the other vertices random: most pairs have each
+// opposite edge crossing the other's plane (decided by one orient3d of the four other vertices),
+// some touch only at the vertex; equal to the brute force's segment tests either way.
+TEST(SelfIntersections, SharedVertexFansEqualBruteForce) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::size_t met = 0, pairs = 0;
+  for (int round = 0; round < 40; ++round) {
+    mesh::Mesh m;
+    const Vec3<double> v = round % 2 ? Vec3<double>{u(rng), u(rng), u(rng)} : Vec3<double>{0, 0, 0};
+    m.vertices.push_back(v);
+    const int fan = 12;
+    for (int k = 0; k < fan; ++k) {
+      for (int c = 0; c < 2; ++c) {
+        Vec3<double> x{u(rng), u(rng), u(rng)};
+        if (round % 4 == 2) x = {std::round(4 * x.x), std::round(4 * x.y), std::round(4 * x.z)};  // ties
+        m.vertices.push_back(v + x);
+      }
+      m.triangles.push_back({0, std::uint32_t(2 * k + 1), std::uint32_t(2 * k + 2)});
+    }
+    const P got = self_of(m);
+    EXPECT_EQ(got, brute_self(m)) << "round " << round;
+    met += got.size(), pairs += fan * (fan - 1) / 2;
+  }
+  EXPECT_GT(met, pairs / 10);
+  EXPECT_LT(met, pairs - pairs / 10);
+}
+
+// The used vertices are copied as doubles in the tree's order whatever the input's form (floats,
+// strided doubles): the pairs are those of the same coordinates as packed doubles.
 TEST(SelfIntersections, FloatAndStridedVerticesGiveTheSamePairs) {
   mesh::Mesh m = scene::bumpy_sphere(1200);
   mesh::Mesh copy = m;
@@ -151,6 +182,39 @@ TEST(SelfIntersections, FloatAndStridedVerticesGiveTheSamePairs) {
   const IndexArray t{m.triangles.front().data(), m.triangles.size()};
   EXPECT_EQ(self_intersections(VertexArray(f.data(), m.vertices.size()), t), want);
   EXPECT_EQ(self_intersections(VertexArray(strided.data(), m.vertices.size(), 4 * sizeof(double)), t), want);
+}
+
+// The used vertices are copied in the tree's order and renumbered by first use: the pairs do not
+// depend on the input's vertex order, on unused vertices (a NaN among them too), or on equal
+// coordinates under different indices (still distinct vertices).
+TEST(SelfIntersections, VertexOrderAndUnusedVerticesDoNotChangeThePairs) {
+  mesh::Mesh m = folded_sheet(8, 3);
+  append(m, box({0.5, 0.5, -0.5}, {1, 1, 1}));
+  append(m, scene::bumpy_sphere(300));
+  const P want = self_of(m);
+  ASSERT_EQ(want, brute_self(m));
+  ASSERT_GT(want.size(), 20u);
+  // Reversed order, each used vertex followed by an unused copy of itself and an unused NaN.
+  const std::size_t nv = m.vertices.size();
+  mesh::Mesh r;
+  for (std::size_t x = 0; x < nv; ++x) {
+    r.vertices.push_back(m.vertices[nv - 1 - x]);
+    r.vertices.push_back(m.vertices[nv - 1 - x]);
+    r.vertices.push_back({std::numeric_limits<double>::quiet_NaN(), 0, 0});
+  }
+  for (const auto& t : m.triangles) {
+    std::array<std::uint32_t, 3> u{};
+    for (int k = 0; k < 3; ++k) u[k] = std::uint32_t(3 * (nv - 1 - t[k]));
+    r.triangles.push_back(u);
+  }
+  EXPECT_EQ(self_of(r), want);
+  // The same triangles with every index of the second triangle use moved to the unused copy:
+  // the triangles that shared those vertices with it now touch there by coordinates only.
+  mesh::Mesh c = r;
+  for (int k = 0; k < 3; ++k) c.triangles[1][k] += 1;
+  const P moved = self_of(c);
+  EXPECT_EQ(moved, brute_self(c));
+  EXPECT_GT(moved.size(), want.size());
 }
 
 TEST(SelfIntersections, SameOutputForEveryThreadCount) {

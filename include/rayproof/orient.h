@@ -141,6 +141,15 @@ inline bool exact_difference(double b, double a) { return two_sum(b, -a).lo == 0
   if (perm > detail::kTiny && std::fabs(det) > detail::kO3dBound * perm &&
       certified::in_range<-480, 1023>(ux, uy, uz, vx, vy, vz, wx, wy, wz))
     return det > 0 ? 1 : -1;
+  // Every term exactly zero (points on a common axis-aligned plane, or with equal coordinates): a
+  // computed difference is 0 only when it is exactly 0 (gradual underflow), so each w_k is an exact
+  // zero or both products of its minor have an exact zero factor. Finite differences only (a NaN or
+  // infinity goes on to the exact stage, as before).
+  if (std::isfinite(ux + uy + uz + vx + vy + vz + wx + wy + wz) &&
+      (wx == 0 || ((uy == 0 || vz == 0) && (uz == 0 || vy == 0))) &&
+      (wy == 0 || ((uz == 0 || vx == 0) && (ux == 0 || vz == 0))) &&
+      (wz == 0 || ((ux == 0 || vy == 0) && (uy == 0 || vx == 0))))
+    return 0;
   return orient3d_expansion(a, b, c, p);
 }
 

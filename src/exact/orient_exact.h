@@ -1,6 +1,7 @@
 #pragma once
 /// The exact signs of rayproof/orient.h for every double input: the filter and the expansions
-/// first, GMP rationals when the inputs leave the expansions' exponent window (orient_exact.cpp).
+/// first, GMP when the inputs leave the expansions' exponent window (orient_exact.cpp: the signs in
+/// integers, the inputs scaled by one power of two; the value in rationals).
 #include "rayproof/orient.h"
 
 namespace rayproof::certified {
