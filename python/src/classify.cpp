@@ -10,6 +10,32 @@ namespace rayproof::python {
 
 namespace {
 
+/// Runs `meth` on n cases in chunks with the GIL released (Ctrl-C checked between chunks; exact takes
+/// about 30 us a case): fill(i, case) writes case i's kind and fields, take(i, result) keeps its
+/// answer. Float methods see the fields rounded to float, as Method::run does.
+template <class Fill, class Take>
+void classify_chunked(const Method& meth, std::size_t n, Fill fill, Take take) {
+  py::gil_scoped_release unlocked;
+  constexpr std::size_t kChunk = 4096;
+  std::vector<io::Case> cases;
+  std::vector<io::CaseResult> results;
+  for (std::size_t start = 0; start < n; start += kChunk) {
+    if (start > 0) {
+      py::gil_scoped_acquire locked;
+      if (PyErr_CheckSignals() != 0) throw py::error_already_set();
+    }
+    const std::size_t m = std::min(kChunk, n - start);
+    cases.assign(m, io::Case{});
+    results.assign(m, io::CaseResult{});
+    for (std::size_t j = 0; j < m; ++j) {
+      fill(start + j, cases[j]);
+      if (meth.precision == Precision::float32) cases[j] = io::round_to_float(cases[j]);
+    }
+    meth.classify_many(cases, results);
+    for (std::size_t j = 0; j < m; ++j) take(start + j, results[j]);
+  }
+}
+
 py::dict classify(const std::string& kind_name, py::handle origins, py::handle directions, py::handle prims,
                   const std::string& method_name) {
   const io::Kind kind = kind_named(kind_name);
@@ -30,37 +56,19 @@ py::dict classify(const std::string& kind_name, py::handle origins, py::handle d
   std::uint8_t* code_out = codes.mutable_data();
   double* t_out = t.mutable_data();
   double* t2_out = t2.mutable_data();
-  {
-    py::gil_scoped_release unlocked;
-    constexpr std::size_t kChunk = 4096;
-    std::vector<io::Case> cases;
-    std::vector<io::CaseResult> results;
-    for (std::size_t start = 0; start < n; start += kChunk) {
-      if (start > 0) {  // Ctrl-C between chunks (exact takes about 30 us a case)
-        py::gil_scoped_acquire locked;
-        if (PyErr_CheckSignals() != 0) throw py::error_already_set();
-      }
-      const std::size_t m = std::min(kChunk, n - start);
-      cases.assign(m, io::Case{});
-      results.assign(m, io::CaseResult{});
-      for (std::size_t j = 0; j < m; ++j) {
-        io::Case& c = cases[j];
+  classify_chunked(
+      meth, n,
+      [&](std::size_t i, io::Case& c) {
         c.kind = kind;
-        const std::size_t i = start + j;
         std::copy_n(o.row(i), 3, c.v.begin());
         std::copy_n(d.row(i), 3, c.v.begin() + 3);
         std::copy_n(p.row(i), width, c.v.begin() + 6);
-        if (meth.precision == Precision::float32) c = io::round_to_float(c);  // as Method::run does
-      }
-      meth.classify_many(cases, results);
-      for (std::size_t j = 0; j < m; ++j) {
-        const io::CaseResult& r = results[j];
-        code_out[start + j] = static_cast<std::uint8_t>(r.contact);
-        t_out[start + j] = r.t.value_or(std::numeric_limits<double>::quiet_NaN());
-        t2_out[start + j] = r.t2.value_or(std::numeric_limits<double>::quiet_NaN());
-      }
-    }
-  }
+      },
+      [&](std::size_t i, const io::CaseResult& r) {
+        code_out[i] = static_cast<std::uint8_t>(r.contact);
+        t_out[i] = r.t.value_or(std::numeric_limits<double>::quiet_NaN());
+        t2_out[i] = r.t2.value_or(std::numeric_limits<double>::quiet_NaN());
+      });
   py::dict out;
   out["classes"] = class_names(codes);
   out["codes"] = codes;
@@ -91,30 +99,14 @@ py::dict classify_pairs(py::handle first, py::handle second, const std::string& 
   const std::size_t n = common_rows({{"a", &a}, {"b", &b}});
   py::array_t<std::uint8_t> codes(static_cast<py::ssize_t>(n));
   std::uint8_t* code_out = codes.mutable_data();
-  {
-    py::gil_scoped_release unlocked;
-    constexpr std::size_t kChunk = 4096;
-    std::vector<io::Case> cases;
-    std::vector<io::CaseResult> results;
-    for (std::size_t start = 0; start < n; start += kChunk) {
-      if (start > 0) {  // Ctrl-C between chunks
-        py::gil_scoped_acquire locked;
-        if (PyErr_CheckSignals() != 0) throw py::error_already_set();
-      }
-      const std::size_t m = std::min(kChunk, n - start);
-      cases.assign(m, io::Case{});
-      results.assign(m, io::CaseResult{});
-      for (std::size_t j = 0; j < m; ++j) {
-        io::Case& c = cases[j];
+  classify_chunked(
+      meth, n,
+      [&](std::size_t i, io::Case& c) {
         c.kind = io::Kind::tritri;
-        std::copy_n(a.row(start + j), 9, c.v.begin());
-        std::copy_n(b.row(start + j), 9, c.v.begin() + 9);
-        if (meth.precision == Precision::float32) c = io::round_to_float(c);  // as Method::run does
-      }
-      meth.classify_many(cases, results);
-      for (std::size_t j = 0; j < m; ++j) code_out[start + j] = static_cast<std::uint8_t>(results[j].contact);
-    }
-  }
+        std::copy_n(a.row(i), 9, c.v.begin());
+        std::copy_n(b.row(i), 9, c.v.begin() + 9);
+      },
+      [&](std::size_t i, const io::CaseResult& r) { code_out[i] = static_cast<std::uint8_t>(r.contact); });
   py::dict out;
   out["classes"] = class_names(codes);
   out["codes"] = codes;
