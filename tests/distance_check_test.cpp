@@ -17,6 +17,7 @@
 #include "rayproof/scene/exact_mesh.h"
 #include "rayproof/scene/winding.h"
 #include "rayproof/verify/distance_check.h"
+#include "rayproof/verify/distance_gtest.h"
 
 namespace rayproof {
 namespace {
@@ -291,6 +292,27 @@ verify::DistanceAnswerFunction exact_answers(const ExactMesh& mesh, bool with_si
 
 ExactMesh exact_mesh(const OwnedMesh& m) {
   return ExactMesh(VertexArray(&m.v[0].x, m.v.size()), IndexArray{m.f[0].data(), m.f.size()});
+}
+
+// The GoogleTest helper: the exact function passes (unsigned by the macro, signed through the
+// options); a function answering 0 everywhere fails with its counts and a reproducer line.
+TEST(DistanceCheck, GoogleTestMacroPassesTheExactFunctionAndExplainsAWrongOne) {
+  const OwnedMesh m = cube();
+  const ExactMesh mesh(VertexArray(&m.v[0].x, m.v.size()), IndexArray{m.f[0].data(), m.f.size()});
+  EXPECT_DISTANCE_MATCHES_EXACT(exact_function(mesh, false), m.view());
+  verify::DistanceCheckOptions signed_opt;
+  signed_opt.signed_distance = true;
+  EXPECT_TRUE(gtest::distance_matches_exact(exact_function(mesh, true), m.view(), signed_opt));
+  // Unsigned answers judged as signed: every inside point has the wrong sign.
+  EXPECT_FALSE(gtest::distance_matches_exact(exact_function(mesh, false), m.view(), signed_opt));
+  const auto zero = [](std::span<const Vec3<double>>, std::span<double> out) { std::fill(out.begin(), out.end(), 0.0); };
+  const ::testing::AssertionResult wrong = gtest::distance_matches_exact(zero, m.view());
+  EXPECT_FALSE(wrong);
+  const std::string text = wrong.message();
+  EXPECT_NE(text.find("the distance function differs from exact on "), std::string::npos) << text;
+  EXPECT_NE(text.find(" mesh=" + m.name + " point "), std::string::npos) << text;
+  // Closest points and triangles: rayproof's own answers pass.
+  EXPECT_DISTANCE_MATCHES_EXACT(exact_answers(mesh, false), m.view());
 }
 
 TEST(DistanceCheck, ExactClosestPointsAndTrianglesHaveNoFinding) {
