@@ -163,12 +163,8 @@ TEST(CheckContainsCli, OutWritesTheReportBesideRayproofsOwn) {
   const auto dir = testing::scratch_dir() / "contains_report";
   const std::string args = "check --contains 'out=while read l; do echo 0; done' --mesh " + mesh.string() +
                            " --contains-points 20 --contains-sets vertex,nudged,random,invalid";
-  const auto r = run_rayproof(args + " --json --out " + dir.string());
-  ASSERT_EQ(r.status, 1) << r.err;
-  EXPECT_NE(r.err.find("wrote " + dir.string() + "/report.md and " + dir.string() + "/report.html"),
-            std::string::npos)
-      << r.err;
-  const nlohmann::json run = nlohmann::json::parse(r.out)["functions"][0];
+  const nlohmann::json run = testing::run_writing_report(args, dir);
+  ASSERT_FALSE(run.empty());
   EXPECT_GT(run["inside_called_outside"].get<int>(), 0);
   EXPECT_EQ(run["inside_called_outside"], run["inside"]);
   testing::expect_report_matches_json(dir, run, "out", mesh.string(), "points", run["findings"].get<std::uint64_t>(),

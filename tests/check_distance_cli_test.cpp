@@ -108,12 +108,8 @@ TEST(CheckDistanceCli, OutWritesTheReportBesideRayproofsOwn) {
   const auto dir = testing::scratch_dir() / "distance_report";
   const std::string args = "check --distance 'zero=while read l; do echo 0; done' --mesh " + mesh.string() +
                            " --distance-points 10 --distance-sets vertex,random,invalid --distance-signed";
-  const auto r = run_rayproof(args + " --json --out " + dir.string());
-  ASSERT_EQ(r.status, 1) << r.err;
-  EXPECT_NE(r.err.find("wrote " + dir.string() + "/report.md and " + dir.string() + "/report.html"),
-            std::string::npos)
-      << r.err;
-  const nlohmann::json run = nlohmann::json::parse(r.out)["functions"][0];
+  const nlohmann::json run = testing::run_writing_report(args, dir);
+  ASSERT_FALSE(run.empty());
   EXPECT_EQ(run["over_tolerance"], 10);
   EXPECT_EQ(run["invalid_number"], run["invalid_points"]);
   EXPECT_EQ(run["sets"]["vertex"]["findings"], 0);

@@ -121,6 +121,19 @@ inline void expect_report_matches_json(const std::filesystem::path& dir, const n
   }
 }
 
+/// Runs `args --json --out DIR` (a judge with a function that has findings: exit 1), checks the
+/// "wrote" line, and returns the JSON of its first function.
+inline nlohmann::json run_writing_report(const std::string& args, const std::filesystem::path& dir) {
+  const auto r = run_rayproof(args + " --json --out " + dir.string());
+  EXPECT_EQ(r.status, 1) << r.err;
+  EXPECT_NE(r.err.find("wrote " + dir.string() + "/report.md and " + dir.string() + "/report.html"),
+            std::string::npos)
+      << r.err;
+  const nlohmann::json out = nlohmann::json::parse(r.out, nullptr, false);
+  EXPECT_FALSE(out.is_discarded()) << r.out;
+  return out.is_discarded() ? nlohmann::json::object() : out["functions"][0];
+}
+
 /// A --out DIR that cannot be made (a path under a regular file): exit 2, a message naming the report.
 inline void expect_unwritable_out_refused(const std::string& args) {
   const auto plain = write_file("plain_file", "not a directory\n");
