@@ -411,7 +411,7 @@ Run add_check(CLI::App& app) {
       ->check(CLI::Range(std::size_t{1}, std::size_t{100000000}))
       ->capture_default_str();
   sub->add_option("--contains-sets", o->contains_sets,
-                  "Point sets: vertex, edge, face, nudged, thin, far, random, invalid (default: all)")
+                  "Point sets: vertex, edge, face, nudged, medial, thin, far, random, invalid (default: all)")
       ->delimiter(',')->allow_extra_args(false);
   sub->add_option("--distance", o->distance,
                   "NAME=COMMAND: a distance function judged on --mesh: it reads the mesh, then batches of points, and "
@@ -436,7 +436,7 @@ Run add_check(CLI::App& app) {
       ->check(CLI::Range(std::size_t{1}, std::size_t{100000000}))
       ->capture_default_str();
   sub->add_option("--distance-sets", o->distance_sets,
-                  "Point sets: vertex, edge, face, nudged, thin, far, random, invalid (default: all)")
+                  "Point sets: vertex, edge, face, nudged, medial, thin, far, random, invalid (default: all)")
       ->delimiter(',')->allow_extra_args(false);
   add_crossings_check_options(*sub, *o);
   return [o] { return run_check(*o); };
