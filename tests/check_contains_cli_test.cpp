@@ -67,6 +67,33 @@ TEST(CheckContainsCli, ExampleWrappingRayproofContainsHasNoFinding) {
   EXPECT_NE(f.out.find("rule automatic, float precision"), std::string::npos) << f.out;
 }
 
+// --contains-scale: the cube times 2^600 and 2^-600, exactly: rayproof's own contains has no finding
+// and every set is as large as at scale 1; scales that are not powers of two or would not be exact
+// are refused.
+TEST(CheckContainsCli, ExtremeScalesAreJudgedExactly) {
+  const auto mesh = write_file("cube.off", kCube);
+  const std::string exact = "'exact=/usr/bin/python3 " + example("rayproof_contains.py") + " " + RAYPROOF_BIN + "'";
+  const auto judged = [&](const std::string& scale) {
+    const auto r = run_rayproof("check --contains " + exact + " --mesh " + mesh.string() +
+                                " --contains-points 100 --contains-max-per-set 100 --json --contains-scale " + scale);
+    EXPECT_EQ(r.status, 0) << scale << r.err << r.out;
+    return nlohmann::json::parse(r.out)["functions"][0];
+  };
+  const nlohmann::json one = judged("1");
+  for (const char* scale : {"2^600", "2^-600"}) {
+    const nlohmann::json run = judged(scale);
+    EXPECT_EQ(run["findings"], 0) << scale;
+    for (const char* key : {"points", "inside", "surface", "invalid_points"}) EXPECT_EQ(run[key], one[key]) << scale << key;
+    ASSERT_EQ(run["sets"].size(), one["sets"].size()) << scale;
+    for (const auto& [set, counts] : one["sets"].items()) EXPECT_EQ(run["sets"][set]["points"], counts["points"]) << scale << " " << set;
+  }
+  EXPECT_EQ(run_rayproof("check --contains x=cat --mesh " + mesh.string() + " --contains-scale 10").status, 2);
+  EXPECT_EQ(run_rayproof("check --contains x=cat --mesh " + mesh.string() + " --contains-scale 2^1100").status, 2);
+  const auto r = run_rayproof("check --contains x=cat --mesh " + mesh.string() + " --contains-scale 2^-1050");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_NE(r.err.find("falls below double's range of normal numbers"), std::string::npos) << r.err;
+}
+
 TEST(CheckContainsCli, HangAndGarbageAreReportedAndTheRunGoesOn) {
   const auto mesh = write_file("cube.off", kCube);
   const auto r = run_rayproof("check --contains 'hang=sleep 30' --contains 'junk=while read l; do echo hello; done' "

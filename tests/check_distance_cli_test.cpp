@@ -125,6 +125,84 @@ TEST(CheckDistanceCli, OutWritesTheReportBesideRayproofsOwn) {
   testing::expect_unwritable_out_refused(args);
 }
 
+/// A distance written the naive way, for boxes: outside, sqrt(dx*dx + dy*dy + dz*dz) of the box's
+/// excess per axis (the squares overflow to inf beyond 2^512, are subnormal below 2^-511); inside,
+/// the least distance to a side.
+const char* const kNaiveBoxDistance = R"(import math, sys
+def words():
+    return sys.stdin.readline().split()
+words()
+V = [tuple(map(float, words())) for _ in range(int(words()[1]))]
+for _ in range(int(words()[1])):
+    words()
+lo = [min(v[i] for v in V) for i in range(3)]
+hi = [max(v[i] for v in V) for i in range(3)]
+while True:
+    w = words()
+    if not w or w[0] != "points":
+        break
+    out = []
+    for _ in range(int(w[1])):
+        p = [float(x) for x in words()]
+        if not all(math.isfinite(c) for c in p):
+            out.append("nan")
+            continue
+        d = [max(lo[i] - p[i], 0.0, p[i] - hi[i]) for i in range(3)]
+        if any(d):
+            out.append(repr(math.sqrt(d[0] * d[0] + d[1] * d[1] + d[2] * d[2])))
+        else:
+            out.append(repr(min(min(p[i] - lo[i], hi[i] - p[i]) for i in range(3))))
+    sys.stdout.write("".join(a + "\n" for a in out))
+    sys.stdout.flush()
+)";
+
+// --distance-scale: the cube times 2^600 and 2^-600, exactly. rayproof's own distance (with its
+// closest points and triangles) has no finding there and every set is as large as at scale 1; the
+// naive distance above overflows (2^600) or underflows (2^-600) off the surface and is caught on
+// the random points, where it is right at scale 1 up to its roundings. A scale that is not a power
+// of two, that overflows a vertex or makes one subnormal (or leaves float's range, for a float
+// function) is refused.
+TEST(CheckDistanceCli, ExtremeScalesAreJudgedExactly) {
+  if (!have_numpy()) GTEST_SKIP() << "/usr/bin/python3 has no numpy";
+  const auto mesh = write_file("cube.off", kCube);
+  const auto naive = write_file("naive_box_distance.py", kNaiveBoxDistance);
+  const auto judged = [&](const std::string& fn, const std::string& scale) {
+    const auto r = run_rayproof("check --distance '" + fn + "' --mesh " + mesh.string() +
+                                " --distance-points 100 --distance-max-per-set 100 --json --distance-scale " + scale);
+    EXPECT_NE(r.status, 2) << scale << r.err;
+    return std::pair{r.status, nlohmann::json::parse(r.out)["functions"][0]};
+  };
+  const std::string exact = "exact=/usr/bin/python3 " + example("rayproof_distance.py") + " " + RAYPROOF_BIN + " --closest";
+  const auto [status1, one] = judged(exact, "1");
+  EXPECT_EQ(status1, 0) << one.dump(1);
+  const auto [naive_status1, naive_one] = judged("naive=/usr/bin/python3 " + naive.string(), "1");
+  for (const char* scale : {"2^600", "2^-600", "0x1p-600"}) {
+    const auto [status, run] = judged(exact, scale);
+    EXPECT_EQ(status, 0) << scale << run.dump(1);
+    EXPECT_EQ(run["findings"], 0) << scale;
+    EXPECT_EQ(run["mesh"], mesh.string() + (scale[0] == '0' ? "*2^-600" : std::string("*") + scale));
+    EXPECT_EQ(run["points"], one["points"]) << scale;
+    EXPECT_EQ(run["surface"], one["surface"]) << scale;
+    EXPECT_EQ(run["closest_points"], one["closest_points"]) << scale;
+    ASSERT_EQ(run["sets"].size(), one["sets"].size()) << scale;
+    for (const auto& [set, counts] : one["sets"].items()) EXPECT_EQ(run["sets"][set]["points"], counts["points"]) << scale << " " << set;
+    const auto [naive_status, naive_run] = judged("naive=/usr/bin/python3 " + naive.string(), scale);
+    EXPECT_EQ(naive_status, 1) << scale;
+    EXPECT_GT(naive_run["sets"]["random"]["findings"].get<int>(), naive_one["sets"]["random"]["findings"].get<int>())
+        << scale << naive_run.dump(1);
+  }
+  for (const char* bad : {"3", "2^1.5", "-4", "0", "inf", "2^", "x"}) {
+    const auto r = run_rayproof("check --distance x=cat --mesh " + mesh.string() + " --distance-scale=" + bad);
+    EXPECT_EQ(r.status, 2) << bad;
+    EXPECT_NE(r.err.find("is not a power of two"), std::string::npos) << bad << r.err;
+  }
+  for (const char* bad : {"2^1024", "2^-1023", "2^200 --distance-precision float"}) {
+    const auto r = run_rayproof("check --distance x=cat --mesh " + mesh.string() + " --distance-scale " + bad);
+    EXPECT_EQ(r.status, 2) << bad;
+    EXPECT_NE(r.err.find("the scaled mesh would not be exact"), std::string::npos) << bad << r.err;
+  }
+}
+
 TEST(CheckDistanceCli, BadUsageIsRefused) {
   const auto mesh = write_file("cube.off", kCube);
   EXPECT_EQ(run_rayproof("check --distance 'x=cat'").status, 2);

@@ -214,17 +214,18 @@ TEST(ContainsCheck, ExactFunctionHasNoFindingOnAnyMesh) {
     EXPECT_GT(r.tally.surface, 0u) << m.name;
     EXPECT_GT(r.tally.inside, 0u) << m.name;
     EXPECT_EQ(r.tally.invalid_points, 10u) << m.name;
-    EXPECT_EQ(r.tally.sets.size(), 8u) << m.name;
+    EXPECT_EQ(r.tally.sets.size(), 9u) << m.name;
     EXPECT_GT(r.tally.contains_seconds, 0) << m.name;
     const bool closed = m.name != "open-box";
     expect_counts_equal(r.tally, brute_tally(m, closed, ContainsRule::automatic, r.points, r.answers), m.name);
   }
 }
 
-TEST(ContainsCheck, SurfaceSetsLieOnTheSurfaceAndNudgedPointsOff) {
+TEST(ContainsCheck, SurfaceSetsLieOnTheSurfaceAndNudgedAndMedialPointsOff) {
   const OwnedMesh m = cube();
   verify::ContainsCheckOptions opt;
   const auto pts = verify::contains_points(m.view(), opt);
+  std::size_t medial = 0, medial_inside = 0;
   for (std::size_t i = 0; i < pts.points.size(); ++i) {
     const std::string& set = pts.names[pts.set[i]];
     const BruteSide s = brute(m, pts.points[i]);
@@ -234,8 +235,13 @@ TEST(ContainsCheck, SurfaceSetsLieOnTheSurfaceAndNudgedPointsOff) {
       EXPECT_FALSE(s.surface) << i;
     } else if (set == "invalid") {
       EXPECT_TRUE(s.invalid) << i;
+    } else if (set == "medial") {
+      EXPECT_FALSE(s.surface) << i;  // off every edge along its bisector, as many inside as out
+      ++medial, medial_inside += s.winding != 0 ? 1 : 0;
     }
   }
+  EXPECT_EQ(medial, 18u * 6u);  // the cube's 18 edges, 3 distances both ways
+  EXPECT_EQ(2 * medial_inside, medial);
 }
 
 // precision float32: every point is a float (the nudges are float ulps: off the cube's surface),

@@ -374,6 +374,61 @@ TEST(DistanceCheck, WrongClosestPointsAndTrianglesMoveTheirCounterOnly) {
   }
 }
 
+/// The triangles at exactly the least distance from p (exact pairwise comparisons).
+std::vector<std::size_t> exact_ties(const OwnedMesh& m, const Vec3<double>& p) {
+  std::size_t nearest = 0;
+  for (std::size_t t = 1; t < m.f.size(); ++t)
+    if (compare_triangle_distances(p, corners(m, t), corners(m, nearest)) < 0) nearest = t;
+  std::vector<std::size_t> ties;
+  for (std::size_t t = 0; t < m.f.size(); ++t)
+    if (compare_triangle_distances(p, corners(m, t), corners(m, nearest)) == 0) ties.push_back(t);
+  return ties;
+}
+
+// The medial set on the cube: every point is an exact tie of two triangles or more (bisectors of
+// mirrored faces). rayproof's own answers get no finding; answering another tied triangle is not
+// wrong; answering a triangle that is not tied is, and every count equals the brute-force tally.
+TEST(DistanceCheck, MedialPointsAreTiesAndAnyTiedTriangleIsRight) {
+  const OwnedMesh m = cube();
+  const ExactMesh mesh = exact_mesh(m);
+  verify::DistanceCheckOptions opt;
+  opt.sets = {"medial"};
+  opt.max_points_per_set = 100000;
+  const verify::ContainsPoints pts = verify::distance_points(m.view(), opt);
+  ASSERT_EQ(pts.names, std::vector<std::string>{"medial"});
+  // 18 edges (12 of the cube, 6 diagonals), 3 distances both ways.
+  EXPECT_EQ(pts.points.size(), 18u * 6u);
+  for (const Vec3<double>& p : pts.points) EXPECT_GE(exact_ties(m, p).size(), 2u) << p.x << " " << p.y << " " << p.z;
+  const auto exact = exact_answers(mesh, false);
+  for (const char* how : {"exact", "other tie", "not tied"}) {
+    std::size_t not_tied = 0;
+    const verify::DistanceAnswerFunction fn = [&](std::span<const Vec3<double>> p, std::span<DistanceAnswer> out) {
+      exact(p, out);
+      for (std::size_t i = 0; i < p.size(); ++i) {
+        const std::vector<std::size_t> ties = exact_ties(m, p[i]);
+        if (std::string(how) == "other tie") {
+          for (std::size_t t : ties)
+            if (static_cast<std::int64_t>(t) != out[i].triangle) out[i].triangle = static_cast<std::int64_t>(t);
+        } else if (std::string(how) == "not tied") {
+          for (std::size_t t = 0; t < m.f.size(); ++t)
+            if (std::find(ties.begin(), ties.end(), t) == ties.end()) {
+              out[i].triangle = static_cast<std::int64_t>(t), ++not_tied;
+              break;
+            }
+        }
+      }
+    };
+    const Judged r = run(m, fn, opt);
+    expect_counts_equal(r.tally, brute_tally(m, opt, r.points, r.answers), how);
+    EXPECT_EQ(r.tally.points, pts.points.size()) << how;
+    EXPECT_EQ(r.tally.findings(), r.tally.wrong_triangle) << how << "\n" << verify::summary_text(r.tally);
+    EXPECT_EQ(r.tally.wrong_triangle, not_tied) << how;
+    if (std::string(how) == "not tied") {
+      EXPECT_EQ(not_tied, pts.points.size());
+    }
+  }
+}
+
 TEST(DistanceCheck, ClosestPointReproducersAreExact) {
   const OwnedMesh m = cube();
   const std::vector<Vec3<double>> pts{{0.5, 0.5, 2}, {0.5, 0.5, 3}};

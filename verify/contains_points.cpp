@@ -9,8 +9,10 @@
 #include <limits>
 #include <random>
 #include <set>
+#include <span>
 #include <stdexcept>
 #include <tuple>
+#include <utility>
 
 #include "rayproof/ray.h"
 #include "rayproof/scene/mesh_caster.h"
@@ -22,7 +24,7 @@ namespace {
 
 constexpr double kInf = std::numeric_limits<double>::infinity();
 constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
-constexpr const char* kSets[] = {"vertex", "edge", "face", "nudged", "thin", "far", "random", "invalid"};
+constexpr const char* kSets[] = {"vertex", "edge", "face", "nudged", "medial", "thin", "far", "random", "invalid"};
 
 /// Adds named sets, each point once, evenly subsampled to the cap.
 struct SetBuilder {
@@ -68,7 +70,7 @@ double& component(Vec3<double>& p, int axis) { return axis == 0 ? p.x : (axis ==
 ContainsPoints contains_points(const ContainsMesh& mesh, const ContainsCheckOptions& opt) {
   for (const std::string& s : opt.sets)
     if (std::find_if(std::begin(kSets), std::end(kSets), [&](const char* k) { return s == k; }) == std::end(kSets))
-      throw std::invalid_argument("unknown point set '" + s + "' (vertex, edge, face, nudged, thin, far, random, invalid)");
+      throw std::invalid_argument("unknown point set '" + s + "' (vertex, edge, face, nudged, medial, thin, far, random, invalid)");
   const auto& V = mesh.vertices;
   const auto& F = mesh.triangles;
   for (const auto& f : F)
@@ -89,8 +91,29 @@ ContainsPoints contains_points(const ContainsMesh& mesh, const ContainsCheckOpti
       hi = {std::max(hi.x, V[i].x), std::max(hi.y, V[i].y), std::max(hi.z, V[i].z)};
   if (F.empty()) lo = {-1, -1, -1}, hi = {1, 1, 1};
   const Vec3<double> centre = 0.5 * lo + 0.5 * hi;
-  const double size = std::max(length(hi - lo), 1e-300);
-  auto normal = [&](std::size_t k) { return cross(V[F[k][1]] - V[F[k][0]], V[F[k][2]] - V[F[k][0]]); };
+  // Shapes (normals, lengths, casts through thin parts) are measured on W, the mesh times 2^-E where
+  // its largest coordinate is beyond 2^±200 (E that coordinate's exponent; else E = 0 and W is the
+  // mesh), and their points scaled back: the sets of a mesh times 2^K are its sets times 2^K, no
+  // cross product or squared length overflowing or underflowing on the way.
+  int E = 0;
+  {
+    double big = 0;
+    for (const auto& f : F)
+      for (auto i : f)
+        for (double c : {V[i].x, V[i].y, V[i].z})
+          if (std::isfinite(c)) big = std::max(big, std::fabs(c));
+    if (big > 0 && (big > 0x1p200 || big < 0x1p-200)) E = std::ilogb(big);
+  }
+  auto scaled = [](const Vec3<double>& p, int e) {
+    return Vec3<double>{std::ldexp(p.x, e), std::ldexp(p.y, e), std::ldexp(p.z, e)};
+  };
+  std::vector<Vec3<double>> W_own;
+  if (E != 0)
+    for (const Vec3<double>& v : V) W_own.push_back(scaled(v, -E));
+  const std::span<const Vec3<double>> W = E != 0 ? std::span<const Vec3<double>>(W_own) : V;
+  const double size_w = E != 0 ? length(scaled(hi, -E) - scaled(lo, -E)) : std::max(length(hi - lo), 1e-300);
+  const double size = E != 0 ? std::max(std::ldexp(size_w, E), 1e-300) : size_w;
+  auto normal = [&](std::size_t k) { return cross(W[F[k][1]] - W[F[k][0]], W[F[k][2]] - W[F[k][0]]); };
 
   // Points on the surface, each with the sum of the unit normals of the triangles it lies on (for
   // the nudged set).
@@ -100,6 +123,8 @@ ContainsPoints contains_points(const ContainsMesh& mesh, const ContainsCheckOpti
     return l > 0 && std::isfinite(l) ? n / l : Vec3<double>{0, 0, 0};
   };
   std::vector<Vec3<double>> vertex, edge, face, vertex_n, edge_n, face_n;
+  std::vector<std::pair<std::uint32_t, std::uint32_t>> edge_ends;  // per edge point
+  std::vector<int> edge_uses;                                      // triangles on it
   {
     std::vector<Vec3<double>> around(V.size(), Vec3<double>{0, 0, 0});
     std::vector<bool> used(V.size(), false);
@@ -117,10 +142,13 @@ ContainsPoints contains_points(const ContainsMesh& mesh, const ContainsCheckOpti
       const auto [a, c, k] = es[i];
       if (i > 0 && std::get<0>(es[i - 1]) == a && std::get<1>(es[i - 1]) == c) {
         edge_n.back() = edge_n.back() + unit_normal(k);
+        ++edge_uses.back();
         continue;
       }
       edge.push_back(0.5 * V[a] + 0.5 * V[c]);  // halves first: no overflow at huge coordinates
       edge_n.push_back(unit_normal(k));
+      edge_ends.emplace_back(a, c);
+      edge_uses.push_back(1);
     }
     for (std::size_t k = 0; k < F.size(); ++k) {
       face.push_back(V[F[k][0]] / 3.0 + V[F[k][1]] / 3.0 + V[F[k][2]] / 3.0);
@@ -155,12 +183,40 @@ ContainsPoints contains_points(const ContainsMesh& mesh, const ContainsCheckOpti
     }
     b.add("nudged", std::move(nudged));
   }
+  if (wanted(opt, "medial")) {
+    // Near the medial axis, where two triangles (or more) are equally near: from the midpoint of
+    // each edge shared by triangles, along the bisector of their normals (the sum of their unit
+    // normals), both ways, 2^-20, 2^-4 and 2^-1 of the edge's length away. Where the two triangles
+    // mirror each other about the bisector's plane (a cube's edges and diagonals) the points are
+    // exact ties.
+    std::vector<Vec3<double>> medial;
+    for (std::size_t e = 0; e < edge.size(); ++e) {
+      if (edge_uses[e] < 2) continue;
+      const Vec3<double> dir = edge_n[e];
+      const double l = length(dir);
+      if (!(l > 1e-6) || !std::isfinite(l)) continue;  // opposite normals: a fold, no bisector
+      const auto [a, c] = edge_ends[e];
+      const double len = 2 * length(0.5 * W[c] - 0.5 * W[a]);
+      for (double f : {0x1p-20, 0x1p-4, 0x1p-1})
+        for (double way : {1.0, -1.0}) {
+          // The offset's coordinates rounded to 11 bits below its largest one's leading bit: added
+          // to the midpoint without rounding (unless the edge is tiny beside its coordinates), so
+          // that a bisector with coordinates of equal size (a cube's) gives exact ties.
+          Vec3<double> o = (way * f * len / l) * dir;
+          const int q = std::ilogb(std::max({std::fabs(o.x), std::fabs(o.y), std::fabs(o.z)})) - 10;
+          for (int axis = 0; axis < 3; ++axis)
+            component(o, axis) = std::ldexp(std::nearbyint(std::ldexp(component(o, axis), -q)), q + E);
+          medial.push_back(edge[e] + o);
+        }
+    }
+    b.add("medial", std::move(medial));
+  }
   if (wanted(opt, "thin")) {
     // The thinnest parts: from sampled triangles' centroids along the normal both ways to the next
     // surface; through the thinnest, points near both sides and across.
     std::vector<Vec3<double>> thin;
     if (!F.empty()) {
-      const MeshCaster<cast::Robust> caster(VertexArray(reinterpret_cast<const double*>(V.data()), V.size()),
+      const MeshCaster<cast::Robust> caster(VertexArray(reinterpret_cast<const double*>(W.data()), W.size()),
                                             IndexArray{F.data()->data(), F.size()});
       struct Through {
         double t;
@@ -174,15 +230,16 @@ ContainsPoints contains_points(const ContainsMesh& mesh, const ContainsCheckOpti
         if (!(l > 0) || !std::isfinite(l)) continue;
         for (double s : {-1.0, 1.0}) {
           const Vec3<double> d = (s / l) * n;
-          const MeshHit h = caster.closest(Ray<double>{face[k], d}, TRange{size * 0x1p-40, kInf});
-          if (h.hit() && std::isfinite(h.t)) through.push_back({h.t, face[k], d});
+          const Vec3<double> from = scaled(face[k], -E);
+          const MeshHit h = caster.closest(Ray<double>{from, d}, TRange{size_w * 0x1p-40, kInf});
+          if (h.hit() && std::isfinite(h.t)) through.push_back({h.t, from, d});
         }
       }
       std::sort(through.begin(), through.end(), [](const Through& a, const Through& c) { return a.t < c.t; });
       const std::size_t parts = std::min<std::size_t>(through.size(), std::max<std::size_t>(1, b.cap / 8));
       for (std::size_t k = 0; k < parts; ++k)
         for (double f : {-0x1p-20, 0x1p-40, 0x1p-20, 0.5, 1 - 0x1p-20, 1 - 0x1p-40, 1 + 0x1p-20, 1 + 0x1p-40})
-          thin.push_back(through[k].from + (f * through[k].t) * through[k].dir);
+          thin.push_back(scaled(through[k].from + (f * through[k].t) * through[k].dir, E));
     }
     if (F.empty()) out.notes.push_back("thin: no triangles");
     b.add("thin", std::move(thin));
@@ -220,7 +277,9 @@ ContainsPoints contains_points(const ContainsMesh& mesh, const ContainsCheckOpti
                       {centre.x, centre.y, -kInf}, {kNaN, kNaN, kNaN}, {kInf, -kInf, kNaN}, {kInf, kInf, kInf}});
   for (std::size_t k = 0; k < out.names.size(); ++k)
     if (std::find(out.set.begin(), out.set.end(), k) == out.set.end() && out.names[k] != "thin")
-      out.notes.push_back(out.names[k] + ": empty (the mesh has no triangles)");
+      out.notes.push_back(out.names[k] + (out.names[k] == "medial" && !F.empty()
+                                              ? ": empty (no edge is shared by triangles that are not folded flat)"
+                                              : ": empty (the mesh has no triangles)"));
   return out;
 }
 

@@ -233,7 +233,7 @@ void bind_check_contains(py::module_& m) {
 fn(points) takes an (n, 3) float64 array and returns n answers: 0 outside, 1 inside, optionally 2
 on the surface (ints, bools or integral floats; anything else is garbage). The answers are judged
 by `rule` ('automatic', 'nonzero', 'parity', 'winding'; as Mesh.contains). The points: rayproof's
-sets (vertex, edge, face, nudged, thin, far, random, invalid; `sets` picks some; precision='float'
+sets (vertex, edge, face, nudged, medial, thin, far, random, invalid; `sets` picks some; precision='float'
 rounds them to float and nudges by float ulps, for a float32 function), or points=(n, 3) array. An exception fn raises fails that batch's points (failures, or invalid_failures on points
 with a NaN or infinity) and the run goes on.
 

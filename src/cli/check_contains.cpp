@@ -74,8 +74,11 @@ int run_contains_check(const CheckCliOptions& o) {
   opt.sets = o.contains_sets;
   if (!report_dir_ready(o.out)) return 2;
 
-  const auto judged = judged_meshes(o);
+  const auto scale = scale_exponent(o.contains_scale, "--contains-scale");
+  if (!scale) return 2;
+  auto judged = judged_meshes(o);
   if (!judged) return 2;
+  if (!scale_meshes(*judged, *scale, opt.precision == verify::ContainsPrecision::float32, "--contains-scale")) return 2;
   const std::vector<JudgedMesh>& meshes = *judged;
 
   verify::ExecContainsOptions exec_opt;
@@ -84,9 +87,10 @@ int run_contains_check(const CheckCliOptions& o) {
   bool any_finding = false;
   nlohmann::json json_runs = nlohmann::json::array();
   if (!o.json)
-    fmt::print("rayproof check --contains: rule {}, {} precision; each point's side judged against rayproof's exact "
+    fmt::print("rayproof check --contains: rule {}, {} precision{}; each point's side judged against rayproof's exact "
                "contains (docs/check.md)\n",
-               o.contains_rule, o.contains_precision);
+               o.contains_rule, o.contains_precision,
+               *scale != 0 ? fmt::format(", the mesh times 2^{}", *scale) : std::string());
   // --out: every function's row, then rayproof's own exact contains on each mesh's points.
   verify::JudgeReport report = verify::contains_report(opt);
   std::vector<verify::JudgeReportRow> builtin_rows;

@@ -66,8 +66,11 @@ int run_distance_check(const CheckCliOptions& o) {
   opt.reproducers = o.reproducers;
   opt.sets = o.distance_sets;
   if (!report_dir_ready(o.out)) return 2;
-  const auto judged = judged_meshes(o);
+  const auto scale = scale_exponent(o.distance_scale, "--distance-scale");
+  if (!scale) return 2;
+  auto judged = judged_meshes(o);
   if (!judged) return 2;
+  if (!scale_meshes(*judged, *scale, opt.precision == verify::ContainsPrecision::float32, "--distance-scale")) return 2;
 
   verify::ExecContainsOptions exec_opt;
   exec_opt.timeout_seconds = o.distance_timeout;
@@ -75,9 +78,10 @@ int run_distance_check(const CheckCliOptions& o) {
   bool any_finding = false;
   nlohmann::json json_runs = nlohmann::json::array();
   if (!o.json)
-    fmt::print("rayproof check --distance: {} distances judged against rayproof's exact distance, correctly rounded "
+    fmt::print("rayproof check --distance: {} distances{} judged against rayproof's exact distance, correctly rounded "
                "(docs/check.md){}\n",
                o.distance_signed ? "signed" : "unsigned",
+               *scale != 0 ? fmt::format(" on the mesh times 2^{}", *scale) : std::string(),
                opt.precision == verify::ContainsPrecision::float32
                    ? "; float: the mesh and the points rounded to float, errors in float ulps"
                    : "");

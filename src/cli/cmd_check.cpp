@@ -411,8 +411,12 @@ Run add_check(CLI::App& app) {
       ->check(CLI::Range(std::size_t{1}, std::size_t{100000000}))
       ->capture_default_str();
   sub->add_option("--contains-sets", o->contains_sets,
-                  "Point sets: vertex, edge, face, nudged, thin, far, random, invalid (default: all)")
+                  "Point sets: vertex, edge, face, nudged, medial, thin, far, random, invalid (default: all)")
       ->delimiter(',')->allow_extra_args(false);
+  sub->add_option("--contains-scale", o->contains_scale,
+                  "Judge on the mesh times this power of two, exactly (2^K, e.g. 2^600 or 2^-600, or a number such as "
+                  "0.25); refused when a coordinate would overflow or become subnormal")
+      ->capture_default_str();
   sub->add_option("--distance", o->distance,
                   "NAME=COMMAND: a distance function judged on --mesh: it reads the mesh, then batches of points, and "
                   "answers per point a distance, optionally its closest point and triangle (docs/check.md); "
@@ -436,8 +440,12 @@ Run add_check(CLI::App& app) {
       ->check(CLI::Range(std::size_t{1}, std::size_t{100000000}))
       ->capture_default_str();
   sub->add_option("--distance-sets", o->distance_sets,
-                  "Point sets: vertex, edge, face, nudged, thin, far, random, invalid (default: all)")
+                  "Point sets: vertex, edge, face, nudged, medial, thin, far, random, invalid (default: all)")
       ->delimiter(',')->allow_extra_args(false);
+  sub->add_option("--distance-scale", o->distance_scale,
+                  "Judge on the mesh times this power of two, exactly (2^K, e.g. 2^600 or 2^-600, or a number such as "
+                  "0.25); refused when a coordinate would overflow or become subnormal")
+      ->capture_default_str();
   add_crossings_check_options(*sub, *o);
   return [o] { return run_check(*o); };
 }

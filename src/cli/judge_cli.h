@@ -8,7 +8,10 @@
 
 #include <nlohmann/json.hpp>
 
+#include <cfloat>
+#include <charconv>
 #include <cmath>
+#include <cstdlib>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -53,6 +56,54 @@ inline bool positive_seconds(double seconds, std::string_view flag) {
   if (seconds > 0 && std::isfinite(seconds)) return true;
   fmt::print(stderr, "rayproof check: {} must be a positive number of seconds\n", flag);
   return false;
+}
+
+/// The exponent K of `--contains-scale 2^K` (written 2^K, or as a number that is a power of two:
+/// 0.25, 0x1p600); nothing (the error printed) for anything else.
+inline std::optional<int> scale_exponent(const std::string& s, std::string_view flag) {
+  if (s.size() > 2 && s[0] == '2' && s[1] == '^') {
+    const char* b = s.data() + 2;
+    const char* e = s.data() + s.size();
+    if (*b == '+') ++b;
+    int k = 0;
+    const auto [end, ec] = std::from_chars(b, e, k);
+    if (ec == std::errc() && end == e && b != e) return k;
+  } else if (!s.empty()) {
+    char* end = nullptr;
+    const double x = std::strtod(s.c_str(), &end);
+    int e = 0;
+    if (end == s.c_str() + s.size() && x > 0 && std::isfinite(x) && std::frexp(x, &e) == 0.5) return e - 1;
+  }
+  fmt::print(stderr, "rayproof check: {} '{}' is not a power of two (2^K, e.g. 2^600 or 2^-600, or a number such as 0.25)\n",
+             flag, s);
+  return std::nullopt;
+}
+
+/// Every mesh's vertices times 2^k, exactly, and its name marked `NAME*2^k`; false (the error
+/// printed) when a nonzero coordinate would leave the normal range (overflow to infinity, or
+/// subnormal: the scaling would not be exact) of double, or with `float32` of float (the float
+/// judges round the mesh or the points to float).
+inline bool scale_meshes(std::vector<JudgedMesh>& meshes, int k, bool float32, std::string_view flag) {
+  if (k == 0) return true;
+  const double top = float32 ? double(FLT_MAX) : DBL_MAX, least = float32 ? double(FLT_MIN) : DBL_MIN;
+  for (const JudgedMesh& m : meshes)
+    for (std::size_t i = 0; i < m.mesh.vertices.size(); ++i)
+      for (double c : {m.mesh.vertices[i].x, m.mesh.vertices[i].y, m.mesh.vertices[i].z}) {
+        if (c == 0 || !std::isfinite(c)) continue;
+        const double s = std::ldexp(c, k);
+        if (!(std::fabs(s) <= top) || (float32 && !std::isfinite(float(s))) || std::fabs(s) < least) {
+          fmt::print(stderr,
+                     "rayproof check: {} 2^{}: {}'s vertex {} has coordinate {} whose scaling {} {}'s range of normal "
+                     "numbers (the scaled mesh would not be exact); give a smaller scale\n",
+                     flag, k, m.name, i, c, std::fabs(s) < least ? "falls below" : "overflows", float32 ? "float" : "double");
+          return false;
+        }
+      }
+  for (JudgedMesh& m : meshes) {
+    for (Vec3<double>& v : m.mesh.vertices) v = {std::ldexp(v.x, k), std::ldexp(v.y, k), std::ldexp(v.z, k)};
+    m.name += fmt::format("*2^{}", k);
+  }
+  return true;
 }
 
 /// judge / baseline in JSON: null without a baseline time.

@@ -41,12 +41,14 @@ struct CheckCliOptions {
   double contains_timeout = 10;
   std::size_t contains_batch = 1024, contains_points = 1000, contains_max_per_set = 1000;
   std::vector<std::string> contains_sets;
+  std::string contains_scale = "1";  ///< --contains-scale: the mesh times this power of two (2^K)
   std::vector<std::string> distance;  ///< --distance NAME=COMMAND: distance functions on --mesh (check_distance.cpp)
   bool distance_signed = false;
   std::string distance_precision = "double";
   double distance_rel_tol = 0, distance_timeout = 10;
   std::size_t distance_batch = 1024, distance_points = 1000, distance_max_per_set = 1000;
   std::vector<std::string> distance_sets;
+  std::string distance_scale = "1";  ///< --distance-scale: the mesh times this power of two (2^K)
   std::vector<std::string> crossings;  ///< --crossings NAME=COMMAND: all-hits functions on --mesh (check_crossings.cpp)
   std::string crossings_precision = "double";
   std::uint64_t crossings_max_ulps = 1;

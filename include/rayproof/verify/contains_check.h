@@ -29,7 +29,10 @@
 /// Point sets (contains_points): `vertex` (every vertex), `edge` (edge midpoints rounded to double),
 /// `face` (triangle centroids rounded to double), `nudged` (those points moved one ulp both ways
 /// along the summed normal of the triangles they lie on: every coordinate whose component is at
-/// least a tenth of the largest), `thin` (points
+/// least a tenth of the largest), `medial` (near the medial axis: from the midpoints of edges
+/// shared by triangles along the bisector of their normals, both ways, 2^-20, 2^-4 and 2^-1 of the
+/// edge's length away, the offset rounded to 11 bits so that adding it is exact: where triangles
+/// are (nearly) equally near; exact ties where the two faces mirror each other), `thin` (points
 /// through and just beyond the thinnest parts, along triangles' normals), `far` (points from 10 to
 /// 1e300 mesh sizes away), `random` (uniform in the mesh's box, enlarged by a tenth), `invalid`.
 /// With precision float32 every point is rounded to float (a coordinate beyond float's range
