@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Fails when code uses a layer above its own or beside it (the layer rule of README.md's Layout),
+"""Fails when code uses a layer above its own or beside it (the layer rule of docs/layout.md),
 by its quoted #includes and by the link graph of its CMake targets. Layers, bottom to top:
    0  include/rayproof          the public headers (their folder names the library to link)
    1  src/io                    case files
@@ -185,7 +185,7 @@ def main(argv):
         check_links(root, argv[2], bad)
         checked = "every include and every link"
     if bad:
-        print("uses against the layer rule (README.md, Layout):")
+        print("uses against the layer rule (docs/layout.md):")
         print("\n".join(sorted(set(bad))))
         return 1
     print(f"{checked} keeps the layer rule")
